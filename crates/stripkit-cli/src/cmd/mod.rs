@@ -1,0 +1,20 @@
+//! One module per subcommand; each has an `Args` (clap) and a `run`.
+
+pub mod distance;
+pub mod gen;
+pub mod matching;
+pub mod simplify;
+pub mod stats;
+pub mod strip;
+
+use std::process::ExitCode;
+
+/// Exit status for an error: 1 for a failed verification, 2 for bad input.
+pub fn exit_code(err: &anyhow::Error) -> ExitCode {
+    for cause in err.chain() {
+        if let Some(stripkit::Error::Verification(_)) = cause.downcast_ref::<stripkit::Error>() {
+            return ExitCode::from(1);
+        }
+    }
+    ExitCode::from(2)
+}

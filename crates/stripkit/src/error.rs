@@ -1,0 +1,45 @@
+//! The library's error type: every failure names the file, the place in it and what
+//! is wrong, so that a user can fix the input without reading our code.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong in stripkit.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The operating system refused to read or write a file.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What the system said.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A file's content is malformed: `at` names the line, element or byte offset.
+    #[error("{path}: {at}: {what}")]
+    Format {
+        /// The file.
+        path: PathBuf,
+        /// Where in the file, e.g. "line 12" or "face 1022".
+        at: String,
+        /// What is wrong, e.g. "face refers to vertex 40000 but the file has 35947 vertices".
+        what: String,
+    },
+    /// A file name whose extension names no format we know.
+    #[error("{path}: unknown mesh format (expected one of {expected})")]
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+        /// The supported extensions.
+        expected: &'static str,
+    },
+    /// An argument or input that the operation cannot take.
+    #[error("{0}")]
+    Invalid(String),
+    /// An output failed its independent check; never written silently.
+    #[error("verification failed: {0}")]
+    Verification(String),
+}
+
+/// Shorthand for results of this crate.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,2 @@
+//! Weighted perfect matching on sparse graphs (primal-dual blossom algorithm).
+//! (Filled in by the matching work.)

@@ -1,0 +1,2 @@
+//! Quadric-error-metric edge collapse that records its collapse sequence.
+//! (Filled in by the simplification work.)

@@ -1,0 +1,2 @@
+//! Stripifiers: one file per algorithm. Each takes triangles (or a mesh) and returns a
+//! [`crate::strip::StripSet`] that [`crate::strip::verify`] accepts.
