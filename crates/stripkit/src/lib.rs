@@ -22,6 +22,8 @@ pub mod simplify;
 pub mod distance;
 pub mod lod;
 pub mod gen;
+#[doc(hidden)]
+pub mod test_support;
 
 pub use error::{Error, Result};
 pub use mesh::{Mesh, Triangles};
