@@ -35,6 +35,11 @@ impl<'a> Lines<'a> {
     pub fn new(data: &'a [u8]) -> Self {
         Lines { data, pos: 0, line: 0 }
     }
+
+    /// Byte offset of the next line.
+    pub fn offset(&self) -> usize {
+        self.pos
+    }
 }
 
 impl<'a> Iterator for Lines<'a> {
