@@ -189,7 +189,7 @@ pub(crate) fn push_fan_triangles(mesh: &mut Mesh, fan: &[u32]) -> Result<(), Str
 }
 
 /// The message for an index out of range.
-pub(crate) fn index_message(face: usize, index: u64, vertices: usize) -> String {
+pub(crate) fn index_message(face: u64, index: i64, vertices: usize) -> String {
     format!("face {face} refers to vertex {index} but the file has {vertices} vertices")
 }
 

@@ -91,7 +91,7 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
         let face = mesh.faces().position(|f| f.iter().any(|&i| i as usize >= nv)).unwrap_or(0);
         let bad = mesh.face(face).iter().copied().find(|&i| i as usize >= nv).unwrap_or(0);
         let line = face_line(data, face);
-        return Err(src.err(line_at(line), index_message(face, bad as u64 + 1, nv)));
+        return Err(src.err(line_at(line), index_message(face as u64, bad as i64 + 1, nv)));
     }
     Ok(mesh)
 }
