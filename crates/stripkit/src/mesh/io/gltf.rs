@@ -173,7 +173,7 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>) -> Result<Mesh> {
             .get(buffer)
             .ok_or_else(|| src.err(place(), format!("refers to buffer {buffer} but the file has {}", buffers.len())))?
             .len();
-        if offset.checked_add(length).map_or(true, |e| e > buf_len) {
+        if !matches!(offset.checked_add(length), Some(end) if end <= buf_len) {
             return Err(src.err(place(), format!("bytes {offset}..+{length} lie outside buffer {buffer} ({buf_len} bytes)")));
         }
         if stride.is_some_and(|s| !(4..=252).contains(&s)) {
