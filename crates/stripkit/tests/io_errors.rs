@@ -256,3 +256,20 @@ fn corrupted_files_never_panic() {
         }
     }
 }
+
+#[test]
+fn gltf_primitives_reusing_accessors_cannot_inflate_the_mesh_without_bound() {
+    // 36 bytes of positions, drawn non-indexed by 100,000 primitives.
+    let prims: Vec<String> = (0..100_000).map(|_| r#"{"attributes":{"POSITION":0}}"#.to_string()).collect();
+    let json = format!(
+        r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":36,"uri":"data:;base64,{}"}}],
+        "bufferViews":[{{"buffer":0,"byteLength":36}}],
+        "accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}}],
+        "meshes":[{{"primitives":[{}]}}]}}"#,
+        "A".repeat(48),
+        prims.join(",")
+    );
+    let (at, what) = format_error("inflate.gltf", json.as_bytes());
+    assert!(at.starts_with("meshes[0].primitives["), "{at}");
+    assert!(what.contains("reuse accessors"), "{what}");
+}
