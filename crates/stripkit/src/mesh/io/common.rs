@@ -74,15 +74,6 @@ pub(crate) fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
     line.split(|&b| is_space(b)).filter(|t| !t.is_empty())
 }
 
-/// The line without a trailing `#` comment.
-#[inline]
-pub(crate) fn strip_comment(line: &[u8]) -> &[u8] {
-    match line.iter().position(|&b| b == b'#') {
-        Some(i) => &line[..i],
-        None => line,
-    }
-}
-
 /// Shows a token in an error message (lossy, shortened).
 pub(crate) fn show(tok: &[u8]) -> String {
     let s = String::from_utf8_lossy(&tok[..tok.len().min(40)]).into_owned();
