@@ -273,3 +273,19 @@ fn gltf_primitives_reusing_accessors_cannot_inflate_the_mesh_without_bound() {
     assert!(at.starts_with("meshes[0].primitives["), "{at}");
     assert!(what.contains("reuse accessors"), "{what}");
 }
+
+#[test]
+fn gltf_required_extensions_and_wrong_versions_are_named() {
+    let (at, what) = format_error(
+        "draco.gltf",
+        br#"{"asset":{"version":"2.0"},"extensionsRequired":["KHR_draco_mesh_compression"],"meshes":[]}"#,
+    );
+    assert_eq!(at, "extensionsRequired");
+    assert!(what.contains("KHR_draco_mesh_compression"), "{what}");
+    let (at, what) = format_error("v1.gltf", br#"{"asset":{"version":"1.0"}}"#);
+    assert_eq!(at, "asset.version");
+    assert!(what.contains("'1.0'"), "{what}");
+    let (at, what) = format_error("magic.glb", b"glTf\x02\0\0\0\x0c\0\0\0");
+    assert_eq!(at, "byte 0");
+    assert!(what.contains("'glTF'"), "{what}");
+}

@@ -148,6 +148,14 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>) -> Result<Mesh> {
     if !version.starts_with('2') {
         return Err(src.err("asset.version", format!("glTF version '{version}', only 2.x is supported")));
     }
+    // Required extensions change how data is stored (compression, quantization):
+    // reading past them would give garbage, so name them instead.
+    if let Some(ext) = array(src, json, "extensionsRequired")?.first() {
+        return Err(src.err(
+            "extensionsRequired",
+            format!("the file requires extension {ext}, which stripkit does not read"),
+        ));
+    }
     let mut buffers = Vec::new();
     for (i, b) in array(src, json, "buffers")?.iter().enumerate() {
         let place = || at("buffers", i);
