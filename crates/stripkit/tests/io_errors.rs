@@ -289,3 +289,36 @@ fn gltf_required_extensions_and_wrong_versions_are_named() {
     assert_eq!(at, "byte 0");
     assert!(what.contains("'glTF'"), "{what}");
 }
+
+#[test]
+fn ascii_ply_counts_beyond_the_file_size_are_refused() {
+    let (at, what) = format_error(
+        "count_ascii.ply",
+        b"ply\nformat ascii 1.0\nelement vertex 1000000000\nproperty float x\nproperty float y\nproperty float z\n\
+          end_header\n0 0 0\n",
+    );
+    assert!(at.starts_with("element 'vertex' (line "), "{at}");
+    assert!(what.contains("1000000000 'vertex' records"), "{what}");
+    // A count that fits the bytes but not the data: the reader runs out and says so.
+    let (at, what) = format_error(
+        "short_ascii.ply",
+        b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+          end_header\n0 0 0\n1 0 0 0 1\n",
+    );
+    assert_eq!(at, "vertex 2 (line 9)");
+    assert!(what.contains("truncated"), "{what}");
+}
+
+#[test]
+fn a_missing_external_gltf_buffer_is_an_io_error_naming_it() {
+    let path = tmp("external_missing.gltf");
+    std::fs::write(
+        &path,
+        br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":12,"uri":"no%20such.bin"}]}"#,
+    )
+    .unwrap();
+    match io::read(&path) {
+        Err(e @ Error::Io { .. }) => assert!(e.to_string().contains("no such.bin"), "{e}"),
+        other => panic!("expected an I/O error, got {other:?}"),
+    }
+}

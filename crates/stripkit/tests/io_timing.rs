@@ -47,6 +47,7 @@ fn print_read_times() {
         for name in ["bunny.obj", "horse.ply", "dragon.obj", "bunny_res2.ply", "cow_tristrips.ply"] {
             files.push(dir.join(name));
         }
+        files.push(dir.join("sequences/horse-gallop/horse-gallop-01.obj.gz"));
     }
     let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let big = grid(708); // 707^2 * 2 = 999,698 triangles, 501,264 vertices

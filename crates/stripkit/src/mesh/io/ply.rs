@@ -206,10 +206,11 @@ impl<'a> Ascii<'a> {
         while self.pos < d.len() && !is_space(d[self.pos]) && d[self.pos] != b'\n' {
             self.pos += 1;
         }
-        self.token_line = self.line;
         if start == self.pos {
+            // Reported at the line of the last value read.
             return Err("the file ends early (truncated)".into());
         }
+        self.token_line = self.line;
         Ok(&d[start..self.pos])
     }
 }
