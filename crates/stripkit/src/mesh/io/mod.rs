@@ -29,7 +29,7 @@ use crate::strip::StripSet;
 use std::io::{Read, Write};
 use std::path::Path;
 
-/// The extensions [`read`] and [`write`] understand, as shown in error messages.
+/// The extensions [`read`] and [`write()`] understand, as shown in error messages.
 pub const SUPPORTED_EXTENSIONS: &str =
     ".obj, .ply, .off, .stl, .gltf, .glb (each optionally followed by .gz)";
 
@@ -38,7 +38,7 @@ pub fn supported_read_extensions() -> &'static str {
     SUPPORTED_EXTENSIONS
 }
 
-/// The extensions [`write`] understands, for help texts and error messages.
+/// The extensions [`write()`] understands, for help texts and error messages.
 pub fn supported_write_extensions() -> &'static str {
     SUPPORTED_EXTENSIONS
 }
@@ -142,7 +142,7 @@ pub fn write(path: &Path, mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> 
     write_with(path, mesh, strips, &WriteOptions::default())
 }
 
-/// [`write`] with options. The mesh is checked first: [`Error::Invalid`] when a face or
+/// [`write()`] with options. The mesh is checked first: [`Error::Invalid`] when a face or
 /// strip index is out of range or a coordinate is NaN or infinite (no reader would
 /// accept the file). A name ending in `.gz` is gzip-compressed.
 pub fn write_with(
