@@ -256,3 +256,69 @@ fn corrupted_files_never_panic() {
         }
     }
 }
+
+#[test]
+fn gltf_primitives_reusing_accessors_cannot_inflate_the_mesh_without_bound() {
+    // 36 bytes of positions, drawn non-indexed by 100,000 primitives.
+    let prims: Vec<String> = (0..100_000).map(|_| r#"{"attributes":{"POSITION":0}}"#.to_string()).collect();
+    let json = format!(
+        r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":36,"uri":"data:;base64,{}"}}],
+        "bufferViews":[{{"buffer":0,"byteLength":36}}],
+        "accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}}],
+        "meshes":[{{"primitives":[{}]}}]}}"#,
+        "A".repeat(48),
+        prims.join(",")
+    );
+    let (at, what) = format_error("inflate.gltf", json.as_bytes());
+    assert!(at.starts_with("meshes[0].primitives["), "{at}");
+    assert!(what.contains("reuse accessors"), "{what}");
+}
+
+#[test]
+fn gltf_required_extensions_and_wrong_versions_are_named() {
+    let (at, what) = format_error(
+        "draco.gltf",
+        br#"{"asset":{"version":"2.0"},"extensionsRequired":["KHR_draco_mesh_compression"],"meshes":[]}"#,
+    );
+    assert_eq!(at, "extensionsRequired");
+    assert!(what.contains("KHR_draco_mesh_compression"), "{what}");
+    let (at, what) = format_error("v1.gltf", br#"{"asset":{"version":"1.0"}}"#);
+    assert_eq!(at, "asset.version");
+    assert!(what.contains("'1.0'"), "{what}");
+    let (at, what) = format_error("magic.glb", b"glTf\x02\0\0\0\x0c\0\0\0");
+    assert_eq!(at, "byte 0");
+    assert!(what.contains("'glTF'"), "{what}");
+}
+
+#[test]
+fn ascii_ply_counts_beyond_the_file_size_are_refused() {
+    let (at, what) = format_error(
+        "count_ascii.ply",
+        b"ply\nformat ascii 1.0\nelement vertex 1000000000\nproperty float x\nproperty float y\nproperty float z\n\
+          end_header\n0 0 0\n",
+    );
+    assert!(at.starts_with("element 'vertex' (line "), "{at}");
+    assert!(what.contains("1000000000 'vertex' records"), "{what}");
+    // A count that fits the bytes but not the data: the reader runs out and says so.
+    let (at, what) = format_error(
+        "short_ascii.ply",
+        b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+          end_header\n0 0 0\n1 0 0 0 1\n",
+    );
+    assert_eq!(at, "vertex 2 (line 9)");
+    assert!(what.contains("truncated"), "{what}");
+}
+
+#[test]
+fn a_missing_external_gltf_buffer_is_an_io_error_naming_it() {
+    let path = tmp("external_missing.gltf");
+    std::fs::write(
+        &path,
+        br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":12,"uri":"no%20such.bin"}]}"#,
+    )
+    .unwrap();
+    match io::read(&path) {
+        Err(e @ Error::Io { .. }) => assert!(e.to_string().contains("no such.bin"), "{e}"),
+        other => panic!("expected an I/O error, got {other:?}"),
+    }
+}

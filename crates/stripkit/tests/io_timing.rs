@@ -47,6 +47,7 @@ fn print_read_times() {
         for name in ["bunny.obj", "horse.ply", "dragon.obj", "bunny_res2.ply", "cow_tristrips.ply"] {
             files.push(dir.join(name));
         }
+        files.push(dir.join("sequences/horse-gallop/horse-gallop-01.obj.gz"));
     }
     let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let big = grid(708); // 707^2 * 2 = 999,698 triangles, 501,264 vertices
@@ -57,7 +58,9 @@ fn print_read_times() {
         println!("write {name}: {:.1} ms", t.elapsed().as_secs_f64() * 1e3);
         files.push(path);
     }
-    for path in files {
+    // STRIPKIT_TIMING_FILTER=obj times only files whose name contains "obj".
+    let filter = std::env::var("STRIPKIT_TIMING_FILTER").unwrap_or_default();
+    for path in files.into_iter().filter(|p| p.to_string_lossy().contains(filter.as_str())) {
         let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
         let (ms, mesh) = median_read_ms(&path);
         println!(

@@ -148,6 +148,14 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>) -> Result<Mesh> {
     if !version.starts_with('2') {
         return Err(src.err("asset.version", format!("glTF version '{version}', only 2.x is supported")));
     }
+    // Required extensions change how data is stored (compression, quantization):
+    // reading past them would give garbage, so name them instead.
+    if let Some(ext) = array(src, json, "extensionsRequired")?.first() {
+        return Err(src.err(
+            "extensionsRequired",
+            format!("the file requires extension {ext}, which stripkit does not read"),
+        ));
+    }
     let mut buffers = Vec::new();
     for (i, b) in array(src, json, "buffers")?.iter().enumerate() {
         let place = || at("buffers", i);
@@ -187,6 +195,12 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>) -> Result<Mesh> {
     // POSITION accessor -> (first vertex id, vertex count).
     let mut vertex_base: HashMap<usize, (u32, usize)> = HashMap::new();
     let mut indices: Vec<u32> = Vec::new();
+    // Primitives may reuse accessors, so a small file could describe a huge mesh. A
+    // legitimate file gives at most three face indices per byte of its buffers (a
+    // strip of u8 indices); anything beyond a generous multiple of that is refused
+    // before it is allocated.
+    let buffer_bytes: usize = doc.buffers.iter().map(Vec::len).sum();
+    let budget = buffer_bytes.saturating_mul(12).saturating_add(1 << 16);
     for (m, jm) in array(src, json, "meshes")?.iter().enumerate() {
         let prims = match jm.get("primitives") {
             Some(Value::Array(a)) => a.as_slice(),
@@ -230,6 +244,16 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>) -> Result<Mesh> {
                     }
                 }
                 None => indices.extend(0..count as u32),
+            }
+            let bound = if mode == 4 { indices.len() } else { 3 * indices.len() };
+            if mesh.face_indices.len().saturating_add(bound) > budget {
+                return Err(src.err(
+                    place(),
+                    format!(
+                        "the primitives reuse accessors into more than {budget} face indices, \
+                         far more than the file's {buffer_bytes} buffer bytes can describe"
+                    ),
+                ));
             }
             for i in indices.iter_mut() {
                 *i += base;

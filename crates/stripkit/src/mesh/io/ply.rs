@@ -206,10 +206,11 @@ impl<'a> Ascii<'a> {
         while self.pos < d.len() && !is_space(d[self.pos]) && d[self.pos] != b'\n' {
             self.pos += 1;
         }
-        self.token_line = self.line;
         if start == self.pos {
+            // Reported at the line of the last value read.
             return Err("the file ends early (truncated)".into());
         }
+        self.token_line = self.line;
         Ok(&d[start..self.pos])
     }
 }
@@ -308,11 +309,27 @@ impl Body for Binary<'_> {
     }
     #[inline]
     fn int(&mut self, s: Scalar) -> Result<i64, String> {
-        let v = self.value(s)?;
-        if v.fract() != 0.0 || v.abs() >= 1e15 {
-            return Err(format!("{v} is not an integer"));
+        macro_rules! int {
+            ($t:ty, $n:literal) => {{
+                let b = self.bytes::<$n>()?;
+                Ok((if self.big { <$t>::from_be_bytes(b) } else { <$t>::from_le_bytes(b) }) as i64)
+            }};
         }
-        Ok(v as i64)
+        match s {
+            Scalar::I8 => int!(i8, 1),
+            Scalar::U8 => int!(u8, 1),
+            Scalar::I16 => int!(i16, 2),
+            Scalar::U16 => int!(u16, 2),
+            Scalar::I32 => int!(i32, 4),
+            Scalar::U32 => int!(u32, 4),
+            Scalar::F32 | Scalar::F64 => {
+                let v = self.value(s)?;
+                if v.fract() != 0.0 || v.abs() >= 1e15 {
+                    return Err(format!("{v} is not an integer"));
+                }
+                Ok(v as i64)
+            }
+        }
     }
     #[inline]
     fn skip(&mut self, s: Scalar) -> Result<(), String> {

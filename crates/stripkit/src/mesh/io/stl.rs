@@ -14,14 +14,18 @@ use std::path::Path;
 
 /// Assigns vertex ids to positions: identical bits give the same id.
 struct Welder {
-    /// Open addressing table of vertex ids; `u32::MAX` is empty.
-    slots: Vec<u32>,
+    /// Open addressing table of (position bits, vertex id); id `u32::MAX` is empty.
+    /// Keys live in the table so that a probe touches one cache line.
+    slots: Vec<([u32; 3], u32)>,
+    used: usize,
 }
+
+const EMPTY: ([u32; 3], u32) = ([0; 3], u32::MAX);
 
 impl Welder {
     fn with_capacity(vertices: usize) -> Self {
         let size = (vertices.max(8) * 2).next_power_of_two();
-        Welder { slots: vec![u32::MAX; size] }
+        Welder { slots: vec![EMPTY; size], used: 0 }
     }
 
     fn key(p: [f32; 3]) -> [u32; 3] {
@@ -38,42 +42,43 @@ impl Welder {
     }
 
     /// The id of `p`, appending it to `positions` when new.
+    #[inline]
     fn id(&mut self, positions: &mut Vec<[f32; 3]>, p: [f32; 3]) -> Result<u32, String> {
-        if positions.len() * 2 >= self.slots.len() {
-            self.grow(positions);
+        if self.used * 2 >= self.slots.len() {
+            self.grow();
         }
         let key = Self::key(p);
         let mask = self.slots.len() - 1;
         let mut i = Self::hash(key) & mask;
         loop {
-            let id = self.slots[i];
+            let (k, id) = self.slots[i];
             if id == u32::MAX {
                 if positions.len() >= u32::MAX as usize {
                     return Err("more than 4294967295 distinct vertices".into());
                 }
                 let new = positions.len() as u32;
-                self.slots[i] = new;
+                self.slots[i] = (key, new);
+                self.used += 1;
                 positions.push(p);
                 return Ok(new);
             }
-            if Self::key(positions[id as usize]) == key {
+            if k == key {
                 return Ok(id);
             }
             i = (i + 1) & mask;
         }
     }
 
-    fn grow(&mut self, positions: &[[f32; 3]]) {
+    fn grow(&mut self) {
         let size = self.slots.len() * 2;
-        self.slots.clear();
-        self.slots.resize(size, u32::MAX);
-        let mask = size - 1;
-        for (id, &p) in positions.iter().enumerate() {
-            let mut i = Self::hash(Self::key(p)) & mask;
-            while self.slots[i] != u32::MAX {
+        let old = std::mem::replace(&mut self.slots, vec![EMPTY; size]);
+        let mask = self.slots.len() - 1;
+        for slot in old.into_iter().filter(|s| s.1 != u32::MAX) {
+            let mut i = Self::hash(slot.0) & mask;
+            while self.slots[i].1 != u32::MAX {
                 i = (i + 1) & mask;
             }
-            self.slots[i] = id as u32;
+            self.slots[i] = slot;
         }
     }
 }
