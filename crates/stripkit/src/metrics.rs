@@ -61,13 +61,14 @@ pub fn cache_misses(triangles: &[[u32; 3]], vertex_count: usize, cache_size: usi
     let mut misses = 0usize;
     match kind {
         CacheKind::Fifo => {
-            // A vertex is cached while fewer than `cache_size` misses followed its own.
+            // A vertex is cached while fewer than `cache_size` misses followed its own:
+            // `clock - pushed_at[v] - 1` pushes came after it.
             let mut pushed_at = vec![0u64; vertex_count];
-            let mut clock = cache_size as u64; // stamps of 0 read as "long evicted"
+            let mut clock = cache_size as u64 + 1; // stamps of 0 read as "long evicted"
             for t in triangles {
                 for &v in t {
                     let v = v as usize;
-                    if clock - pushed_at[v] >= cache_size as u64 {
+                    if clock - pushed_at[v] > cache_size as u64 {
                         pushed_at[v] = clock;
                         clock += 1;
                         misses += 1;
