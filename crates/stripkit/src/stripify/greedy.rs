@@ -204,7 +204,7 @@ impl Greedy<'_> {
 /// METRICS.md rule, gives every other triangle exactly once with its winding.
 /// O(triangles + vertices) time and memory.
 pub fn stripify(tris: &[[u32; 3]], vertex_count: usize, options: &GreedyOptions) -> StripSet {
-    let graph = DualGraph::from_triangles(tris, vertex_count);
+    let graph = super::dual_graph(tris, vertex_count);
     stripify_with_graph(tris, &graph, options)
 }
 
