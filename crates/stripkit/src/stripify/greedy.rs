@@ -60,6 +60,8 @@ pub struct GreedyOptions {
 }
 
 const NONE: u32 = u32::MAX;
+/// Ranking of a candidate: smaller is better, compared field by field.
+type Key = (u8, u8, u8, u8, u8);
 /// Slot value meaning "no entry edge".
 const NO_SLOT: usize = 3;
 
@@ -159,9 +161,8 @@ impl Greedy<'_> {
     fn choose(&self, cur: u32, entry: usize, last_pivot: u32) -> Option<usize> {
         let tri = &self.tris[cur as usize];
         let nbr = &self.nbr[cur as usize];
-        let mut best: Option<(usize, (u8, u8, u8, u8, u8))> = None;
-        for j in 0..3 {
-            let n = nbr[j];
+        let mut best: Option<(usize, Key)> = None;
+        for (j, &n) in nbr.iter().enumerate() {
             if j == entry || !self.is_free(n) {
                 continue;
             }
@@ -179,8 +180,9 @@ impl Greedy<'_> {
                 Heuristic::Strips => (d, early, u8::from(la >= 3), swap, la),
                 Heuristic::Indices => (d, early, swap, 3 - la.min(3), 0),
             };
-            if best.map_or(true, |(_, k)| key < k) {
-                best = Some((j, key));
+            match best {
+                Some((_, k)) if k <= key => {}
+                _ => best = Some((j, key)),
             }
         }
         best.map(|(j, _)| j)
