@@ -47,7 +47,9 @@ impl std::str::FromStr for Heuristic {
         match s {
             "strips" => Ok(Heuristic::Strips),
             "indices" => Ok(Heuristic::Indices),
-            _ => Err(format!("unknown heuristic `{s}` (expected `strips` or `indices`)")),
+            _ => Err(format!(
+                "unknown heuristic `{s}` (expected `strips` or `indices`)"
+            )),
         }
     }
 }
@@ -193,7 +195,11 @@ impl Greedy<'_> {
         while let Some(j) = self.choose(cur, entry, last_pivot) {
             let tri = self.tris[cur as usize];
             let n = self.nbr[cur as usize][j];
-            last_pivot = if entry == NO_SLOT { tri[j] } else { pivot(&tri, entry, j) };
+            last_pivot = if entry == NO_SLOT {
+                tri[j]
+            } else {
+                pivot(&tri, entry, j)
+            };
             let (u, v) = (tri[j], tri[(j + 1) % 3]);
             let ntri = &self.tris[n as usize];
             entry = (0..3)
@@ -207,7 +213,9 @@ impl Greedy<'_> {
 
     /// The slot of `a` across which `b` lies.
     fn slot_to(&self, a: u32, b: u32) -> usize {
-        (0..3).find(|&k| self.nbr[a as usize][k] == b).expect("neighbours")
+        (0..3)
+            .find(|&k| self.nbr[a as usize][k] == b)
+            .expect("neighbours")
     }
 }
 
@@ -223,7 +231,11 @@ pub fn stripify(tris: &[[u32; 3]], vertex_count: usize, options: &GreedyOptions)
 }
 
 /// [`stripify`] with a dual graph already built for `tris`.
-pub fn stripify_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOptions) -> StripSet {
+pub fn stripify_with_graph(
+    tris: &[[u32; 3]],
+    graph: &DualGraph,
+    options: &GreedyOptions,
+) -> StripSet {
     let n = tris.len();
     let mut g = Greedy {
         tris,
@@ -237,7 +249,10 @@ pub fn stripify_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &Greed
             continue;
         }
         g.b.free[t] = true;
-        let d = graph.neighbors[t].iter().filter(|&&x| x != NO_NEIGHBOR).count() as u8;
+        let d = graph.neighbors[t]
+            .iter()
+            .filter(|&&x| x != NO_NEIGHBOR)
+            .count() as u8;
         g.b.push_front(t as u32, d);
     }
     let mut out = StripSet::new();
