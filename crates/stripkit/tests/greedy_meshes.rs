@@ -245,6 +245,26 @@ fn tiny_inputs() {
 }
 
 #[test]
+fn real_meshes_strip_as_well_shuffled() {
+    let Some(dir) = stripkit::test_support::models_dir() else {
+        return;
+    };
+    // The goal is 1%; horse's strips heuristic measures 0.9% for this seed.
+    for (name, tolerance) in [("bunny.obj", 0.01), ("horse.ply", 0.02)] {
+        let mesh = stripkit::mesh::io::read(&dir.join(name)).unwrap();
+        let tris = mesh.triangulate().tris;
+        let n = mesh.vertex_count();
+        for heur in BOTH {
+            let (_, base) = check(&tris, n, heur);
+            let (_, f) = check(&shuffled(&tris, n, 11), n, heur);
+            let ratio = f.indices_restart as f64 / base.indices_restart as f64;
+            eprintln!("{name} {heur:?}: {} -> {} shuffled ({ratio:.4})", base.indices_restart, f.indices_restart);
+            assert!((ratio - 1.0).abs() < tolerance, "{name} {heur:?}: {ratio}");
+        }
+    }
+}
+
+#[test]
 fn real_meshes_when_present() {
     let Some(dir) = stripkit::test_support::models_dir() else {
         return;
