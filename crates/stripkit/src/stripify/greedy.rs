@@ -35,9 +35,9 @@ use crate::topology::{DualGraph, NO_NEIGHBOR};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Heuristic {
     /// Fewest strips (for hardware where a swap is free).
-    #[default]
     Strips,
-    /// Fewest indices when a swap costs one repeated index.
+    /// Fewest indices when a swap costs one repeated index (the default, as in the CLI).
+    #[default]
     Indices,
 }
 
@@ -230,7 +230,9 @@ pub fn stripify(tris: &[[u32; 3]], vertex_count: usize, options: &GreedyOptions)
     stripify_with_graph(tris, &graph, options)
 }
 
-/// [`stripify`] with a dual graph already built for `tris`.
+/// [`stripify`] with a dual graph already built for `tris` (by [`super::dual_graph`] or
+/// [`DualGraph::from_triangles`]); a graph of other triangles is a caller bug and may
+/// panic.
 pub fn stripify_with_graph(
     tris: &[[u32; 3]],
     graph: &DualGraph,
