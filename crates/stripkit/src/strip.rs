@@ -138,36 +138,133 @@ pub fn decode_restart(buffer: &[u32], restart: u32) -> StripSet {
     set
 }
 
-/// Length of [`encode_stitched`]'s buffer, computed without building it.
+/// Length of [`encode_stitched`]'s buffer.
 pub fn stitched_len(strips: &StripSet) -> usize {
-    let mut len = 0usize;
-    for s in strips.iter().filter(|s| s.len() >= 3) {
-        if len > 0 {
-            len += if len & 1 == 0 { 2 } else { 3 };
-        }
-        len += s.len();
-    }
-    len
+    encode_stitched(strips).len()
 }
 
 /// All strips stitched into one strip with degenerate triangles, every triangle keeping
 /// its winding. Between strip `a` and strip `b` the join repeats `a`'s last index and
-/// `b`'s first: `..a, a_last, b0, b..` (2 extra) when `b` then starts at an even
-/// position, `..a, a_last, a_last, b0, b..` (3 extra) when it would start at an odd one.
-/// Strips of fewer than 3 indices draw nothing and are left out.
+/// `b`'s first: `..a, a_last, b0, b..` (2 extra) when `b` starts at an even position.
+/// When it would start at an odd one, `b` is re-encoded to start there (its first
+/// triangle written `(a, c, b)` instead of `(a, b, c)`, which also changes where it
+/// needs swaps; read from whichever end is shorter) and joined with 2 extra indices if
+/// that is no longer than the plain `..a, a_last, a_last, b0, b..` (3 extra).
+/// Strips of fewer than 3 indices draw nothing and are left out. O(total length).
 pub fn encode_stitched(strips: &StripSet) -> Vec<u32> {
     let mut out: Vec<u32> = Vec::with_capacity(strips.indices.len() + 3 * strips.len());
+    let mut tris: Vec<[u32; 3]> = Vec::new();
+    let mut odd: Vec<u32> = Vec::new();
     for s in strips.iter().filter(|s| s.len() >= 3) {
         if let Some(&last) = out.last() {
             if out.len() & 1 == 0 {
                 out.extend_from_slice(&[last, s[0]]);
             } else {
+                tris.clear();
+                for_each_triangle(s, |t| tris.push(t));
+                if encode_odd_start(&tris, &mut odd) && odd.len() < s.len() + 1 {
+                    out.extend_from_slice(&[last, odd[0]]);
+                    out.extend_from_slice(&odd);
+                    continue;
+                }
                 out.extend_from_slice(&[last, last, s[0]]);
             }
         }
         out.extend_from_slice(s);
     }
     out
+}
+
+/// Encodes the triangle walk `tris` (each sharing an edge with the next, consistently
+/// oriented) as a strip meant to start at an odd position, read from whichever end is
+/// shorter. False when `tris` is not such a walk; the result is checked by decoding.
+fn encode_odd_start(tris: &[[u32; 3]], out: &mut Vec<u32>) -> bool {
+    out.clear();
+    let n = tris.len();
+    if n == 0 {
+        return false;
+    }
+    let mut buf = Vec::with_capacity(n + 8);
+    let mut found = false;
+    for reverse in [false, true] {
+        let at = |i: usize| if reverse { tris[n - 1 - i] } else { tris[i] };
+        buf.clear();
+        if odd_walk(n, at, &mut buf) && reads_back_odd(&buf, n, at) && (!found || buf.len() < out.len()) {
+            std::mem::swap(out, &mut buf);
+            found = true;
+        }
+    }
+    found
+}
+
+/// True when `strip`, read from an odd position, draws exactly `at(0), .., at(n-1)`.
+fn reads_back_odd(strip: &[u32], n: usize, at: impl Fn(usize) -> [u32; 3]) -> bool {
+    let mut k = 0;
+    for i in 0..strip.len().saturating_sub(2) {
+        // Window i sits at position 1 + i: odd positions swap the first two.
+        let t = if i % 2 == 1 {
+            [strip[i], strip[i + 1], strip[i + 2]]
+        } else {
+            [strip[i + 1], strip[i], strip[i + 2]]
+        };
+        if is_degenerate(&t) {
+            continue;
+        }
+        if k >= n || canonical(t) != canonical(at(k)) {
+            return false;
+        }
+        k += 1;
+    }
+    k == n
+}
+
+/// The odd-start strip of the walk `at(0), at(1), ..` into `out`; false when two
+/// consecutive triangles do not share an edge the way a strip needs.
+fn odd_walk(n: usize, at: impl Fn(usize) -> [u32; 3], out: &mut Vec<u32>) -> bool {
+    let t0 = at(0);
+    if is_degenerate(&t0) {
+        return false;
+    }
+    if n == 1 {
+        // At an odd position (s1, s0, s2) is the triangle: write (a, c, b).
+        out.extend_from_slice(&[t0[0], t0[2], t0[1]]);
+        return true;
+    }
+    let t1 = at(1);
+    // The edge x -> y of t0 that t1 runs y -> x.
+    let Some(j) = (0..3).find(|&j| {
+        let (x, y) = (t0[j], t0[(j + 1) % 3]);
+        (0..3).any(|k| t1[k] == y && t1[(k + 1) % 3] == x)
+    }) else {
+        return false;
+    };
+    let (x, y, a) = (t0[j], t0[(j + 1) % 3], t0[(j + 2) % 3]);
+    out.extend_from_slice(&[a, y, x]);
+    // Newest index x, the one before it y.
+    let (mut p, mut q) = (y, x);
+    for i in 1..n {
+        let t = at(i);
+        if is_degenerate(&t) || !t.contains(&p) || !t.contains(&q) {
+            return false;
+        }
+        let Some(&r) = t.iter().find(|&&v| v != p && v != q) else { return false };
+        if i + 1 < n {
+            let next = at(i + 1);
+            // The exit edge holds r and one of p, q.
+            if next.contains(&r) && next.contains(&q) {
+                out.push(r);
+                p = q;
+            } else if next.contains(&r) && next.contains(&p) {
+                out.extend_from_slice(&[p, r]);
+            } else {
+                return false;
+            }
+            q = r;
+        } else {
+            out.push(r);
+        }
+    }
+    true
 }
 
 /// One list per strip.
@@ -304,10 +401,26 @@ mod tests {
         assert_eq!(one, vec![0, 1, 2, 3, 3, 4, 4, 5, 6]);
         assert_eq!(stitched_len(&set), one.len());
         assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
-        // First strip has 3 indices: 3 + 2 would be odd, so 3 extra.
+        // First strip has 3 indices: the next starts at an odd position, so it is
+        // written (4, 6, 5) there: window 5 reads (6, 4, 5), still 2 extra.
         let set = StripSet::from_strips(&[vec![0, 1, 2], vec![4, 5, 6]]);
         let one = encode_stitched(&set);
-        assert_eq!(one, vec![0, 1, 2, 2, 2, 4, 4, 5, 6]);
+        assert_eq!(one, vec![0, 1, 2, 2, 4, 4, 6, 5]);
+        assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
+        // A strip that is not one walk (two triangles without a shared edge) cannot be
+        // re-encoded: 3 extra.
+        let set = StripSet::from_strips(&[vec![0, 1, 2], vec![4, 5, 6, 6, 8, 8, 9, 10]]);
+        let one = encode_stitched(&set);
+        assert_eq!(one, vec![0, 1, 2, 2, 2, 4, 4, 5, 6, 6, 8, 8, 9, 10]);
+        assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
+        // A fan of four around 0 needs one swap from either end and at either parity:
+        // at an odd position it still costs 7 indices, joined with 2 extra.
+        let fan = [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5]];
+        let fan_strip = vec![1, 2, 0, 3, 0, 4, 5];
+        assert!(verify(&fan, &StripSet::from_strips(&[fan_strip.clone()])).ok());
+        let set = StripSet::from_strips(&[vec![7, 8, 9], fan_strip]);
+        let one = encode_stitched(&set);
+        assert_eq!(one.len(), 3 + 2 + 7);
         assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
     }
 

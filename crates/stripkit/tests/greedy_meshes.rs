@@ -20,6 +20,15 @@ fn check(tris: &[[u32; 3]], vertex_count: usize, heuristic: Heuristic) -> (Strip
     assert!(f.winding_preserved);
     let degenerate = tris.iter().filter(|t| strip::is_degenerate(t)).count();
     assert_eq!(f.dropped_degenerate, degenerate);
+    // The other joins draw the same triangles.
+    let stitched = StripSet::from_strips(&[strip::encode_stitched(&strips)]);
+    assert!(strip::verify(tris, &stitched).ok(), "stitched");
+    let restart = strip::encode_restart(&strips, strip::DEFAULT_RESTART);
+    assert!(strip::verify(
+        tris,
+        &strip::decode_restart(&restart, strip::DEFAULT_RESTART)
+    )
+    .ok());
     // Every strip is t + 2 + swaps long; the joins add one index each.
     if f.strips > 0 {
         assert_eq!(f.indices_separate, f.triangles + 2 * f.strips + f.swaps);
@@ -258,7 +267,10 @@ fn real_meshes_strip_as_well_shuffled() {
             let (_, base) = check(&tris, n, heur);
             let (_, f) = check(&shuffled(&tris, n, 11), n, heur);
             let ratio = f.indices_restart as f64 / base.indices_restart as f64;
-            eprintln!("{name} {heur:?}: {} -> {} shuffled ({ratio:.4})", base.indices_restart, f.indices_restart);
+            eprintln!(
+                "{name} {heur:?}: {} -> {} shuffled ({ratio:.4})",
+                base.indices_restart, f.indices_restart
+            );
             assert!((ratio - 1.0).abs() < tolerance, "{name} {heur:?}: {ratio}");
         }
     }

@@ -35,14 +35,20 @@ proptest! {
         let one = strip::encode_stitched(&set);
         prop_assert_eq!(one.len(), strip::stitched_len(&set));
         let stitched = StripSet::from_strips(&[one]);
-        prop_assert_eq!(strip::decode(&stitched), strip::decode(&set));
+        // Same triangles up to rotation (a re-encoded strip may read from its other end).
+        let canon = |s: &StripSet| {
+            let mut v: Vec<[u32; 3]> = strip::decode(s).into_iter().map(strip::canonical).collect();
+            v.sort_unstable();
+            v
+        };
+        prop_assert_eq!(canon(&stitched), canon(&set));
         let v = strip::verify(&strip::decode(&set), &stitched);
         prop_assert!(v.ok(), "{}", v);
-        // At most 3 extra indices per join, exactly 2 or 3 each.
+        // At most 3 extra indices per join (a strip re-encoded for an odd start may
+        // also save a swap).
         let drawn: Vec<&[u32]> = set.iter().filter(|s| s.len() >= 3).collect();
         let base: usize = drawn.iter().map(|s| s.len()).sum();
         let joins = drawn.len().saturating_sub(1);
-        prop_assert!(strip::stitched_len(&set) >= base + 2 * joins);
         prop_assert!(strip::stitched_len(&set) <= base + 3 * joins);
     }
 
@@ -128,9 +134,13 @@ fn figures_of_a_hand_checked_mesh() {
     assert_eq!(f.swaps, 1);
     assert_eq!(f.indices_separate, 6 + 3 + 6);
     assert_eq!(f.indices_restart, 15 + 2);
-    // Stitch: 6 indices, then (even) +2 +3 = 11 (odd), then +3 +6 = 20.
-    assert_eq!(f.indices_degenerate, 20);
-    assert_eq!(strip::encode_stitched(&strips).len(), 20);
+    // Stitch: 6 indices, then (even) +2 +3 = 11 (odd). At that odd position the fan is
+    // re-encoded from its other end without a swap: [13, 12, 9, 11, 10] reads
+    // (12,13,9) (12,9,11) (11,9,10) there. +2 +5 = 18.
+    assert_eq!(f.indices_degenerate, 18);
+    let one = strip::encode_stitched(&strips);
+    assert_eq!(one.len(), 18);
+    assert!(strip::verify(&tris, &StripSet::from_strips(&[one])).ok());
     assert!((f.indices_per_triangle - 17.0 / 8.0).abs() < 1e-12);
     // FIFO 16 never evicts here: every vertex 0..13 misses once: 14 / 8.
     assert!((f.acmr16 - 14.0 / 8.0).abs() < 1e-12);
