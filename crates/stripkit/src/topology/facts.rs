@@ -17,7 +17,8 @@
 //! * **non-manifold (pinch) vertex**: the faces around the vertex form more than one
 //!   group when two faces are joined if they share an edge incident to the vertex
 //!   (any edge with two or more faces, non-manifold edges included);
-//! * **component**: faces joined across shared edges; unreferenced vertices form none;
+//! * **component**: faces joined through shared vertices (as the models README counts
+//!   them: a pinch vertex does not split a component); unreferenced vertices form none;
 //! * **Euler characteristic** χ = V_used − E + F;
 //! * **degenerate face**: a repeated vertex index, or zero area (exactly zero Newell
 //!   normal in `f64`);
@@ -59,7 +60,7 @@ pub struct MeshFacts {
     pub nonmanifold_edges: usize,
     /// Pinch vertices: their faces form more than one edge-connected fan.
     pub nonmanifold_vertices: usize,
-    /// Edge-connected components of faces.
+    /// Connected components of faces (joined through shared vertices).
     pub components: usize,
     /// χ = V_used − E + F.
     pub euler_characteristic: i64,
@@ -197,7 +198,7 @@ impl MeshFacts {
 
         facts.boundary_loops = count_boundary_loops(mesh, map);
         facts.nonmanifold_vertices = count_pinch_vertices(mesh, map);
-        facts.components = count_components(mesh, map);
+        facts.components = count_components(mesh);
         facts.degenerate_faces = count_degenerate_faces(mesh);
         facts.duplicate_faces = count_duplicate_faces(mesh);
         facts.closed_manifold = fcount > 0
@@ -349,17 +350,17 @@ fn count_pinch_vertices(mesh: &Mesh, map: &EdgeMap) -> usize {
     groups.iter().filter(|&&g| g > 1).count()
 }
 
-/// Counts edge-connected components of faces.
-fn count_components(mesh: &Mesh, map: &EdgeMap) -> usize {
-    let mut uf = UnionFind::new(mesh.face_count());
-    for e in 0..map.edge_count() {
-        let hs = map.halfedges(e);
-        let f0 = map.halfedge_face[hs[0] as usize];
-        for &h in &hs[1..] {
-            uf.union(f0, map.halfedge_face[h as usize]);
+/// Counts components of faces joined through shared vertices.
+fn count_components(mesh: &Mesh) -> usize {
+    let mut uf = UnionFind::new(mesh.vertex_count());
+    let mut used = vec![false; mesh.vertex_count()];
+    for face in mesh.faces() {
+        for &v in face {
+            used[v as usize] = true;
+            uf.union(face[0], v);
         }
     }
-    (0..mesh.face_count() as u32).filter(|&f| uf.find(f) == f).count()
+    (0..mesh.vertex_count() as u32).filter(|&v| used[v as usize] && uf.find(v) == v).count()
 }
 
 /// Counts faces with a repeated index or zero area.
