@@ -1,0 +1,669 @@
+//! QSTRIP: triangle strips for quadrilateral meshes (Vaněček, Sviták, Kolingerová,
+//! Skala, "Quadrilateral meshes stripification").
+//!
+//! The quads are never triangulated up front. The algorithm first grows *sequences of
+//! quads* over the quad adjacency (built from the mesh's own quad faces through
+//! [`EdgeMap`]; a half-edge is a face corner), then turns each sequence into one
+//! generalized triangle strip, choosing every quad's diagonal at that point.
+//!
+//! * **Sequences.** Free quads sit in a bucket queue keyed by their number of free
+//!   neighbours (0..=4, O(1) updates through intrusive lists). A sequence starts at a
+//!   quad with the fewest free neighbours and is extended with the free neighbour whose
+//!   step adds the fewest swaps (going straight adds none), ties going to the neighbour
+//!   with the fewest free neighbours; when the forward end is stuck, the sequence is
+//!   extended backwards from its first quad the same way.
+//! * **Strips.** A quad entered through its half-edge `a -> b` (quad `a b c d`) is left
+//!   straight through `c d` with no swap and either diagonal (the one that starts at the
+//!   newer strip vertex of `a b`), or through a side edge with one swap (diagonal
+//!   fixed by the side). The first quad starts with a counter-clockwise triangle.
+//!   An exact two-state dynamic programme over each sequence (state: which end of the
+//!   shared edge is the newer strip vertex) picks the diagonals and swap positions with
+//!   the fewest swaps; these are the paper's straight, one-swap and two-swap cases.
+//! * **Two quads that share two edges** (a fold at a valence-2 vertex, or a two-quad
+//!   "pillow") could give two coincident triangles. Such pairs are found up front and
+//!   one quad's diagonal is forced so that no coincident triangle can appear; the
+//!   programme above respects forced diagonals.
+//!
+//! Every output triangle keeps its quad's orientation, so the strips decode (by the
+//! METRICS.md rule) to exactly two triangles per quad that together form it; see
+//! [`verify_quads`](super::quad_verify::verify_quads).
+//!
+//! Cost: O(faces + vertices) time and memory, dominated by [`EdgeMap::build`].
+
+use crate::mesh::{Mesh, Triangles};
+use crate::strip::StripSet;
+use crate::topology::EdgeMap;
+
+/// No neighbour / no edge.
+const NONE: u32 = u32::MAX;
+/// Local edge marker for "no entry" / "no exit".
+const NO_EDGE: u8 = 4;
+/// Diagonal not forced.
+const FREE: u8 = 2;
+/// An unreachable programme state.
+const INF: u32 = u32::MAX / 4;
+
+/// Options of [`qstrip`].
+#[derive(Clone, Debug)]
+pub struct QuadOptions {
+    /// After a sequence's forward end is stuck, extend it backwards from its first
+    /// quad too (default `true`; the paper extends forwards only).
+    pub extend_backward: bool,
+}
+
+impl Default for QuadOptions {
+    fn default() -> Self {
+        QuadOptions { extend_backward: true }
+    }
+}
+
+/// The result of [`qstrip`]: strips covering exactly the mesh's quads.
+#[derive(Clone, Debug, Default)]
+pub struct QuadStrips {
+    /// One strip per quad sequence; each quad decodes to two triangles.
+    pub strips: StripSet,
+    /// The faces that went through QSTRIP (quads: four distinct vertices), ascending.
+    pub quad_faces: Vec<u32>,
+    /// Swaps (degenerate triangles) inside the strips.
+    pub swaps: usize,
+    /// Pairs of quads that share two or more edges (or three vertices) and had a
+    /// diagonal forced to avoid coincident triangles.
+    pub forced_diagonals: usize,
+}
+
+impl QuadStrips {
+    /// Number of quads covered.
+    pub fn quad_count(&self) -> usize {
+        self.quad_faces.len()
+    }
+
+    /// The faces that are not quads, fanned into triangles (each remembering its
+    /// face), ready for a triangle stripifier.
+    pub fn other_triangles(&self, mesh: &Mesh) -> Triangles {
+        let mut out = Triangles::default();
+        let mut next_quad = self.quad_faces.iter().peekable();
+        for (f, face) in mesh.faces().enumerate() {
+            if next_quad.peek().is_some_and(|&&q| q as usize == f) {
+                next_quad.next();
+                continue;
+            }
+            for i in 1..face.len().saturating_sub(1) {
+                out.tris.push([face[0], face[i], face[i + 1]]);
+                out.face_of.push(f as u32);
+            }
+        }
+        out
+    }
+}
+
+/// True for a face that QSTRIP takes: four vertices, all distinct.
+pub fn is_quad(face: &[u32]) -> bool {
+    face.len() == 4
+        && face[0] != face[1]
+        && face[0] != face[2]
+        && face[0] != face[3]
+        && face[1] != face[2]
+        && face[1] != face[3]
+        && face[2] != face[3]
+}
+
+/// Fraction of a mesh's faces that are quads (by [`is_quad`]); 0 for no faces.
+pub fn quad_fraction(mesh: &Mesh) -> f64 {
+    let n = mesh.face_count();
+    if n == 0 {
+        return 0.0;
+    }
+    mesh.faces().filter(|f| is_quad(f)).count() as f64 / n as f64
+}
+
+/// Strips the quads of `mesh` with QSTRIP. Faces that are not quads are left out
+/// (see [`QuadStrips::other_triangles`] and [`qstrip_mixed`]). O(faces + vertices).
+pub fn qstrip(mesh: &Mesh, options: &QuadOptions) -> QuadStrips {
+    let edges = EdgeMap::build(mesh);
+    qstrip_with_edges(mesh, &edges, options)
+}
+
+/// [`qstrip`] with an edge map the caller already has.
+pub fn qstrip_with_edges(mesh: &Mesh, edges: &EdgeMap, options: &QuadOptions) -> QuadStrips {
+    let adjacency = QuadAdjacency::build(mesh, edges);
+    let mut builder = Builder::new(&adjacency, options);
+    builder.run();
+    QuadStrips {
+        strips: builder.strips,
+        swaps: builder.swaps,
+        forced_diagonals: adjacency.forced_pairs,
+        quad_faces: adjacency.quad_face,
+    }
+}
+
+/// Strips a mixed mesh: quads through QSTRIP, the other faces fanned into triangles
+/// and handed to `strip_triangles(triangles, vertex_count)` (a triangle stripifier,
+/// e.g. the greedy one). The result holds the quad strips first, then the others.
+pub fn qstrip_mixed(
+    mesh: &Mesh,
+    options: &QuadOptions,
+    strip_triangles: impl FnOnce(&[[u32; 3]], usize) -> StripSet,
+) -> (QuadStrips, StripSet) {
+    let quads = qstrip(mesh, options);
+    let rest = quads.other_triangles(mesh);
+    let mut all = quads.strips.clone();
+    if !rest.tris.is_empty() {
+        let others = strip_triangles(&rest.tris, mesh.vertex_count());
+        for s in others.iter() {
+            all.push(s);
+        }
+    }
+    (quads, all)
+}
+
+/// Quads and their neighbours across manifold, consistently oriented quad-quad edges.
+struct QuadAdjacency<'m> {
+    /// The four vertices of each quad, flat.
+    verts: Vec<u32>,
+    /// Face id of each quad.
+    quad_face: Vec<u32>,
+    /// `link[4 q + k]`: `(neighbour << 2) | neighbour's local edge` across local edge
+    /// `k` (from `verts[4q+k]` to `verts[4q+(k+1)%4]`), or [`NONE`].
+    link: Vec<u32>,
+    /// Forced diagonal per quad: 0 (v0-v2), 1 (v1-v3) or [`FREE`].
+    forced: Vec<u8>,
+    forced_pairs: usize,
+    _mesh: std::marker::PhantomData<&'m Mesh>,
+}
+
+impl QuadAdjacency<'_> {
+    fn build<'m>(mesh: &'m Mesh, edges: &EdgeMap) -> QuadAdjacency<'m> {
+        let fcount = mesh.face_count();
+        let mut quad_of_face = vec![NONE; fcount];
+        let mut quad_face = Vec::new();
+        let mut verts = Vec::new();
+        for (f, face) in mesh.faces().enumerate() {
+            if is_quad(face) {
+                quad_of_face[f] = quad_face.len() as u32;
+                quad_face.push(f as u32);
+                verts.extend_from_slice(face);
+            }
+        }
+        let qcount = quad_face.len();
+        let mut link = vec![NONE; 4 * qcount];
+        let local = |h: u32| -> (u32, u32) {
+            let f = edges.halfedge_face[h as usize];
+            (quad_of_face[f as usize], h - mesh.face_offsets[f as usize])
+        };
+        for e in 0..edges.edge_count() {
+            let hs = edges.halfedges(e);
+            if hs.len() != 2 {
+                continue;
+            }
+            let (h1, h2) = (hs[0], hs[1]);
+            let (q1, k1) = local(h1);
+            let (q2, k2) = local(h2);
+            if q1 == NONE || q2 == NONE || q1 == q2 {
+                continue;
+            }
+            // Opposite directions: h1 starts where h2 ends.
+            let next2 = edges.halfedge_next[h2 as usize];
+            if mesh.face_indices[h1 as usize] != mesh.face_indices[next2 as usize] {
+                continue;
+            }
+            link[(4 * q1 + k1) as usize] = (q2 << 2) | k2;
+            link[(4 * q2 + k2) as usize] = (q1 << 2) | k1;
+        }
+        // Quads that share three or more vertices share an edge (any three corners of
+        // a quad include two of its edges, and a vertex has one diagonal partner), so
+        // looking at every face on every quad edge finds all pairs that could give
+        // coincident triangles.
+        let mut forced = vec![FREE; qcount];
+        let mut forced_pairs = 0;
+        for q1 in 0..qcount {
+            let f1 = quad_face[q1] as usize;
+            let start = mesh.face_offsets[f1];
+            for h in start..start + 4 {
+                let e = edges.halfedge_edge[h as usize];
+                if e == NONE {
+                    continue;
+                }
+                for &h2 in edges.halfedges(e as usize) {
+                    let (q2, _) = local(h2);
+                    if q2 == NONE || q2 as usize <= q1 {
+                        continue;
+                    }
+                    let a = &verts[4 * q1..4 * q1 + 4];
+                    let b = &verts[4 * q2 as usize..4 * q2 as usize + 4];
+                    let common = a.iter().filter(|v| b.contains(v)).count();
+                    if common >= 3 && force_pair(&verts, &mut forced, q1, q2 as usize) {
+                        forced_pairs += 1;
+                    }
+                }
+            }
+        }
+        QuadAdjacency { verts, quad_face, link, forced, forced_pairs, _mesh: std::marker::PhantomData }
+    }
+
+    fn len(&self) -> usize {
+        self.quad_face.len()
+    }
+}
+
+/// The two triangles of quad `v` split along diagonal `diag`, as sorted vertex sets.
+fn split_sets(v: &[u32], diag: u8) -> [[u32; 3]; 2] {
+    let d = diag as usize;
+    let mut t1 = [v[d], v[d + 1], v[(d + 2) % 4]];
+    let mut t2 = [v[d], v[(d + 2) % 4], v[(d + 3) % 4]];
+    t1.sort_unstable();
+    t2.sort_unstable();
+    [t1, t2]
+}
+
+fn coincide(a: &[u32], da: u8, b: &[u32], db: u8) -> bool {
+    let ta = split_sets(a, da);
+    let tb = split_sets(b, db);
+    ta.iter().any(|t| tb.contains(t))
+}
+
+/// Forces diagonals of `q1`, `q2` so that no triangle of one lies on the same three
+/// vertices as a triangle of the other. Returns whether anything was forced.
+fn force_pair(verts: &[u32], forced: &mut [u8], q1: usize, q2: usize) -> bool {
+    let a = &verts[4 * q1..4 * q1 + 4];
+    let b = &verts[4 * q2..4 * q2 + 4];
+    let options = |f: u8| if f == FREE { vec![0u8, 1] } else { vec![f] };
+    let bad = |d1: u8, d2: u8| coincide(a, d1, b, d2);
+    if options(forced[q1]).iter().all(|&d1| options(forced[q2]).iter().all(|&d2| !bad(d1, d2))) {
+        return false;
+    }
+    // Prefer forcing one quad only: a diagonal of q1 that suits every choice of q2.
+    for d1 in options(forced[q1]) {
+        if options(forced[q2]).iter().all(|&d2| !bad(d1, d2)) {
+            forced[q1] = d1;
+            return true;
+        }
+    }
+    for d2 in options(forced[q2]) {
+        if options(forced[q1]).iter().all(|&d1| !bad(d1, d2)) {
+            forced[q2] = d2;
+            return true;
+        }
+    }
+    for d1 in options(forced[q1]) {
+        for d2 in options(forced[q2]) {
+            if !bad(d1, d2) {
+                forced[q1] = d1;
+                forced[q2] = d2;
+                return true;
+            }
+        }
+    }
+    // Both already forced into a clash (a pathological cluster); verification reports it.
+    false
+}
+
+/// How a quad is crossed, given its entry and exit edges.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    /// Entered through `a b`, left through `c d` (no swap).
+    Straight,
+    /// Left through `b c` (one swap inside the quad).
+    TurnBc,
+    /// Left through `d a` (one swap inside the quad).
+    TurnDa,
+    /// Last quad of a sequence.
+    Last,
+    /// First quad, strip `a b d c` (diagonal `b d`).
+    FirstBd,
+    /// First quad, strip `b c a c d` (diagonal `a c`, one swap).
+    FirstAc,
+}
+
+/// One way to cross a quad. States: 0 = the newer strip vertex on the shared edge is
+/// the start `a` of the quad's own half-edge on it, 1 = its end `b`.
+#[derive(Clone, Copy, Debug)]
+struct Mode {
+    kind: Kind,
+    /// Required entry state (ignored for first quads).
+    need: u8,
+    /// State on the next quad's entry half-edge (ignored for last quads).
+    out: u8,
+    /// Swaps inside the quad.
+    cost: u32,
+    /// Diagonal used: 0 = v0-v2, 1 = v1-v3.
+    diag: u8,
+}
+
+/// The ways to cross a quad with entry edge `j` and exit edge `k` (local, or
+/// [`NO_EDGE`]), honouring a forced diagonal. At most two.
+fn modes(j: u8, k: u8, forced: u8) -> [Option<Mode>; 2] {
+    let m = |kind, need, out, cost, diag: u8| Mode { kind, need, out, cost, diag: diag % 2 };
+    let list = if j == NO_EDGE {
+        [Some(m(Kind::FirstBd, 0, 1, 0, k + 1)), Some(m(Kind::FirstAc, 0, 0, 1, k))]
+    } else if k == NO_EDGE {
+        [Some(m(Kind::Last, 0, 0, 0, j)), Some(m(Kind::Last, 1, 0, 0, j + 1))]
+    } else {
+        match (k + 4 - j) % 4 {
+            2 => [Some(m(Kind::Straight, 0, 0, 0, j)), Some(m(Kind::Straight, 1, 1, 0, j + 1))],
+            1 => [Some(m(Kind::TurnBc, 1, 0, 1, j + 1)), None],
+            _ => [Some(m(Kind::TurnDa, 0, 1, 1, j)), None],
+        }
+    };
+    list.map(|o| o.filter(|mode| forced == FREE || mode.diag == forced))
+}
+
+/// Programme step: costs at the next quad's entry from costs `f` at this quad's entry.
+fn step(f: [u32; 2], j: u8, k: u8, forced: u8) -> [u32; 2] {
+    let mut out = [INF; 2];
+    for mode in modes(j, k, forced).into_iter().flatten() {
+        let base = if j == NO_EDGE {
+            0
+        } else {
+            let n = mode.need as usize;
+            f[n].min(f[1 - n] + 1)
+        };
+        let c = base + mode.cost;
+        let o = mode.out as usize;
+        out[o] = out[o].min(c);
+    }
+    // A swap at the start of the next quad turns one state into the other.
+    [out[0].min(out[1] + 1), out[1].min(out[0] + 1)]
+}
+
+struct Builder<'a, 'm> {
+    adj: &'a QuadAdjacency<'m>,
+    options: &'a QuadOptions,
+    used: Vec<bool>,
+    /// Free neighbour edges of each free quad.
+    degree: Vec<u8>,
+    /// Bucket queue: intrusive doubly linked lists, one per degree.
+    head: [u32; 5],
+    next: Vec<u32>,
+    prev: Vec<u32>,
+    /// Current sequence: quad, entry edge, exit edge.
+    seq: Vec<(u32, u8, u8)>,
+    back: Vec<(u32, u8, u8)>,
+    /// Cost-to-go per sequence position and state.
+    togo: Vec<[u32; 2]>,
+    strip: Vec<u32>,
+    strips: StripSet,
+    swaps: usize,
+}
+
+impl<'a, 'm> Builder<'a, 'm> {
+    fn new(adj: &'a QuadAdjacency<'m>, options: &'a QuadOptions) -> Self {
+        let n = adj.len();
+        let mut b = Builder {
+            adj,
+            options,
+            used: vec![false; n],
+            degree: vec![0; n],
+            head: [NONE; 5],
+            next: vec![NONE; n],
+            prev: vec![NONE; n],
+            seq: Vec::new(),
+            back: Vec::new(),
+            togo: Vec::new(),
+            strip: Vec::new(),
+            strips: StripSet::new(),
+            swaps: 0,
+        };
+        // Insert in reverse so that equal-degree quads come out in index order.
+        for q in (0..n).rev() {
+            let d = adj.link[4 * q..4 * q + 4].iter().filter(|&&l| l != NONE).count();
+            b.degree[q] = d as u8;
+            b.push_bucket(q as u32);
+        }
+        b
+    }
+
+    fn push_bucket(&mut self, q: u32) {
+        let d = self.degree[q as usize] as usize;
+        let h = self.head[d];
+        self.next[q as usize] = h;
+        self.prev[q as usize] = NONE;
+        if h != NONE {
+            self.prev[h as usize] = q;
+        }
+        self.head[d] = q;
+    }
+
+    fn unlink_bucket(&mut self, q: u32) {
+        let (p, n) = (self.prev[q as usize], self.next[q as usize]);
+        if p != NONE {
+            self.next[p as usize] = n;
+        } else {
+            self.head[self.degree[q as usize] as usize] = n;
+        }
+        if n != NONE {
+            self.prev[n as usize] = p;
+        }
+    }
+
+    /// Removes a quad from the free set and updates its free neighbours' degrees.
+    fn take(&mut self, q: u32) {
+        self.unlink_bucket(q);
+        self.used[q as usize] = true;
+        for k in 0..4 {
+            let l = self.adj.link[4 * q as usize + k];
+            if l == NONE {
+                continue;
+            }
+            let nb = l >> 2;
+            if !self.used[nb as usize] {
+                self.unlink_bucket(nb);
+                self.degree[nb as usize] -= 1;
+                self.push_bucket(nb);
+            }
+        }
+    }
+
+    fn run(&mut self) {
+        loop {
+            let Some(start) = self.head.iter().copied().find(|&h| h != NONE) else { break };
+            self.take(start);
+            self.seq.clear();
+            let first_exit = self.extend(start, NO_EDGE, NO_EDGE, Direction::Forward);
+            if self.options.extend_backward {
+                self.back.clear();
+                let back_exit = self.extend(start, NO_EDGE, first_exit, Direction::Backward);
+                if back_exit != NO_EDGE {
+                    // Sequence = reversed backward walk, then the forward walk.
+                    let mut combined = Vec::with_capacity(self.back.len() + self.seq.len());
+                    for &(q, entry, exit) in self.back.iter().rev() {
+                        combined.push((q, exit, entry));
+                    }
+                    let start_entry = back_exit;
+                    let (_, _, start_exit) = self.seq[0];
+                    combined.push((start, start_entry, start_exit));
+                    combined.extend_from_slice(&self.seq[1..]);
+                    self.seq = combined;
+                }
+            }
+            self.emit_sequence();
+        }
+    }
+
+    /// Greedy walk from `start` (already taken). Forward: fills `seq` with `start`
+    /// first. Backward: fills `back` with the quads after `start` (not `start`) and
+    /// never leaves `start` through `avoid`. Returns the edge `start` was left through.
+    fn extend(&mut self, start: u32, entry: u8, avoid: u8, dir: Direction) -> u8 {
+        let adj = self.adj;
+        let mut cur = start;
+        let mut entry = entry;
+        let mut costs = [0u32, 0];
+        let mut first_exit = NO_EDGE;
+        loop {
+            let forced = adj.forced[cur as usize];
+            let mut best: Option<(u32, u8, u8, u32, [u32; 2])> = None; // (key.., k, nb_edge, nb, costs)
+            let mut best_key = (INF, u8::MAX);
+            for k in 0..4u8 {
+                if k == entry || (cur == start && k == avoid) {
+                    continue;
+                }
+                let l = adj.link[4 * cur as usize + k as usize];
+                if l == NONE || self.used[(l >> 2) as usize] {
+                    continue;
+                }
+                let next_costs = step(costs, entry, k, forced);
+                let cost = next_costs[0].min(next_costs[1]);
+                if cost >= INF {
+                    continue;
+                }
+                let key = (cost, self.degree[(l >> 2) as usize]);
+                if key < best_key {
+                    best_key = key;
+                    best = Some((0, k, (l & 3) as u8, l >> 2, next_costs));
+                }
+            }
+            let Some((_, k, nb_edge, nb, next_costs)) = best else {
+                if cur == start && dir == Direction::Forward {
+                    self.seq.push((cur, entry, NO_EDGE));
+                } else if cur != start {
+                    self.back_or_seq(dir).push((cur, entry, NO_EDGE));
+                }
+                return first_exit;
+            };
+            if cur == start {
+                first_exit = k;
+            }
+            if cur != start || dir == Direction::Forward {
+                self.back_or_seq(dir).push((cur, entry, k));
+            }
+            self.take(nb);
+            cur = nb;
+            entry = nb_edge;
+            costs = next_costs;
+        }
+    }
+
+    fn back_or_seq(&mut self, dir: Direction) -> &mut Vec<(u32, u8, u8)> {
+        match dir {
+            Direction::Forward => &mut self.seq,
+            Direction::Backward => &mut self.back,
+        }
+    }
+
+    /// Turns the current sequence into one strip with the fewest swaps.
+    fn emit_sequence(&mut self) {
+        let adj = self.adj;
+        let n = self.seq.len();
+        self.strip.clear();
+        if n == 1 {
+            let q = self.seq[0].0 as usize;
+            let v = &adj.verts[4 * q..4 * q + 4];
+            if adj.forced[q] == 0 {
+                self.strip.extend_from_slice(&[v[1], v[2], v[0], v[3]]);
+            } else {
+                self.strip.extend_from_slice(&[v[0], v[1], v[3], v[2]]);
+            }
+            self.strips.push(&self.strip);
+            return;
+        }
+        // Cost to go, from the back.
+        self.togo.clear();
+        self.togo.resize(n + 1, [0, 0]);
+        for i in (0..n).rev() {
+            let (q, j, k) = self.seq[i];
+            let after = self.togo[i + 1];
+            let mut g = [INF; 2];
+            for mode in modes(j, k, adj.forced[q as usize]).into_iter().flatten() {
+                let rest = mode.cost + if k == NO_EDGE { 0 } else { after[mode.out as usize] };
+                if j == NO_EDGE {
+                    g[0] = g[0].min(rest);
+                } else {
+                    let need = mode.need as usize;
+                    g[need] = g[need].min(rest);
+                    g[1 - need] = g[1 - need].min(rest + 1);
+                }
+            }
+            self.togo[i] = g;
+        }
+        // Forward emission.
+        let mut state = 0u8;
+        for i in 0..n {
+            let (q, j, k) = self.seq[i];
+            let after = self.togo[i + 1];
+            let mut best: Option<Mode> = None;
+            let mut best_cost = INF;
+            for mode in modes(j, k, adj.forced[q as usize]).into_iter().flatten() {
+                let swap = if j == NO_EDGE || mode.need == state { 0 } else { 1 };
+                let c = swap + mode.cost + if k == NO_EDGE { 0 } else { after[mode.out as usize] };
+                if c < best_cost {
+                    best_cost = c;
+                    best = Some(mode);
+                }
+            }
+            let Some(mode) = best else {
+                // Cannot happen: the greedy walk only takes steps with a finite cost.
+                debug_assert!(false, "no way through quad {q}");
+                return;
+            };
+            let qv = &adj.verts[4 * q as usize..4 * q as usize + 4];
+            let at = |o: u8| qv[((if j == NO_EDGE { k + 2 } else { j }) + o) as usize % 4];
+            let (a, b, c, d) = (at(0), at(1), at(2), at(3));
+            if j != NO_EDGE && mode.need != state {
+                self.swap();
+            }
+            match mode.kind {
+                Kind::FirstBd => self.strip.extend_from_slice(&[a, b, d, c]),
+                Kind::FirstAc => {
+                    self.strip.extend_from_slice(&[b, c, a, c, d]);
+                    self.swaps += 1;
+                }
+                Kind::Straight | Kind::Last => {
+                    if mode.need == 0 {
+                        self.strip.extend_from_slice(&[c, d]);
+                    } else {
+                        self.strip.extend_from_slice(&[d, c]);
+                    }
+                }
+                Kind::TurnBc => {
+                    self.strip.extend_from_slice(&[d, b, c]);
+                    self.swaps += 1;
+                }
+                Kind::TurnDa => {
+                    self.strip.extend_from_slice(&[c, a, d]);
+                    self.swaps += 1;
+                }
+            }
+            state = mode.out;
+        }
+        self.strips.push(&self.strip);
+    }
+
+    /// Repeats the second-to-last vertex: the next triangle pivots on the other end.
+    fn swap(&mut self) {
+        let len = self.strip.len();
+        let older = self.strip[len - 2];
+        self.strip.push(older);
+        self.swaps += 1;
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Direction {
+    Forward,
+    Backward,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn single_quad_gives_its_two_triangles() {
+        let mesh = Mesh::from_polygons(vec![[0.0; 3]; 4], &[vec![0, 1, 2, 3]]);
+        let q = qstrip(&mesh, &QuadOptions::default());
+        assert_eq!(q.strips.len(), 1);
+        assert_eq!(q.strips.strip(0).len(), 4);
+        let tris = crate::strip::decode(&q.strips);
+        assert_eq!(tris, vec![[0, 1, 3], [3, 1, 2]]);
+    }
+
+    #[test]
+    fn step_costs_match_the_paper_cases() {
+        // Straight keeps the state at no cost.
+        assert_eq!(step([0, 1], 0, 2, FREE), [0, 1]);
+        // Turns cost one swap from the right state, two from the other.
+        assert_eq!(step([0, 1], 0, 3, FREE), [2, 1]);
+        assert_eq!(step([0, 1], 0, 1, FREE), [2, 3]);
+        // First quad: state 1 free, state 0 one swap.
+        assert_eq!(step([0, 0], NO_EDGE, 1, FREE), [1, 0]);
+    }
+}
