@@ -47,3 +47,41 @@ fn research_quad_meshes_verify_and_meet_the_target() {
     }
     assert!(failures.is_empty(), "over the target: {failures:#?}");
 }
+
+/// Timing on Catmull-Clark level 4 of spot (749,568 quads); run in release:
+/// `cargo test --release -p stripkit --test quad_models -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn timing_on_spot_level_4() {
+    let Some(dir) = stripkit::test_support::models_dir() else { return };
+    let mut mesh = stripkit::mesh::io::read(&dir.join("quads/spot_quadrangulated.obj")).expect("spot loads");
+    for _ in 0..4 {
+        mesh = subdivide(&mesh);
+    }
+    let mut times = Vec::new();
+    let mut last = None;
+    for _ in 0..7 {
+        let t = std::time::Instant::now();
+        let q = stripkit::stripify::quad::qstrip(&mesh, &stripkit::stripify::quad::QuadOptions::default());
+        times.push(t.elapsed().as_secs_f64());
+        last = Some(q);
+    }
+    times.sort_by(f64::total_cmp);
+    let q = last.expect("ran");
+    let restart = q.strips.indices.len() + q.strips.len() - 1;
+    let edges_t = std::time::Instant::now();
+    let _ = stripkit::topology::EdgeMap::build(&mesh);
+    eprintln!(
+        "spot CC level 4: {} quads, {} strips, {} swaps, indices_per_quad {:.4}; qstrip median {:.1} ms \
+         ({:.2} M quads/s), EdgeMap alone {:.1} ms",
+        q.quad_count(),
+        q.strips.len(),
+        q.swaps,
+        restart as f64 / q.quad_count() as f64,
+        times[3] * 1e3,
+        q.quad_count() as f64 / times[3] / 1e6,
+        edges_t.elapsed().as_secs_f64() * 1e3
+    );
+    let check = stripkit::stripify::quad_verify::verify_quads(&mesh, &q.strips).expect("verifies");
+    assert_eq!(check.quads, q.quad_count());
+}

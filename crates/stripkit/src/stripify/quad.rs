@@ -43,17 +43,44 @@ const FREE: u8 = 2;
 /// An unreachable programme state.
 const INF: u32 = u32::MAX / 4;
 
+/// How the greedy walk picks the next quad among the free neighbours.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Policy {
+    /// The paper's rule: the step that adds the fewest swaps (straight ahead adds
+    /// none), ties to the neighbour with the fewest free neighbours.
+    FewestSwaps,
+    /// Trades one swap for four more quads of straight run ahead: a turn that leads
+    /// into a long free row beats going straight into a short one. Breaks the costly
+    /// same-side spirals ([`SWAP_WORTH`] quads per swap, runs counted up to 32).
+    LongRuns,
+}
+
+/// Quads of straight run ahead that [`Policy::LongRuns`] counts as worth one swap.
+pub const SWAP_WORTH: i64 = 4;
+const RUN_CAP: u32 = 32;
+
 /// Options of [`qstrip`].
 #[derive(Clone, Debug)]
 pub struct QuadOptions {
     /// After a sequence's forward end is stuck, extend it backwards from its first
     /// quad too (default `true`; the paper extends forwards only).
     pub extend_backward: bool,
+    /// The walk policies to run; the result with the fewest `indices_restart` is kept
+    /// (ties: the earlier policy). Default: both, [`Policy::FewestSwaps`] first. Each
+    /// policy is one full O(quads) pass; the adjacency is built once.
+    pub policies: Vec<Policy>,
 }
 
 impl Default for QuadOptions {
     fn default() -> Self {
-        QuadOptions { extend_backward: true }
+        QuadOptions { extend_backward: true, policies: vec![Policy::FewestSwaps, Policy::LongRuns] }
+    }
+}
+
+impl QuadOptions {
+    /// The paper's algorithm alone: one pass, [`Policy::FewestSwaps`], forward only.
+    pub fn paper() -> Self {
+        QuadOptions { extend_backward: false, policies: vec![Policy::FewestSwaps] }
     }
 }
 
@@ -126,11 +153,20 @@ pub fn qstrip(mesh: &Mesh, options: &QuadOptions) -> QuadStrips {
 /// [`qstrip`] with an edge map the caller already has.
 pub fn qstrip_with_edges(mesh: &Mesh, edges: &EdgeMap, options: &QuadOptions) -> QuadStrips {
     let adjacency = QuadAdjacency::build(mesh, edges);
-    let mut builder = Builder::new(&adjacency, options);
-    builder.run();
+    let mut best: Option<(StripSet, usize)> = None;
+    let policies: &[Policy] = if options.policies.is_empty() { &[Policy::FewestSwaps] } else { &options.policies };
+    for &policy in policies {
+        let mut builder = Builder::new(&adjacency, options, policy);
+        builder.run();
+        let cost = |s: &StripSet| s.indices.len() + s.len();
+        if best.as_ref().is_none_or(|(b, _)| cost(&builder.strips) < cost(b)) {
+            best = Some((builder.strips, builder.swaps));
+        }
+    }
+    let (strips, swaps) = best.unwrap_or_default();
     QuadStrips {
-        strips: builder.strips,
-        swaps: builder.swaps,
+        strips,
+        swaps,
         forced_diagonals: adjacency.forced_pairs,
         quad_faces: adjacency.quad_face,
     }
@@ -391,10 +427,11 @@ struct Builder<'a, 'm> {
     strip: Vec<u32>,
     strips: StripSet,
     swaps: usize,
+    policy: Policy,
 }
 
 impl<'a, 'm> Builder<'a, 'm> {
-    fn new(adj: &'a QuadAdjacency<'m>, options: &'a QuadOptions) -> Self {
+    fn new(adj: &'a QuadAdjacency<'m>, options: &'a QuadOptions, policy: Policy) -> Self {
         let n = adj.len();
         let mut b = Builder {
             adj,
@@ -410,6 +447,7 @@ impl<'a, 'm> Builder<'a, 'm> {
             strip: Vec::new(),
             strips: StripSet::new(),
             swaps: 0,
+            policy,
         };
         // Insert in reverse so that equal-degree quads come out in index order.
         for q in (0..n).rev() {
@@ -498,8 +536,9 @@ impl<'a, 'm> Builder<'a, 'm> {
         let mut first_exit = NO_EDGE;
         loop {
             let forced = adj.forced[cur as usize];
-            let mut best: Option<(u32, u8, u8, u32, [u32; 2])> = None; // (key.., k, nb_edge, nb, costs)
-            let mut best_key = (INF, u8::MAX);
+            // (exit edge, neighbour's entry edge, neighbour, costs after the step)
+            let mut best: Option<(u8, u8, u32, [u32; 2])> = None;
+            let mut best_key = (i64::MAX, u8::MAX);
             for k in 0..4u8 {
                 if k == entry || (cur == start && k == avoid) {
                     continue;
@@ -513,13 +552,20 @@ impl<'a, 'm> Builder<'a, 'm> {
                 if cost >= INF {
                     continue;
                 }
-                let key = (cost, self.degree[(l >> 2) as usize]);
+                let degree = self.degree[(l >> 2) as usize];
+                let key = match self.policy {
+                    Policy::FewestSwaps => (cost as i64, degree),
+                    Policy::LongRuns => {
+                        let run = self.straight_run(l >> 2, (l & 3) as u8, RUN_CAP);
+                        (cost as i64 * SWAP_WORTH - run as i64, degree)
+                    }
+                };
                 if key < best_key {
                     best_key = key;
-                    best = Some((0, k, (l & 3) as u8, l >> 2, next_costs));
+                    best = Some((k, (l & 3) as u8, l >> 2, next_costs));
                 }
             }
-            let Some((_, k, nb_edge, nb, next_costs)) = best else {
+            let Some((k, nb_edge, nb, next_costs)) = best else {
                 if cur == start && dir == Direction::Forward {
                     self.seq.push((cur, entry, NO_EDGE));
                 } else if cur != start {
@@ -538,6 +584,21 @@ impl<'a, 'm> Builder<'a, 'm> {
             entry = nb_edge;
             costs = next_costs;
         }
+    }
+
+    /// Free quads met going straight from `q` entered through `entry` (`q` counted).
+    fn straight_run(&self, mut q: u32, mut entry: u8, cap: u32) -> u32 {
+        let mut n = 1;
+        while n < cap {
+            let l = self.adj.link[4 * q as usize + ((entry + 2) % 4) as usize];
+            if l == NONE || self.used[(l >> 2) as usize] {
+                break;
+            }
+            q = l >> 2;
+            entry = (l & 3) as u8;
+            n += 1;
+        }
+        n
     }
 
     fn back_or_seq(&mut self, dir: Direction) -> &mut Vec<(u32, u8, u8)> {
