@@ -534,8 +534,30 @@ impl<'a, 'm> Builder<'a, 'm> {
         let mut entry = entry;
         let mut costs = [0u32, 0];
         let mut first_exit = NO_EDGE;
+        // LongRuns: free quads straight ahead of the straight neighbour, carried from
+        // step to step (a lower bound once it came from a capped count).
+        let mut ahead: Option<(u32, bool)> = None;
         loop {
             let forced = adj.forced[cur as usize];
+            let straight_k = if entry == NO_EDGE { NO_EDGE } else { (entry + 2) % 4 };
+            let mut run_straight = 0;
+            let mut skip_turns = false;
+            if self.policy == Policy::LongRuns && straight_k != NO_EDGE {
+                let l = adj.link[4 * cur as usize + straight_k as usize];
+                if l != NONE && !self.used[(l >> 2) as usize] {
+                    let (run, exact) = match ahead {
+                        Some((run, exact)) if exact || run + 3 >= RUN_CAP => (run, exact),
+                        _ => {
+                            let run = self.straight_run(l >> 2, (l & 3) as u8, RUN_CAP);
+                            (run, run < RUN_CAP)
+                        }
+                    };
+                    ahead = Some((run, exact));
+                    run_straight = run;
+                    // A turn costs at least one swap, worth SWAP_WORTH quads of run.
+                    skip_turns = run + 3 >= RUN_CAP;
+                }
+            }
             // (exit edge, neighbour's entry edge, neighbour, costs after the step)
             let mut best: Option<(u8, u8, u32, [u32; 2])> = None;
             let mut best_key = (i64::MAX, u8::MAX);
@@ -556,7 +578,13 @@ impl<'a, 'm> Builder<'a, 'm> {
                 let key = match self.policy {
                     Policy::FewestSwaps => (cost as i64, degree),
                     Policy::LongRuns => {
-                        let run = self.straight_run(l >> 2, (l & 3) as u8, RUN_CAP);
+                        let run = if k == straight_k {
+                            run_straight
+                        } else if skip_turns {
+                            continue;
+                        } else {
+                            self.straight_run(l >> 2, (l & 3) as u8, RUN_CAP)
+                        };
                         (cost as i64 * SWAP_WORTH - run as i64, degree)
                     }
                 };
@@ -576,6 +604,10 @@ impl<'a, 'm> Builder<'a, 'm> {
             if cur == start {
                 first_exit = k;
             }
+            ahead = match ahead {
+                Some((run, exact)) if k == straight_k && run > 1 => Some((run - 1, exact)),
+                _ => None,
+            };
             if cur != start || dir == Direction::Forward {
                 self.back_or_seq(dir).push((cur, entry, k));
             }
