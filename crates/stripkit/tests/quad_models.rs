@@ -4,6 +4,7 @@
 mod quad_support;
 
 use quad_support::*;
+use stripkit::stripify::quad::{qstrip, Policy, QuadOptions};
 
 const MODELS: [(&str, bool); 6] = [
     ("fandisk_quads.off", true),
@@ -48,6 +49,17 @@ fn research_quad_meshes_verify_and_meet_the_target() {
     assert!(failures.is_empty(), "over the target: {failures:#?}");
 }
 
+/// CPU seconds this thread has run (user + system), from /proc; 0 where unavailable.
+/// The machine is shared, so wall time says little; CPU time says what the code costs.
+fn thread_cpu_seconds() -> f64 {
+    let Ok(stat) = std::fs::read_to_string("/proc/thread-self/stat") else { return 0.0 };
+    let Some(after) = stat.rfind(')').map(|i| &stat[i + 2..]) else { return 0.0 };
+    let fields: Vec<&str> = after.split_whitespace().collect();
+    let ticks = |i: usize| fields.get(i).and_then(|f| f.parse::<f64>().ok()).unwrap_or(0.0);
+    // Fields 14 and 15 of the line (utime, stime) are 11 and 12 after the name.
+    (ticks(11) + ticks(12)) / 100.0
+}
+
 /// Timing on Catmull-Clark level 4 of spot (749,568 quads); run in release:
 /// `cargo test --release -p stripkit --test quad_models -- --ignored --nocapture`.
 #[test]
@@ -60,12 +72,14 @@ fn timing_on_spot_level_4() {
     }
     let mut times = Vec::new();
     let mut last = None;
+    let cpu0 = thread_cpu_seconds();
     for _ in 0..7 {
         let t = std::time::Instant::now();
-        let q = stripkit::stripify::quad::qstrip(&mesh, &stripkit::stripify::quad::QuadOptions::default());
+        let q = qstrip(&mesh, &QuadOptions::default());
         times.push(t.elapsed().as_secs_f64());
         last = Some(q);
     }
+    let cpu = (thread_cpu_seconds() - cpu0) / 7.0;
     times.sort_by(f64::total_cmp);
     let q = last.expect("ran");
     let restart = q.strips.indices.len() + q.strips.len() - 1;
@@ -73,15 +87,42 @@ fn timing_on_spot_level_4() {
     let _ = stripkit::topology::EdgeMap::build(&mesh);
     eprintln!(
         "spot CC level 4: {} quads, {} strips, {} swaps, indices_per_quad {:.4}; qstrip median {:.1} ms \
-         ({:.2} M quads/s), EdgeMap alone {:.1} ms",
+         ({:.2} M quads/s); CPU time per run {:.1} ms ({:.2} M quads/s); EdgeMap alone {:.1} ms",
         q.quad_count(),
         q.strips.len(),
         q.swaps,
         restart as f64 / q.quad_count() as f64,
         times[3] * 1e3,
         q.quad_count() as f64 / times[3] / 1e6,
+        cpu * 1e3,
+        q.quad_count() as f64 / cpu / 1e6,
         edges_t.elapsed().as_secs_f64() * 1e3
     );
+    for (name, options) in [
+        ("FewestSwaps only", QuadOptions { policies: vec![Policy::FewestSwaps], ..QuadOptions::default() }),
+        ("paper (forward only)", QuadOptions::paper()),
+    ] {
+        let mut times = Vec::new();
+        let mut last = None;
+        let cpu0 = thread_cpu_seconds();
+        for _ in 0..5 {
+            let t = std::time::Instant::now();
+            last = Some(qstrip(&mesh, &options));
+            times.push(t.elapsed().as_secs_f64());
+        }
+        let cpu = (thread_cpu_seconds() - cpu0) / 5.0;
+        times.sort_by(f64::total_cmp);
+        let q = last.expect("ran");
+        let restart = q.strips.indices.len() + q.strips.len() - 1;
+        eprintln!(
+            "  {name}: {} strips, indices_per_quad {:.4}, median {:.1} ms ({:.2} M quads/s), CPU {:.1} ms",
+            q.strips.len(),
+            restart as f64 / q.quad_count() as f64,
+            times[2] * 1e3,
+            q.quad_count() as f64 / times[2] / 1e6,
+            cpu * 1e3
+        );
+    }
     let check = stripkit::stripify::quad_verify::verify_quads(&mesh, &q.strips).expect("verifies");
     assert_eq!(check.quads, q.quad_count());
 }

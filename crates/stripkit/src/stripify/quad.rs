@@ -234,9 +234,15 @@ impl QuadAdjacency<'_> {
             let f = edges.halfedge_face[h as usize];
             (quad_of_face[f as usize], h - mesh.face_offsets[f as usize])
         };
+        // Edges that are not plain two-quad edges (more faces, a flipped neighbour):
+        // the only places besides `link` where two quads can share an edge.
+        let mut odd_edges = Vec::new();
         for e in 0..edges.edge_count() {
             let hs = edges.halfedges(e);
             if hs.len() != 2 {
+                if hs.len() > 2 {
+                    odd_edges.push(e);
+                }
                 continue;
             }
             let (h1, h2) = (hs[0], hs[1]);
@@ -248,34 +254,49 @@ impl QuadAdjacency<'_> {
             // Opposite directions: h1 starts where h2 ends.
             let next2 = edges.halfedge_next[h2 as usize];
             if mesh.face_indices[h1 as usize] != mesh.face_indices[next2 as usize] {
+                odd_edges.push(e);
                 continue;
             }
             link[(4 * q1 + k1) as usize] = (q2 << 2) | k2;
             link[(4 * q2 + k2) as usize] = (q1 << 2) | k1;
         }
         // Quads that share three or more vertices share an edge (any three corners of
-        // a quad include two of its edges, and a vertex has one diagonal partner), so
-        // looking at every face on every quad edge finds all pairs that could give
-        // coincident triangles.
+        // a quad include two of its edges, and a vertex has one diagonal partner): a
+        // `link` neighbour or a quad on an odd edge. Across a link the two shared
+        // vertices are known, so it takes a third: one of the other quad's far corners.
         let mut forced = vec![FREE; qcount];
         let mut forced_pairs = 0;
         for q1 in 0..qcount {
-            let f1 = quad_face[q1] as usize;
-            let start = mesh.face_offsets[f1];
-            for h in start..start + 4 {
-                let e = edges.halfedge_edge[h as usize];
-                if e == NONE {
+            for k in 0..4 {
+                let l = link[4 * q1 + k];
+                if l == NONE || (l >> 2) as usize <= q1 {
                     continue;
                 }
-                for &h2 in edges.halfedges(e as usize) {
-                    let (q2, _) = local(h2);
-                    if q2 == NONE || q2 as usize <= q1 {
+                let q2 = (l >> 2) as usize;
+                let k2 = (l & 3) as usize;
+                let far = [verts[4 * q2 + (k2 + 2) % 4], verts[4 * q2 + (k2 + 3) % 4]];
+                let mine = &verts[4 * q1..4 * q1 + 4];
+                if (mine.contains(&far[0]) || mine.contains(&far[1]))
+                    && force_pair(&verts, &mut forced, q1, q2)
+                {
+                    forced_pairs += 1;
+                }
+            }
+        }
+        for e in odd_edges {
+            let hs = edges.halfedges(e);
+            for (i, &ha) in hs.iter().enumerate() {
+                for &hb in &hs[i + 1..] {
+                    let (qa, _) = local(ha);
+                    let (qb, _) = local(hb);
+                    if qa == NONE || qb == NONE || qa == qb {
                         continue;
                     }
+                    let (q1, q2) = (qa.min(qb) as usize, qa.max(qb) as usize);
                     let a = &verts[4 * q1..4 * q1 + 4];
-                    let b = &verts[4 * q2 as usize..4 * q2 as usize + 4];
+                    let b = &verts[4 * q2..4 * q2 + 4];
                     let common = a.iter().filter(|v| b.contains(v)).count();
-                    if common >= 3 && force_pair(&verts, &mut forced, q1, q2 as usize) {
+                    if common >= 3 && force_pair(&verts, &mut forced, q1, q2) {
                         forced_pairs += 1;
                     }
                 }
