@@ -192,11 +192,13 @@ pub fn qstrip_mixed(
     (quads, all)
 }
 
-/// [`qstrip_mixed`] with the greedy stripifier ([`super::greedy`], default options)
-/// for the faces that are not quads: the full cover of any polygon mesh.
+/// [`qstrip_mixed`] with the greedy stripifier ([`super::greedy`], aiming at the
+/// fewest indices) for the faces that are not quads: the full cover of any polygon
+/// mesh. Returns the quad part and the combined strips.
 pub fn qstrip_mesh(mesh: &Mesh, options: &QuadOptions) -> (QuadStrips, StripSet) {
     qstrip_mixed(mesh, options, |tris, vcount| {
-        super::greedy::stripify(tris, vcount, &super::greedy::GreedyOptions::default())
+        let greedy = super::greedy::GreedyOptions { heuristic: super::greedy::Heuristic::Indices };
+        super::greedy::stripify(tris, vcount, &greedy)
     })
 }
 
