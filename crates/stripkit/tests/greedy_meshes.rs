@@ -222,3 +222,26 @@ fn real_meshes_when_present() {
         }
     }
 }
+
+mod fast_dual_graph {
+    use proptest::prelude::*;
+    use stripkit::topology::DualGraph;
+
+    proptest! {
+        // Random soups over few vertices: many shared, non-manifold, flipped and
+        // degenerate edges; the fast builder must agree with the reference one.
+        #[test]
+        fn equals_the_reference(tris in prop::collection::vec([0u32..9, 0u32..9, 0u32..9], 0..40)) {
+            let fast = stripkit::stripify::dual_graph(&tris, 9);
+            prop_assert_eq!(fast, DualGraph::from_triangles(&tris, 9));
+        }
+    }
+
+    #[test]
+    fn equals_the_reference_on_an_icosphere() {
+        let (tris, n) = super::icosphere(3);
+        assert_eq!(stripkit::stripify::dual_graph(&tris, n), DualGraph::from_triangles(&tris, n));
+        // Indices beyond the stated count are tolerated.
+        assert_eq!(stripkit::stripify::dual_graph(&tris, 0), DualGraph::from_triangles(&tris, n));
+    }
+}
