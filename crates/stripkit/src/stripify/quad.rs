@@ -665,99 +665,104 @@ impl<'a, 'm> Builder<'a, 'm> {
 
     /// Turns the current sequence into one strip with the fewest swaps.
     fn emit_sequence(&mut self) {
-        let adj = self.adj;
-        let n = self.seq.len();
         self.strip.clear();
-        if n == 1 {
-            let q = self.seq[0].0 as usize;
-            let v = &adj.verts[4 * q..4 * q + 4];
-            if adj.forced[q] == 0 {
-                self.strip.extend_from_slice(&[v[1], v[2], v[0], v[3]]);
-            } else {
-                self.strip.extend_from_slice(&[v[0], v[1], v[3], v[2]]);
-            }
-            self.strips.push(&self.strip);
-            return;
-        }
-        // Cost to go, from the back.
-        self.togo.clear();
-        self.togo.resize(n + 1, [0, 0]);
-        for i in (0..n).rev() {
-            let (q, j, k) = self.seq[i];
-            let after = self.togo[i + 1];
-            let mut g = [INF; 2];
-            for mode in modes(j, k, adj.forced[q as usize]).into_iter().flatten() {
-                let rest = mode.cost + if k == NO_EDGE { 0 } else { after[mode.out as usize] };
-                if j == NO_EDGE {
-                    g[0] = g[0].min(rest);
-                } else {
-                    let need = mode.need as usize;
-                    g[need] = g[need].min(rest);
-                    g[1 - need] = g[1 - need].min(rest + 1);
-                }
-            }
-            self.togo[i] = g;
-        }
-        // Forward emission.
-        let mut state = 0u8;
-        for i in 0..n {
-            let (q, j, k) = self.seq[i];
-            let after = self.togo[i + 1];
-            let mut best: Option<Mode> = None;
-            let mut best_cost = INF;
-            for mode in modes(j, k, adj.forced[q as usize]).into_iter().flatten() {
-                let swap = if j == NO_EDGE || mode.need == state { 0 } else { 1 };
-                let c = swap + mode.cost + if k == NO_EDGE { 0 } else { after[mode.out as usize] };
-                if c < best_cost {
-                    best_cost = c;
-                    best = Some(mode);
-                }
-            }
-            let Some(mode) = best else {
-                // Cannot happen: the greedy walk only takes steps with a finite cost.
-                debug_assert!(false, "no way through quad {q}");
-                return;
-            };
-            let qv = &adj.verts[4 * q as usize..4 * q as usize + 4];
-            let at = |o: u8| qv[((if j == NO_EDGE { k + 2 } else { j }) + o) as usize % 4];
-            let (a, b, c, d) = (at(0), at(1), at(2), at(3));
-            if j != NO_EDGE && mode.need != state {
-                self.swap();
-            }
-            match mode.kind {
-                Kind::FirstBd => self.strip.extend_from_slice(&[a, b, d, c]),
-                Kind::FirstAc => {
-                    self.strip.extend_from_slice(&[b, c, a, c, d]);
-                    self.swaps += 1;
-                }
-                Kind::Straight | Kind::Last => {
-                    if mode.need == 0 {
-                        self.strip.extend_from_slice(&[c, d]);
-                    } else {
-                        self.strip.extend_from_slice(&[d, c]);
-                    }
-                }
-                Kind::TurnBc => {
-                    self.strip.extend_from_slice(&[d, b, c]);
-                    self.swaps += 1;
-                }
-                Kind::TurnDa => {
-                    self.strip.extend_from_slice(&[c, a, d]);
-                    self.swaps += 1;
-                }
-            }
-            state = mode.out;
-        }
+        self.swaps += emit_quad_sequence(self.adj, &self.seq, &mut self.togo, &mut self.strip);
         self.strips.push(&self.strip);
     }
+}
 
-    /// Repeats the second-to-last vertex: the next triangle pivots on the other end.
-    fn swap(&mut self) {
-        let len = self.strip.len();
-        let older = self.strip[len - 2];
-        self.strip.push(older);
-        self.swaps += 1;
+/// Turns a sequence of adjacent quads `(quad, entry edge, exit edge)` into one strip
+/// (appended to `strip`) with the fewest swaps, by the two-state programme; returns the
+/// swaps. Every step must be feasible under the forced diagonals (see [`step`]).
+fn emit_quad_sequence(adj: &QuadAdjacency, seq: &[(u32, u8, u8)], togo: &mut Vec<[u32; 2]>, strip: &mut Vec<u32>) -> usize {
+    let n = seq.len();
+    let mut swaps = 0;
+    if n == 0 {
+        return 0;
     }
+    if n == 1 {
+        let q = seq[0].0 as usize;
+        let v = &adj.verts[4 * q..4 * q + 4];
+        if adj.forced[q] == 0 {
+            strip.extend_from_slice(&[v[1], v[2], v[0], v[3]]);
+        } else {
+            strip.extend_from_slice(&[v[0], v[1], v[3], v[2]]);
+        }
+        return 0;
+    }
+    // Cost to go, from the back.
+    togo.clear();
+    togo.resize(n + 1, [0, 0]);
+    for i in (0..n).rev() {
+        let (q, j, k) = seq[i];
+        let after = togo[i + 1];
+        let mut g = [INF; 2];
+        for mode in modes(j, k, adj.forced[q as usize]).into_iter().flatten() {
+            let rest = mode.cost + if k == NO_EDGE { 0 } else { after[mode.out as usize] };
+            if j == NO_EDGE {
+                g[0] = g[0].min(rest);
+            } else {
+                let need = mode.need as usize;
+                g[need] = g[need].min(rest);
+                g[1 - need] = g[1 - need].min(rest + 1);
+            }
+        }
+        togo[i] = g;
+    }
+    // Forward emission.
+    let mut state = 0u8;
+    for i in 0..n {
+        let (q, j, k) = seq[i];
+        let after = togo[i + 1];
+        let mut best: Option<Mode> = None;
+        let mut best_cost = INF;
+        for mode in modes(j, k, adj.forced[q as usize]).into_iter().flatten() {
+            let swap = if j == NO_EDGE || mode.need == state { 0 } else { 1 };
+            let c = swap + mode.cost + if k == NO_EDGE { 0 } else { after[mode.out as usize] };
+            if c < best_cost {
+                best_cost = c;
+                best = Some(mode);
+            }
+        }
+        let Some(mode) = best else {
+            // Callers only pass feasible sequences.
+            debug_assert!(false, "no way through quad {q}");
+            return swaps;
+        };
+        let qv = &adj.verts[4 * q as usize..4 * q as usize + 4];
+        let at = |o: u8| qv[((if j == NO_EDGE { k + 2 } else { j }) + o) as usize % 4];
+        let (a, b, c, d) = (at(0), at(1), at(2), at(3));
+        if j != NO_EDGE && mode.need != state {
+            // Repeat the second-to-last vertex: the next triangle pivots on the other end.
+            let older = strip[strip.len() - 2];
+            strip.push(older);
+            swaps += 1;
+        }
+        match mode.kind {
+            Kind::FirstBd => strip.extend_from_slice(&[a, b, d, c]),
+            Kind::FirstAc => {
+                strip.extend_from_slice(&[b, c, a, c, d]);
+                swaps += 1;
+            }
+            Kind::Straight | Kind::Last => {
+                if mode.need == 0 {
+                    strip.extend_from_slice(&[c, d]);
+                } else {
+                    strip.extend_from_slice(&[d, c]);
+                }
+            }
+            Kind::TurnBc => {
+                strip.extend_from_slice(&[d, b, c]);
+                swaps += 1;
+            }
+            Kind::TurnDa => {
+                strip.extend_from_slice(&[c, a, d]);
+                swaps += 1;
+            }
+        }
+        state = mode.out;
+    }
+    swaps
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
