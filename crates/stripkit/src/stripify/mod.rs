@@ -16,6 +16,7 @@
 
 pub mod greedy;
 pub mod quad;
+pub mod quad_single;
 pub mod quad_verify;
 
 use crate::strip::StripSet;

@@ -35,13 +35,13 @@ use crate::strip::StripSet;
 use crate::topology::EdgeMap;
 
 /// No neighbour / no edge.
-const NONE: u32 = u32::MAX;
+pub(super) const NONE: u32 = u32::MAX;
 /// Local edge marker for "no entry" / "no exit".
-const NO_EDGE: u8 = 4;
+pub(super) const NO_EDGE: u8 = 4;
 /// Diagonal not forced.
 const FREE: u8 = 2;
 /// An unreachable programme state.
-const INF: u32 = u32::MAX / 4;
+pub(super) const INF: u32 = u32::MAX / 4;
 
 /// How the greedy walk picks the next quad among the free neighbours.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -203,22 +203,22 @@ pub fn qstrip_mesh(mesh: &Mesh, options: &QuadOptions) -> (QuadStrips, StripSet)
 }
 
 /// Quads and their neighbours across manifold, consistently oriented quad-quad edges.
-struct QuadAdjacency<'m> {
+pub(super) struct QuadAdjacency<'m> {
     /// The four vertices of each quad, flat.
-    verts: Vec<u32>,
+    pub(super) verts: Vec<u32>,
     /// Face id of each quad.
-    quad_face: Vec<u32>,
+    pub(super) quad_face: Vec<u32>,
     /// `link[4 q + k]`: `(neighbour << 2) | neighbour's local edge` across local edge
     /// `k` (from `verts[4q+k]` to `verts[4q+(k+1)%4]`), or [`NONE`].
-    link: Vec<u32>,
+    pub(super) link: Vec<u32>,
     /// Forced diagonal per quad: 0 (v0-v2), 1 (v1-v3) or [`FREE`].
-    forced: Vec<u8>,
-    forced_pairs: usize,
+    pub(super) forced: Vec<u8>,
+    pub(super) forced_pairs: usize,
     _mesh: std::marker::PhantomData<&'m Mesh>,
 }
 
 impl QuadAdjacency<'_> {
-    fn build<'m>(mesh: &'m Mesh, edges: &EdgeMap) -> QuadAdjacency<'m> {
+    pub(super) fn build<'m>(mesh: &'m Mesh, edges: &EdgeMap) -> QuadAdjacency<'m> {
         let fcount = mesh.face_count();
         let mut quad_of_face = vec![NONE; fcount];
         let mut quad_face = Vec::new();
@@ -415,7 +415,7 @@ fn modes(j: u8, k: u8, forced: u8) -> [Option<Mode>; 2] {
 }
 
 /// Programme step: costs at the next quad's entry from costs `f` at this quad's entry.
-fn step(f: [u32; 2], j: u8, k: u8, forced: u8) -> [u32; 2] {
+pub(super) fn step(f: [u32; 2], j: u8, k: u8, forced: u8) -> [u32; 2] {
     let mut out = [INF; 2];
     for mode in modes(j, k, forced).into_iter().flatten() {
         let base = if j == NO_EDGE {
@@ -674,7 +674,7 @@ impl<'a, 'm> Builder<'a, 'm> {
 /// Turns a sequence of adjacent quads `(quad, entry edge, exit edge)` into one strip
 /// (appended to `strip`) with the fewest swaps, by the two-state programme; returns the
 /// swaps. Every step must be feasible under the forced diagonals (see [`step`]).
-fn emit_quad_sequence(adj: &QuadAdjacency, seq: &[(u32, u8, u8)], togo: &mut Vec<[u32; 2]>, strip: &mut Vec<u32>) -> usize {
+pub(super) fn emit_quad_sequence(adj: &QuadAdjacency, seq: &[(u32, u8, u8)], togo: &mut Vec<[u32; 2]>, strip: &mut Vec<u32>) -> usize {
     let n = seq.len();
     let mut swaps = 0;
     if n == 0 {
