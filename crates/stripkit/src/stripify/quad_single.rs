@@ -84,14 +84,26 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
     };
     for q0 in 0..n as u32 {
         let mut cur = q0;
+        let mut came_in = NO_EDGE as u32;
         loop {
-            let Some(k) = (0..4).find(|&k| !used[(4 * cur + k) as usize]) else { break };
+            // Prefer leaving straight across from the entry edge: chords make long
+            // straight runs in the cycles, and straight steps need no swap.
+            let straight = (came_in + 2) % 4;
+            let k = if came_in != NO_EDGE as u32 && !used[(4 * cur + straight) as usize] {
+                straight
+            } else {
+                match (0..4).find(|&k| !used[(4 * cur + k) as usize]) {
+                    Some(k) => k,
+                    None => break,
+                }
+            };
             let s = 4 * cur + k;
             used[s as usize] = true;
             used[partner(s) as usize] = true;
             push(&mut outs[cur as usize], s);
             let h = head(s);
             push(&mut ins[h as usize], s);
+            came_in = link[s as usize] & 3;
             cur = h;
         }
     }
