@@ -80,3 +80,38 @@ fn auto_picks_greedy_for_triangle_meshes() {
     let v = run_json(&input, "auto");
     assert_eq!(v["algo"], "greedy");
 }
+
+/// A closed torus of quads as OBJ text.
+fn torus_obj(nu: usize, nv: usize) -> String {
+    let mut s = String::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            let (u, v) = (i as f32 / nu as f32 * 6.283, j as f32 / nv as f32 * 6.283);
+            let r = 2.0 + v.cos();
+            s += &format!("v {} {} {}\n", r * u.cos(), r * u.sin(), v.sin());
+        }
+    }
+    let id = |i: usize, j: usize| (j % nv) * nu + (i % nu) + 1;
+    for j in 0..nv {
+        for i in 0..nu {
+            s += &format!("f {} {} {} {}\n", id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+        }
+    }
+    s
+}
+
+#[test]
+fn quad_single_gives_one_strip_on_a_torus_and_refuses_open_meshes() {
+    let input = tmp("torus.obj");
+    std::fs::write(&input, torus_obj(20, 12)).unwrap();
+    let v = run_json(&input, "quad-single");
+    assert_eq!(v["algo"], "quad-single");
+    assert_eq!(v["strips"], 1);
+    assert_eq!(v["quads"], 240);
+    assert_eq!(v["verified"], true);
+    let open = tmp("open.obj");
+    std::fs::write(&open, grid_obj(3, false)).unwrap();
+    let out_path = tmp("open.ply");
+    let out = stripkit(&["strip", open.to_str().unwrap(), "-o", out_path.to_str().unwrap(), "--algo", "quad-single"]);
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+}

@@ -17,7 +17,7 @@ use stripkit::mesh::io::{self, Format, WriteOptions};
 use stripkit::metrics::{self, CacheKind, CacheModel, Figures};
 use stripkit::strip::{self, StripSet};
 use stripkit::stripify::greedy::{self, GreedyOptions};
-use stripkit::stripify::{quad, quad_verify};
+use stripkit::stripify::{quad, quad_single, quad_verify};
 use stripkit::{Error, Mesh};
 
 /// The stripifying algorithm.
@@ -32,6 +32,10 @@ pub enum Algo {
     /// QSTRIP (Vaněček et al.): quad sequences turned into strips, each quad split
     /// along the diagonal that needs the fewest swaps; other faces by greedy.
     Qstrip,
+    /// One generalized strip per connected component of a closed pure-quad mesh
+    /// (after Taubin 2002: cycle cover of the quads, cycles spliced into one).
+    #[serde(rename = "quad-single")]
+    QuadSingle,
 }
 
 /// What the greedy choice optimises.
@@ -120,7 +124,7 @@ struct Report<'a> {
 /// (see [`run`]); given triangles only, every algorithm is the greedy one.
 pub fn stripify(algo: Algo, heuristic: HeuristicArg, tris: &[[u32; 3]], vertex_count: usize) -> StripSet {
     match algo {
-        Algo::Greedy | Algo::Auto | Algo::Qstrip => {
+        Algo::Greedy | Algo::Auto | Algo::Qstrip | Algo::QuadSingle => {
             let heuristic = match heuristic {
                 HeuristicArg::Strips => greedy::Heuristic::Strips,
                 HeuristicArg::Indices => greedy::Heuristic::Indices,
@@ -200,11 +204,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let (q, all) = quad::qstrip_mesh(&mesh, &quad::QuadOptions::default());
         quads = Some(q.quad_count());
         all
+    } else if algo == Algo::QuadSingle {
+        let single = quad_single::quad_single(&mesh)
+            .map_err(|e| anyhow::anyhow!(e).context(format!("{}", args.input.display())))?;
+        quads = Some(single.quads);
+        single.strips
     } else {
         stripify(algo, args.heuristic, &tris, vertex_count)
     };
     let ms = start.elapsed().as_secs_f64() * 1e3;
-    if algo == Algo::Qstrip {
+    if matches!(algo, Algo::Qstrip | Algo::QuadSingle) {
         // A quad may be split along either diagonal: check at quad level, then take
         // the triangles the strips chose as the reference for the figures and for
         // every later check (the quad check proved them a triangulation of the mesh).
