@@ -26,6 +26,11 @@ pub struct Args {
     /// Only meshes whose file name contains this text.
     #[arg(long)]
     pub only: Option<String>,
+    /// Loop-subdivide every mesh this many times first (each level: 4x the
+    /// triangles; `--only bunny.obj --loop 2` gives 1.1M triangles).
+    #[arg(long, value_name = "LEVELS", default_value_t = 0)]
+    #[arg(long = "loop")]
+    pub loop_levels: u32,
 }
 
 /// A triangle list reordered before stripifying (the reorder is timed on its own).
@@ -46,24 +51,58 @@ pub struct Mode {
 }
 
 fn ours(name: &'static str, f: impl Fn(&[[u32; 3]], usize) -> StripSet + 'static) -> Mode {
-    Mode { name, reorder: None, stripify: Box::new(f), ours: true }
+    Mode {
+        name,
+        reorder: None,
+        stripify: Box::new(f),
+        ours: true,
+    }
 }
 
-fn peer(name: &'static str, reorder: Reorder, f: impl Fn(&[[u32; 3]], usize) -> StripSet + 'static) -> Mode {
-    Mode { name, reorder: Some(reorder), stripify: Box::new(f), ours: false }
+fn peer(
+    name: &'static str,
+    reorder: Reorder,
+    f: impl Fn(&[[u32; 3]], usize) -> StripSet + 'static,
+) -> Mode {
+    Mode {
+        name,
+        reorder: Some(reorder),
+        stripify: Box::new(f),
+        ours: false,
+    }
 }
 
 /// The rows, in table order. Other stripkit modes are one line each.
 pub fn modes() -> Vec<Mode> {
     vec![
         ours("stripkit greedy --heuristic strips", |t, n| {
-            greedy::stripify(t, n, &GreedyOptions { heuristic: Heuristic::Strips })
+            greedy::stripify(
+                t,
+                n,
+                &GreedyOptions {
+                    heuristic: Heuristic::Strips,
+                },
+            )
         }),
         ours("stripkit greedy --heuristic indices", |t, n| {
-            greedy::stripify(t, n, &GreedyOptions { heuristic: Heuristic::Indices })
+            greedy::stripify(
+                t,
+                n,
+                &GreedyOptions {
+                    heuristic: Heuristic::Indices,
+                },
+            )
         }),
-        peer("meshopt optimize_vertex_cache + stripify", reorder_cache, meshopt_stripify),
-        peer("meshopt optimize_vertex_cache_strip + stripify", reorder_strip, meshopt_stripify),
+        peer(
+            "meshopt optimize_vertex_cache + stripify",
+            reorder_cache,
+            meshopt_stripify,
+        ),
+        peer(
+            "meshopt optimize_vertex_cache_strip + stripify",
+            reorder_strip,
+            meshopt_stripify,
+        ),
     ]
 }
 
@@ -72,7 +111,10 @@ fn flat(tris: &[[u32; 3]]) -> Vec<u32> {
 }
 
 fn unflat(indices: &[u32]) -> Vec<[u32; 3]> {
-    indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+    indices
+        .chunks_exact(3)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect()
 }
 
 fn reorder_cache(tris: &[[u32; 3]], n: usize) -> Vec<[u32; 3]> {
@@ -110,7 +152,9 @@ struct Row {
 fn mesh_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     let mut files = Vec::new();
     for d in [dir.to_path_buf(), dir.join("quads")] {
-        let Ok(entries) = std::fs::read_dir(&d) else { continue };
+        let Ok(entries) = std::fs::read_dir(&d) else {
+            continue;
+        };
         for e in entries {
             let p = e?.path();
             if p.is_file() && stripkit::mesh::io::Format::from_path(&p).is_some() {
@@ -125,17 +169,38 @@ fn mesh_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
 /// Runs the comparison.
 pub fn run(args: Args) -> anyhow::Result<()> {
     if !args.dir.is_dir() {
-        anyhow::bail!("{}: no such folder of meshes (give one as the first argument)", args.dir.display());
+        anyhow::bail!(
+            "{}: no such folder of meshes (give one as the first argument)",
+            args.dir.display()
+        );
     }
     let runs = args.runs.max(1);
     let modes = modes();
     let mut rows = Vec::new();
     for path in mesh_files(&args.dir)? {
-        let name = path.strip_prefix(&args.dir).unwrap_or(&path).display().to_string();
-        if args.only.as_ref().is_some_and(|o| !name.contains(o.as_str())) {
+        let name = path
+            .strip_prefix(&args.dir)
+            .unwrap_or(&path)
+            .display()
+            .to_string();
+        if args
+            .only
+            .as_ref()
+            .is_some_and(|o| !name.contains(o.as_str()))
+        {
             continue;
         }
-        let mesh = stripkit::mesh::io::read(&path).with_context(|| format!("reading {}", path.display()))?;
+        let mut mesh = stripkit::mesh::io::read(&path)
+            .with_context(|| format!("reading {}", path.display()))?;
+        let name = if args.loop_levels > 0 {
+            mesh = stripkit::gen::subdivide_loop(
+                &stripkit::Mesh::from_triangles(mesh.positions.clone(), &mesh.triangulate().tris),
+                args.loop_levels,
+            )?;
+            format!("{name} (Loop x{})", args.loop_levels)
+        } else {
+            name
+        };
         let tris = mesh.triangulate().tris;
         let n = mesh.vertex_count();
         eprintln!("{name}: {} triangles", tris.len());
@@ -162,7 +227,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             }
             // Figures against the original triangles: the reorder must not lose any.
             let figures = metrics::figures(&tris, &strips, CacheModel::default());
-            rows.push(Row { model: name.clone(), mode: mode.name, figures, ms: median(times), reorder_ms, ours: mode.ours, quads: None });
+            rows.push(Row {
+                model: name.clone(),
+                mode: mode.name,
+                figures,
+                ms: median(times),
+                reorder_ms,
+                ours: mode.ours,
+                quads: None,
+            });
         }
         quad_row(&mesh, &name, runs, &mut rows);
     }
@@ -171,8 +244,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(out) = &args.out {
         std::fs::write(out, &table).with_context(|| format!("writing {}", out.display()))?;
     }
-    let failed: Vec<String> =
-        rows.iter().filter(|r| r.ours && !r.figures.verified).map(|r| format!("{} on {}", r.mode, r.model)).collect();
+    let failed: Vec<String> = rows
+        .iter()
+        .filter(|r| r.ours && !r.figures.verified)
+        .map(|r| format!("{} on {}", r.mode, r.model))
+        .collect();
     if !failed.is_empty() {
         anyhow::bail!("verification failed: {}", failed.join(", "));
     }
@@ -241,7 +317,10 @@ fn render(rows: &[Row], runs: usize) -> String {
         let ok = if f.verified {
             "yes".to_string()
         } else {
-            format!("**no**: {} lost, {} added, {} flipped", f.lost, f.added, f.flipped)
+            format!(
+                "**no**: {} lost, {} added, {} flipped",
+                f.lost, f.added, f.flipped
+            )
         };
         s.push_str(&format!(
             "| {model} | {tri} | {} | {} | {} | {} | {:.3} | {} | {} | {:.3} | {:.3} | {:.2} | {} | {ok} |\n",
@@ -266,7 +345,7 @@ fn group(n: usize) -> String {
     let digits = n.to_string();
     let mut out = String::new();
     for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
+        if i > 0 && (digits.len() - i).rem_euclid(3) == 0 {
             out.push(',');
         }
         out.push(c);

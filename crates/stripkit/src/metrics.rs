@@ -37,11 +37,17 @@ pub struct CacheModel {
 impl CacheModel {
     /// A FIFO cache of `size` entries.
     pub fn fifo(size: usize) -> Self {
-        CacheModel { kind: CacheKind::Fifo, size }
+        CacheModel {
+            kind: CacheKind::Fifo,
+            size,
+        }
     }
     /// An LRU cache of `size` entries.
     pub fn lru(size: usize) -> Self {
-        CacheModel { kind: CacheKind::Lru, size }
+        CacheModel {
+            kind: CacheKind::Lru,
+            size,
+        }
     }
 }
 
@@ -54,7 +60,12 @@ impl Default for CacheModel {
 /// Number of cache misses when the vertices of `triangles` are fed, in order, through
 /// an initially empty cache. `vertex_count` must exceed every index. O(n) for FIFO,
 /// O(n * size) for LRU.
-pub fn cache_misses(triangles: &[[u32; 3]], vertex_count: usize, cache_size: usize, kind: CacheKind) -> usize {
+pub fn cache_misses(
+    triangles: &[[u32; 3]],
+    vertex_count: usize,
+    cache_size: usize,
+    kind: CacheKind,
+) -> usize {
     if cache_size == 0 {
         return triangles.len() * 3;
     }
@@ -98,11 +109,17 @@ pub fn cache_misses(triangles: &[[u32; 3]], vertex_count: usize, cache_size: usi
 }
 
 /// Average cache miss ratio: [`cache_misses`] per triangle (0 for no triangles).
-pub fn acmr(triangles_in_order: &[[u32; 3]], vertex_count: usize, cache_size: usize, kind: CacheKind) -> f64 {
+pub fn acmr(
+    triangles_in_order: &[[u32; 3]],
+    vertex_count: usize,
+    cache_size: usize,
+    kind: CacheKind,
+) -> f64 {
     if triangles_in_order.is_empty() {
         return 0.0;
     }
-    cache_misses(triangles_in_order, vertex_count, cache_size, kind) as f64 / triangles_in_order.len() as f64
+    cache_misses(triangles_in_order, vertex_count, cache_size, kind) as f64
+        / triangles_in_order.len() as f64
 }
 
 /// Degenerate triangle windows inside the strips: each is one swap (a repeated index)
@@ -175,7 +192,11 @@ pub fn figures(input: &[[u32; 3]], strips: &StripSet, cache: CacheModel) -> Figu
         indices_separate,
         indices_restart,
         indices_degenerate: strip::stitched_len(strips),
-        indices_per_triangle: if v.expected == 0 { 0.0 } else { indices_restart as f64 / v.expected as f64 },
+        indices_per_triangle: if v.expected == 0 {
+            0.0
+        } else {
+            indices_restart as f64 / v.expected as f64
+        },
         acmr16: acmr(&decoded, vertex_count, 16, CacheKind::Fifo),
         acmr32: acmr(&decoded, vertex_count, 32, CacheKind::Fifo),
         cache,

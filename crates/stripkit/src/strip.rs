@@ -143,7 +143,7 @@ pub fn stitched_len(strips: &StripSet) -> usize {
     let mut len = 0usize;
     for s in strips.iter().filter(|s| s.len() >= 3) {
         if len > 0 {
-            len += if len % 2 == 0 { 2 } else { 3 };
+            len += if len & 1 == 0 { 2 } else { 3 };
         }
         len += s.len();
     }
@@ -159,7 +159,7 @@ pub fn encode_stitched(strips: &StripSet) -> Vec<u32> {
     let mut out: Vec<u32> = Vec::with_capacity(strips.indices.len() + 3 * strips.len());
     for s in strips.iter().filter(|s| s.len() >= 3) {
         if let Some(&last) = out.last() {
-            if out.len() % 2 == 0 {
+            if out.len() & 1 == 0 {
                 out.extend_from_slice(&[last, s[0]]);
             } else {
                 out.extend_from_slice(&[last, last, s[0]]);

@@ -12,7 +12,11 @@ const BOTH: [Heuristic; 2] = [Heuristic::Strips, Heuristic::Indices];
 fn check(tris: &[[u32; 3]], vertex_count: usize, heuristic: Heuristic) -> (StripSet, Figures) {
     let strips = greedy::stripify(tris, vertex_count, &GreedyOptions { heuristic });
     let f = metrics::figures(tris, &strips, CacheModel::default());
-    assert!(f.verified, "{heuristic:?}: {}", strip::verify(tris, &strips));
+    assert!(
+        f.verified,
+        "{heuristic:?}: {}",
+        strip::verify(tris, &strips)
+    );
     assert!(f.winding_preserved);
     let degenerate = tris.iter().filter(|t| strip::is_degenerate(t)).count();
     assert_eq!(f.dropped_degenerate, degenerate);
@@ -52,10 +56,26 @@ fn torus(n: u32, m: u32) -> (Vec<[u32; 3]>, usize) {
 
 fn icosphere(levels: u32) -> (Vec<[u32; 3]>, usize) {
     let mut tris: Vec<[u32; 3]> = vec![
-        [0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11],
-        [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
-        [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9],
-        [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1],
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
     ];
     let mut vcount = 12u32;
     for _ in 0..levels {
@@ -80,7 +100,10 @@ fn icosphere(levels: u32) -> (Vec<[u32; 3]>, usize) {
 struct Lcg(u64);
 impl Lcg {
     fn next(&mut self, n: usize) -> usize {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         ((self.0 >> 33) % n as u64) as usize
     }
 }
@@ -97,7 +120,11 @@ fn shuffled(tris: &[[u32; 3]], vertex_count: usize, seed: u64) -> Vec<[u32; 3]> 
         perm.swap(i, rng.next(i + 1));
     }
     for t in &mut out {
-        *t = [perm[t[0] as usize], perm[t[1] as usize], perm[t[2] as usize]];
+        *t = [
+            perm[t[0] as usize],
+            perm[t[1] as usize],
+            perm[t[2] as usize],
+        ];
         t.rotate_left(rng.next(3));
     }
     out
@@ -111,7 +138,11 @@ fn grids_strip_well() {
             let (_, f) = check(&tris, n, heur);
             assert_eq!(f.triangles, tris.len());
             // A w x h grid is covered by h row strips at worst.
-            assert!(f.strips <= h.max(1) as usize + 1, "{w}x{h} {heur:?}: {} strips", f.strips);
+            assert!(
+                f.strips <= h.max(1) as usize + 1,
+                "{w}x{h} {heur:?}: {} strips",
+                f.strips
+            );
         }
     }
 }
@@ -134,7 +165,12 @@ fn icospheres_and_tori() {
     // A large regular mesh strips into long strips.
     let (tris, n) = icosphere(5);
     let (_, f) = check(&tris, n, Heuristic::Strips);
-    assert!(f.strips * 100 < f.triangles, "{} strips for {} triangles", f.strips, f.triangles);
+    assert!(
+        f.strips * 100 < f.triangles,
+        "{} strips for {} triangles",
+        f.strips,
+        f.triangles
+    );
     let (_, f) = check(&tris, n, Heuristic::Indices);
     assert!(f.indices_per_triangle < 1.3, "{}", f.indices_per_triangle);
 }
@@ -148,7 +184,12 @@ fn shuffled_inputs_strip_as_well() {
             let s = shuffled(&tris, n, seed);
             let (_, f) = check(&s, n, heur);
             let allowed = base.indices_restart + base.indices_restart / 20;
-            assert!(f.indices_restart <= allowed, "{heur:?} seed {seed}: {} vs {}", f.indices_restart, base.indices_restart);
+            assert!(
+                f.indices_restart <= allowed,
+                "{heur:?} seed {seed}: {} vs {}",
+                f.indices_restart,
+                base.indices_restart
+            );
         }
     }
 }
@@ -204,9 +245,37 @@ fn tiny_inputs() {
 }
 
 #[test]
+fn real_meshes_strip_as_well_shuffled() {
+    let Some(dir) = stripkit::test_support::models_dir() else {
+        return;
+    };
+    // The goal is 1%; horse's strips heuristic measures 0.9% for this seed.
+    for (name, tolerance) in [("bunny.obj", 0.01), ("horse.ply", 0.02)] {
+        let mesh = stripkit::mesh::io::read(&dir.join(name)).unwrap();
+        let tris = mesh.triangulate().tris;
+        let n = mesh.vertex_count();
+        for heur in BOTH {
+            let (_, base) = check(&tris, n, heur);
+            let (_, f) = check(&shuffled(&tris, n, 11), n, heur);
+            let ratio = f.indices_restart as f64 / base.indices_restart as f64;
+            eprintln!("{name} {heur:?}: {} -> {} shuffled ({ratio:.4})", base.indices_restart, f.indices_restart);
+            assert!((ratio - 1.0).abs() < tolerance, "{name} {heur:?}: {ratio}");
+        }
+    }
+}
+
+#[test]
 fn real_meshes_when_present() {
-    let Some(dir) = stripkit::test_support::models_dir() else { return };
-    for name in ["bunny_small.off", "cow.obj", "bunny_res3.ply", "fandisk.obj", "quads/halftunnel.off"] {
+    let Some(dir) = stripkit::test_support::models_dir() else {
+        return;
+    };
+    for name in [
+        "bunny_small.off",
+        "cow.obj",
+        "bunny_res3.ply",
+        "fandisk.obj",
+        "quads/halftunnel.off",
+    ] {
         let mesh = match stripkit::mesh::io::read(&dir.join(name)) {
             Ok(m) => m,
             Err(stripkit::Error::UnknownFormat { .. }) => {
@@ -218,7 +287,11 @@ fn real_meshes_when_present() {
         let tris = mesh.triangulate().tris;
         for heur in BOTH {
             check(&tris, mesh.vertex_count(), heur);
-            check(&shuffled(&tris, mesh.vertex_count(), 7), mesh.vertex_count(), heur);
+            check(
+                &shuffled(&tris, mesh.vertex_count(), 7),
+                mesh.vertex_count(),
+                heur,
+            );
         }
     }
 }
@@ -240,8 +313,14 @@ mod fast_dual_graph {
     #[test]
     fn equals_the_reference_on_an_icosphere() {
         let (tris, n) = super::icosphere(3);
-        assert_eq!(stripkit::stripify::dual_graph(&tris, n), DualGraph::from_triangles(&tris, n));
+        assert_eq!(
+            stripkit::stripify::dual_graph(&tris, n),
+            DualGraph::from_triangles(&tris, n)
+        );
         // Indices beyond the stated count are tolerated.
-        assert_eq!(stripkit::stripify::dual_graph(&tris, 0), DualGraph::from_triangles(&tris, n));
+        assert_eq!(
+            stripkit::stripify::dual_graph(&tris, 0),
+            DualGraph::from_triangles(&tris, n)
+        );
     }
 }

@@ -103,8 +103,22 @@ fn figures_of_a_hand_checked_mesh() {
     //   1: (12, 9... odd: (s2,s1,s3) = (9,11,12)
     //   2: (9,12,9) degenerate (the swap)
     //   3: odd: (s4,s3,s5) = (9,12,13)
-    let tris = [[0, 3, 1], [1, 3, 4], [1, 4, 2], [2, 4, 5], [6, 7, 8], [9, 10, 11], [9, 11, 12], [9, 12, 13], [5, 5, 6]];
-    let strips = StripSet::from_strips(&[vec![0, 3, 1, 4, 2, 5], vec![6, 7, 8], vec![10, 11, 9, 12, 9, 13]]);
+    let tris = [
+        [0, 3, 1],
+        [1, 3, 4],
+        [1, 4, 2],
+        [2, 4, 5],
+        [6, 7, 8],
+        [9, 10, 11],
+        [9, 11, 12],
+        [9, 12, 13],
+        [5, 5, 6],
+    ];
+    let strips = StripSet::from_strips(&[
+        vec![0, 3, 1, 4, 2, 5],
+        vec![6, 7, 8],
+        vec![10, 11, 9, 12, 9, 13],
+    ]);
     let f = metrics::figures(&tris, &strips, CacheModel::lru(4));
     assert!(f.verified, "{f:?}");
     assert!(f.winding_preserved);
@@ -140,7 +154,15 @@ fn figures_of_a_hand_checked_mesh() {
 fn empty_input_gives_zero_figures() {
     let f = metrics::figures(&[], &StripSet::new(), CacheModel::default());
     assert!(f.verified);
-    assert_eq!((f.triangles, f.strips, f.indices_restart, f.indices_degenerate), (0, 0, 0, 0));
+    assert_eq!(
+        (
+            f.triangles,
+            f.strips,
+            f.indices_restart,
+            f.indices_degenerate
+        ),
+        (0, 0, 0, 0)
+    );
     assert_eq!(f.acmr16, 0.0);
     assert!(strip::encode_restart(&StripSet::new(), 7).is_empty());
     assert!(strip::encode_stitched(&StripSet::new()).is_empty());

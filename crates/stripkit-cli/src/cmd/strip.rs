@@ -11,6 +11,7 @@
 use anyhow::Context;
 use clap::ValueEnum;
 use serde::Serialize;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stripkit::mesh::io::{self, Format, WriteOptions};
@@ -122,7 +123,12 @@ struct Report<'a> {
 
 /// Runs the chosen triangle stripifier on triangles. QSTRIP needs the quads themselves
 /// (see [`run`]); given triangles only, every algorithm is the greedy one.
-pub fn stripify(algo: Algo, heuristic: HeuristicArg, tris: &[[u32; 3]], vertex_count: usize) -> StripSet {
+pub fn stripify(
+    algo: Algo,
+    heuristic: HeuristicArg,
+    tris: &[[u32; 3]],
+    vertex_count: usize,
+) -> StripSet {
     match algo {
         Algo::Greedy | Algo::Auto | Algo::Qstrip | Algo::QuadSingle => {
             let heuristic = match heuristic {
@@ -140,7 +146,11 @@ enum OutKind {
 }
 
 fn output_kind(path: &Path) -> anyhow::Result<OutKind> {
-    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("").to_ascii_lowercase();
+    let name = path
+        .file_name()
+        .and_then(|n| n.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
     if name.ends_with(".json") {
         return Ok(OutKind::Json);
     }
@@ -161,7 +171,10 @@ fn fail_verification(what: &str, v: &strip::Verification) -> anyhow::Error {
 /// Runs the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     if args.cache == 0 {
-        return Err(Error::Invalid("--cache must be at least 1 (a vertex cache of 0 entries misses everything)".into()).into());
+        return Err(Error::Invalid(
+            "--cache must be at least 1 (a vertex cache of 0 entries misses everything)".into(),
+        )
+        .into());
     }
     let kind = output_kind(&args.output)?;
     // Fail before the work when the output cannot be written at all.
@@ -223,7 +236,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
 
     progress.set_message("verifying");
-    let cache = CacheModel { kind: if args.lru { CacheKind::Lru } else { CacheKind::Fifo }, size: args.cache };
+    let cache = CacheModel {
+        kind: if args.lru {
+            CacheKind::Lru
+        } else {
+            CacheKind::Fifo
+        },
+        size: args.cache,
+    };
     let figures = metrics::figures(&tris, &strips, cache);
     let v = strip::verify(&tris, &strips);
     if !v.ok() {
@@ -231,7 +251,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     // The strips as the output will hold them, checked again after the join.
     let joined = match args.join {
-        Join::Restart => strip::decode_restart(&strip::encode_restart(&strips, args.restart_index), args.restart_index),
+        Join::Restart => strip::decode_restart(
+            &strip::encode_restart(&strips, args.restart_index),
+            args.restart_index,
+        ),
         Join::Degenerate => single_stitched(&strips),
         Join::Separate => StripSet::from_strips(&strip::encode_separate(&strips)),
     };
@@ -256,9 +279,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     match kind {
         OutKind::Json => {
             let bytes = json_output(&args, &joined, &strips, &report)?;
-            std::fs::write(&args.output, bytes)
-                .map_err(|source| Error::Io { path: args.output.clone(), source })
-?;
+            std::fs::write(&args.output, bytes).map_err(|source| Error::Io {
+                path: args.output.clone(),
+                source,
+            })?;
         }
         OutKind::Mesh(format) => {
             let to_write = mesh_output(&args, format, &mesh, &strips, &joined, &tris)?;
@@ -267,12 +291,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     progress.finish_and_clear();
 
-    if args.json {
-        println!("{}", serde_json::to_string(&report)?);
+    let mut stdout = std::io::stdout().lock();
+    let printed = if args.json {
+        writeln!(stdout, "{}", serde_json::to_string(&report)?)
     } else {
-        print_summary(&report);
+        print_summary(&mut stdout, &report)
+    };
+    match printed {
+        // A closed pipe (`| head`) is not an error of ours.
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
+        _ => Ok(()),
     }
-    Ok(())
 }
 
 fn single_stitched(strips: &StripSet) -> StripSet {
@@ -284,13 +313,24 @@ fn single_stitched(strips: &StripSet) -> StripSet {
     }
 }
 
-fn json_output(args: &Args, joined: &StripSet, strips: &StripSet, report: &Report) -> anyhow::Result<Vec<u8>> {
+fn json_output(
+    args: &Args,
+    joined: &StripSet,
+    strips: &StripSet,
+    report: &Report,
+) -> anyhow::Result<Vec<u8>> {
     let mut obj = serde_json::Map::new();
     obj.insert("join".into(), serde_json::to_value(args.join)?);
-    obj.insert("strips".into(), serde_json::to_value(strip::encode_separate(joined))?);
+    obj.insert(
+        "strips".into(),
+        serde_json::to_value(strip::encode_separate(joined))?,
+    );
     if args.join == Join::Restart {
         obj.insert("restart_index".into(), args.restart_index.into());
-        obj.insert("indices".into(), serde_json::to_value(strip::encode_restart(strips, args.restart_index))?);
+        obj.insert(
+            "indices".into(),
+            serde_json::to_value(strip::encode_restart(strips, args.restart_index))?,
+        );
     }
     obj.insert("figures".into(), serde_json::to_value(report)?);
     let mut bytes = serde_json::to_vec(&serde_json::Value::Object(obj))?;
@@ -309,47 +349,84 @@ fn mesh_output(
     // PLY `tristrips` ends strips with -1 (its own restart); glTF has no restart, so
     // it gets the stitched strip unless strips are asked for separately.
     let to_write = match (format, args.join) {
-        (Format::Ply, Join::Degenerate) | (Format::Gltf | Format::Glb, Join::Separate) => joined.clone(),
+        (Format::Ply, Join::Degenerate) | (Format::Gltf | Format::Glb, Join::Separate) => {
+            joined.clone()
+        }
         (Format::Ply, _) => strips.clone(),
         _ => single_stitched(strips),
     };
     let bytes = io::write_bytes(format, mesh, Some(&to_write), &WriteOptions::default())?;
     // Read the bytes back with the library's reader and check them once more.
-    let back = io::read_bytes(&args.output, format, &bytes)
-        .with_context(|| format!("reading back the {} bytes about to be written", args.output.display()))?;
+    let back = io::read_bytes(&args.output, format, &bytes).with_context(|| {
+        format!(
+            "reading back the {} bytes about to be written",
+            args.output.display()
+        )
+    })?;
     let v = strip::verify_triangles(tris, &back.triangulate().tris);
     if !v.ok() {
-        return Err(fail_verification(&format!("{} read back", args.output.display()), &v));
+        return Err(fail_verification(
+            &format!("{} read back", args.output.display()),
+            &v,
+        ));
     }
     Ok(to_write)
 }
 
-fn print_summary(r: &Report) {
+fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
     let f = r.figures;
-    println!("{} -> {} ({:?}, heuristic {:?}, join {:?})", r.input.display(), r.output.display(), r.algo, r.heuristic, r.join);
-    println!(
+    let name = |v: &dyn std::fmt::Debug| format!("{v:?}").to_lowercase();
+    writeln!(
+        out,
+        "{} -> {} ({}, heuristic {}, join {})",
+        r.input.display(),
+        r.output.display(),
+        name(&r.algo),
+        name(&r.heuristic),
+        name(&r.join)
+    )?;
+    writeln!(
+        out,
         "verified: {} triangles, 0 lost, 0 added, 0 flipped{}",
         f.triangles,
-        if f.dropped_degenerate > 0 { format!(" ({} degenerate input triangles dropped)", f.dropped_degenerate) } else { String::new() }
-    );
-    println!("  strips               {:>10}", f.strips);
-    println!("  swaps                {:>10}", f.swaps);
-    println!("  indices_separate     {:>10}", f.indices_separate);
-    println!("  indices_restart      {:>10}", f.indices_restart);
-    println!("  indices_degenerate   {:>10}", f.indices_degenerate);
-    println!("  indices_per_triangle {:>10.4}", f.indices_per_triangle);
+        if f.dropped_degenerate > 0 {
+            format!(
+                " ({} degenerate input triangles dropped)",
+                f.dropped_degenerate
+            )
+        } else {
+            String::new()
+        }
+    )?;
+    writeln!(out, "  strips               {:>10}", f.strips)?;
+    writeln!(out, "  swaps                {:>10}", f.swaps)?;
+    writeln!(out, "  indices_separate     {:>10}", f.indices_separate)?;
+    writeln!(out, "  indices_restart      {:>10}", f.indices_restart)?;
+    writeln!(out, "  indices_degenerate   {:>10}", f.indices_degenerate)?;
+    writeln!(
+        out,
+        "  indices_per_triangle {:>10.4}",
+        f.indices_per_triangle
+    )?;
     if let (Some(q), Some(ipq)) = (r.quads, r.indices_per_quad) {
-        println!("  quads                {:>10}", q);
-        println!("  indices_per_quad     {:>10.4}", ipq);
+        writeln!(out, "  quads                {:>10}", q)?;
+        writeln!(out, "  indices_per_quad     {:>10.4}", ipq)?;
     }
-    println!("  acmr16 (FIFO)        {:>10.4}", f.acmr16);
-    println!("  acmr32 (FIFO)        {:>10.4}", f.acmr32);
+    writeln!(out, "  acmr16 (FIFO)        {:>10.4}", f.acmr16)?;
+    writeln!(out, "  acmr32 (FIFO)        {:>10.4}", f.acmr32)?;
     let kind = match f.cache.kind {
         CacheKind::Fifo => "FIFO",
         CacheKind::Lru => "LRU",
     };
     if !(f.cache.kind == CacheKind::Fifo && (f.cache.size == 16 || f.cache.size == 32)) {
-        println!("  acmr{} ({kind}){:>w$.4}", f.cache.size, f.acmr, w = 20usize.saturating_sub(format!("acmr{} ({kind})", f.cache.size).len()) + 11);
+        writeln!(
+            out,
+            "  acmr{} ({kind}){:>w$.4}",
+            f.cache.size,
+            f.acmr,
+            w = 20usize.saturating_sub(format!("acmr{} ({kind})", f.cache.size).len()) + 11
+        )?;
     }
-    println!("  stripify ms          {:>10.2}", r.ms);
+    writeln!(out, "  stripify ms          {:>10.2}", r.ms)?;
+    Ok(())
 }

@@ -31,7 +31,12 @@ use crate::topology::{DualGraph, NO_NEIGHBOR};
 pub fn dual_graph(tris: &[[u32; 3]], vertex_count: usize) -> DualGraph {
     let n = tris.len();
     let degenerate = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-    let max_index = tris.iter().flatten().copied().max().map_or(0, |m| m as usize + 1);
+    let max_index = tris
+        .iter()
+        .flatten()
+        .copied()
+        .max()
+        .map_or(0, |m| m as usize + 1);
     let vcount = vertex_count.max(max_index);
     let mut start = vec![0u32; vcount + 1];
     for t in tris.iter().filter(|t| !degenerate(t)) {
@@ -57,7 +62,8 @@ pub fn dual_graph(tris: &[[u32; 3]], vertex_count: usize) -> DualGraph {
             let (a, b) = (t[j], t[(j + 1) % 3]);
             let lo = a.min(b) as usize;
             let corner = (ti * 3 + j) as u64;
-            entries[fill[lo] as usize] = (u64::from(a.max(b)) << 32) | (corner * 2 + u64::from(a < b));
+            entries[fill[lo] as usize] =
+                (u64::from(a.max(b)) << 32) | (corner * 2 + u64::from(a < b));
             fill[lo] += 1;
         }
     }
@@ -131,7 +137,10 @@ fn walk(
     for i in 1..len {
         let t = at(i) as usize;
         let tri = &tris[t];
-        let r = *tri.iter().find(|&&v| v != p && v != q).expect("walk: triangle lost its entry edge");
+        let r = *tri
+            .iter()
+            .find(|&&v| v != p && v != q)
+            .expect("walk: triangle lost its entry edge");
         if i + 1 < len {
             let k = link_slot(tri, &graph.neighbors[t], at(i + 1), (p, q))
                 .expect("encode_path: consecutive triangles are not dual neighbours");
@@ -156,7 +165,14 @@ fn walk(
 /// of `b` is the tail of the edge `a -> b` as `a` runs it.
 fn start_swap(tris: &[[u32; 3]], graph: &DualGraph, a: u32, b: u32, c: u32) -> bool {
     let ta = &tris[a as usize];
-    let Some(j) = link_slot(ta, &graph.neighbors[a as usize], b, (NO_NEIGHBOR, NO_NEIGHBOR)) else { return false };
+    let Some(j) = link_slot(
+        ta,
+        &graph.neighbors[a as usize],
+        b,
+        (NO_NEIGHBOR, NO_NEIGHBOR),
+    ) else {
+        return false;
+    };
     let (x, y) = (ta[j], ta[(j + 1) % 3]);
     let tb = &tris[b as usize];
     match link_slot(tb, &graph.neighbors[b as usize], c, (x, y)) {
@@ -175,7 +191,12 @@ fn start_swap(tris: &[[u32; 3]], graph: &DualGraph, a: u32, b: u32, c: u32) -> b
 /// # Panics
 /// When two consecutive triangles of `path` are not neighbours in `graph` (a bug in
 /// the caller, never a property of the input mesh).
-pub fn encode_path(tris: &[[u32; 3]], graph: &DualGraph, path: &[u32], out: &mut StripSet) -> usize {
+pub fn encode_path(
+    tris: &[[u32; 3]],
+    graph: &DualGraph,
+    path: &[u32],
+    out: &mut StripSet,
+) -> usize {
     let n = path.len();
     if out.offsets.is_empty() {
         out.offsets.push(0);
@@ -183,7 +204,10 @@ pub fn encode_path(tris: &[[u32; 3]], graph: &DualGraph, path: &[u32], out: &mut
     let mark = out.indices.len();
     let mut swaps = walk(tris, graph, n, |i| path[i], |v| out.indices.push(v));
     // Both readings share their inner swaps; only the first step can differ.
-    if n >= 3 && start_swap(tris, graph, path[0], path[1], path[2]) && !start_swap(tris, graph, path[n - 1], path[n - 2], path[n - 3]) {
+    if n >= 3
+        && start_swap(tris, graph, path[0], path[1], path[2])
+        && !start_swap(tris, graph, path[n - 1], path[n - 2], path[n - 3])
+    {
         out.indices.truncate(mark);
         swaps = walk(tris, graph, n, |i| path[n - 1 - i], |v| out.indices.push(v));
     }
@@ -213,7 +237,14 @@ mod tests {
     #[test]
     fn a_band_needs_no_swap() {
         // Quad band 0-1-2-3 over 4-5-6-7, triangles alternating.
-        let tris = [[0, 4, 1], [1, 4, 5], [1, 5, 2], [2, 5, 6], [2, 6, 3], [3, 6, 7]];
+        let tris = [
+            [0, 4, 1],
+            [1, 4, 5],
+            [1, 5, 2],
+            [2, 5, 6],
+            [2, 6, 3],
+            [3, 6, 7],
+        ];
         let g = DualGraph::from_triangles(&tris, 8);
         let mut out = StripSet::new();
         assert_eq!(encode_path(&tris, &g, &[0, 1, 2, 3, 4, 5], &mut out), 0);

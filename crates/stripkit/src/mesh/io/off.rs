@@ -19,6 +19,8 @@ struct Cursor<'a> {
     data: &'a [u8],
     pos: usize,
     line: usize,
+    /// Line of the last token found: where an unexpected end of file is reported.
+    token_line: usize,
 }
 
 impl<'a> Cursor<'a> {
@@ -40,7 +42,12 @@ impl<'a> Cursor<'a> {
         while self.pos < d.len() && !is_space(d[self.pos]) && d[self.pos] != b'\n' && d[self.pos] != b'#' {
             self.pos += 1;
         }
-        (start < self.pos).then(|| &d[start..self.pos])
+        if start == self.pos {
+            self.line = self.token_line;
+            return None;
+        }
+        self.token_line = self.line;
+        Some(&d[start..self.pos])
     }
 
     /// Moves to the line end (the newline itself is consumed by the next `token`).
@@ -57,7 +64,7 @@ impl<'a> Cursor<'a> {
 /// coordinates) are ignored.
 pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
     let src = Src { path };
-    let mut c = Cursor { data, pos: 0, line: 1 };
+    let mut c = Cursor { data, pos: 0, line: 1, token_line: 1 };
     let keyword = c.token().ok_or_else(|| src.err("line 1", "empty file, expected the OFF keyword"))?;
     let homogeneous = parse_keyword(keyword).ok_or_else(|| {
         src.err(line_at(c.line), format!("expected an OFF keyword such as OFF or COFF, found '{}'", show(keyword)))
@@ -115,7 +122,7 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
             let i = parse_count(tok)
                 .ok_or_else(|| src.err(line_at(c.line), format!("malformed vertex index '{}'", show(tok))))?;
             if i >= nv {
-                return Err(src.err(line_at(c.line), index_message(f as usize, i, nv as usize)));
+                return Err(src.err(line_at(c.line), index_message(f, i as i64, nv as usize)));
             }
             mesh.face_indices.push(i as u32);
         }
@@ -210,7 +217,7 @@ mod tests {
         assert_eq!(at, "line 6");
         assert_eq!(what, "face 0 refers to vertex 7 but the file has 3 vertices");
         let (at, what) = format_error("OFF\n3 1 0\n0 0 0\n1 0 0\n");
-        assert_eq!(at, "line 5");
+        assert_eq!(at, "line 4");
         assert!(what.contains("vertex 2 of 3"), "{what}");
         let (_, what) = format_error("OFF\n3 1000000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
         assert!(what.contains("1 of 1000000000000 announced faces"), "{what}");

@@ -435,7 +435,7 @@ fn read_body<B: Body>(src: Src, header: &Header, r: &mut B) -> Result<Mesh> {
                                 for _ in 0..n {
                                     let i = r.int(item).map_err(|w| src.err(at(r, f), w))?;
                                     if i < 0 || i as u64 >= vertex_count {
-                                        return Err(src.err(at(r, f), index_message(f as usize, i as u64, nv)));
+                                        return Err(src.err(at(r, f), index_message(f, i, nv)));
                                     }
                                     mesh.face_indices.push(i as u32);
                                 }
