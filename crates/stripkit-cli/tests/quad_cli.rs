@@ -35,7 +35,7 @@ fn grid_obj(n: usize, extra_triangles: bool) -> String {
     s
 }
 
-fn run_json(input: &PathBuf, algo: &str) -> serde_json::Value {
+fn run_json(input: &std::path::Path, algo: &str) -> serde_json::Value {
     let out_path = tmp(&format!("out-{algo}.ply"));
     let out = stripkit(&["strip", input.to_str().unwrap(), "-o", out_path.to_str().unwrap(), "--algo", algo, "--json"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
@@ -86,7 +86,7 @@ fn torus_obj(nu: usize, nv: usize) -> String {
     let mut s = String::new();
     for j in 0..nv {
         for i in 0..nu {
-            let (u, v) = (i as f32 / nu as f32 * 6.283, j as f32 / nv as f32 * 6.283);
+            let (u, v) = (i as f32 / nu as f32 * std::f32::consts::TAU, j as f32 / nv as f32 * std::f32::consts::TAU);
             let r = 2.0 + v.cos();
             s += &format!("v {} {} {}\n", r * u.cos(), r * u.sin(), v.sin());
         }

@@ -29,10 +29,8 @@ fn research_quad_meshes_verify_and_meet_the_target() {
         let pure = mesh.is_quad_mesh();
         let (_, check, fig) = strip_and_verify(&mesh);
         eprintln!("{name}: {fig:?} other triangles {}", check.other_triangles);
-        if closed && pure {
-            if fig.indices_per_quad > 2.20 || fig.strips * 50 >= fig.quads {
-                failures.push(format!("{name}: {fig:?}"));
-            }
+        if closed && pure && (fig.indices_per_quad > 2.20 || fig.strips * 50 >= fig.quads) {
+            failures.push(format!("{name}: {fig:?}"));
         }
         if name.starts_with("spot_quad") {
             let l1 = subdivide(&mesh);

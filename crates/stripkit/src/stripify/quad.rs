@@ -523,8 +523,7 @@ impl<'a, 'm> Builder<'a, 'm> {
     }
 
     fn run(&mut self) {
-        loop {
-            let Some(start) = self.head.iter().copied().find(|&h| h != NONE) else { break };
+        while let Some(start) = self.head.iter().copied().find(|&h| h != NONE) {
             self.take(start);
             self.seq.clear();
             let first_exit = self.extend(start, NO_EDGE, NO_EDGE, Direction::Forward);

@@ -32,7 +32,7 @@ pub fn torus(nu: usize, nv: usize) -> Mesh {
     let mut positions = Vec::new();
     for j in 0..nv {
         for i in 0..nu {
-            let (u, v) = (i as f32 / nu as f32 * 6.283, j as f32 / nv as f32 * 6.283);
+            let (u, v) = (i as f32 / nu as f32 * std::f32::consts::TAU, j as f32 / nv as f32 * std::f32::consts::TAU);
             let r = 2.0 + v.cos();
             positions.push([r * u.cos(), r * u.sin(), v.sin()]);
         }
@@ -92,8 +92,8 @@ pub fn subdivide(mesh: &Mesh) -> Mesh {
         let k = face.len();
         let mut c = [0.0f32; 3];
         for &v in face {
-            for a in 0..3 {
-                c[a] += mesh.positions[v as usize][a] / k as f32;
+            for (ca, pa) in c.iter_mut().zip(mesh.positions[v as usize]) {
+                *ca += pa / k as f32;
             }
         }
         positions.push(c);
