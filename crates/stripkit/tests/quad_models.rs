@@ -123,6 +123,21 @@ fn timing_on_spot_level_4() {
     }
     let check = stripkit::stripify::quad_verify::verify_quads(&mesh, &q.strips).expect("verifies");
     assert_eq!(check.quads, q.quad_count());
+    let cpu0 = thread_cpu_seconds();
+    let t = std::time::Instant::now();
+    let single = stripkit::stripify::quad_single::quad_single(&mesh).expect("closed quad mesh");
+    let wall = t.elapsed().as_secs_f64();
+    let cpu = thread_cpu_seconds() - cpu0;
+    let restart = single.strips.indices.len() + single.strips.len() - 1;
+    eprintln!(
+        "  quad-single: {} strips ({} cycles), indices_per_quad {:.4}, {:.1} ms wall, {:.1} ms CPU",
+        single.strips.len(),
+        single.cycles,
+        restart as f64 / single.quads as f64,
+        wall * 1e3,
+        cpu * 1e3
+    );
+    stripkit::stripify::quad_verify::verify_quads(&mesh, &single.strips).expect("single strips verify");
 }
 
 /// `indices_restart` of the greedy stripifier on the fan-triangulated mesh, the better
