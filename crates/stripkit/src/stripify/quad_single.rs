@@ -108,27 +108,58 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
         }
     }
 
-    // 2-factor: every other edge of each cycle of the out/in bipartite graph.
+    // 2-factor: every other edge of each cycle of the out/in bipartite graph. Each
+    // such cycle offers two choices (even or odd edges); take the one that lets more
+    // quads go straight through (entry and exit on opposite edges), judged against
+    // the choices already made.
     let mut succ_slot = vec![NONE; n];
+    let mut in_pick = vec![NONE; n];
     let mut seen = vec![false; 4 * n];
+    let mut cycle: Vec<u32> = Vec::new();
+    let straight = |v: usize, succ_slot: &[u32], in_pick: &[u32]| {
+        let (o, i) = (succ_slot[v], in_pick[v]);
+        o != NONE && i != NONE && ((link[i as usize] & 3) + 2) % 4 == o % 4
+    };
     for u in 0..n {
         for &e0 in &outs[u] {
             if e0 == NONE || seen[e0 as usize] {
                 continue;
             }
+            cycle.clear();
             let mut e = e0;
             loop {
                 seen[e as usize] = true;
-                succ_slot[(e / 4) as usize] = e;
+                cycle.push(e);
                 let v = head(e) as usize;
                 let other_in = if ins[v][0] == e { ins[v][1] } else { ins[v][0] };
                 seen[other_in as usize] = true;
+                cycle.push(other_in);
                 let w = (other_in / 4) as usize;
                 let next = if outs[w][0] == other_in { outs[w][1] } else { outs[w][0] };
                 if next == NONE || seen[next as usize] {
                     break;
                 }
                 e = next;
+            }
+            let mut score = [0usize; 2];
+            for (parity, sc) in score.iter_mut().enumerate() {
+                for &e in cycle.iter().skip(parity).step_by(2) {
+                    succ_slot[(e / 4) as usize] = e;
+                    in_pick[head(e) as usize] = e;
+                }
+                for &e in cycle.iter().skip(parity).step_by(2) {
+                    *sc += straight((e / 4) as usize, &succ_slot, &in_pick) as usize
+                        + straight(head(e) as usize, &succ_slot, &in_pick) as usize;
+                }
+                for &e in cycle.iter().skip(parity).step_by(2) {
+                    succ_slot[(e / 4) as usize] = NONE;
+                    in_pick[head(e) as usize] = NONE;
+                }
+            }
+            let parity = if score[1] > score[0] { 1 } else { 0 };
+            for &e in cycle.iter().skip(parity).step_by(2) {
+                succ_slot[(e / 4) as usize] = e;
+                in_pick[head(e) as usize] = e;
             }
         }
     }
