@@ -69,18 +69,27 @@ pub struct QuadOptions {
     /// (ties: the earlier policy). Default: both, [`Policy::FewestSwaps`] first. Each
     /// policy is one full O(quads) pass; the adjacency is built once.
     pub policies: Vec<Policy>,
+    /// A later policy runs only while the best result so far has more than this many
+    /// swaps per quad (default 0.05): on meshes with long regular rows (fine
+    /// subdivisions) the first pass leaves little to gain and the second would only
+    /// cost time.
+    pub retry_above_swaps_per_quad: f64,
 }
 
 impl Default for QuadOptions {
     fn default() -> Self {
-        QuadOptions { extend_backward: true, policies: vec![Policy::FewestSwaps, Policy::LongRuns] }
+        QuadOptions {
+            extend_backward: true,
+            policies: vec![Policy::FewestSwaps, Policy::LongRuns],
+            retry_above_swaps_per_quad: 0.05,
+        }
     }
 }
 
 impl QuadOptions {
     /// The paper's algorithm alone: one pass, [`Policy::FewestSwaps`], forward only.
     pub fn paper() -> Self {
-        QuadOptions { extend_backward: false, policies: vec![Policy::FewestSwaps] }
+        QuadOptions { extend_backward: false, policies: vec![Policy::FewestSwaps], retry_above_swaps_per_quad: 0.0 }
     }
 }
 
@@ -156,6 +165,11 @@ pub fn qstrip_with_edges(mesh: &Mesh, edges: &EdgeMap, options: &QuadOptions) ->
     let mut best: Option<(StripSet, usize)> = None;
     let policies: &[Policy] = if options.policies.is_empty() { &[Policy::FewestSwaps] } else { &options.policies };
     for &policy in policies {
+        if let Some((_, swaps)) = &best {
+            if (*swaps as f64) <= options.retry_above_swaps_per_quad * adjacency.quad_face.len() as f64 {
+                break;
+            }
+        }
         let mut builder = Builder::new(&adjacency, options, policy);
         builder.run();
         let cost = |s: &StripSet| s.indices.len() + s.len();
