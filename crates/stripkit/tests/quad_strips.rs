@@ -126,3 +126,38 @@ fn mixed_meshes_strip_quads_and_leave_the_rest_to_a_triangle_stripifier() {
     assert_eq!(check.quads, 16);
     assert_eq!(check.other_triangles, 1 + 3);
 }
+
+#[test]
+fn awkward_topology_is_covered_and_verified() {
+    // Three quads on edge 0-1 (non-manifold), a flipped neighbour, a quad with a
+    // repeated vertex (not a quad: fanned, its degenerate triangle dropped), an
+    // isolated quad, and an unreferenced vertex.
+    let mesh = Mesh::from_polygons(
+        vec![[0.0; 3]; 16],
+        &[
+            vec![0, 1, 2, 3],
+            vec![1, 0, 4, 5],
+            vec![1, 0, 6, 7],
+            vec![2, 1, 5, 8],   // consistent with quad 0 across 1-2
+            vec![3, 2, 9, 10],  // flipped against quad 0 across 2-3? quad 0 runs 2->3; this runs 3->2: consistent
+            vec![10, 9, 11, 12],
+            vec![9, 2, 11, 9],  // repeated vertex 9
+            vec![12, 11, 13, 14],
+            vec![11, 12, 13, 14], // flipped against the previous across 11-12... shares 12-11 in the same direction
+        ],
+    );
+    for seed in 0..10u64 {
+        let m = if seed == 0 { mesh.clone() } else { shuffled(&mesh, seed) };
+        let (q, check, _) = strip_and_verify(&m);
+        assert_eq!(q.quad_count(), 8);
+        assert_eq!(check.quads, 8);
+        assert_eq!(check.other_triangles, 1, "the repeated-vertex quad keeps one real triangle");
+    }
+    // No quads at all, and no faces at all.
+    let tris = Mesh::from_polygons(vec![[0.0; 3]; 4], &[vec![0, 1, 2], vec![2, 1, 3]]);
+    let (q, check, _) = strip_and_verify(&tris);
+    assert_eq!((q.quad_count(), check.other_triangles), (0, 2));
+    let empty = Mesh::new();
+    let (q, check, _) = strip_and_verify(&empty);
+    assert_eq!((q.quad_count(), check.quads, q.strips.len()), (0, 0, 0));
+}

@@ -10,7 +10,8 @@
 //!   with its orientation, as the triangle-level check demands;
 //! * no output triangle is left over;
 //! * no two triangles that come from quads lie on the same three vertices (the
-//!   "incorrect triangle" two quads sharing two edges can produce).
+//!   "incorrect triangle" two quads sharing two edges can produce), unless every
+//!   choice of diagonals for that pair of quads clashes (the input forces it).
 //!
 //! Independent of how the strips were built: it only decodes them by the METRICS.md
 //! rule. O(T) expected time with hashing.
@@ -136,7 +137,7 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
         [[v[d], v[d + 1], v[(d + 2) % 4]], [v[d], v[(d + 2) % 4], v[(d + 3) % 4]]]
     };
     let mut deferred = Vec::new();
-    let mut quad_sets: Vec<[u32; 3]> = Vec::new();
+    let mut quad_sets: Vec<([u32; 3], u32)> = Vec::new();
     for pass in 0..2 {
         let faces: Vec<usize> = if pass == 0 {
             (0..mesh.face_count()).filter(|&f| is_quad(mesh.face(f))).collect()
@@ -165,7 +166,7 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
                 take(&mut counts, t);
                 let mut s = t;
                 s.sort_unstable();
-                quad_sets.push(s);
+                quad_sets.push((s, f as u32));
             }
             check.quads += 1;
             if d == 0 {
@@ -180,12 +181,32 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
         )));
     }
     quad_sets.sort_unstable();
-    if let Some(w) = quad_sets.windows(2).find(|w| w[0] == w[1]) {
-        return Err(Error::Verification(format!(
-            "two quads give coincident triangles on vertices ({}, {}, {}) (quads sharing two \
-             edges split along the same diagonal)",
-            w[0][0], w[0][1], w[0][2]
-        )));
+    for w in quad_sets.windows(2) {
+        let ((t, f1), (u, f2)) = (w[0], w[1]);
+        if t == u && f1 != f2 && avoidable(mesh.face(f1 as usize), mesh.face(f2 as usize)) {
+            return Err(Error::Verification(format!(
+                "quad faces {f1} and {f2} give coincident triangles on vertices ({}, {}, {}); \
+                 another choice of diagonals avoids it",
+                t[0], t[1], t[2]
+            )));
+        }
     }
     Ok(check)
+}
+
+/// True when some choice of diagonals for quads `a` and `b` gives no two triangles on
+/// the same three vertices (false only for pairs on the same four vertices whose every
+/// split clashes, which the input forces).
+fn avoidable(a: &[u32], b: &[u32]) -> bool {
+    let sets = |v: &[u32], d: usize| {
+        let mut t1 = [v[d], v[d + 1], v[(d + 2) % 4]];
+        let mut t2 = [v[d], v[(d + 2) % 4], v[(d + 3) % 4]];
+        t1.sort_unstable();
+        t2.sort_unstable();
+        [t1, t2]
+    };
+    (0..2).any(|da| (0..2).any(|db| {
+        let (x, y) = (sets(a, da), sets(b, db));
+        !x.iter().any(|t| y.contains(t))
+    }))
 }
