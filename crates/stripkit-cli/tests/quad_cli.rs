@@ -4,7 +4,10 @@ use std::path::PathBuf;
 use std::process::{Command, Output};
 
 fn stripkit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_stripkit")).args(args).output().expect("runs")
+    Command::new(env!("CARGO_BIN_EXE_stripkit"))
+        .args(args)
+        .output()
+        .expect("runs")
 }
 
 fn tmp(name: &str) -> PathBuf {
@@ -25,7 +28,13 @@ fn grid_obj(n: usize, extra_triangles: bool) -> String {
     let id = |i: usize, j: usize| j * (n + 1) + i + 1;
     for j in 0..n {
         for i in 0..n {
-            s += &format!("f {} {} {} {}\n", id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            s += &format!(
+                "f {} {} {} {}\n",
+                id(i, j),
+                id(i + 1, j),
+                id(i + 1, j + 1),
+                id(i, j + 1)
+            );
         }
     }
     if extra_triangles {
@@ -37,8 +46,20 @@ fn grid_obj(n: usize, extra_triangles: bool) -> String {
 
 fn run_json(input: &std::path::Path, algo: &str) -> serde_json::Value {
     let out_path = tmp(&format!("out-{algo}.ply"));
-    let out = stripkit(&["strip", input.to_str().unwrap(), "-o", out_path.to_str().unwrap(), "--algo", algo, "--json"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = stripkit(&[
+        "strip",
+        input.to_str().unwrap(),
+        "-o",
+        out_path.to_str().unwrap(),
+        "--algo",
+        algo,
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).expect("one JSON object")
 }
 
@@ -76,7 +97,11 @@ fn mixed_mesh_covers_quads_and_triangles() {
 #[test]
 fn auto_picks_greedy_for_triangle_meshes() {
     let input = tmp("tri.obj");
-    std::fs::write(&input, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 3 2 4\n").unwrap();
+    std::fs::write(
+        &input,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 3 2 4\n",
+    )
+    .unwrap();
     let v = run_json(&input, "auto");
     assert_eq!(v["algo"], "greedy");
 }
@@ -86,7 +111,10 @@ fn torus_obj(nu: usize, nv: usize) -> String {
     let mut s = String::new();
     for j in 0..nv {
         for i in 0..nu {
-            let (u, v) = (i as f32 / nu as f32 * std::f32::consts::TAU, j as f32 / nv as f32 * std::f32::consts::TAU);
+            let (u, v) = (
+                i as f32 / nu as f32 * std::f32::consts::TAU,
+                j as f32 / nv as f32 * std::f32::consts::TAU,
+            );
             let r = 2.0 + v.cos();
             s += &format!("v {} {} {}\n", r * u.cos(), r * u.sin(), v.sin());
         }
@@ -94,7 +122,13 @@ fn torus_obj(nu: usize, nv: usize) -> String {
     let id = |i: usize, j: usize| (j % nv) * nu + (i % nu) + 1;
     for j in 0..nv {
         for i in 0..nu {
-            s += &format!("f {} {} {} {}\n", id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            s += &format!(
+                "f {} {} {} {}\n",
+                id(i, j),
+                id(i + 1, j),
+                id(i + 1, j + 1),
+                id(i, j + 1)
+            );
         }
     }
     s
@@ -112,6 +146,18 @@ fn quad_single_gives_one_strip_on_a_torus_and_refuses_open_meshes() {
     let open = tmp("open.obj");
     std::fs::write(&open, grid_obj(3, false)).unwrap();
     let out_path = tmp("open.ply");
-    let out = stripkit(&["strip", open.to_str().unwrap(), "-o", out_path.to_str().unwrap(), "--algo", "quad-single"]);
-    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = stripkit(&[
+        "strip",
+        open.to_str().unwrap(),
+        "-o",
+        out_path.to_str().unwrap(),
+        "--algo",
+        "quad-single",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }

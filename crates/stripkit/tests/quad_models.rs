@@ -17,7 +17,9 @@ const MODELS: [(&str, bool); 6] = [
 
 #[test]
 fn research_quad_meshes_verify_and_meet_the_target() {
-    let Some(dir) = stripkit::test_support::models_dir() else { return };
+    let Some(dir) = stripkit::test_support::models_dir() else {
+        return;
+    };
     let mut failures = Vec::new();
     for (name, closed) in MODELS {
         let path = dir.join("quads").join(name);
@@ -50,10 +52,19 @@ fn research_quad_meshes_verify_and_meet_the_target() {
 /// CPU seconds this thread has run (user + system), from /proc; 0 where unavailable.
 /// The machine is shared, so wall time says little; CPU time says what the code costs.
 fn thread_cpu_seconds() -> f64 {
-    let Ok(stat) = std::fs::read_to_string("/proc/thread-self/stat") else { return 0.0 };
-    let Some(after) = stat.rfind(')').map(|i| &stat[i + 2..]) else { return 0.0 };
+    let Ok(stat) = std::fs::read_to_string("/proc/thread-self/stat") else {
+        return 0.0;
+    };
+    let Some(after) = stat.rfind(')').map(|i| &stat[i + 2..]) else {
+        return 0.0;
+    };
     let fields: Vec<&str> = after.split_whitespace().collect();
-    let ticks = |i: usize| fields.get(i).and_then(|f| f.parse::<f64>().ok()).unwrap_or(0.0);
+    let ticks = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|f| f.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
     // Fields 14 and 15 of the line (utime, stime) are 11 and 12 after the name.
     (ticks(11) + ticks(12)) / 100.0
 }
@@ -63,8 +74,11 @@ fn thread_cpu_seconds() -> f64 {
 #[test]
 #[ignore]
 fn timing_on_spot_level_4() {
-    let Some(dir) = stripkit::test_support::models_dir() else { return };
-    let mut mesh = stripkit::mesh::io::read(&dir.join("quads/spot_quadrangulated.obj")).expect("spot loads");
+    let Some(dir) = stripkit::test_support::models_dir() else {
+        return;
+    };
+    let mut mesh =
+        stripkit::mesh::io::read(&dir.join("quads/spot_quadrangulated.obj")).expect("spot loads");
     for _ in 0..4 {
         mesh = subdivide(&mesh);
     }
@@ -97,7 +111,13 @@ fn timing_on_spot_level_4() {
         edges_t.elapsed().as_secs_f64() * 1e3
     );
     for (name, options) in [
-        ("FewestSwaps only", QuadOptions { policies: vec![Policy::FewestSwaps], ..QuadOptions::default() }),
+        (
+            "FewestSwaps only",
+            QuadOptions {
+                policies: vec![Policy::FewestSwaps],
+                ..QuadOptions::default()
+            },
+        ),
         ("paper (forward only)", QuadOptions::paper()),
     ] {
         let mut times = Vec::new();
@@ -137,7 +157,8 @@ fn timing_on_spot_level_4() {
         wall * 1e3,
         cpu * 1e3
     );
-    stripkit::stripify::quad_verify::verify_quads(&mesh, &single.strips).expect("single strips verify");
+    stripkit::stripify::quad_verify::verify_quads(&mesh, &single.strips)
+        .expect("single strips verify");
 }
 
 /// `indices_restart` of the greedy stripifier on the fan-triangulated mesh, the better
@@ -164,14 +185,24 @@ fn greedy_after_triangulation(mesh: &stripkit::Mesh) -> usize {
 fn qstrip_beats_triangulate_then_greedy_on_every_quad_mesh() {
     let mut meshes: Vec<(String, stripkit::Mesh)> = vec![
         ("cube 3, CC level 2".into(), subdivide(&subdivide(&cube(3)))),
-        ("torus 7x5, CC level 2".into(), subdivide(&subdivide(&torus(7, 5)))),
+        (
+            "torus 7x5, CC level 2".into(),
+            subdivide(&subdivide(&torus(7, 5))),
+        ),
     ];
-    for (name, mesh) in [("grid 30x20", grid(30, 20)), ("torus 40x24", torus(40, 24)), ("cube 12", cube(12))] {
+    for (name, mesh) in [
+        ("grid 30x20", grid(30, 20)),
+        ("torus 40x24", torus(40, 24)),
+        ("cube 12", cube(12)),
+    ] {
         let (_, all) = stripkit::stripify::quad::qstrip_mesh(&mesh, &QuadOptions::default());
         let ours = all.indices.len() + all.len() - 1;
         let greedy = greedy_after_triangulation(&mesh);
         eprintln!("{name}: QSTRIP {ours}, greedy {greedy}");
-        assert!(ours * 100 <= greedy * 101, "{name}: QSTRIP {ours} vs greedy {greedy}");
+        assert!(
+            ours * 100 <= greedy * 101,
+            "{name}: QSTRIP {ours} vs greedy {greedy}"
+        );
     }
     if let Some(dir) = stripkit::test_support::models_dir() {
         for (name, _) in MODELS {
@@ -187,8 +218,14 @@ fn qstrip_beats_triangulate_then_greedy_on_every_quad_mesh() {
         stripkit::stripify::quad_verify::verify_quads(mesh, &all).expect("verifies");
         let ours = all.indices.len() + all.len() - 1;
         let greedy = greedy_after_triangulation(mesh);
-        eprintln!("{name}: QSTRIP {ours} indices ({} strips, {} quads), greedy {greedy}", all.len(), q.quad_count());
-        if ours >= greedy { failures.push(format!("{name}: QSTRIP {ours} vs greedy {greedy}")); }
+        eprintln!(
+            "{name}: QSTRIP {ours} indices ({} strips, {} quads), greedy {greedy}",
+            all.len(),
+            q.quad_count()
+        );
+        if ours >= greedy {
+            failures.push(format!("{name}: QSTRIP {ours} vs greedy {greedy}"));
+        }
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }

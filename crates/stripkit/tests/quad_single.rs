@@ -16,7 +16,13 @@ fn run(name: &str, mesh: &stripkit::Mesh) -> (usize, usize, f64) {
     assert_eq!(check.quads, mesh.face_count(), "{name}");
     let restart = s.strips.indices.len() + s.strips.len() - 1;
     let ipq = restart as f64 / s.quads as f64;
-    eprintln!("{name}: {} quads, {} cycles, {} strips, {} swaps, indices_per_quad {ipq:.3}", s.quads, s.cycles, s.strips.len(), s.swaps);
+    eprintln!(
+        "{name}: {} quads, {} cycles, {} strips, {} swaps, indices_per_quad {ipq:.3}",
+        s.quads,
+        s.cycles,
+        s.strips.len(),
+        s.swaps
+    );
     (s.cycles, s.strips.len(), ipq)
 }
 
@@ -36,7 +42,11 @@ fn closed_procedural_meshes_get_one_strip() {
         ("cube 3 CC2", subdivide(&subdivide(&cube(3)))),
     ] {
         for seed in [0u64, 3, 99] {
-            let m = if seed == 0 { mesh.clone() } else { shuffled(&mesh, seed) };
+            let m = if seed == 0 {
+                mesh.clone()
+            } else {
+                shuffled(&mesh, seed)
+            };
             let (cycles, strips, _) = run(name, &m);
             assert!(cycles <= 3, "{name} seed {seed}: {cycles} cycles");
             assert_eq!(strips, cycles, "{name} seed {seed}");
@@ -63,9 +73,17 @@ fn open_or_mixed_meshes_are_refused() {
 
 #[test]
 fn research_closed_quad_meshes() {
-    let Some(dir) = stripkit::test_support::models_dir() else { return };
-    for name in ["fandisk_quads.off", "horse_quad.obj", "spot_quadrangulated.obj"] {
-        let Ok(mesh) = stripkit::mesh::io::read(&dir.join("quads").join(name)) else { continue };
+    let Some(dir) = stripkit::test_support::models_dir() else {
+        return;
+    };
+    for name in [
+        "fandisk_quads.off",
+        "horse_quad.obj",
+        "spot_quadrangulated.obj",
+    ] {
+        let Ok(mesh) = stripkit::mesh::io::read(&dir.join("quads").join(name)) else {
+            continue;
+        };
         let (cycles, strips, _) = run(name, &mesh);
         assert_eq!((cycles, strips), (1, 1), "{name}");
         let l1 = subdivide(&mesh);

@@ -58,8 +58,10 @@ fn two_quads_sharing_two_edges_never_give_coincident_triangles() {
     // Fold at the valence-2 vertex 0: (0,1,2,3) and (1,0,3,4) share 0-1 and 3-0.
     let fold = Mesh::from_polygons(vec![[0.0; 3]; 5], &[vec![0, 1, 2, 3], vec![1, 0, 3, 4]]);
     // Closed: the fold capped by (4,3,2,1), which folds against both.
-    let capped =
-        Mesh::from_polygons(vec![[0.0; 3]; 5], &[vec![0, 1, 2, 3], vec![1, 0, 3, 4], vec![4, 3, 2, 1]]);
+    let capped = Mesh::from_polygons(
+        vec![[0.0; 3]; 5],
+        &[vec![0, 1, 2, 3], vec![1, 0, 3, 4], vec![4, 3, 2, 1]],
+    );
     // A pillow: two quads on the same four vertices, all four edges shared.
     let pillow = Mesh::from_polygons(vec![[0.0; 3]; 4], &[vec![0, 1, 2, 3], vec![3, 2, 1, 0]]);
     for mesh in [&fold, &capped, &pillow] {
@@ -93,14 +95,18 @@ fn the_checker_catches_a_wrong_split_and_a_flip() {
     assert!(verify_quads(&mesh, &good.strips).is_ok());
     // (1,5,2) is the flip of a half of quad 1.
     let good_by_hand = stripkit::StripSet::from_strips(&[vec![0, 1, 3, 4], vec![1, 2, 4, 5]]);
-    assert!(verify_quads(&mesh, &good_by_hand).is_ok(), "a correct hand-made strip set passes");
+    assert!(
+        verify_quads(&mesh, &good_by_hand).is_ok(),
+        "a correct hand-made strip set passes"
+    );
     let wrong = stripkit::StripSet::from_strips(&[vec![0, 1, 3, 4], vec![1, 5, 2, 4]]);
     assert!(verify_quads(&mesh, &wrong).is_err());
     let flipped = stripkit::StripSet::from_strips(&[vec![1, 0, 4, 3], vec![1, 2, 4, 5]]);
     assert!(verify_quads(&mesh, &flipped).is_err());
     let missing = stripkit::StripSet::from_strips(&[vec![0, 1, 3, 4]]);
     assert!(verify_quads(&mesh, &missing).is_err());
-    let extra = stripkit::StripSet::from_strips(&[vec![0, 1, 3, 4], vec![1, 2, 4, 5], vec![0, 1, 3]]);
+    let extra =
+        stripkit::StripSet::from_strips(&[vec![0, 1, 3, 4], vec![1, 2, 4, 5], vec![0, 1, 3]]);
     assert!(verify_quads(&mesh, &extra).is_err());
     // Coincident triangles from a fold split the wrong way: (0,1,3)+(1,2,3) and (1,0,3)+(1,3,4).
     let fold = Mesh::from_polygons(vec![[0.0; 3]; 5], &[vec![0, 1, 2, 3], vec![1, 0, 3, 4]]);
@@ -118,9 +124,10 @@ fn mixed_meshes_strip_quads_and_leave_the_rest_to_a_triangle_stripifier() {
     m.positions.push([-1.0, 2.5, 0.0]);
     m.push_face(&[0, 5, base]); // left of column 0 (orientation: 0 -> 5 runs up; grid left edge is 5 -> 0)
     m.push_face(&[base, 5, 10, 15, base + 1]);
-    let (quads, all) = stripkit::stripify::quad::qstrip_mixed(&m, &QuadOptions::default(), |tris, _| {
-        stripkit::StripSet::from_strips(&tris.iter().map(|t| t.to_vec()).collect::<Vec<_>>())
-    });
+    let (quads, all) =
+        stripkit::stripify::quad::qstrip_mixed(&m, &QuadOptions::default(), |tris, _| {
+            stripkit::StripSet::from_strips(&tris.iter().map(|t| t.to_vec()).collect::<Vec<_>>())
+        });
     assert_eq!(quads.quad_count(), 16);
     let check = verify_quads(&m, &all).expect("mixed output verifies");
     assert_eq!(check.quads, 16);
@@ -138,20 +145,27 @@ fn awkward_topology_is_covered_and_verified() {
             vec![0, 1, 2, 3],
             vec![1, 0, 4, 5],
             vec![1, 0, 6, 7],
-            vec![2, 1, 5, 8],   // consistent with quad 0 across 1-2
-            vec![3, 2, 9, 10],  // flipped against quad 0 across 2-3? quad 0 runs 2->3; this runs 3->2: consistent
+            vec![2, 1, 5, 8],  // consistent with quad 0 across 1-2
+            vec![3, 2, 9, 10], // flipped against quad 0 across 2-3? quad 0 runs 2->3; this runs 3->2: consistent
             vec![10, 9, 11, 12],
-            vec![9, 2, 11, 9],  // repeated vertex 9
+            vec![9, 2, 11, 9], // repeated vertex 9
             vec![12, 11, 13, 14],
             vec![11, 12, 13, 14], // flipped against the previous across 11-12... shares 12-11 in the same direction
         ],
     );
     for seed in 0..10u64 {
-        let m = if seed == 0 { mesh.clone() } else { shuffled(&mesh, seed) };
+        let m = if seed == 0 {
+            mesh.clone()
+        } else {
+            shuffled(&mesh, seed)
+        };
         let (q, check, _) = strip_and_verify(&m);
         assert_eq!(q.quad_count(), 8);
         assert_eq!(check.quads, 8);
-        assert_eq!(check.other_triangles, 1, "the repeated-vertex quad keeps one real triangle");
+        assert_eq!(
+            check.other_triangles, 1,
+            "the repeated-vertex quad keeps one real triangle"
+        );
     }
     // No quads at all, and no faces at all.
     let tris = Mesh::from_polygons(vec![[0.0; 3]; 4], &[vec![0, 1, 2], vec![2, 1, 3]]);

@@ -89,7 +89,11 @@ impl Default for QuadOptions {
 impl QuadOptions {
     /// The paper's algorithm alone: one pass, [`Policy::FewestSwaps`], forward only.
     pub fn paper() -> Self {
-        QuadOptions { extend_backward: false, policies: vec![Policy::FewestSwaps], retry_above_swaps_per_quad: 0.0 }
+        QuadOptions {
+            extend_backward: false,
+            policies: vec![Policy::FewestSwaps],
+            retry_above_swaps_per_quad: 0.0,
+        }
     }
 }
 
@@ -163,17 +167,26 @@ pub fn qstrip(mesh: &Mesh, options: &QuadOptions) -> QuadStrips {
 pub fn qstrip_with_edges(mesh: &Mesh, edges: &EdgeMap, options: &QuadOptions) -> QuadStrips {
     let adjacency = QuadAdjacency::build(mesh, edges);
     let mut best: Option<(StripSet, usize)> = None;
-    let policies: &[Policy] = if options.policies.is_empty() { &[Policy::FewestSwaps] } else { &options.policies };
+    let policies: &[Policy] = if options.policies.is_empty() {
+        &[Policy::FewestSwaps]
+    } else {
+        &options.policies
+    };
     for &policy in policies {
         if let Some((_, swaps)) = &best {
-            if (*swaps as f64) <= options.retry_above_swaps_per_quad * adjacency.quad_face.len() as f64 {
+            if (*swaps as f64)
+                <= options.retry_above_swaps_per_quad * adjacency.quad_face.len() as f64
+            {
                 break;
             }
         }
         let mut builder = Builder::new(&adjacency, options, policy);
         builder.run();
         let cost = |s: &StripSet| s.indices.len() + s.len();
-        if best.as_ref().is_none_or(|(b, _)| cost(&builder.strips) < cost(b)) {
+        if best
+            .as_ref()
+            .is_none_or(|(b, _)| cost(&builder.strips) < cost(b))
+        {
             best = Some((builder.strips, builder.swaps));
         }
     }
@@ -211,7 +224,9 @@ pub fn qstrip_mixed(
 /// mesh. Returns the quad part and the combined strips.
 pub fn qstrip_mesh(mesh: &Mesh, options: &QuadOptions) -> (QuadStrips, StripSet) {
     qstrip_mixed(mesh, options, |tris, vcount| {
-        let greedy = super::greedy::GreedyOptions { heuristic: super::greedy::Heuristic::Indices };
+        let greedy = super::greedy::GreedyOptions {
+            heuristic: super::greedy::Heuristic::Indices,
+        };
         super::greedy::stripify(tris, vcount, &greedy)
     })
 }
@@ -318,7 +333,14 @@ impl QuadAdjacency<'_> {
                 }
             }
         }
-        QuadAdjacency { verts, quad_face, link, forced, forced_pairs, _mesh: std::marker::PhantomData }
+        QuadAdjacency {
+            verts,
+            quad_face,
+            link,
+            forced,
+            forced_pairs,
+            _mesh: std::marker::PhantomData,
+        }
     }
 
     fn len(&self) -> usize {
@@ -349,7 +371,10 @@ fn force_pair(verts: &[u32], forced: &mut [u8], q1: usize, q2: usize) -> bool {
     let b = &verts[4 * q2..4 * q2 + 4];
     let options = |f: u8| if f == FREE { vec![0u8, 1] } else { vec![f] };
     let bad = |d1: u8, d2: u8| coincide(a, d1, b, d2);
-    if options(forced[q1]).iter().all(|&d1| options(forced[q2]).iter().all(|&d2| !bad(d1, d2))) {
+    if options(forced[q1])
+        .iter()
+        .all(|&d1| options(forced[q2]).iter().all(|&d2| !bad(d1, d2)))
+    {
         return false;
     }
     // Prefer forcing one quad only: a diagonal of q1 that suits every choice of q2.
@@ -413,14 +438,29 @@ struct Mode {
 /// The ways to cross a quad with entry edge `j` and exit edge `k` (local, or
 /// [`NO_EDGE`]), honouring a forced diagonal. At most two.
 fn modes(j: u8, k: u8, forced: u8) -> [Option<Mode>; 2] {
-    let m = |kind, need, out, cost, diag: u8| Mode { kind, need, out, cost, diag: diag % 2 };
+    let m = |kind, need, out, cost, diag: u8| Mode {
+        kind,
+        need,
+        out,
+        cost,
+        diag: diag % 2,
+    };
     let list = if j == NO_EDGE {
-        [Some(m(Kind::FirstBd, 0, 1, 0, k + 1)), Some(m(Kind::FirstAc, 0, 0, 1, k))]
+        [
+            Some(m(Kind::FirstBd, 0, 1, 0, k + 1)),
+            Some(m(Kind::FirstAc, 0, 0, 1, k)),
+        ]
     } else if k == NO_EDGE {
-        [Some(m(Kind::Last, 0, 0, 0, j)), Some(m(Kind::Last, 1, 0, 0, j + 1))]
+        [
+            Some(m(Kind::Last, 0, 0, 0, j)),
+            Some(m(Kind::Last, 1, 0, 0, j + 1)),
+        ]
     } else {
         match (k + 4 - j) % 4 {
-            2 => [Some(m(Kind::Straight, 0, 0, 0, j)), Some(m(Kind::Straight, 1, 1, 0, j + 1))],
+            2 => [
+                Some(m(Kind::Straight, 0, 0, 0, j)),
+                Some(m(Kind::Straight, 1, 1, 0, j + 1)),
+            ],
             1 => [Some(m(Kind::TurnBc, 1, 0, 1, j + 1)), None],
             _ => [Some(m(Kind::TurnDa, 0, 1, 1, j)), None],
         }
@@ -488,7 +528,10 @@ impl<'a, 'm> Builder<'a, 'm> {
         };
         // Insert in reverse so that equal-degree quads come out in index order.
         for q in (0..n).rev() {
-            let d = adj.link[4 * q..4 * q + 4].iter().filter(|&&l| l != NONE).count();
+            let d = adj.link[4 * q..4 * q + 4]
+                .iter()
+                .filter(|&&l| l != NONE)
+                .count();
             b.degree[q] = d as u8;
             b.push_bucket(q as u32);
         }
@@ -575,7 +618,11 @@ impl<'a, 'm> Builder<'a, 'm> {
         let mut ahead: Option<(u32, bool)> = None;
         loop {
             let forced = adj.forced[cur as usize];
-            let straight_k = if entry == NO_EDGE { NO_EDGE } else { (entry + 2) % 4 };
+            let straight_k = if entry == NO_EDGE {
+                NO_EDGE
+            } else {
+                (entry + 2) % 4
+            };
             let mut run_straight = 0;
             let mut skip_turns = false;
             if self.policy == Policy::LongRuns && straight_k != NO_EDGE {
@@ -687,7 +734,12 @@ impl<'a, 'm> Builder<'a, 'm> {
 /// Turns a sequence of adjacent quads `(quad, entry edge, exit edge)` into one strip
 /// (appended to `strip`) with the fewest swaps, by the two-state programme; returns the
 /// swaps. Every step must be feasible under the forced diagonals (see [`step`]).
-pub(super) fn emit_quad_sequence(adj: &QuadAdjacency, seq: &[(u32, u8, u8)], togo: &mut Vec<[u32; 2]>, strip: &mut Vec<u32>) -> usize {
+pub(super) fn emit_quad_sequence(
+    adj: &QuadAdjacency,
+    seq: &[(u32, u8, u8)],
+    togo: &mut Vec<[u32; 2]>,
+    strip: &mut Vec<u32>,
+) -> usize {
     let n = seq.len();
     let mut swaps = 0;
     if n == 0 {
@@ -711,7 +763,12 @@ pub(super) fn emit_quad_sequence(adj: &QuadAdjacency, seq: &[(u32, u8, u8)], tog
         let after = togo[i + 1];
         let mut g = [INF; 2];
         for mode in modes(j, k, adj.forced[q as usize]).into_iter().flatten() {
-            let rest = mode.cost + if k == NO_EDGE { 0 } else { after[mode.out as usize] };
+            let rest = mode.cost
+                + if k == NO_EDGE {
+                    0
+                } else {
+                    after[mode.out as usize]
+                };
             if j == NO_EDGE {
                 g[0] = g[0].min(rest);
             } else {
@@ -730,8 +787,18 @@ pub(super) fn emit_quad_sequence(adj: &QuadAdjacency, seq: &[(u32, u8, u8)], tog
         let mut best: Option<Mode> = None;
         let mut best_cost = INF;
         for mode in modes(j, k, adj.forced[q as usize]).into_iter().flatten() {
-            let swap = if j == NO_EDGE || mode.need == state { 0 } else { 1 };
-            let c = swap + mode.cost + if k == NO_EDGE { 0 } else { after[mode.out as usize] };
+            let swap = if j == NO_EDGE || mode.need == state {
+                0
+            } else {
+                1
+            };
+            let c = swap
+                + mode.cost
+                + if k == NO_EDGE {
+                    0
+                } else {
+                    after[mode.out as usize]
+                };
             if c < best_cost {
                 best_cost = c;
                 best = Some(mode);

@@ -48,7 +48,8 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
     let edges = EdgeMap::build(mesh);
     let adj = QuadAdjacency::build(mesh, &edges);
     if adj.quad_face.len() != mesh.face_count() {
-        let f = (0..mesh.face_count()).find(|&f| adj.quad_face.get(f).is_none_or(|&q| q as usize != f));
+        let f =
+            (0..mesh.face_count()).find(|&f| adj.quad_face.get(f).is_none_or(|&q| q as usize != f));
         return Err(Error::Invalid(format!(
             "quad-single needs a pure quad mesh: face {} is not a quad of four distinct vertices",
             f.unwrap_or(0)
@@ -135,7 +136,11 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
                 seen[other_in as usize] = true;
                 cycle.push(other_in);
                 let w = (other_in / 4) as usize;
-                let next = if outs[w][0] == other_in { outs[w][1] } else { outs[w][0] };
+                let next = if outs[w][0] == other_in {
+                    outs[w][1]
+                } else {
+                    outs[w][0]
+                };
                 if next == NONE || seen[next as usize] {
                     break;
                 }
@@ -164,7 +169,9 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
         }
     }
     if succ_slot.contains(&NONE) {
-        return Err(Error::Invalid("quad-single: could not build a cycle cover of the quads".into()));
+        return Err(Error::Invalid(
+            "quad-single: could not build a cycle cover of the quads".into(),
+        ));
     }
     let mut succ: Vec<u32> = succ_slot.iter().map(|&s| head(s)).collect();
     let mut pred = vec![NONE; n];
@@ -224,8 +231,9 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
                 // d beside b, next to c in its cycle.
                 let mut done = false;
                 for d in [pred[c as usize], succ[c as usize]] {
-                    let Some(kb) = (0..4).find(|&kb| head(4 * b + kb) == d && 4 * b + kb != partner(succ_slot[a as usize]))
-                    else {
+                    let Some(kb) = (0..4).find(|&kb| {
+                        head(4 * b + kb) == d && 4 * b + kb != partner(succ_slot[a as usize])
+                    }) else {
                         continue;
                     };
                     let sb = 4 * b + kb;
@@ -290,7 +298,11 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
             visited[q as usize] = true;
             let s = succ_slot[q as usize];
             let next = head(s);
-            let exit = if next as usize == r { NO_EDGE } else { (s % 4) as u8 };
+            let exit = if next as usize == r {
+                NO_EDGE
+            } else {
+                (s % 4) as u8
+            };
             if exit != NO_EDGE {
                 let after = step(costs, entry, exit, adj.forced[q as usize]);
                 if after[0].min(after[1]) >= INF {
@@ -313,11 +325,20 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
         }
         flush(&mut seq, &mut strips, &mut swaps);
     }
-    Ok(SingleStrips { strips, quads: n, cycles, swaps })
+    Ok(SingleStrips {
+        strips,
+        quads: n,
+        cycles,
+        swaps,
+    })
 }
 
 fn union(parent: &mut [u32], size: &mut [u32], ra: u32, rc: u32) {
-    let (big, small) = if size[ra as usize] >= size[rc as usize] { (ra, rc) } else { (rc, ra) };
+    let (big, small) = if size[ra as usize] >= size[rc as usize] {
+        (ra, rc)
+    } else {
+        (rc, ra)
+    };
     parent[small as usize] = big;
     size[big as usize] += size[small as usize];
 }
@@ -326,7 +347,17 @@ fn union(parent: &mut [u32], size: &mut [u32], ra: u32, rc: u32) {
 /// style links: with `pred(y) = z` in the other cycle, the cycles become
 /// `x -> y -> ... -> z -> w -> ...`.
 #[allow(clippy::too_many_arguments)]
-fn splice(x: u32, y: u32, z: u32, w: u32, sxy: u32, szw: u32, succ: &mut [u32], pred: &mut [u32], succ_slot: &mut [u32]) {
+fn splice(
+    x: u32,
+    y: u32,
+    z: u32,
+    w: u32,
+    sxy: u32,
+    szw: u32,
+    succ: &mut [u32],
+    pred: &mut [u32],
+    succ_slot: &mut [u32],
+) {
     succ[x as usize] = y;
     succ_slot[x as usize] = sxy;
     pred[y as usize] = x;

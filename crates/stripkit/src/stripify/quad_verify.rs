@@ -134,13 +134,18 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
     // Quads: take the unambiguous ones first (only one diagonal's pair present), then
     // the rest, so that a neighbouring pillow cannot steal a triangle.
     let split = |v: &[u32], d: usize| -> [[u32; 3]; 2] {
-        [[v[d], v[d + 1], v[(d + 2) % 4]], [v[d], v[(d + 2) % 4], v[(d + 3) % 4]]]
+        [
+            [v[d], v[d + 1], v[(d + 2) % 4]],
+            [v[d], v[(d + 2) % 4], v[(d + 3) % 4]],
+        ]
     };
     let mut deferred = Vec::new();
     let mut quad_sets: Vec<([u32; 3], u32)> = Vec::new();
     for pass in 0..2 {
         let faces: Vec<usize> = if pass == 0 {
-            (0..mesh.face_count()).filter(|&f| is_quad(mesh.face(f))).collect()
+            (0..mesh.face_count())
+                .filter(|&f| is_quad(mesh.face(f)))
+                .collect()
         } else {
             std::mem::take(&mut deferred)
         };
@@ -205,8 +210,10 @@ fn avoidable(a: &[u32], b: &[u32]) -> bool {
         t2.sort_unstable();
         [t1, t2]
     };
-    (0..2).any(|da| (0..2).any(|db| {
-        let (x, y) = (sets(a, da), sets(b, db));
-        !x.iter().any(|t| y.contains(t))
-    }))
+    (0..2).any(|da| {
+        (0..2).any(|db| {
+            let (x, y) = (sets(a, da), sets(b, db));
+            !x.iter().any(|t| y.contains(t))
+        })
+    })
 }

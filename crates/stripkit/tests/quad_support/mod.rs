@@ -32,7 +32,10 @@ pub fn torus(nu: usize, nv: usize) -> Mesh {
     let mut positions = Vec::new();
     for j in 0..nv {
         for i in 0..nu {
-            let (u, v) = (i as f32 / nu as f32 * std::f32::consts::TAU, j as f32 / nv as f32 * std::f32::consts::TAU);
+            let (u, v) = (
+                i as f32 / nu as f32 * std::f32::consts::TAU,
+                j as f32 / nv as f32 * std::f32::consts::TAU,
+            );
             let r = 2.0 + v.cos();
             positions.push([r * u.cos(), r * u.sin(), v.sin()]);
         }
@@ -104,7 +107,11 @@ pub fn subdivide(mesh: &Mesh) -> Mesh {
             let key = (a.min(b), a.max(b));
             let m = *edge_point.entry(key).or_insert_with(|| {
                 let (pa, pb) = (mesh.positions[a as usize], mesh.positions[b as usize]);
-                positions.push([(pa[0] + pb[0]) / 2.0, (pa[1] + pb[1]) / 2.0, (pa[2] + pb[2]) / 2.0]);
+                positions.push([
+                    (pa[0] + pb[0]) / 2.0,
+                    (pa[1] + pb[1]) / 2.0,
+                    (pa[2] + pb[2]) / 2.0,
+                ]);
                 (positions.len() - 1) as u32
             });
             mids.push(m);
@@ -143,7 +150,10 @@ pub fn shuffled(mesh: &Mesh, seed: u64) -> Mesh {
     for (old, &new) in perm.iter().enumerate() {
         positions[new as usize] = mesh.positions[old];
     }
-    let mut faces: Vec<Vec<u32>> = mesh.faces().map(|f| f.iter().map(|&v| perm[v as usize]).collect()).collect();
+    let mut faces: Vec<Vec<u32>> = mesh
+        .faces()
+        .map(|f| f.iter().map(|&v| perm[v as usize]).collect())
+        .collect();
     for i in (1..faces.len()).rev() {
         faces.swap(i, rng.below(i + 1));
     }
@@ -173,7 +183,9 @@ pub fn strip_and_verify(mesh: &Mesh) -> (QuadStrips, QuadCheck, Figures) {
     };
     assert_eq!(check.quads, q.quad_count());
     assert_eq!(
-        verify_quads(mesh, &q.strips).map(|c| c.degenerate).unwrap_or(q.swaps),
+        verify_quads(mesh, &q.strips)
+            .map(|c| c.degenerate)
+            .unwrap_or(q.swaps),
         q.swaps,
         "swaps counted by the stripifier and the checker differ"
     );
@@ -188,4 +200,3 @@ pub fn strip_and_verify(mesh: &Mesh) -> (QuadStrips, QuadCheck, Figures) {
     };
     (q, check, fig)
 }
-
