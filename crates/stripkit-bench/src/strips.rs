@@ -145,6 +145,8 @@ struct Row {
     ms: f64,
     reorder_ms: Option<f64>,
     ours: bool,
+    /// Quads of the mesh when at least half its faces are quads (for `idx/quad`).
+    quads: Option<usize>,
 }
 
 fn mesh_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
@@ -232,8 +234,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 ms: median(times),
                 reorder_ms,
                 ours: mode.ours,
+                quads: None,
             });
         }
+        quad_row(&mesh, &name, runs, &mut rows);
     }
     let table = render(&rows, runs);
     print!("{table}");
@@ -251,6 +255,42 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// QSTRIP on quad-dominant meshes (at least half the faces quads): quads through
+/// QSTRIP, the rest through greedy; verified at quad level (either diagonal), figures
+/// against the triangles the strips chose. Marks the mesh's rows with its quad count.
+fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>) {
+    use stripkit::stripify::{quad, quad_verify};
+    if quad::quad_fraction(mesh) < 0.5 {
+        return;
+    }
+    let mut times = Vec::new();
+    let mut result = None;
+    for _ in 0..runs {
+        let t = Instant::now();
+        result = Some(quad::qstrip_mesh(mesh, &quad::QuadOptions::default()));
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    let Some((q, strips)) = result else { return };
+    let check = quad_verify::verify_quads(mesh, &strips);
+    let mut figures = metrics::figures(&strip::decode(&strips), &strips, CacheModel::default());
+    if let Err(e) = &check {
+        eprintln!("{name}: QSTRIP {e}");
+        figures.verified = false;
+    }
+    for r in rows.iter_mut().filter(|r| r.model == name) {
+        r.quads = Some(q.quad_count());
+    }
+    rows.push(Row {
+        model: name.to_string(),
+        mode: "stripkit qstrip (other faces: greedy)",
+        figures,
+        ms: median(times),
+        reorder_ms: None,
+        ours: true,
+        quads: Some(q.quad_count()),
+    });
+}
+
 fn render(rows: &[Row], runs: usize) -> String {
     let mut s = String::new();
     s.push_str("# Triangle strips: stripkit next to meshoptimizer\n\n");
@@ -259,10 +299,12 @@ fn render(rows: &[Row], runs: usize) -> String {
          index 0xFFFFFFFF and are split with stripkit's decoder. `ms`: median of {runs} runs of the stripify \
          call alone, single thread; `reorder ms`: meshoptimizer's vertex-cache reordering before it. \
          `ok`: decoded triangles equal the input's (nothing lost, nothing added, no winding flipped). \
-         Lower is better everywhere; `idx/tri` = indices_restart / triangles.\n\n"
+         Lower is better everywhere; `idx/tri` = indices_restart / triangles; `idx/quad` = \
+         indices_restart / quads on quad-dominant meshes, where QSTRIP works on the quads themselves \
+         (either diagonal, checked at quad level) and the other rows on the fan triangulation.\n\n"
     ));
-    s.push_str("| model | triangles | stripifier | strips | swaps | indices_restart | idx/tri | indices_degenerate | acmr16 | acmr32 | ms | reorder ms | ok |\n");
-    s.push_str("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    s.push_str("| model | triangles | stripifier | strips | swaps | indices_restart | idx/tri | idx/quad | indices_degenerate | acmr16 | acmr32 | ms | reorder ms | ok |\n");
+    s.push_str("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
     let mut last = String::new();
     for r in rows {
         let f = &r.figures;
@@ -281,12 +323,13 @@ fn render(rows: &[Row], runs: usize) -> String {
             )
         };
         s.push_str(&format!(
-            "| {model} | {tri} | {} | {} | {} | {} | {:.3} | {} | {:.3} | {:.3} | {:.2} | {} | {ok} |\n",
+            "| {model} | {tri} | {} | {} | {} | {} | {:.3} | {} | {} | {:.3} | {:.3} | {:.2} | {} | {ok} |\n",
             r.mode,
             group(f.strips),
             group(f.swaps),
             group(f.indices_restart),
             f.indices_per_triangle,
+            r.quads.filter(|&q| q > 0).map_or("-".to_string(), |q| format!("{:.3}", f.indices_restart as f64 / q as f64)),
             group(f.indices_degenerate),
             f.acmr16,
             f.acmr32,

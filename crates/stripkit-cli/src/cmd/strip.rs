@@ -18,14 +18,25 @@ use stripkit::mesh::io::{self, Format, WriteOptions};
 use stripkit::metrics::{self, CacheKind, CacheModel, Figures};
 use stripkit::strip::{self, StripSet};
 use stripkit::stripify::greedy::{self, GreedyOptions};
+use stripkit::stripify::{quad, quad_single, quad_verify};
 use stripkit::{Error, Mesh};
 
 /// The stripifying algorithm.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Algo {
+    /// QSTRIP for pure-quad and quad-dominant meshes (at least half the faces are
+    /// quads), greedy otherwise.
+    Auto,
     /// Greedy lowest-degree strips with one-level look-ahead (van Kaick et al. 2004).
     Greedy,
+    /// QSTRIP (Vaněček et al.): quad sequences turned into strips, each quad split
+    /// along the diagonal that needs the fewest swaps; other faces by greedy.
+    Qstrip,
+    /// One generalized strip per connected component of a closed pure-quad mesh
+    /// (after Taubin 2002: cycle cover of the quads, cycles spliced into one).
+    #[serde(rename = "quad-single")]
+    QuadSingle,
 }
 
 /// What the greedy choice optimises.
@@ -65,7 +76,7 @@ pub struct Args {
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
     /// Stripifying algorithm.
-    #[arg(long, value_enum, default_value = "greedy")]
+    #[arg(long, value_enum, default_value = "auto")]
     pub algo: Algo,
     /// What the greedy algorithm minimises: `strips` (count of strips) or `indices`
     /// (index count when each swap costs a repeated index).
@@ -102,9 +113,16 @@ struct Report<'a> {
     figures: &'a Figures,
     /// Milliseconds of the stripify call alone.
     ms: f64,
+    /// QSTRIP only: quads stripped as quads.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    quads: Option<usize>,
+    /// QSTRIP only: `indices_restart / quads` (METRICS.md).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    indices_per_quad: Option<f64>,
 }
 
-/// Runs the chosen stripifier.
+/// Runs the chosen triangle stripifier on triangles. QSTRIP needs the quads themselves
+/// (see [`run`]); given triangles only, every algorithm is the greedy one.
 pub fn stripify(
     algo: Algo,
     heuristic: HeuristicArg,
@@ -112,7 +130,7 @@ pub fn stripify(
     vertex_count: usize,
 ) -> StripSet {
     match algo {
-        Algo::Greedy => {
+        Algo::Greedy | Algo::Auto | Algo::Qstrip | Algo::QuadSingle => {
             let heuristic = match heuristic {
                 HeuristicArg::Strips => greedy::Heuristic::Strips,
                 HeuristicArg::Indices => greedy::Heuristic::Indices,
@@ -174,7 +192,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     progress.set_message(format!("reading {}", args.input.display()));
 
     let mesh = io::read(&args.input)?;
-    let tris = mesh.triangulate().tris;
+    let mut tris = mesh.triangulate().tris;
+    let algo = match args.algo {
+        Algo::Auto if quad::quad_fraction(&mesh) >= 0.5 => Algo::Qstrip,
+        Algo::Auto => Algo::Greedy,
+        other => other,
+    };
     let vertex_count = mesh.vertex_count();
     if args.join == Join::Restart && (args.restart_index as usize) < vertex_count {
         return Err(Error::Invalid(format!(
@@ -189,8 +212,28 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
     progress.set_message(format!("stripifying {} triangles", tris.len()));
     let start = Instant::now();
-    let strips = stripify(args.algo, args.heuristic, &tris, vertex_count);
+    let mut quads = None;
+    let strips = if algo == Algo::Qstrip {
+        let (q, all) = quad::qstrip_mesh(&mesh, &quad::QuadOptions::default());
+        quads = Some(q.quad_count());
+        all
+    } else if algo == Algo::QuadSingle {
+        let single = quad_single::quad_single(&mesh)
+            .map_err(|e| anyhow::anyhow!(e).context(format!("{}", args.input.display())))?;
+        quads = Some(single.quads);
+        single.strips
+    } else {
+        stripify(algo, args.heuristic, &tris, vertex_count)
+    };
     let ms = start.elapsed().as_secs_f64() * 1e3;
+    if matches!(algo, Algo::Qstrip | Algo::QuadSingle) {
+        // A quad may be split along either diagonal: check at quad level, then take
+        // the triangles the strips chose as the reference for the figures and for
+        // every later check (the quad check proved them a triangulation of the mesh).
+        progress.set_message("verifying quads");
+        quad_verify::verify_quads(&mesh, &strips).map_err(|e| anyhow::anyhow!(e).context("the strips"))?;
+        tris = strip::decode(&strips);
+    }
 
     progress.set_message("verifying");
     let cache = CacheModel {
@@ -224,12 +267,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let report = Report {
         input: &args.input,
         output: &args.output,
-        algo: args.algo,
+        algo,
         heuristic: args.heuristic,
         join: args.join,
         vertices: vertex_count,
         figures: &figures,
         ms,
+        quads,
+        indices_per_quad: quads.filter(|&q| q > 0).map(|q| figures.indices_restart as f64 / q as f64),
     };
     match kind {
         OutKind::Json => {
@@ -363,6 +408,10 @@ fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
         "  indices_per_triangle {:>10.4}",
         f.indices_per_triangle
     )?;
+    if let (Some(q), Some(ipq)) = (r.quads, r.indices_per_quad) {
+        writeln!(out, "  quads                {:>10}", q)?;
+        writeln!(out, "  indices_per_quad     {:>10.4}", ipq)?;
+    }
     writeln!(out, "  acmr16 (FIFO)        {:>10.4}", f.acmr16)?;
     writeln!(out, "  acmr32 (FIFO)        {:>10.4}", f.acmr32)?;
     let kind = match f.cache.kind {

@@ -15,6 +15,9 @@
 //! [`encode_path`] therefore reads a walk from whichever end needs fewer swaps.
 
 pub mod greedy;
+pub mod quad;
+pub mod quad_single;
+pub mod quad_verify;
 
 use crate::strip::StripSet;
 use crate::topology::{DualGraph, NO_NEIGHBOR};

@@ -1,0 +1,219 @@
+//! Quad-level verification of strips for quad and mixed meshes.
+//!
+//! A quad may be split along either diagonal, so the triangle-level check (one output
+//! triangle per input fan triangle) does not apply to it. Here:
+//!
+//! * every quad (a face of four distinct vertices, [`is_quad`]) must be covered by
+//!   exactly two output triangles that together form it: `(a,b,c)+(a,c,d)` or
+//!   `(a,b,d)+(b,c,d)` up to rotation, with the quad's orientation;
+//! * every other face must be covered by exactly its fan triangles (`(v0,vi,vi+1)`),
+//!   with its orientation, as the triangle-level check demands;
+//! * no output triangle is left over;
+//! * no two triangles that come from quads lie on the same three vertices (the
+//!   "incorrect triangle" two quads sharing two edges can produce), unless every
+//!   choice of diagonals for that pair of quads clashes (the input forces it).
+//!
+//! Independent of how the strips were built: it only decodes them by the METRICS.md
+//! rule. O(T) expected time with hashing.
+
+use super::quad::is_quad;
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+use crate::strip::{for_each_triangle, StripSet};
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
+/// Figures from a successful [`verify_quads`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct QuadCheck {
+    /// Quads covered by two triangles each.
+    pub quads: usize,
+    /// Quads split along diagonal v0-v2 (the rest along v1-v3).
+    pub split_02: usize,
+    /// Other faces' triangles matched one to one.
+    pub other_triangles: usize,
+    /// Degenerate triangles (swaps) seen in the strips.
+    pub degenerate: usize,
+}
+
+/// A small multiplicative hasher for vertex-triple keys (std's SipHash is several
+/// times slower here and the keys are not attacker-chosen in a way that matters for a
+/// one-off check).
+#[derive(Default)]
+struct TripleHasher(u64);
+
+impl Hasher for TripleHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+    fn write_u32(&mut self, n: u32) {
+        self.write_u64(n as u64);
+    }
+    fn write_u64(&mut self, n: u64) {
+        self.0 = (self.0.rotate_left(5) ^ n).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+}
+
+type Counts = HashMap<[u32; 3], u32, BuildHasherDefault<TripleHasher>>;
+
+/// The oriented triangle rotated so that its smallest index comes first.
+fn canonical(t: [u32; 3]) -> [u32; 3] {
+    if t[0] <= t[1] && t[0] <= t[2] {
+        t
+    } else if t[1] <= t[2] {
+        [t[1], t[2], t[0]]
+    } else {
+        [t[2], t[0], t[1]]
+    }
+}
+
+fn take(counts: &mut Counts, t: [u32; 3]) -> bool {
+    match counts.get_mut(&canonical(t)) {
+        Some(c) if *c > 0 => {
+            *c -= 1;
+            true
+        }
+        _ => false,
+    }
+}
+
+fn has(counts: &Counts, t: [u32; 3]) -> bool {
+    counts.get(&canonical(t)).is_some_and(|&c| c > 0)
+}
+
+/// Checks that `strips` cover `mesh` exactly: quads by two triangles forming them
+/// (either diagonal), other faces by their fan triangles, orientation kept, nothing
+/// added, no coincident triangles from quads. A failure is an
+/// [`Error::Verification`] naming the first offending face or triangle.
+pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
+    let mut check = QuadCheck::default();
+    let mut counts = Counts::default();
+    let vcount = mesh.vertex_count() as u32;
+    let mut bad_index = None;
+    for s in strips.iter() {
+        for i in 0..s.len().saturating_sub(2) {
+            let (x, y, z) = (s[i], s[i + 1], s[i + 2]);
+            if x == y || y == z || x == z {
+                check.degenerate += 1;
+            }
+        }
+        if let Some(&v) = s.iter().find(|&&v| v >= vcount) {
+            bad_index = Some(v);
+        }
+        for_each_triangle(s, |t| *counts.entry(canonical(t)).or_insert(0) += 1);
+    }
+    if let Some(v) = bad_index {
+        return Err(Error::Verification(format!(
+            "strips refer to vertex {v} but the mesh has {vcount} vertices"
+        )));
+    }
+    // Other faces first: their triangles are fixed.
+    for (f, face) in mesh.faces().enumerate() {
+        if is_quad(face) || face.len() < 3 {
+            continue;
+        }
+        for i in 1..face.len() - 1 {
+            let t = [face[0], face[i], face[i + 1]];
+            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+                continue;
+            }
+            if !take(&mut counts, t) {
+                return Err(Error::Verification(format!(
+                    "face {f}: triangle ({}, {}, {}) is missing from the strips (or flipped)",
+                    t[0], t[1], t[2]
+                )));
+            }
+            check.other_triangles += 1;
+        }
+    }
+    // Quads: take the unambiguous ones first (only one diagonal's pair present), then
+    // the rest, so that a neighbouring pillow cannot steal a triangle.
+    let split = |v: &[u32], d: usize| -> [[u32; 3]; 2] {
+        [
+            [v[d], v[d + 1], v[(d + 2) % 4]],
+            [v[d], v[(d + 2) % 4], v[(d + 3) % 4]],
+        ]
+    };
+    let mut deferred = Vec::new();
+    let mut quad_sets: Vec<([u32; 3], u32)> = Vec::new();
+    for pass in 0..2 {
+        let faces: Vec<usize> = if pass == 0 {
+            (0..mesh.face_count())
+                .filter(|&f| is_quad(mesh.face(f)))
+                .collect()
+        } else {
+            std::mem::take(&mut deferred)
+        };
+        for f in faces {
+            let v = mesh.face(f);
+            let ok = [0, 1].map(|d| split(v, d).iter().all(|&t| has(&counts, t)));
+            let d = match (ok[0], ok[1]) {
+                (true, true) if pass == 0 => {
+                    deferred.push(f);
+                    continue;
+                }
+                (true, _) => 0,
+                (false, true) => 1,
+                (false, false) => {
+                    return Err(Error::Verification(format!(
+                        "quad face {f} ({}, {}, {}, {}) is not covered by two triangles forming it \
+                         with its orientation",
+                        v[0], v[1], v[2], v[3]
+                    )))
+                }
+            };
+            for t in split(v, d) {
+                take(&mut counts, t);
+                let mut s = t;
+                s.sort_unstable();
+                quad_sets.push((s, f as u32));
+            }
+            check.quads += 1;
+            if d == 0 {
+                check.split_02 += 1;
+            }
+        }
+    }
+    if let Some((t, _)) = counts.iter().find(|(_, &c)| c > 0) {
+        return Err(Error::Verification(format!(
+            "triangle ({}, {}, {}) in the strips belongs to no face (added or flipped)",
+            t[0], t[1], t[2]
+        )));
+    }
+    quad_sets.sort_unstable();
+    for w in quad_sets.windows(2) {
+        let ((t, f1), (u, f2)) = (w[0], w[1]);
+        if t == u && f1 != f2 && avoidable(mesh.face(f1 as usize), mesh.face(f2 as usize)) {
+            return Err(Error::Verification(format!(
+                "quad faces {f1} and {f2} give coincident triangles on vertices ({}, {}, {}); \
+                 another choice of diagonals avoids it",
+                t[0], t[1], t[2]
+            )));
+        }
+    }
+    Ok(check)
+}
+
+/// True when some choice of diagonals for quads `a` and `b` gives no two triangles on
+/// the same three vertices (false only for pairs on the same four vertices whose every
+/// split clashes, which the input forces).
+fn avoidable(a: &[u32], b: &[u32]) -> bool {
+    let sets = |v: &[u32], d: usize| {
+        let mut t1 = [v[d], v[d + 1], v[(d + 2) % 4]];
+        let mut t2 = [v[d], v[(d + 2) % 4], v[(d + 3) % 4]];
+        t1.sort_unstable();
+        t2.sort_unstable();
+        [t1, t2]
+    };
+    (0..2).any(|da| {
+        (0..2).any(|db| {
+            let (x, y) = (sets(a, da), sets(b, db));
+            !x.iter().any(|t| y.contains(t))
+        })
+    })
+}

@@ -1,0 +1,202 @@
+//! Procedural quad meshes for the QSTRIP tests: grids (open), tori and cubes (closed),
+//! a connectivity-exact Catmull-Clark split, shuffles, and the configurations where two
+//! quads share two edges.
+#![allow(dead_code)]
+
+use std::collections::HashMap;
+use stripkit::stripify::quad::{qstrip_mesh, QuadOptions, QuadStrips};
+use stripkit::stripify::quad_verify::{verify_quads, QuadCheck};
+use stripkit::Mesh;
+
+/// `nx` x `ny` quads in the plane, counter-clockwise seen from +z.
+pub fn grid(nx: usize, ny: usize) -> Mesh {
+    let id = |i: usize, j: usize| (j * (nx + 1) + i) as u32;
+    let mut positions = Vec::new();
+    for j in 0..=ny {
+        for i in 0..=nx {
+            positions.push([i as f32, j as f32, 0.0]);
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    Mesh::from_polygons(positions, &faces)
+}
+
+/// A closed torus of `nu` x `nv` quads, outward orientation.
+pub fn torus(nu: usize, nv: usize) -> Mesh {
+    let id = |i: usize, j: usize| ((j % nv) * nu + (i % nu)) as u32;
+    let mut positions = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            let (u, v) = (
+                i as f32 / nu as f32 * std::f32::consts::TAU,
+                j as f32 / nv as f32 * std::f32::consts::TAU,
+            );
+            let r = 2.0 + v.cos();
+            positions.push([r * u.cos(), r * u.sin(), v.sin()]);
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    Mesh::from_polygons(positions, &faces)
+}
+
+/// A closed cube with `n` x `n` quads on each side, outward orientation.
+pub fn cube(n: usize) -> Mesh {
+    let mut ids: HashMap<[i32; 3], u32> = HashMap::new();
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    let n = n as i32;
+    // For each axis and side: a frame (u, v) with u x v pointing outward.
+    for axis in 0..3 {
+        for side in [0, n] {
+            let (ua, va) = ((axis + 1) % 3, (axis + 2) % 3);
+            let outward_positive = side == n;
+            let mut vid = |i: i32, j: i32| {
+                let mut p = [0i32; 3];
+                p[axis] = side;
+                p[ua] = i;
+                p[va] = j;
+                *ids.entry(p).or_insert_with(|| {
+                    positions.push([p[0] as f32, p[1] as f32, p[2] as f32]);
+                    (positions.len() - 1) as u32
+                })
+            };
+            for j in 0..n {
+                for i in 0..n {
+                    let q = [vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1)];
+                    if outward_positive {
+                        faces.push(q.to_vec());
+                    } else {
+                        faces.push(vec![q[0], q[3], q[2], q[1]]);
+                    }
+                }
+            }
+        }
+    }
+    Mesh::from_polygons(positions, &faces)
+}
+
+/// One Catmull-Clark step's connectivity (positions: face points and edge midpoints;
+/// good enough for stripification): a face of k vertices becomes k quads.
+pub fn subdivide(mesh: &Mesh) -> Mesh {
+    let mut positions = mesh.positions.clone();
+    let mut edge_point: HashMap<(u32, u32), u32> = HashMap::new();
+    let mut faces = Vec::new();
+    for face in mesh.faces() {
+        let k = face.len();
+        let mut c = [0.0f32; 3];
+        for &v in face {
+            for (ca, pa) in c.iter_mut().zip(mesh.positions[v as usize]) {
+                *ca += pa / k as f32;
+            }
+        }
+        positions.push(c);
+        let center = (positions.len() - 1) as u32;
+        let mut mids = Vec::with_capacity(k);
+        for i in 0..k {
+            let (a, b) = (face[i], face[(i + 1) % k]);
+            let key = (a.min(b), a.max(b));
+            let m = *edge_point.entry(key).or_insert_with(|| {
+                let (pa, pb) = (mesh.positions[a as usize], mesh.positions[b as usize]);
+                positions.push([
+                    (pa[0] + pb[0]) / 2.0,
+                    (pa[1] + pb[1]) / 2.0,
+                    (pa[2] + pb[2]) / 2.0,
+                ]);
+                (positions.len() - 1) as u32
+            });
+            mids.push(m);
+        }
+        for i in 0..k {
+            faces.push(vec![face[i], mids[i], center, mids[(i + k - 1) % k]]);
+        }
+    }
+    Mesh::from_polygons(positions, &faces)
+}
+
+/// A small deterministic generator (xorshift).
+pub struct Rng(pub u64);
+impl Rng {
+    pub fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+    pub fn below(&mut self, n: usize) -> usize {
+        (self.next() % n as u64) as usize
+    }
+}
+
+/// Same surface, faces in random order, each face's corners rotated at random, vertex
+/// ids permuted.
+pub fn shuffled(mesh: &Mesh, seed: u64) -> Mesh {
+    let mut rng = Rng(seed | 1);
+    let n = mesh.vertex_count();
+    let mut perm: Vec<u32> = (0..n as u32).collect();
+    for i in (1..n).rev() {
+        perm.swap(i, rng.below(i + 1));
+    }
+    let mut positions = vec![[0.0; 3]; n];
+    for (old, &new) in perm.iter().enumerate() {
+        positions[new as usize] = mesh.positions[old];
+    }
+    let mut faces: Vec<Vec<u32>> = mesh
+        .faces()
+        .map(|f| f.iter().map(|&v| perm[v as usize]).collect())
+        .collect();
+    for i in (1..faces.len()).rev() {
+        faces.swap(i, rng.below(i + 1));
+    }
+    for f in &mut faces {
+        let r = rng.below(f.len());
+        f.rotate_left(r);
+    }
+    Mesh::from_polygons(positions, &faces)
+}
+
+/// QSTRIP figures of one run.
+#[derive(Debug, Clone, Copy)]
+pub struct Figures {
+    pub quads: usize,
+    pub strips: usize,
+    pub swaps: usize,
+    pub indices_restart: usize,
+    pub indices_per_quad: f64,
+}
+
+/// Runs QSTRIP, verifies the output at quad level, returns its figures.
+pub fn strip_and_verify(mesh: &Mesh) -> (QuadStrips, QuadCheck, Figures) {
+    let (q, all) = qstrip_mesh(mesh, &QuadOptions::default());
+    let check = match verify_quads(mesh, &all) {
+        Ok(c) => c,
+        Err(e) => panic!("verification failed: {e}"),
+    };
+    assert_eq!(check.quads, q.quad_count());
+    assert_eq!(
+        verify_quads(mesh, &q.strips)
+            .map(|c| c.degenerate)
+            .unwrap_or(q.swaps),
+        q.swaps,
+        "swaps counted by the stripifier and the checker differ"
+    );
+    let strips = q.strips.len();
+    let indices_restart = q.strips.indices.len() + strips.saturating_sub(1);
+    let fig = Figures {
+        quads: q.quad_count(),
+        strips,
+        swaps: q.swaps,
+        indices_restart,
+        indices_per_quad: indices_restart as f64 / q.quad_count().max(1) as f64,
+    };
+    (q, check, fig)
+}
