@@ -113,6 +113,7 @@ fn disjoint_spheres_are_two_components() {
     let b = gen::icosphere(2);
     let f = facts(&gen::disjoint_union(&[&a, &b]));
     assert_eq!(f.components, 2);
+    assert_eq!(f.vertex_components, 2);
     assert_eq!(f.euler_characteristic, 4);
     assert_eq!(f.faces, 80 + 320);
     assert!(f.closed_manifold);
@@ -127,6 +128,7 @@ fn bow_tie_has_one_pinch_vertex_and_two_components() {
     let f = facts(&mesh);
     assert_eq!(f.nonmanifold_vertices, 1);
     assert_eq!(f.components, 2);
+    assert_eq!(f.vertex_components, 1);
     assert_eq!(f.boundary_edges, 6);
     assert_eq!(f.boundary_loops, 2);
     assert_eq!(f.euler_characteristic, 5 - 6 + 2);

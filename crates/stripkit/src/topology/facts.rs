@@ -17,7 +17,11 @@
 //! * **non-manifold (pinch) vertex**: the faces around the vertex form more than one
 //!   group when two faces are joined if they share an edge incident to the vertex
 //!   (any edge with two or more faces, non-manifold edges included);
-//! * **component**: faces joined across shared edges; unreferenced vertices form none;
+//! * **component**: faces joined across shared edges; unreferenced vertices form none
+//!   (two triangles sharing only a vertex are two components: no strip can cross);
+//! * **vertex component**: faces joined across shared vertices. This is the `comp`
+//!   column of the models README (`bunny_res4.ply` has one triangle that touches the
+//!   rest at two vertices only: 2 components, 1 vertex component);
 //! * **Euler characteristic** χ = V_used − E + F;
 //! * **degenerate face**: a repeated vertex index, or zero area (exactly zero Newell
 //!   normal in `f64`);
@@ -61,6 +65,9 @@ pub struct MeshFacts {
     pub nonmanifold_vertices: usize,
     /// Edge-connected components of faces.
     pub components: usize,
+    /// Components when faces sharing only a vertex also count as connected (the
+    /// `comp` column of the models README).
+    pub vertex_components: usize,
     /// χ = V_used − E + F.
     pub euler_characteristic: i64,
     /// Faces with a repeated vertex index or zero area.
@@ -198,6 +205,7 @@ impl MeshFacts {
         facts.boundary_loops = count_boundary_loops(mesh, map);
         facts.nonmanifold_vertices = count_pinch_vertices(mesh, map);
         facts.components = count_components(mesh, map);
+        facts.vertex_components = count_vertex_components(mesh, &referenced);
         facts.degenerate_faces = count_degenerate_faces(mesh);
         facts.duplicate_faces = count_duplicate_faces(mesh);
         facts.closed_manifold = fcount > 0
@@ -362,6 +370,17 @@ fn count_components(mesh: &Mesh, map: &EdgeMap) -> usize {
     (0..mesh.face_count() as u32).filter(|&f| uf.find(f) == f).count()
 }
 
+/// Counts groups of referenced vertices joined by faces.
+fn count_vertex_components(mesh: &Mesh, referenced: &[bool]) -> usize {
+    let mut uf = UnionFind::new(mesh.vertex_count());
+    for face in mesh.faces() {
+        for &v in &face[1..] {
+            uf.union(face[0], v);
+        }
+    }
+    (0..mesh.vertex_count() as u32).filter(|&v| referenced[v as usize] && uf.find(v) == v).count()
+}
+
 /// Counts faces with a repeated index or zero area.
 fn count_degenerate_faces(mesh: &Mesh) -> usize {
     let mut scratch: Vec<u32> = Vec::new();
@@ -458,7 +477,11 @@ impl fmt::Display for MeshFacts {
         writeln!(f, "boundary edges        {} in {} loops", self.boundary_edges, self.boundary_loops)?;
         writeln!(f, "non-manifold edges    {}", self.nonmanifold_edges)?;
         writeln!(f, "non-manifold vertices {}", self.nonmanifold_vertices)?;
-        writeln!(f, "components            {}", self.components)?;
+        writeln!(
+            f,
+            "components            {} edge-connected, {} vertex-connected",
+            self.components, self.vertex_components
+        )?;
         writeln!(f, "euler characteristic  {}", self.euler_characteristic)?;
         writeln!(f, "degenerate faces      {}", self.degenerate_faces)?;
         writeln!(f, "duplicate faces       {}", self.duplicate_faces)?;
