@@ -198,12 +198,20 @@ fn degenerate_and_duplicate_faces_are_counted() {
     faces.push(vec![4, 4, 5]); // repeated index
     faces.push(vec![0, 1, 2]); // collinear: zero area
     faces.push(vec![0, 1, 2, 5, 4, 3]); // a polygon, fine
+    faces.push(vec![4, 3, 0, 1, 2, 5]); // the same polygon rotated: duplicate
+    faces.push(vec![0, 2, 1, 5, 4, 3]); // same vertices, another cycle: not a duplicate
     let mesh = Mesh::from_polygons(base.positions.clone(), &faces);
     let f = facts(&mesh);
-    assert_eq!(f.duplicate_faces, 2);
+    assert_eq!(f.duplicate_faces, 3);
     assert_eq!(f.degenerate_faces, 2);
-    assert_eq!(f.polygons, 1);
-    assert_eq!(f.faces, 13);
+    assert_eq!(f.polygons, 3);
+    assert_eq!(f.faces, 15);
+    // Edgeless faces (one vertex repeated) are compared too.
+    let mut more = faces.clone();
+    more.push(vec![7, 7, 7]);
+    more.push(vec![7, 7, 7]);
+    let f = facts(&Mesh::from_polygons(base.positions.clone(), &more));
+    assert_eq!((f.duplicate_faces, f.degenerate_faces), (4, 4));
 }
 
 #[test]

@@ -15,7 +15,7 @@ use stripkit::topology::MeshFacts;
   components          edge-connected groups of faces (unreferenced vertices form none)
   euler               V_used - E + F
   degenerate face     a repeated vertex index or zero area
-  duplicate face      same vertices as an earlier face (any rotation or orientation)
+  duplicate face      repeats an earlier face up to rotation and orientation
   consistently oriented  no two-face edge is traversed in the same direction twice
 
 Example: stripkit stats ../shared/models/bunny.obj --json")]
