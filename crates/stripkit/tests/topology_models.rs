@@ -6,7 +6,7 @@ use stripkit::test_support::models_dir;
 use stripkit::topology::MeshFacts;
 
 /// file, V, F, bnd, nm-e, nm-v, comp, χ, unreferenced (None where the README gives none).
-/// The README's `comp` joins faces that share a vertex: `MeshFacts::vertex_components`.
+/// The README's `comp` joins faces that share a vertex, as `MeshFacts::components` does.
 type Row = (&'static str, usize, usize, usize, usize, usize, usize, i64, Option<usize>);
 
 const ROWS: &[Row] = &[
@@ -36,14 +36,14 @@ fn check(dir: &std::path::Path, row: &Row) -> MeshFacts {
     let got = (facts.vertices, facts.faces, facts.boundary_edges, facts.nonmanifold_edges);
     assert_eq!(got, (v, f, bnd, nme), "{file}: V, F, bnd, nm-e");
     assert_eq!(
-        (facts.nonmanifold_vertices, facts.vertex_components, facts.euler_characteristic),
+        (facts.nonmanifold_vertices, facts.components, facts.euler_characteristic),
         (nmv, comp, chi),
         "{file}: nm-v, comp, χ"
     );
     // Edge-connected components: one everywhere but in bunny_res4.ply, where one
     // triangle touches the rest at two vertices and shares no edge.
     let edge_components = if file == "bunny_res4.ply" { 2 } else { 1 };
-    assert_eq!(facts.components, edge_components, "{file}: edge-connected components");
+    assert_eq!(facts.edge_components, edge_components, "{file}: edge-connected components");
     if let Some(u) = unref {
         assert_eq!(facts.unreferenced_vertices, u, "{file}: unreferenced");
     }

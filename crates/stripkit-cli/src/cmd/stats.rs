@@ -12,7 +12,8 @@ use stripkit::topology::MeshFacts;
   boundary loop       a closed walk along boundary edges (pinch vertices split per fan)
   non-manifold edge   an edge with three or more incident faces
   non-manifold vertex a pinch: its faces form more than one edge-connected fan
-  components          edge-connected groups of faces (unreferenced vertices form none)
+  components          groups of faces joined through shared vertices (unreferenced
+                      vertices form none); edge_components: joined through edges only
   euler               V_used - E + F
   degenerate face     a repeated vertex index or zero area
   duplicate face      repeats an earlier face up to rotation and orientation

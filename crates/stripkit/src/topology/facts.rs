@@ -17,11 +17,12 @@
 //! * **non-manifold (pinch) vertex**: the faces around the vertex form more than one
 //!   group when two faces are joined if they share an edge incident to the vertex
 //!   (any edge with two or more faces, non-manifold edges included);
-//! * **component**: faces joined across shared edges; unreferenced vertices form none
-//!   (two triangles sharing only a vertex are two components: no strip can cross);
-//! * **vertex component**: faces joined across shared vertices. This is the `comp`
-//!   column of the models README (`bunny_res4.ply` has one triangle that touches the
-//!   rest at two vertices only: 2 components, 1 vertex component);
+//! * **component**: faces joined through shared vertices, as the models README counts
+//!   them (a pinch vertex does not split a component); unreferenced vertices form none;
+//! * **edge component**: faces joined across shared edges only (two triangles sharing
+//!   just a vertex are two: no strip can cross between them; `bunny_res4.ply` has one
+//!   triangle that touches the rest at two vertices only: 1 component, 2 edge
+//!   components);
 //! * **Euler characteristic** χ = V_used − E + F;
 //! * **degenerate face**: a repeated vertex index, or zero area (exactly zero Newell
 //!   normal in `f64`);
@@ -64,11 +65,11 @@ pub struct MeshFacts {
     pub nonmanifold_edges: usize,
     /// Pinch vertices: their faces form more than one edge-connected fan.
     pub nonmanifold_vertices: usize,
-    /// Edge-connected components of faces.
+    /// Connected components of faces, joined through shared vertices (the `comp`
+    /// column of the models README).
     pub components: usize,
-    /// Components when faces sharing only a vertex also count as connected (the
-    /// `comp` column of the models README).
-    pub vertex_components: usize,
+    /// Components of faces joined across shared edges only.
+    pub edge_components: usize,
     /// χ = V_used − E + F.
     pub euler_characteristic: i64,
     /// Faces with a repeated vertex index or zero area.
@@ -214,8 +215,8 @@ impl MeshFacts {
 
         facts.boundary_loops = count_boundary_loops(mesh, map);
         facts.nonmanifold_vertices = count_pinch_vertices(mesh, map);
-        facts.components = count_components(mesh, map);
-        facts.vertex_components = count_vertex_components(mesh, &referenced);
+        facts.edge_components = count_edge_components(mesh, map);
+        facts.components = count_vertex_components(mesh, &referenced);
         facts.degenerate_faces = count_degenerate_faces(mesh);
         facts.duplicate_faces = count_duplicate_faces(mesh, map);
         facts.closed_manifold = fcount > 0
@@ -391,7 +392,7 @@ fn count_pinch_vertices(mesh: &Mesh, map: &EdgeMap) -> usize {
 }
 
 /// Counts edge-connected components of faces.
-fn count_components(mesh: &Mesh, map: &EdgeMap) -> usize {
+fn count_edge_components(mesh: &Mesh, map: &EdgeMap) -> usize {
     let mut uf = UnionFind::new(mesh.face_count());
     for e in 0..map.edge_count() {
         let hs = map.halfedges(e);
@@ -508,8 +509,8 @@ impl fmt::Display for MeshFacts {
         writeln!(f, "non-manifold vertices {}", self.nonmanifold_vertices)?;
         writeln!(
             f,
-            "components            {} edge-connected, {} vertex-connected",
-            self.components, self.vertex_components
+            "components            {} ({} when only shared edges connect)",
+            self.components, self.edge_components
         )?;
         writeln!(f, "euler characteristic  {}", self.euler_characteristic)?;
         writeln!(f, "degenerate faces      {}", self.degenerate_faces)?;
