@@ -209,8 +209,8 @@ fn generators_have_the_documented_counts() {
         assert!(dot(normal(&t, face), out) > 0.0);
     }
     let shuffled = gen::shuffle_faces(&gen::grid(4, 4), 3);
-    let mut a: Vec<Vec<u32>> = gen::grid(4, 4).faces().map(|f| canonical(f)).collect();
-    let mut b: Vec<Vec<u32>> = shuffled.faces().map(|f| canonical(f)).collect();
+    let mut a: Vec<Vec<u32>> = gen::grid(4, 4).faces().map(canonical).collect();
+    let mut b: Vec<Vec<u32>> = shuffled.faces().map(canonical).collect();
     assert_ne!(a, b, "shuffled");
     a.sort();
     b.sort();

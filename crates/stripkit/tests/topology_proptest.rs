@@ -61,7 +61,7 @@ proptest! {
             for r in 0..k {
                 for dir in [true, false] {
                     let c: Vec<u32> = (0..k).map(|i| if dir { face[(r + i) % k] } else { face[(r + k - i) % k] }).collect();
-                    if best.as_ref().map_or(true, |b| c < *b) { best = Some(c); }
+                    match &best { Some(b) if *b <= c => {} _ => best = Some(c) }
                 }
             }
             best.unwrap()

@@ -201,11 +201,7 @@ impl MeshFacts {
             let hs = map.halfedges(e);
             match hs.len() {
                 1 => facts.boundary_edges += 1,
-                2 => {
-                    if fi[hs[0] as usize] == fi[hs[1] as usize] {
-                        facts.inconsistent_edges += 1;
-                    }
-                }
+                2 if fi[hs[0] as usize] == fi[hs[1] as usize] => facts.inconsistent_edges += 1,
                 n if n >= 3 => facts.nonmanifold_edges += 1,
                 _ => {}
             }
@@ -328,6 +324,7 @@ fn count_boundary_loops(mesh: &Mesh, map: &EdgeMap) -> usize {
 /// by their start vertex) are listed per vertex with their outgoing edge, incoming
 /// edge and face; at each vertex a tiny local union-find joins corners that share an
 /// edge (or a face), so the work per vertex stays within its few corners.
+#[allow(clippy::needless_range_loop)] // indices are half-edge and corner ids
 fn count_pinch_vertices(mesh: &Mesh, map: &EdgeMap) -> usize {
     let fi = &mesh.face_indices;
     let vcount = mesh.vertex_count();
