@@ -52,6 +52,31 @@ proptest! {
         prop_assert_eq!(f.unreferenced_vertices, mesh.vertex_count() - used.len());
         prop_assert_eq!(f.euler_characteristic, used.len() as i64 - edge_faces.len() as i64 + mesh.face_count() as i64);
         prop_assert!(f.edge_components >= f.components);
+        // Edge components by a naive flood fill over faces sharing an edge.
+        let faces: Vec<&[u32]> = mesh.faces().collect();
+        let edges_of = |face: &[u32]| -> HashSet<(u32, u32)> {
+            (0..face.len()).map(|i| (face[i], face[(i + 1) % face.len()]))
+                .filter(|(a, b)| a != b).map(|(a, b)| (a.min(b), a.max(b))).collect()
+        };
+        let mut seen = vec![false; faces.len()];
+        let mut naive = 0;
+        for s in 0..faces.len() {
+            if seen[s] { continue; }
+            naive += 1;
+            seen[s] = true;
+            let mut stack = vec![s];
+            while let Some(a) = stack.pop() {
+                let ea = edges_of(faces[a]);
+                for b in 0..faces.len() {
+                    if !seen[b] && !edges_of(faces[b]).is_disjoint(&ea) {
+                        seen[b] = true;
+                        stack.push(b);
+                    }
+                }
+            }
+        }
+        // Faces whose vertices are all one vertex have no edge: each is its own piece.
+        prop_assert_eq!(f.edge_components, naive);
         prop_assert!(f.boundary_loops <= f.boundary_edges);
         prop_assert_eq!(f.triangles + f.quads + f.polygons, f.faces);
         // Duplicates: faces minus distinct faces up to rotation and orientation.

@@ -211,8 +211,11 @@ impl MeshFacts {
 
         facts.boundary_loops = count_boundary_loops(mesh, map);
         facts.nonmanifold_vertices = count_pinch_vertices(mesh, map);
-        facts.edge_components = count_edge_components(mesh, map);
         facts.components = count_vertex_components(mesh, &referenced);
+        // Faces meeting at a vertex that is not a pinch lie in one fan, so they are
+        // edge-connected: without pinch vertices both counts agree.
+        facts.edge_components =
+            if facts.nonmanifold_vertices == 0 { facts.components } else { count_edge_components(mesh, map) };
         facts.degenerate_faces = count_degenerate_faces(mesh);
         facts.duplicate_faces = count_duplicate_faces(mesh, map);
         facts.closed_manifold = fcount > 0
