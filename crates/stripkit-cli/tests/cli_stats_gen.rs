@@ -109,6 +109,11 @@ fn bad_input_exits_with_status_two_and_says_why() {
     assert_eq!(out.status.code(), Some(2));
     let out = stripkit().args(["gen", "grid", "100000", "100000", "-o"]).arg(dir.join("g.obj")).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
+    let out = stripkit().args(["gen", "grid", "0", "3", "-o"]).arg(dir.join("g.obj")).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let out = stripkit().args(["gen", "grid", "2", "2", "-o"]).arg(dir.join("g.unknown")).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("g.unknown"));
     let _ = std::fs::remove_dir_all(&dir);
 }
 

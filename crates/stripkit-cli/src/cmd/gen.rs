@@ -30,9 +30,9 @@ const MAX_INDICES: u64 = 1 << 30;
 enum What {
     /// A W x H grid of unit squares in the plane z = 0 (2WH triangles, or WH quads).
     Grid {
-        /// Squares along x.
+        /// Squares along x (at least 1).
         w: u32,
-        /// Squares along y.
+        /// Squares along y (at least 1).
         h: u32,
         /// Keep each square as one quad instead of two triangles.
         #[arg(long)]
@@ -113,6 +113,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let start = Instant::now();
     let (mesh, output, what) = match args.what {
         What::Grid { w, h, quads, output } => {
+            anyhow::ensure!(w >= 1 && h >= 1, "a grid needs W and H of at least 1 (got {w} x {h})");
             let faces = w as u64 * h as u64;
             check_size(faces * if quads { 4 } else { 6 }, (w as u64 + 1) * (h as u64 + 1))?;
             let mesh = if quads { gen::grid_quads(w, h) } else { gen::grid(w, h) };
