@@ -326,6 +326,7 @@ pub fn subdivide_catmull_clark(mesh: &Mesh, levels: u32) -> Result<Mesh> {
     Ok(current)
 }
 
+#[allow(clippy::needless_range_loop)] // `h` is a half-edge id, used for more than `fi`
 fn catmull_clark_step(mesh: &Mesh, map: &EdgeMap) -> Mesh {
     let vcount = mesh.vertex_count();
     let ecount = map.edge_count();

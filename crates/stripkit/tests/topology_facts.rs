@@ -113,6 +113,7 @@ fn disjoint_spheres_are_two_components() {
     let b = gen::icosphere(2);
     let f = facts(&gen::disjoint_union(&[&a, &b]));
     assert_eq!(f.components, 2);
+    assert_eq!(f.edge_components, 2);
     assert_eq!(f.euler_characteristic, 4);
     assert_eq!(f.faces, 80 + 320);
     assert!(f.closed_manifold);
@@ -126,8 +127,8 @@ fn bow_tie_has_one_pinch_vertex_and_one_component() {
     );
     let f = facts(&mesh);
     assert_eq!(f.nonmanifold_vertices, 1);
-    // Components join through vertices, as the models README counts them.
-    assert_eq!(f.components, 1);
+    assert_eq!(f.components, 1, "joined through the pinch vertex, as the models README counts");
+    assert_eq!(f.edge_components, 2, "no shared edge");
     assert_eq!(f.boundary_edges, 6);
     assert_eq!(f.boundary_loops, 2);
     assert_eq!(f.euler_characteristic, 5 - 6 + 2);
@@ -151,7 +152,7 @@ fn two_cones_touching_at_the_apex_pinch_a_closed_surface() {
     }
     let f = facts(&both);
     assert_eq!(f.nonmanifold_vertices, 1);
-    assert_eq!(f.components, 1);
+    assert_eq!((f.components, f.edge_components), (1, 2));
     assert_eq!(f.unreferenced_vertices, 1);
     assert_eq!(f.boundary_edges, 0);
     assert_eq!(f.euler_characteristic, 23 - 60 + 40);
@@ -197,12 +198,20 @@ fn degenerate_and_duplicate_faces_are_counted() {
     faces.push(vec![4, 4, 5]); // repeated index
     faces.push(vec![0, 1, 2]); // collinear: zero area
     faces.push(vec![0, 1, 2, 5, 4, 3]); // a polygon, fine
+    faces.push(vec![4, 3, 0, 1, 2, 5]); // the same polygon rotated: duplicate
+    faces.push(vec![0, 2, 1, 5, 4, 3]); // same vertices, another cycle: not a duplicate
     let mesh = Mesh::from_polygons(base.positions.clone(), &faces);
     let f = facts(&mesh);
-    assert_eq!(f.duplicate_faces, 2);
+    assert_eq!(f.duplicate_faces, 3);
     assert_eq!(f.degenerate_faces, 2);
-    assert_eq!(f.polygons, 1);
-    assert_eq!(f.faces, 13);
+    assert_eq!(f.polygons, 3);
+    assert_eq!(f.faces, 15);
+    // Edgeless faces (one vertex repeated) are compared too.
+    let mut more = faces.clone();
+    more.push(vec![7, 7, 7]);
+    more.push(vec![7, 7, 7]);
+    let f = facts(&Mesh::from_polygons(base.positions.clone(), &more));
+    assert_eq!((f.duplicate_faces, f.degenerate_faces), (4, 4));
 }
 
 #[test]

@@ -1,8 +1,8 @@
 //! Facts about a mesh's topology: what `stripkit stats` prints.
 //!
-//! [`MeshFacts::of`] computes every figure in one pass over flat arrays (an
-//! [`EdgeMap`], two union-finds over half-edges and faces, a bucketed duplicate
-//! search), in O(n) apart from sorting the few faces that share a lowest vertex.
+//! [`MeshFacts::of`] computes every figure over flat arrays (an [`EdgeMap`],
+//! union-finds over faces and vertices, per-vertex corner lists for the fans,
+//! duplicate candidates taken from the edge map), in O(n).
 //!
 //! Definitions (the ones `../shared/models/README.md` uses for its table):
 //!
@@ -17,13 +17,18 @@
 //! * **non-manifold (pinch) vertex**: the faces around the vertex form more than one
 //!   group when two faces are joined if they share an edge incident to the vertex
 //!   (any edge with two or more faces, non-manifold edges included);
-//! * **component**: faces joined through shared vertices (as the models README counts
-//!   them: a pinch vertex does not split a component); unreferenced vertices form none;
+//! * **component**: faces joined through shared vertices, as the models README counts
+//!   them (a pinch vertex does not split a component); unreferenced vertices form none;
+//! * **edge component**: faces joined across shared edges only (two triangles sharing
+//!   just a vertex are two: no strip can cross between them; `bunny_res4.ply` has one
+//!   triangle that touches the rest at two vertices only: 1 component, 2 edge
+//!   components);
 //! * **Euler characteristic** χ = V_used − E + F;
 //! * **degenerate face**: a repeated vertex index, or zero area (exactly zero Newell
 //!   normal in `f64`);
-//! * **duplicate face**: the same vertices (as a multiset, any rotation or orientation)
-//!   as an earlier face; each such later face counts once;
+//! * **duplicate face**: the same cycle of vertices as an earlier face, up to rotation
+//!   and orientation (for triangles: the same three vertices); each such later face
+//!   counts once;
 //! * **consistently oriented**: no edge with exactly two faces is traversed in the same
 //!   direction by both.
 
@@ -60,13 +65,16 @@ pub struct MeshFacts {
     pub nonmanifold_edges: usize,
     /// Pinch vertices: their faces form more than one edge-connected fan.
     pub nonmanifold_vertices: usize,
-    /// Connected components of faces (joined through shared vertices).
+    /// Connected components of faces, joined through shared vertices (the `comp`
+    /// column of the models README).
     pub components: usize,
+    /// Components of faces joined across shared edges only.
+    pub edge_components: usize,
     /// χ = V_used − E + F.
     pub euler_characteristic: i64,
     /// Faces with a repeated vertex index or zero area.
     pub degenerate_faces: usize,
-    /// Faces with the same vertices as an earlier face.
+    /// Faces equal to an earlier face up to rotation and orientation.
     pub duplicate_faces: usize,
     /// Two-face edges whose two faces traverse them in the same direction.
     pub inconsistent_edges: usize,
@@ -116,14 +124,15 @@ pub fn validate(mesh: &Mesh) -> Result<()> {
     Ok(())
 }
 
-/// Union-find over `0..n` with path halving and union by size.
+/// Union-find over `0..n` with path halving and union by rank.
 pub(crate) struct UnionFind {
     parent: Vec<u32>,
+    rank: Vec<u8>,
 }
 
 impl UnionFind {
     pub(crate) fn new(n: usize) -> Self {
-        UnionFind { parent: (0..n as u32).collect() }
+        UnionFind { parent: (0..n as u32).collect(), rank: vec![0; n] }
     }
 
     pub(crate) fn find(&mut self, mut x: u32) -> u32 {
@@ -135,15 +144,23 @@ impl UnionFind {
         x
     }
 
-    pub(crate) fn union(&mut self, a: u32, b: u32) {
+    /// Joins the sets of `a` and `b`; true when they were apart.
+    pub(crate) fn union(&mut self, a: u32, b: u32) -> bool {
         let ra = self.find(a);
         let rb = self.find(b);
-        if ra != rb {
-            // Attach the larger id under the smaller: deterministic, and path halving
-            // keeps the trees shallow enough for meshes.
-            let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
-            self.parent[hi as usize] = lo;
+        if ra == rb {
+            return false;
         }
+        let (ka, kb) = (self.rank[ra as usize], self.rank[rb as usize]);
+        if ka < kb {
+            self.parent[ra as usize] = rb;
+        } else {
+            self.parent[rb as usize] = ra;
+            if ka == kb {
+                self.rank[ra as usize] += 1;
+            }
+        }
+        true
     }
 }
 
@@ -178,17 +195,26 @@ impl MeshFacts {
         let used = referenced.iter().filter(|&&r| r).count();
         facts.unreferenced_vertices = vcount - used;
 
-        // Edges by incidence.
+        // Edges by incidence. Orientation: count, per edge, the half-edges running
+        // from its lower to its higher vertex, in one pass in face order (a small
+        // per-edge counter instead of random reads of the index array); a two-face
+        // edge is consistent when exactly one of its half-edges runs that way.
         facts.edges = map.edge_count();
-        for e in 0..map.edge_count() {
-            let hs = map.halfedges(e);
-            match hs.len() {
-                1 => facts.boundary_edges += 1,
-                2 => {
-                    if fi[hs[0] as usize] == fi[hs[1] as usize] {
-                        facts.inconsistent_edges += 1;
-                    }
+        let mut forward = vec![0u8; map.edge_count()];
+        for w in mesh.face_offsets.windows(2) {
+            let (s, t) = (w[0] as usize, w[1] as usize);
+            for h in s..t {
+                let next = if h + 1 == t { s } else { h + 1 };
+                let e = map.halfedge_edge[h];
+                if e != u32::MAX && fi[h] < fi[next] {
+                    forward[e as usize] = forward[e as usize].saturating_add(1);
                 }
+            }
+        }
+        for (e, w) in map.edge_offsets.windows(2).enumerate() {
+            match w[1] - w[0] {
+                1 => facts.boundary_edges += 1,
+                2 if forward[e] != 1 => facts.inconsistent_edges += 1,
                 n if n >= 3 => facts.nonmanifold_edges += 1,
                 _ => {}
             }
@@ -198,9 +224,13 @@ impl MeshFacts {
 
         facts.boundary_loops = count_boundary_loops(mesh, map);
         facts.nonmanifold_vertices = count_pinch_vertices(mesh, map);
-        facts.components = count_components(mesh);
+        facts.components = count_vertex_components(mesh, &referenced);
+        // Faces meeting at a vertex that is not a pinch lie in one fan, so they are
+        // edge-connected: without pinch vertices both counts agree.
+        facts.edge_components =
+            if facts.nonmanifold_vertices == 0 { facts.components } else { count_edge_components(mesh, map) };
         facts.degenerate_faces = count_degenerate_faces(mesh);
-        facts.duplicate_faces = count_duplicate_faces(mesh);
+        facts.duplicate_faces = count_duplicate_faces(mesh, map);
         facts.closed_manifold = fcount > 0
             && facts.boundary_edges == 0
             && facts.nonmanifold_edges == 0
@@ -306,61 +336,97 @@ fn count_boundary_loops(mesh: &Mesh, map: &EdgeMap) -> usize {
     loops
 }
 
-/// Counts vertices whose incident faces form more than one fan. Works on corners
-/// (half-edges by their start vertex): two corners at the same vertex are joined when
-/// their faces share an edge incident to it, or when they belong to the same face.
+/// Counts vertices whose incident faces form more than one fan. Corners (half-edges
+/// by their start vertex) are listed per vertex with their outgoing edge, incoming
+/// edge and face; at each vertex a tiny local union-find joins corners that share an
+/// edge (or a face), so the work per vertex stays within its few corners.
+#[allow(clippy::needless_range_loop)] // indices are half-edge and corner ids
 fn count_pinch_vertices(mesh: &Mesh, map: &EdgeMap) -> usize {
     let fi = &mesh.face_indices;
-    let mut uf = UnionFind::new(fi.len());
-    for e in 0..map.edge_count() {
-        let hs = map.halfedges(e);
-        if hs.len() < 2 {
-            continue;
-        }
-        let [lo, _] = map.edges[e];
-        // The corner of face(h) at vertex x is the half-edge of that face leaving x:
-        // h itself if h starts at x, else next(h).
-        let corner_at = |h: u32, x: u32| if fi[h as usize] == x { h } else { map.halfedge_next[h as usize] };
-        let first = hs[0];
-        for &h in &hs[1..] {
-            uf.union(corner_at(first, lo), corner_at(h, lo));
-            let hi_first = corner_at(first, map.edges[e][1]);
-            uf.union(hi_first, corner_at(h, map.edges[e][1]));
+    let vcount = mesh.vertex_count();
+    let mut start = vec![0u32; vcount + 1];
+    for &v in fi {
+        start[v as usize + 1] += 1;
+    }
+    for v in 0..vcount {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    // [outgoing edge, incoming edge, face] of each corner, grouped by vertex.
+    let mut corners = vec![[0u32; 3]; fi.len()];
+    for (f, w) in mesh.face_offsets.windows(2).enumerate() {
+        let (s, t) = (w[0] as usize, w[1] as usize);
+        let mut prev = t - 1;
+        for h in s..t {
+            let v = fi[h] as usize;
+            corners[fill[v] as usize] = [map.halfedge_edge[h], map.halfedge_edge[prev], f as u32];
+            fill[v] += 1;
+            prev = h;
         }
     }
-    // A face that visits a vertex twice (degenerate) is still one face around it.
-    for face_range in mesh.face_offsets.windows(2) {
-        let (s, t) = (face_range[0] as usize, face_range[1] as usize);
-        if t - s <= 8 {
-            for a in s..t {
-                for b in a + 1..t {
-                    if fi[a] == fi[b] {
-                        uf.union(a as u32, b as u32);
+    drop(fill);
+    let mut local: Vec<u32> = Vec::new();
+    let mut pinches = 0;
+    for v in 0..vcount {
+        let cs = &corners[start[v] as usize..start[v + 1] as usize];
+        if cs.len() < 2 {
+            continue;
+        }
+        local.clear();
+        local.extend(0..cs.len() as u32);
+        let mut groups = cs.len();
+        // Quadratic in the corners of one vertex (about six): cheaper than sorting.
+        for i in 1..cs.len() {
+            let [out_i, in_i, face_i] = cs[i];
+            for j in 0..i {
+                let [out_j, in_j, face_j] = cs[j];
+                let shared_edge = |e: u32| e != u32::MAX && (e == out_j || e == in_j);
+                if face_i == face_j || shared_edge(out_i) || shared_edge(in_i) {
+                    let mut a = i as u32;
+                    while local[a as usize] != a {
+                        a = local[a as usize];
+                    }
+                    let mut b = j as u32;
+                    while local[b as usize] != b {
+                        b = local[b as usize];
+                    }
+                    if a != b {
+                        local[a.max(b) as usize] = a.min(b);
+                        groups -= 1;
                     }
                 }
             }
         }
-    }
-    let mut groups = vec![0u32; mesh.vertex_count()];
-    for h in 0..fi.len() as u32 {
-        if uf.find(h) == h {
-            groups[fi[h as usize] as usize] += 1;
+        if groups > 1 {
+            pinches += 1;
         }
     }
-    groups.iter().filter(|&&g| g > 1).count()
+    pinches
 }
 
-/// Counts components of faces joined through shared vertices.
-fn count_components(mesh: &Mesh) -> usize {
+/// Counts edge-connected components of faces.
+fn count_edge_components(mesh: &Mesh, map: &EdgeMap) -> usize {
+    let mut uf = UnionFind::new(mesh.face_count());
+    for e in 0..map.edge_count() {
+        let hs = map.halfedges(e);
+        let f0 = map.halfedge_face[hs[0] as usize];
+        for &h in &hs[1..] {
+            uf.union(f0, map.halfedge_face[h as usize]);
+        }
+    }
+    (0..mesh.face_count() as u32).filter(|&f| uf.find(f) == f).count()
+}
+
+
+/// Counts groups of referenced vertices joined by faces.
+fn count_vertex_components(mesh: &Mesh, referenced: &[bool]) -> usize {
     let mut uf = UnionFind::new(mesh.vertex_count());
-    let mut used = vec![false; mesh.vertex_count()];
     for face in mesh.faces() {
-        for &v in face {
-            used[v as usize] = true;
+        for &v in &face[1..] {
             uf.union(face[0], v);
         }
     }
-    (0..mesh.vertex_count() as u32).filter(|&v| used[v as usize] && uf.find(v) == v).count()
+    (0..mesh.vertex_count() as u32).filter(|&v| referenced[v as usize] && uf.find(v) == v).count()
 }
 
 /// Counts faces with a repeated index or zero area.
@@ -406,45 +472,40 @@ fn newell_normal(mesh: &Mesh, face: &[u32]) -> [f64; 3] {
     n
 }
 
-/// Counts faces whose sorted vertex list equals that of an earlier face.
-fn count_duplicate_faces(mesh: &Mesh) -> usize {
-    // Sorted copy of every face, then faces bucketed by their lowest vertex: only faces
-    // in one bucket can be equal, and buckets are small.
-    let mut sorted = mesh.face_indices.clone();
-    for w in mesh.face_offsets.windows(2) {
-        sorted[w[0] as usize..w[1] as usize].sort_unstable();
-    }
-    let fcount = mesh.face_count();
-    let vcount = mesh.vertex_count();
-    let key = |f: u32| {
-        let s = mesh.face_offsets[f as usize] as usize;
-        let t = mesh.face_offsets[f as usize + 1] as usize;
-        &sorted[s..t]
-    };
-    let mut start = vec![0u32; vcount + 1];
-    for f in 0..fcount as u32 {
-        start[key(f)[0] as usize + 1] += 1;
-    }
-    for v in 0..vcount {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    let mut bucketed = vec![0u32; fcount];
-    for f in 0..fcount as u32 {
-        let v = key(f)[0] as usize;
-        bucketed[fill[v] as usize] = f;
-        fill[v] += 1;
-    }
+/// Counts faces that repeat an earlier face up to rotation and orientation. Such a
+/// face shares every edge with its twin, so only faces on its first edge are
+/// candidates; faces without any edge (all corners on one vertex) are compared apart.
+fn count_duplicate_faces(mesh: &Mesh, map: &EdgeMap) -> usize {
     let mut count = 0;
-    for v in 0..vcount {
-        let bucket = &mut bucketed[start[v] as usize..start[v + 1] as usize];
-        if bucket.len() < 2 {
+    let mut edgeless: Vec<(u32, u32)> = Vec::new();
+    for f in 0..mesh.face_count() {
+        let (s, t) = (mesh.face_offsets[f], mesh.face_offsets[f + 1]);
+        let Some(h) = (s..t).find(|&h| map.halfedge_edge[h as usize] != u32::MAX) else {
+            edgeless.push((mesh.face_indices[s as usize], t - s));
             continue;
+        };
+        let face = mesh.face(f);
+        let is_dup = map.halfedges(map.halfedge_edge[h as usize] as usize).iter().any(|&g| {
+            let gf = map.halfedge_face[g as usize] as usize;
+            gf < f && same_cycle(face, mesh.face(gf))
+        });
+        if is_dup {
+            count += 1;
         }
-        bucket.sort_unstable_by(|&a, &b| key(a).cmp(key(b)).then(a.cmp(&b)));
-        count += bucket.windows(2).filter(|w| key(w[0]) == key(w[1])).count();
     }
-    count
+    edgeless.sort_unstable();
+    count + edgeless.windows(2).filter(|w| w[0] == w[1]).count()
+}
+
+/// True when `b` is `a` rotated, possibly reversed.
+fn same_cycle(a: &[u32], b: &[u32]) -> bool {
+    let k = a.len();
+    if b.len() != k {
+        return false;
+    }
+    (0..k).filter(|&j| b[j] == a[0]).any(|j| {
+        (0..k).all(|i| a[i] == b[(j + i) % k]) || (0..k).all(|i| a[i] == b[(j + k - i) % k])
+    })
 }
 
 impl fmt::Display for MeshFacts {
@@ -459,7 +520,11 @@ impl fmt::Display for MeshFacts {
         writeln!(f, "boundary edges        {} in {} loops", self.boundary_edges, self.boundary_loops)?;
         writeln!(f, "non-manifold edges    {}", self.nonmanifold_edges)?;
         writeln!(f, "non-manifold vertices {}", self.nonmanifold_vertices)?;
-        writeln!(f, "components            {}", self.components)?;
+        writeln!(
+            f,
+            "components            {} ({} when only shared edges connect)",
+            self.components, self.edge_components
+        )?;
         writeln!(f, "euler characteristic  {}", self.euler_characteristic)?;
         writeln!(f, "degenerate faces      {}", self.degenerate_faces)?;
         writeln!(f, "duplicate faces       {}", self.duplicate_faces)?;

@@ -53,8 +53,10 @@ impl EdgeMap {
                 halfedge_next[h as usize] = if h + 1 == end { start } else { h + 1 };
             }
         }
-        // Bucket half-edges by their lower vertex (counting sort), then pair them up
-        // inside each bucket by their higher vertex; buckets hold about six entries.
+        // Bucket half-edges by their lower vertex (counting sort), each as the key
+        // `hi << 32 | h`; sorting a bucket's keys orders it by higher vertex, then by
+        // half-edge id, so the result depends on nothing but the mesh. Buckets hold
+        // about six entries.
         let vcount = mesh.vertex_count();
         let mut bucket_start = vec![0u32; vcount + 1];
         let ends = |h: usize| {
@@ -72,14 +74,15 @@ impl EdgeMap {
             bucket_start[v + 1] += bucket_start[v];
         }
         let mut fill = bucket_start.clone();
-        let mut bucketed = vec![0u32; bucket_start[vcount] as usize];
+        let mut bucketed = vec![0u64; bucket_start[vcount] as usize];
         for h in 0..h_count {
             let (lo, hi) = ends(h);
             if lo != hi {
-                bucketed[fill[lo as usize] as usize] = h as u32;
+                bucketed[fill[lo as usize] as usize] = (hi as u64) << 32 | h as u64;
                 fill[lo as usize] += 1;
             }
         }
+        drop(fill);
         let mut edges = Vec::with_capacity(h_count / 2 + 1);
         let mut edge_offsets = Vec::with_capacity(h_count / 2 + 2);
         let mut edge_halfedges = Vec::with_capacity(bucketed.len());
@@ -87,17 +90,16 @@ impl EdgeMap {
         edge_offsets.push(0);
         for v in 0..vcount {
             let bucket = &mut bucketed[bucket_start[v] as usize..bucket_start[v + 1] as usize];
-            // Small buckets: sort by the higher vertex, then by half-edge id, so the
-            // result depends on nothing but the mesh.
-            bucket.sort_unstable_by_key(|&h| (ends(h as usize).1, h));
+            bucket.sort_unstable();
             let mut i = 0;
             while i < bucket.len() {
-                let hi = ends(bucket[i] as usize).1;
+                let hi = (bucket[i] >> 32) as u32;
                 let e = edges.len() as u32;
                 edges.push([v as u32, hi]);
-                while i < bucket.len() && ends(bucket[i] as usize).1 == hi {
-                    halfedge_edge[bucket[i] as usize] = e;
-                    edge_halfedges.push(bucket[i]);
+                while i < bucket.len() && (bucket[i] >> 32) as u32 == hi {
+                    let h = bucket[i] as u32;
+                    halfedge_edge[h as usize] = e;
+                    edge_halfedges.push(h);
                     i += 1;
                 }
                 edge_offsets.push(edge_halfedges.len() as u32);
