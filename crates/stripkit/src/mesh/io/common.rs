@@ -35,6 +35,11 @@ impl<'a> Lines<'a> {
     pub fn new(data: &'a [u8]) -> Self {
         Lines { data, pos: 0, line: 0 }
     }
+
+    /// Byte offset of the next line.
+    pub fn offset(&self) -> usize {
+        self.pos
+    }
 }
 
 impl<'a> Iterator for Lines<'a> {
@@ -69,15 +74,6 @@ pub(crate) fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
     line.split(|&b| is_space(b)).filter(|t| !t.is_empty())
 }
 
-/// The line without a trailing `#` comment.
-#[inline]
-pub(crate) fn strip_comment(line: &[u8]) -> &[u8] {
-    match line.iter().position(|&b| b == b'#') {
-        Some(i) => &line[..i],
-        None => line,
-    }
-}
-
 /// Shows a token in an error message (lossy, shortened).
 pub(crate) fn show(tok: &[u8]) -> String {
     let s = String::from_utf8_lossy(&tok[..tok.len().min(40)]).into_owned();
@@ -98,7 +94,48 @@ pub(crate) fn parse_f64(tok: &[u8]) -> Option<f64> {
 /// Parses a float token as `f32`, rounding correctly from its decimal text.
 #[inline]
 pub(crate) fn parse_f32(tok: &[u8]) -> Option<f32> {
-    std::str::from_utf8(tok).ok()?.parse::<f32>().ok()
+    match short_decimal(tok) {
+        Some(v) => Some(v),
+        None => std::str::from_utf8(tok).ok()?.parse::<f32>().ok(),
+    }
+}
+
+/// Powers of ten exactly representable in `f32` (5^10 < 2^24).
+const POW10_F32: [f32; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
+
+/// Fast path for the common `[-+]digits[.digits]` with a mantissa below 2^24 and at
+/// most ten decimals: mantissa and power of ten are exact in `f32`, so one IEEE
+/// division rounds correctly, exactly as the full parser would. `None` otherwise.
+#[inline]
+fn short_decimal(tok: &[u8]) -> Option<f32> {
+    let (neg, digits) = match tok.first()? {
+        b'-' => (true, &tok[1..]),
+        b'+' => (false, &tok[1..]),
+        _ => (false, tok),
+    };
+    let mut mantissa: u32 = 0;
+    let mut decimals: usize = 0;
+    let mut seen_digit = false;
+    let mut seen_dot = false;
+    for &c in digits {
+        if c.is_ascii_digit() {
+            mantissa = mantissa * 10 + (c - b'0') as u32;
+            if mantissa >= 1 << 24 {
+                return None;
+            }
+            seen_digit = true;
+            decimals += seen_dot as usize;
+        } else if c == b'.' && !seen_dot {
+            seen_dot = true;
+        } else {
+            return None;
+        }
+    }
+    if !seen_digit || decimals > 10 {
+        return None;
+    }
+    let v = mantissa as f32 / POW10_F32[decimals];
+    Some(if neg { -v } else { v })
 }
 
 /// Parses a decimal integer with optional sign; `None` on anything else or overflow.
@@ -184,7 +221,7 @@ pub(crate) fn push_fan_triangles(mesh: &mut Mesh, fan: &[u32]) -> Result<(), Str
 }
 
 /// The message for an index out of range.
-pub(crate) fn index_message(face: usize, index: u64, vertices: usize) -> String {
+pub(crate) fn index_message(face: u64, index: i64, vertices: usize) -> String {
     format!("face {face} refers to vertex {index} but the file has {vertices} vertices")
 }
 
@@ -205,6 +242,37 @@ mod tests {
         assert_eq!(parse_i64(b"1x"), None);
         assert_eq!(parse_i64(b"-"), None);
         assert_eq!(parse_i64(b"99999999999999999999999"), None);
+    }
+
+    #[test]
+    fn the_float_fast_path_agrees_with_the_full_parser() {
+        let mut state = 12345u64;
+        let mut tokens: Vec<String> = ["0", "-0", "-0.0", "1.", ".5", "+2.25", "16777215", "16777216", "0.0000000001",
+            "1234567.", "0.1234567", "9.999999", "-8388608.5", "1e5", "1.0e-3", "12.34.5", "", "-", ".", "1a"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        for _ in 0..200_000 {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            let m = (state >> 40) % 30_000_000;
+            let d = ((state >> 20) % 12) as usize;
+            let mut t = m.to_string();
+            if d > 0 {
+                while t.len() <= d {
+                    t.insert(0, '0');
+                }
+                t.insert(t.len() - d, '.');
+            }
+            if state & 1 == 1 {
+                t.insert(0, '-');
+            }
+            tokens.push(t);
+        }
+        for t in &tokens {
+            let full = t.parse::<f32>().ok();
+            let fast = parse_f32(t.as_bytes());
+            assert_eq!(fast.map(f32::to_bits), full.map(f32::to_bits), "{t}");
+        }
     }
 
     #[test]

@@ -1,17 +1,626 @@
-//! glTF (stub).
+//! glTF 2.0: `.gltf` (JSON with buffers as base64 `data:` URIs or external files
+//! beside it) and `.glb` (binary container, buffer 0 in the BIN chunk).
+//!
+//! Read: every primitive of every mesh is merged into one mesh (node transforms are
+//! not applied). Primitives that share a POSITION accessor share vertices, so vertex
+//! ids survive a write and read. TRIANGLES (mode 4) give one face per triangle;
+//! TRIANGLE_STRIP (5) and TRIANGLE_FAN (6) are turned into triangles with the
+//! winding the modes define, degenerate ones skipped; points and lines (0 to 3) only
+//! contribute their vertices. Primitives without indices use their vertices in order.
+//! Sparse accessors and accessors without a buffer view are refused.
+//!
+//! Write: one buffer with the positions (VEC3 float, with min / max) and the indices
+//! (u16 when there are fewer than 65535 vertices, else u32); without strips one
+//! TRIANGLES primitive (polygons fanned), with strips one TRIANGLE_STRIP primitive per
+//! strip of at least three indices. A mesh with vertices but nothing to draw gets a
+//! POINTS primitive so that its vertices are kept.
+
+use super::common::{close_face, push_fan_triangles, push_strip_triangles, Src};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::strip::StripSet;
+use serde_json::{json, Value};
+use std::collections::HashMap;
 use std::path::Path;
-pub(crate) fn read_gltf(path: &Path, _data: &[u8]) -> Result<Mesh> {
-    Err(Error::UnknownFormat { path: path.to_path_buf(), expected: "(glTF reader not built yet)" })
+
+const GLB_MAGIC: &[u8; 4] = b"glTF";
+const CHUNK_JSON: u32 = 0x4E4F_534A;
+const CHUNK_BIN: u32 = 0x004E_4942;
+
+/// Parses a `.gltf` file held in memory; external buffers are read beside `path`.
+pub(crate) fn read_gltf(path: &Path, data: &[u8]) -> Result<Mesh> {
+    let src = Src { path };
+    let json = parse_json(src, data, 0)?;
+    load(src, &json, None)
 }
-pub(crate) fn read_glb(path: &Path, _data: &[u8]) -> Result<Mesh> {
-    Err(Error::UnknownFormat { path: path.to_path_buf(), expected: "(glTF reader not built yet)" })
+
+/// Parses a `.glb` file held in memory.
+pub(crate) fn read_glb(path: &Path, data: &[u8]) -> Result<Mesh> {
+    let src = Src { path };
+    let u32_at = |o: usize| -> Option<u32> { Some(u32::from_le_bytes(data.get(o..o + 4)?.try_into().ok()?)) };
+    if data.len() < 12 {
+        return Err(src.err("byte 0", format!("{} bytes is too short for a GLB header (12 bytes)", data.len())));
+    }
+    if &data[..4] != GLB_MAGIC {
+        return Err(src.err("byte 0", "not a GLB file: it does not start with 'glTF'"));
+    }
+    let version = u32_at(4).unwrap_or(0);
+    if version != 2 {
+        return Err(src.err("byte 4", format!("GLB version {version}, only version 2 is supported")));
+    }
+    let length = u32_at(8).unwrap_or(0) as usize;
+    if length > data.len() {
+        return Err(src.err("byte 8", format!("the header announces {length} bytes but the file has {} (truncated)", data.len())));
+    }
+    let data = &data[..length];
+    let mut pos = 12;
+    let mut json = None;
+    let mut bin = None;
+    while pos < data.len() {
+        let (Some(len), Some(kind)) = (u32_at(pos), u32_at(pos + 4)) else {
+            return Err(src.err(format!("byte {pos}"), "truncated chunk header"));
+        };
+        let start = pos + 8;
+        let end = start.checked_add(len as usize).filter(|&e| e <= data.len()).ok_or_else(|| {
+            src.err(format!("byte {pos}"), format!("chunk of {len} bytes runs past the end of the file ({} bytes)", data.len()))
+        })?;
+        match kind {
+            CHUNK_JSON if json.is_none() => json = Some((start, &data[start..end])),
+            CHUNK_BIN if bin.is_none() => bin = Some(&data[start..end]),
+            _ => {} // unknown chunks are skipped, as the specification asks
+        }
+        pos = end;
+    }
+    let (offset, json) = json.ok_or_else(|| src.err("byte 12", "the GLB file has no JSON chunk"))?;
+    let json = parse_json(src, json, offset)?;
+    load(src, &json, bin)
 }
-pub(crate) fn write_gltf(_mesh: &Mesh, _strips: Option<&StripSet>) -> Result<Vec<u8>> {
-    Err(Error::Invalid("glTF writer not built yet".into()))
+
+fn parse_json(src: Src, bytes: &[u8], offset: usize) -> Result<Value> {
+    serde_json::from_slice(bytes).map_err(|e| {
+        let at = if offset == 0 {
+            format!("line {} column {}", e.line(), e.column())
+        } else {
+            format!("JSON chunk at byte {offset}, line {} column {}", e.line(), e.column())
+        };
+        src.err(at, format!("malformed JSON: {e}"))
+    })
 }
-pub(crate) fn write_glb(_mesh: &Mesh, _strips: Option<&StripSet>) -> Result<Vec<u8>> {
-    Err(Error::Invalid("glTF writer not built yet".into()))
+
+/// A JSON path like `accessors[3]` for messages.
+fn at(array: &str, i: usize) -> String {
+    format!("{array}[{i}]")
+}
+
+fn array<'v>(src: Src, json: &'v Value, key: &str) -> Result<&'v [Value]> {
+    match json.get(key) {
+        None => Ok(&[]),
+        Some(Value::Array(a)) => Ok(a),
+        Some(_) => Err(src.err(key, "must be an array")),
+    }
+}
+
+/// An optional non-negative integer member.
+fn uint(src: Src, obj: &Value, key: &str, place: &dyn Fn() -> String) -> Result<Option<u64>> {
+    match obj.get(key) {
+        None => Ok(None),
+        Some(v) => v.as_u64().map(Some).ok_or_else(|| src.err(place(), format!("'{key}' must be a non-negative integer"))),
+    }
+}
+
+fn required(src: Src, obj: &Value, key: &str, place: &dyn Fn() -> String) -> Result<u64> {
+    uint(src, obj, key, place)?.ok_or_else(|| src.err(place(), format!("'{key}' is missing")))
+}
+
+struct View {
+    buffer: usize,
+    offset: usize,
+    length: usize,
+    stride: Option<usize>,
+}
+
+struct Accessor {
+    offset: usize,
+    count: usize,
+    component: u64,
+    components: usize,
+}
+
+impl Accessor {
+    fn component_size(&self) -> usize {
+        match self.component {
+            5120 | 5121 => 1,
+            5122 | 5123 => 2,
+            _ => 4,
+        }
+    }
+}
+
+struct Doc<'a> {
+    src: Src<'a>,
+    buffers: Vec<Vec<u8>>,
+    views: Vec<View>,
+    accessors: &'a [Value],
+}
+
+fn load(src: Src, json: &Value, bin: Option<&[u8]>) -> Result<Mesh> {
+    let version = json.pointer("/asset/version").and_then(Value::as_str).unwrap_or("");
+    if !version.starts_with('2') {
+        return Err(src.err("asset.version", format!("glTF version '{version}', only 2.x is supported")));
+    }
+    // Required extensions change how data is stored (compression, quantization):
+    // reading past them would give garbage, so name them instead.
+    if let Some(ext) = array(src, json, "extensionsRequired")?.first() {
+        return Err(src.err(
+            "extensionsRequired",
+            format!("the file requires extension {ext}, which stripkit does not read"),
+        ));
+    }
+    let mut buffers = Vec::new();
+    for (i, b) in array(src, json, "buffers")?.iter().enumerate() {
+        let place = || at("buffers", i);
+        let length = required(src, b, "byteLength", &place)? as usize;
+        let bytes = match b.get("uri").and_then(Value::as_str) {
+            None if i == 0 && bin.is_some() => bin.unwrap_or_default().to_vec(),
+            None => return Err(src.err(place(), "buffer without a 'uri' (only GLB buffer 0 may omit it)")),
+            Some(uri) => resolve_uri(src, uri, &place)?,
+        };
+        if bytes.len() < length {
+            return Err(src.err(place(), format!("byteLength is {length} but the data holds {} bytes (truncated)", bytes.len())));
+        }
+        buffers.push(bytes);
+    }
+    let mut views = Vec::new();
+    for (i, v) in array(src, json, "bufferViews")?.iter().enumerate() {
+        let place = || at("bufferViews", i);
+        let buffer = required(src, v, "buffer", &place)? as usize;
+        let offset = uint(src, v, "byteOffset", &place)?.unwrap_or(0) as usize;
+        let length = required(src, v, "byteLength", &place)? as usize;
+        let stride = uint(src, v, "byteStride", &place)?.map(|s| s as usize);
+        let buf_len = buffers
+            .get(buffer)
+            .ok_or_else(|| src.err(place(), format!("refers to buffer {buffer} but the file has {}", buffers.len())))?
+            .len();
+        if !matches!(offset.checked_add(length), Some(end) if end <= buf_len) {
+            return Err(src.err(place(), format!("bytes {offset}..+{length} lie outside buffer {buffer} ({buf_len} bytes)")));
+        }
+        if stride.is_some_and(|s| !(4..=252).contains(&s)) {
+            return Err(src.err(place(), "byteStride must lie in 4..=252"));
+        }
+        views.push(View { buffer, offset, length, stride });
+    }
+    let doc = Doc { src, buffers, views, accessors: array(src, json, "accessors")? };
+
+    let mut mesh = Mesh::new();
+    // POSITION accessor -> (first vertex id, vertex count).
+    let mut vertex_base: HashMap<usize, (u32, usize)> = HashMap::new();
+    let mut indices: Vec<u32> = Vec::new();
+    // Primitives may reuse accessors, so a small file could describe a huge mesh. A
+    // legitimate file gives at most three face indices per byte of its buffers (a
+    // strip of u8 indices); anything beyond a generous multiple of that is refused
+    // before it is allocated.
+    let buffer_bytes: usize = doc.buffers.iter().map(Vec::len).sum();
+    let budget = buffer_bytes.saturating_mul(12).saturating_add(1 << 16);
+    for (m, jm) in array(src, json, "meshes")?.iter().enumerate() {
+        let prims = match jm.get("primitives") {
+            Some(Value::Array(a)) => a.as_slice(),
+            _ => return Err(src.err(at("meshes", m), "'primitives' must be an array")),
+        };
+        for (p, prim) in prims.iter().enumerate() {
+            let place = || format!("meshes[{m}].primitives[{p}]");
+            let mode = uint(src, prim, "mode", &place)?.unwrap_or(4);
+            if mode > 6 {
+                return Err(src.err(place(), format!("unknown primitive mode {mode}")));
+            }
+            let Some(pos) = prim.pointer("/attributes/POSITION") else {
+                return Err(src.err(place(), "the primitive has no POSITION attribute"));
+            };
+            let pos = pos.as_u64().ok_or_else(|| src.err(place(), "POSITION must be an accessor index"))? as usize;
+            let (base, count) = match vertex_base.get(&pos) {
+                Some(&bc) => bc,
+                None => {
+                    let base = mesh.positions.len();
+                    doc.read_positions(pos, &mut mesh.positions)?;
+                    let count = mesh.positions.len() - base;
+                    if mesh.positions.len() > u32::MAX as usize {
+                        return Err(src.err(place(), "more than 4294967295 vertices in all"));
+                    }
+                    vertex_base.insert(pos, (base as u32, count));
+                    (base as u32, count)
+                }
+            };
+            if mode < 4 {
+                continue; // points and lines: their vertices are kept, nothing to draw
+            }
+            indices.clear();
+            match uint(src, prim, "indices", &place)? {
+                Some(acc) => {
+                    doc.read_indices(acc as usize, &mut indices)?;
+                    if let Some((k, &i)) = indices.iter().enumerate().find(|(_, &i)| i as usize >= count) {
+                        return Err(src.err(
+                            place(),
+                            format!("index {k} refers to vertex {i} but its POSITION accessor {pos} has {count} vertices"),
+                        ));
+                    }
+                }
+                None => indices.extend(0..count as u32),
+            }
+            let bound = if mode == 4 { indices.len() } else { 3 * indices.len() };
+            if mesh.face_indices.len().saturating_add(bound) > budget {
+                return Err(src.err(
+                    place(),
+                    format!(
+                        "the primitives reuse accessors into more than {budget} face indices, \
+                         far more than the file's {buffer_bytes} buffer bytes can describe"
+                    ),
+                ));
+            }
+            for i in indices.iter_mut() {
+                *i += base;
+            }
+            let res = match mode {
+                4 => indices.chunks_exact(3).try_for_each(|t| {
+                    mesh.face_indices.extend_from_slice(t);
+                    close_face(&mut mesh)
+                }),
+                5 => push_strip_triangles(&mut mesh, &indices),
+                _ => push_fan_triangles(&mut mesh, &indices),
+            };
+            res.map_err(|w| src.err(place(), w))?;
+        }
+    }
+    Ok(mesh)
+}
+
+impl Doc<'_> {
+    /// Validates accessor `i` and returns it with the bytes of its view.
+    fn accessor(&self, i: usize) -> Result<(Accessor, &[u8], usize)> {
+        let src = self.src;
+        let place = || at("accessors", i);
+        let a = self
+            .accessors
+            .get(i)
+            .ok_or_else(|| src.err(place(), format!("no such accessor (the file has {})", self.accessors.len())))?;
+        if a.get("sparse").is_some() {
+            return Err(src.err(place(), "sparse accessors are not supported"));
+        }
+        let view = uint(src, a, "bufferView", &place)?
+            .ok_or_else(|| src.err(place(), "accessors without a bufferView are not supported"))? as usize;
+        let component = required(src, a, "componentType", &place)?;
+        if ![5120, 5121, 5122, 5123, 5125, 5126].contains(&component) {
+            return Err(src.err(place(), format!("unknown componentType {component}")));
+        }
+        let components = match a.get("type").and_then(Value::as_str) {
+            Some("SCALAR") => 1,
+            Some("VEC2") => 2,
+            Some("VEC3") => 3,
+            Some("VEC4") | Some("MAT2") => 4,
+            Some("MAT3") => 9,
+            Some("MAT4") => 16,
+            _ => return Err(src.err(place(), "missing or unknown 'type'")),
+        };
+        let acc = Accessor {
+            offset: uint(src, a, "byteOffset", &place)?.unwrap_or(0) as usize,
+            count: required(src, a, "count", &place)? as usize,
+            component,
+            components,
+        };
+        let v = self
+            .views
+            .get(view)
+            .ok_or_else(|| src.err(place(), format!("refers to bufferView {view} but the file has {}", self.views.len())))?;
+        let elem = acc.component_size() * components;
+        let stride = v.stride.unwrap_or(elem);
+        // The last element must end inside the view; checked before anything is allocated.
+        let end = (acc.offset as u128) + (stride as u128) * (acc.count.saturating_sub(1) as u128) + elem as u128;
+        if acc.count > 0 && end > v.length as u128 {
+            return Err(src.err(
+                place(),
+                format!(
+                    "{} elements of {elem} bytes (stride {stride}) from byte {} need {end} bytes but bufferView {view} has {} (truncated)",
+                    acc.count, acc.offset, v.length
+                ),
+            ));
+        }
+        let bytes = &self.buffers[v.buffer][v.offset..v.offset + v.length];
+        Ok((acc, bytes, stride))
+    }
+
+    fn read_positions(&self, i: usize, out: &mut Vec<[f32; 3]>) -> Result<()> {
+        let (acc, bytes, stride) = self.accessor(i)?;
+        if acc.component != 5126 || acc.components != 3 {
+            return Err(self.src.err(at("accessors", i), "POSITION must be a VEC3 of FLOAT (componentType 5126)"));
+        }
+        out.reserve(acc.count);
+        for k in 0..acc.count {
+            let o = acc.offset + k * stride;
+            let mut p = [0.0f32; 3];
+            for (c, slot) in p.iter_mut().enumerate() {
+                let b = &bytes[o + 4 * c..o + 4 * c + 4];
+                let v = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+                if !v.is_finite() {
+                    return Err(self.src.err(
+                        format!("accessors[{i}] element {k}"),
+                        format!("coordinate {v} is NaN or infinite"),
+                    ));
+                }
+                *slot = v;
+            }
+            out.push(p);
+        }
+        Ok(())
+    }
+
+    fn read_indices(&self, i: usize, out: &mut Vec<u32>) -> Result<()> {
+        let (acc, bytes, stride) = self.accessor(i)?;
+        if acc.components != 1 || ![5121, 5123, 5125].contains(&acc.component) {
+            return Err(self.src.err(
+                at("accessors", i),
+                "indices must be a SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
+            ));
+        }
+        out.reserve(acc.count);
+        for k in 0..acc.count {
+            let o = acc.offset + k * stride;
+            out.push(match acc.component {
+                5121 => bytes[o] as u32,
+                5123 => u16::from_le_bytes([bytes[o], bytes[o + 1]]) as u32,
+                _ => u32::from_le_bytes([bytes[o], bytes[o + 1], bytes[o + 2], bytes[o + 3]]),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The bytes a buffer URI names: a base64 `data:` URI or a file beside the glTF.
+fn resolve_uri(src: Src, uri: &str, place: &dyn Fn() -> String) -> Result<Vec<u8>> {
+    if let Some(rest) = uri.strip_prefix("data:") {
+        let (_, payload) = rest
+            .split_once(";base64,")
+            .ok_or_else(|| src.err(place(), "only base64 data URIs are supported"))?;
+        return base64_decode(payload.as_bytes())
+            .map_err(|k| src.err(place(), format!("invalid base64 character at position {k} of the data URI")));
+    }
+    if uri.contains("://") {
+        return Err(src.err(place(), format!("buffer URI '{uri}' is not a local file")));
+    }
+    let name = percent_decode(uri);
+    let file = src.path.parent().unwrap_or(Path::new("")).join(name);
+    std::fs::read(&file).map_err(|e| Error::Io { path: file, source: e })
+}
+
+fn percent_decode(s: &str) -> String {
+    let b = s.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        let hex = |c: u8| (c as char).to_digit(16);
+        if b[i] == b'%' && i + 2 < b.len() {
+            if let (Some(h), Some(l)) = (hex(b[i + 1]), hex(b[i + 2])) {
+                out.push((h * 16 + l) as u8);
+                i += 3;
+                continue;
+            }
+        }
+        out.push(b[i]);
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+const B64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+pub(crate) fn base64_encode(data: &[u8]) -> String {
+    let mut out = String::with_capacity(data.len().div_ceil(3) * 4);
+    for chunk in data.chunks(3) {
+        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
+        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
+        for k in 0..4 {
+            if k <= chunk.len() {
+                out.push(B64[(n >> (18 - 6 * k)) as usize & 63] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+/// Decodes base64 (padding optional); `Err(position)` at the first invalid character.
+pub(crate) fn base64_decode(text: &[u8]) -> Result<Vec<u8>, usize> {
+    let mut out = Vec::with_capacity(text.len() / 4 * 3 + 3);
+    let mut acc = 0u32;
+    let mut bits = 0;
+    let mut padding = false;
+    for (k, &c) in text.iter().enumerate() {
+        let v = match c {
+            b'A'..=b'Z' => c - b'A',
+            b'a'..=b'z' => c - b'a' + 26,
+            b'0'..=b'9' => c - b'0' + 52,
+            b'+' | b'-' => 62,
+            b'/' | b'_' => 63,
+            b'=' => {
+                padding = true;
+                continue;
+            }
+            _ => return Err(k),
+        };
+        if padding {
+            return Err(k);
+        }
+        acc = (acc << 6) | v as u32;
+        bits += 6;
+        if bits >= 8 {
+            bits -= 8;
+            out.push((acc >> bits) as u8);
+            acc &= (1 << bits) - 1;
+        }
+    }
+    Ok(out)
+}
+
+/// The glTF JSON and the binary buffer for a mesh (or its strips).
+fn build(mesh: &Mesh, strips: Option<&StripSet>) -> Result<(Value, Vec<u8>)> {
+    let nv = mesh.positions.len();
+    let mut json = json!({
+        "asset": {"version": "2.0", "generator": "stripkit"},
+        "scene": 0,
+        "scenes": [{"nodes": []}],
+    });
+    if nv == 0 {
+        return Ok((json, Vec::new()));
+    }
+    let wide = nv >= u16::MAX as usize;
+    let index_size = if wide { 4 } else { 2 };
+    // Index runs: (first index, count) in the concatenated index list.
+    let mut index_list: Vec<u32> = Vec::new();
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    match strips {
+        Some(set) => {
+            for s in set.iter().filter(|s| s.len() >= 3) {
+                runs.push((index_list.len(), s.len()));
+                index_list.extend_from_slice(s);
+            }
+        }
+        None => {
+            for t in mesh.triangulate().tris {
+                index_list.extend_from_slice(&t);
+            }
+            if !index_list.is_empty() {
+                runs.push((0, index_list.len()));
+            }
+        }
+    }
+    let mut bin = Vec::with_capacity(nv * 12 + index_list.len() * index_size + 4);
+    let mut lo = [f32::INFINITY; 3];
+    let mut hi = [f32::NEG_INFINITY; 3];
+    for p in &mesh.positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+            bin.extend_from_slice(&p[k].to_le_bytes());
+        }
+    }
+    for &i in &index_list {
+        if wide {
+            bin.extend_from_slice(&i.to_le_bytes());
+        } else {
+            bin.extend_from_slice(&(i as u16).to_le_bytes());
+        }
+    }
+    let mut views = vec![json!({"buffer": 0, "byteOffset": 0, "byteLength": nv * 12, "target": 34962})];
+    let mut accessors = vec![json!({
+        "bufferView": 0, "componentType": 5126, "count": nv, "type": "VEC3", "min": lo, "max": hi,
+    })];
+    let mut primitives = Vec::new();
+    if runs.is_empty() {
+        primitives.push(json!({"attributes": {"POSITION": 0}, "mode": 0}));
+    } else {
+        views.push(json!({
+            "buffer": 0, "byteOffset": nv * 12, "byteLength": index_list.len() * index_size, "target": 34963,
+        }));
+        let mode = if strips.is_some() { 5 } else { 4 };
+        for (first, count) in runs {
+            primitives.push(json!({"attributes": {"POSITION": 0}, "indices": accessors.len(), "mode": mode}));
+            accessors.push(json!({
+                "bufferView": 1, "byteOffset": first * index_size, "componentType": if wide { 5125 } else { 5123 },
+                "count": count, "type": "SCALAR",
+            }));
+        }
+    }
+    json["scenes"] = json!([{"nodes": [0]}]);
+    json["nodes"] = json!([{"mesh": 0}]);
+    json["meshes"] = json!([{"primitives": primitives}]);
+    json["bufferViews"] = Value::Array(views);
+    json["accessors"] = Value::Array(accessors);
+    json["buffers"] = json!([{"byteLength": bin.len()}]);
+    Ok((json, bin))
+}
+
+/// Encodes a mesh as a self-contained `.gltf` (buffer as a base64 data URI).
+pub(crate) fn write_gltf(mesh: &Mesh, strips: Option<&StripSet>) -> Result<Vec<u8>> {
+    let (mut json, bin) = build(mesh, strips)?;
+    if !bin.is_empty() {
+        json["buffers"][0]["uri"] = Value::String(format!("data:application/octet-stream;base64,{}", base64_encode(&bin)));
+    }
+    serde_json::to_vec(&json).map_err(|e| Error::Invalid(format!("cannot encode glTF JSON: {e}")))
+}
+
+/// Encodes a mesh as `.glb`.
+pub(crate) fn write_glb(mesh: &Mesh, strips: Option<&StripSet>) -> Result<Vec<u8>> {
+    let (json, mut bin) = build(mesh, strips)?;
+    let mut text = serde_json::to_vec(&json).map_err(|e| Error::Invalid(format!("cannot encode glTF JSON: {e}")))?;
+    while text.len() % 4 != 0 {
+        text.push(b' ');
+    }
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let total = 12 + 8 + text.len() + if bin.is_empty() { 0 } else { 8 + bin.len() };
+    let total32 = u32::try_from(total).map_err(|_| Error::Invalid(format!("{total} bytes do not fit a GLB file")))?;
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(GLB_MAGIC);
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&total32.to_le_bytes());
+    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
+    out.extend_from_slice(&CHUNK_JSON.to_le_bytes());
+    out.extend_from_slice(&text);
+    if !bin.is_empty() {
+        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+        out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
+        out.extend_from_slice(&bin);
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base64_round_trips_every_length() {
+        for n in 0..20 {
+            let data: Vec<u8> = (0..n).map(|k| (k * 37 + 11) as u8).collect();
+            assert_eq!(base64_decode(base64_encode(&data).as_bytes()).unwrap(), data);
+        }
+        assert_eq!(base64_encode(b"Man"), "TWFu");
+        assert_eq!(base64_encode(b"Ma"), "TWE=");
+        assert_eq!(base64_decode(b"TW!u"), Err(2));
+    }
+
+    #[test]
+    fn percent_escapes_are_decoded() {
+        assert_eq!(percent_decode("my%20mesh.bin"), "my mesh.bin");
+        assert_eq!(percent_decode("100%"), "100%");
+        assert_eq!(percent_decode("a%2"), "a%2");
+    }
+
+    #[test]
+    fn strips_and_fans_become_triangles_with_their_winding() {
+        let positions: Vec<[f32; 3]> = (0..5).map(|i| [i as f32, (i * i) as f32, 0.0]).collect();
+        let bin: Vec<u8> = positions.iter().flatten().flat_map(|c| c.to_le_bytes()).collect();
+        let idx: Vec<u8> = [0u8, 1, 2, 3, 3, 4, 0, 1, 2, 3].to_vec();
+        let mut all = bin.clone();
+        all.extend_from_slice(&idx);
+        let json = json!({
+            "asset": {"version": "2.0"},
+            "buffers": [{"byteLength": all.len(), "uri": format!("data:application/gltf-buffer;base64,{}", base64_encode(&all))}],
+            "bufferViews": [{"buffer": 0, "byteLength": 60}, {"buffer": 0, "byteOffset": 60, "byteLength": 10}],
+            "accessors": [
+                {"bufferView": 0, "componentType": 5126, "count": 5, "type": "VEC3"},
+                {"bufferView": 1, "componentType": 5121, "count": 6, "type": "SCALAR"},
+                {"bufferView": 1, "byteOffset": 6, "componentType": 5121, "count": 4, "type": "SCALAR"}
+            ],
+            "meshes": [{"primitives": [
+                {"attributes": {"POSITION": 0}, "indices": 1, "mode": 5},
+                {"attributes": {"POSITION": 0}, "indices": 2, "mode": 6},
+                {"attributes": {"POSITION": 0}, "mode": 1}
+            ]}]
+        });
+        let m = read_gltf(Path::new("t.gltf"), json.to_string().as_bytes()).unwrap();
+        assert_eq!(m.positions, positions);
+        let faces: Vec<&[u32]> = m.faces().collect();
+        // strip 0 1 2 3 3 4: (0,1,2) (2,1,3), rest degenerate; fan 0 1 2 3: (0,1,2) (0,2,3)
+        assert_eq!(faces, vec![&[0, 1, 2][..], &[2, 1, 3], &[0, 1, 2], &[0, 2, 3]]);
+    }
 }

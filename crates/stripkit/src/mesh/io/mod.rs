@@ -29,7 +29,7 @@ use crate::strip::StripSet;
 use std::io::{Read, Write};
 use std::path::Path;
 
-/// The extensions [`read`] and [`write`] understand, as shown in error messages.
+/// The extensions [`read`] and [`write()`] understand, as shown in error messages.
 pub const SUPPORTED_EXTENSIONS: &str =
     ".obj, .ply, .off, .stl, .gltf, .glb (each optionally followed by .gz)";
 
@@ -38,7 +38,7 @@ pub fn supported_read_extensions() -> &'static str {
     SUPPORTED_EXTENSIONS
 }
 
-/// The extensions [`write`] understands, for help texts and error messages.
+/// The extensions [`write()`] understands, for help texts and error messages.
 pub fn supported_write_extensions() -> &'static str {
     SUPPORTED_EXTENSIONS
 }
@@ -109,6 +109,11 @@ pub fn read(path: &Path) -> Result<Mesh> {
 /// Parses a mesh already in memory (uncompressed) as `format`; `path` names the file
 /// in errors and locates external glTF buffers.
 pub fn read_bytes(path: &Path, format: Format, data: &[u8]) -> Result<Mesh> {
+    // A UTF-8 byte order mark before a text format would hide its first keyword.
+    let data = match format {
+        Format::Obj | Format::Off | Format::Ply | Format::Gltf => data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data),
+        Format::Stl | Format::Glb => data,
+    };
     match format {
         Format::Obj => obj::read(path, data),
         Format::Ply => ply::read(path, data),
@@ -137,9 +142,9 @@ pub fn write(path: &Path, mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> 
     write_with(path, mesh, strips, &WriteOptions::default())
 }
 
-/// [`write`] with options. The mesh's and the strips' indices are checked against the
-/// vertex count first ([`Error::Invalid`] when one is out of range). A name ending in
-/// `.gz` is gzip-compressed.
+/// [`write()`] with options. The mesh is checked first: [`Error::Invalid`] when a face or
+/// strip index is out of range or a coordinate is NaN or infinite (no reader would
+/// accept the file). A name ending in `.gz` is gzip-compressed.
 pub fn write_with(
     path: &Path,
     mesh: &Mesh,
@@ -187,6 +192,10 @@ fn check_indices(mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> {
     {
         return Err(Error::Invalid("mesh faces are malformed (offsets, or a face with fewer than 3 vertices)".into()));
     }
+    if let Some(v) = mesh.positions.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
+        // Every reader refuses these, so writing them would make a file we cannot read.
+        return Err(Error::Invalid(format!("vertex {v} has a NaN or infinite coordinate: {:?}", mesh.positions[v])));
+    }
     if let Some(f) = mesh.faces().position(|f| f.iter().any(|&i| i as usize >= n)) {
         let bad = mesh.face(f).iter().find(|&&i| i as usize >= n).copied().unwrap_or(0);
         return Err(Error::Invalid(format!("face {f} refers to vertex {bad} but the mesh has {n} vertices")));
@@ -229,9 +238,26 @@ mod tests {
     }
 
     #[test]
+    fn a_byte_order_mark_does_not_hide_the_first_line() {
+        let text = b"\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let mesh = read_bytes(Path::new("bom.obj"), Format::Obj, text).unwrap();
+        assert_eq!((mesh.vertex_count(), mesh.face_count()), (3, 1));
+        let text = b"\xEF\xBB\xBFOFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        let mesh = read_bytes(Path::new("bom.off"), Format::Off, text).unwrap();
+        assert_eq!((mesh.vertex_count(), mesh.face_count()), (3, 1));
+    }
+
+    #[test]
     fn writers_refuse_out_of_range_indices() {
         let mesh = Mesh::from_triangles(vec![[0.0; 3]; 3], &[[0, 1, 3]]);
         let e = write_bytes(Format::Obj, &mesh, None, &WriteOptions::default()).unwrap_err();
         assert!(e.to_string().contains("vertex 3"), "{e}");
+        let strips = StripSet::from_strips(&[vec![0, 1, 2, 5]]);
+        let ok = Mesh::from_triangles(vec![[0.0; 3]; 3], &[[0, 1, 2]]);
+        let e = write_bytes(Format::Ply, &ok, Some(&strips), &WriteOptions::default()).unwrap_err();
+        assert!(e.to_string().contains("vertex 5"), "{e}");
+        let nan = Mesh::from_triangles(vec![[0.0; 3], [f32::NAN, 0.0, 0.0], [0.0; 3]], &[[0, 1, 2]]);
+        let e = write_bytes(Format::Stl, &nan, None, &WriteOptions::default()).unwrap_err();
+        assert!(e.to_string().contains("vertex 1 has a NaN"), "{e}");
     }
 }

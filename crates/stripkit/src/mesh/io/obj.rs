@@ -2,13 +2,43 @@
 //! 1-based or negative (relative) indices; polygons are kept. Every other statement
 //! (`vt`, `vn`, `o`, `g`, `usemtl`, `l`, ...) is ignored.
 
-use super::common::{
-    close_face, finite, index_message, is_space, line_at, parse_f32, parse_i64, show, strip_comment,
-    tokens, Lines, Src,
-};
+use super::common::{close_face, finite, index_message, is_space, line_at, parse_f32, parse_i64, show, Src};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use std::path::Path;
+
+/// Walks OBJ text line by line and token by token in a single pass, without
+/// allocating; a `#` at the start of a token ends the line's tokens.
+struct Cursor<'a> {
+    data: &'a [u8],
+    pos: usize,
+}
+
+impl<'a> Cursor<'a> {
+    /// The next token of the current line; `None` at the line's end or at a comment.
+    #[inline]
+    fn token(&mut self) -> Option<&'a [u8]> {
+        let d = self.data;
+        while self.pos < d.len() && is_space(d[self.pos]) {
+            self.pos += 1;
+        }
+        if self.pos >= d.len() || d[self.pos] == b'\n' || d[self.pos] == b'#' {
+            return None;
+        }
+        let start = self.pos;
+        while self.pos < d.len() && !is_space(d[self.pos]) && d[self.pos] != b'\n' {
+            self.pos += 1;
+        }
+        Some(&d[start..self.pos])
+    }
+
+    /// Moves to the start of the next line.
+    #[inline]
+    fn next_line(&mut self) {
+        let rest = &self.data[self.pos..];
+        self.pos += rest.iter().position(|&b| b == b'\n').map_or(rest.len(), |i| i + 1);
+    }
+}
 
 /// Parses an OBJ file held in memory.
 pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
@@ -17,15 +47,15 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
     // Faces may name vertices defined later in the file, so positive indices are
     // range-checked once at the end; this is the largest seen (0-based).
     let mut max_index: u64 = 0;
-    for (ln, line) in Lines::new(data) {
-        let start = line.iter().position(|&b| !is_space(b)).unwrap_or(line.len());
-        let line = &line[start..];
-        match line {
-            [b'v', c, rest @ ..] if is_space(*c) => {
-                let mut toks = tokens(strip_comment(rest));
+    let mut c = Cursor { data, pos: 0 };
+    let mut ln = 0;
+    while c.pos < data.len() {
+        ln += 1;
+        match c.token() {
+            Some(b"v") => {
                 let mut p = [0.0f32; 3];
                 for (k, slot) in p.iter_mut().enumerate() {
-                    let tok = toks.next().ok_or_else(|| {
+                    let tok = c.token().ok_or_else(|| {
                         src.err(line_at(ln), format!("vertex has {k} coordinates, needs 3"))
                     })?;
                     let v = parse_f32(tok).ok_or_else(|| {
@@ -38,11 +68,10 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
                 }
                 mesh.positions.push(p);
             }
-            [b'v'] => return Err(src.err(line_at(ln), "vertex has 0 coordinates, needs 3")),
-            [b'f', c, rest @ ..] if is_space(*c) => {
+            Some(b"f") => {
                 let first = mesh.face_indices.len();
                 let defined = mesh.positions.len() as i64;
-                for tok in tokens(strip_comment(rest)) {
+                while let Some(tok) = c.token() {
                     let vpart = match tok.iter().position(|&b| b == b'/') {
                         Some(i) => &tok[..i],
                         None => tok,
@@ -81,9 +110,9 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
                 }
                 close_face(&mut mesh).map_err(|w| src.err(line_at(ln), w))?;
             }
-            [b'f'] => return Err(src.err(line_at(ln), "face has 0 vertices, needs at least 3")),
             _ => {}
         }
+        c.next_line();
     }
     let nv = mesh.positions.len();
     if mesh.face_count() > 0 && max_index as usize >= nv {
@@ -91,24 +120,25 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
         let face = mesh.faces().position(|f| f.iter().any(|&i| i as usize >= nv)).unwrap_or(0);
         let bad = mesh.face(face).iter().copied().find(|&i| i as usize >= nv).unwrap_or(0);
         let line = face_line(data, face);
-        return Err(src.err(line_at(line), index_message(face, bad as u64 + 1, nv)));
+        return Err(src.err(line_at(line), index_message(face as u64, bad as i64 + 1, nv)));
     }
     Ok(mesh)
 }
 
 /// The line number of the `face`-th `f` statement.
 fn face_line(data: &[u8], face: usize) -> usize {
+    let mut c = Cursor { data, pos: 0 };
     let mut seen = 0;
-    for (ln, line) in Lines::new(data) {
-        let start = line.iter().position(|&b| !is_space(b)).unwrap_or(line.len());
-        if let [b'f', c, ..] = &line[start..] {
-            if is_space(*c) {
-                if seen == face {
-                    return ln;
-                }
-                seen += 1;
+    let mut ln = 0;
+    while c.pos < data.len() {
+        ln += 1;
+        if c.token() == Some(b"f") {
+            if seen == face {
+                return ln;
             }
+            seen += 1;
         }
+        c.next_line();
     }
     0
 }

@@ -6,72 +6,99 @@
 //! colour / normal / texture variant without knowing how many numbers each carries.
 
 use super::common::{
-    capped, close_face, finite, index_message, line_at, parse_count, parse_f32, show, strip_comment,
-    tokens, Lines, Src,
+    capped, close_face, finite, index_message, is_space, line_at, parse_count, parse_f32, show, Src,
 };
 use super::obj::{push_f32, push_u64};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use std::path::Path;
 
+/// A token cursor over OFF text: skips whitespace, line ends and `#` comments, and
+/// can drop the rest of the current line (where optional colours and normals live).
+struct Cursor<'a> {
+    data: &'a [u8],
+    pos: usize,
+    line: usize,
+    /// Line of the last token found: where an unexpected end of file is reported.
+    token_line: usize,
+}
+
+impl<'a> Cursor<'a> {
+    fn token(&mut self) -> Option<&'a [u8]> {
+        let d = self.data;
+        while self.pos < d.len() {
+            match d[self.pos] {
+                b'\n' => self.line += 1,
+                b'#' => {
+                    self.skip_line();
+                    continue;
+                }
+                b if is_space(b) => {}
+                _ => break,
+            }
+            self.pos += 1;
+        }
+        let start = self.pos;
+        while self.pos < d.len() && !is_space(d[self.pos]) && d[self.pos] != b'\n' && d[self.pos] != b'#' {
+            self.pos += 1;
+        }
+        if start == self.pos {
+            self.line = self.token_line;
+            return None;
+        }
+        self.token_line = self.line;
+        Some(&d[start..self.pos])
+    }
+
+    /// Moves to the line end (the newline itself is consumed by the next `token`).
+    fn skip_line(&mut self) {
+        let rest = &self.data[self.pos..];
+        self.pos += rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+    }
+}
+
 /// Parses an OFF file held in memory.
+///
+/// Records may span lines (some files break long faces); values after a vertex's
+/// coordinates or a face's indices on the same line (colours, normals, texture
+/// coordinates) are ignored.
 pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
     let src = Src { path };
-    // Non-empty lines with comments removed.
-    let mut lines = Lines::new(data)
-        .map(|(ln, l)| (ln, strip_comment(l)))
-        .filter(|(_, l)| tokens(l).next().is_some());
-
-    let (ln, header) = lines.next().ok_or_else(|| src.err("line 1", "empty file, expected the OFF keyword"))?;
-    let mut toks = tokens(header);
-    let keyword = toks.next().unwrap_or_default();
-    let homogeneous = parse_keyword(keyword)
-        .ok_or_else(|| src.err(line_at(ln), format!("expected an OFF keyword such as OFF or COFF, found '{}'", show(keyword))))?;
-    // Counts follow on the same line or on the next one.
-    let mut counts: Vec<&[u8]> = toks.collect();
-    let mut counts_line = ln;
-    if counts.is_empty() {
-        let (ln2, l) = lines.next().ok_or_else(|| src.err(line_at(ln), "file ends before the vertex and face counts"))?;
-        counts = tokens(l).collect();
-        counts_line = ln2;
-    }
-    if counts.len() < 2 {
-        return Err(src.err(line_at(counts_line), "expected the counts 'vertices faces [edges]'"));
-    }
-    let count = |tok: &[u8], what: &str| {
-        parse_count(tok)
-            .ok_or_else(|| src.err(line_at(counts_line), format!("malformed {what} count '{}'", show(tok))))
+    let mut c = Cursor { data, pos: 0, line: 1, token_line: 1 };
+    let keyword = c.token().ok_or_else(|| src.err("line 1", "empty file, expected the OFF keyword"))?;
+    let homogeneous = parse_keyword(keyword).ok_or_else(|| {
+        src.err(line_at(c.line), format!("expected an OFF keyword such as OFF or COFF, found '{}'", show(keyword)))
+    })?;
+    let mut count = |what: &str| {
+        let tok = c.token().ok_or_else(|| src.err(line_at(c.line), format!("file ends before the {what} count")))?;
+        parse_count(tok).ok_or_else(|| src.err(line_at(c.line), format!("malformed {what} count '{}'", show(tok))))
     };
-    let nv = count(counts[0], "vertex")?;
-    let nf = count(counts[1], "face")?;
+    let nv = count("vertex")?;
+    let nf = count("face")?;
+    c.skip_line(); // the edge count, unused
     if nv > u32::MAX as u64 {
-        return Err(src.err(line_at(counts_line), format!("{nv} vertices do not fit 32-bit indices")));
+        return Err(src.err(line_at(c.line), format!("{nv} vertices do not fit 32-bit indices")));
     }
 
     let mut mesh = Mesh::new();
-    // A vertex line needs at least 6 bytes ("0 0 0\n"), a face line 8.
+    // A vertex takes at least 6 bytes ("0 0 0\n"), a face 8 ("3 0 1 2\n").
     mesh.positions.reserve(capped(nv, data.len(), 6));
     mesh.face_offsets.reserve(capped(nf, data.len(), 8));
     mesh.face_indices.reserve(capped(nf, data.len(), 8) * 3);
-    let mut last_line = counts_line;
+    let dims = if homogeneous { 4 } else { 3 };
     for v in 0..nv {
-        let (ln, l) = lines.next().ok_or_else(|| {
-            src.err(line_at(last_line), format!("file ends after {v} of {nv} announced vertices"))
-        })?;
-        last_line = ln;
-        let mut toks = tokens(l);
         let mut p = [0.0f32; 4];
-        let dims = if homogeneous { 4 } else { 3 };
         for (k, slot) in p.iter_mut().take(dims).enumerate() {
-            let tok = toks
-                .next()
-                .ok_or_else(|| src.err(line_at(ln), format!("vertex {v} has {k} coordinates, needs {dims}")))?;
-            let x = parse_f32(tok).ok_or_else(|| src.err(line_at(ln), format!("malformed number '{}'", show(tok))))?;
-            *slot = finite(x, tok).map_err(|w| src.err(line_at(ln), w))?;
+            let tok = c.token().ok_or_else(|| {
+                src.err(line_at(c.line), format!("file ends in vertex {v} of {nv} announced vertices (after {k} coordinates)"))
+            })?;
+            let x = parse_f32(tok).ok_or_else(|| src.err(line_at(c.line), format!("malformed number '{}'", show(tok))))?;
+            *slot = finite(x, tok).map_err(|w| src.err(line_at(c.line), w))?;
         }
+        c.skip_line();
         if homogeneous {
             if p[3] == 0.0 {
-                return Err(src.err(line_at(ln), format!("vertex {v} has homogeneous coordinate 0")));
+                return Err(src.err(line_at(c.line), format!("vertex {v} has homogeneous coordinate 0")));
             }
             for k in 0..3 {
                 p[k] /= p[3];
@@ -80,29 +107,27 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
         mesh.positions.push([p[0], p[1], p[2]]);
     }
     for f in 0..nf {
-        let (ln, l) = lines.next().ok_or_else(|| {
-            src.err(line_at(last_line), format!("file ends after {f} of {nf} announced faces"))
-        })?;
-        last_line = ln;
-        let mut toks = tokens(l);
-        let ktok = toks.next().unwrap_or_default();
+        let ktok = c
+            .token()
+            .ok_or_else(|| src.err(line_at(c.line), format!("file ends after {f} of {nf} announced faces")))?;
         let k = parse_count(ktok)
-            .ok_or_else(|| src.err(line_at(ln), format!("malformed vertex count '{}'", show(ktok))))?;
+            .ok_or_else(|| src.err(line_at(c.line), format!("malformed vertex count '{}'", show(ktok))))?;
         if k < 3 {
-            return Err(src.err(line_at(ln), format!("face {f} has {k} vertices, needs at least 3")));
+            return Err(src.err(line_at(c.line), format!("face {f} has {k} vertices, needs at least 3")));
         }
         for j in 0..k {
-            let tok = toks
-                .next()
-                .ok_or_else(|| src.err(line_at(ln), format!("face {f} announces {k} vertices but lists {j}")))?;
+            let tok = c.token().ok_or_else(|| {
+                src.err(line_at(c.line), format!("file ends in face {f}, which announces {k} vertices but lists {j}"))
+            })?;
             let i = parse_count(tok)
-                .ok_or_else(|| src.err(line_at(ln), format!("malformed vertex index '{}'", show(tok))))?;
+                .ok_or_else(|| src.err(line_at(c.line), format!("malformed vertex index '{}'", show(tok))))?;
             if i >= nv {
-                return Err(src.err(line_at(ln), index_message(f as usize, i, nv as usize)));
+                return Err(src.err(line_at(c.line), index_message(f, i as i64, nv as usize)));
             }
             mesh.face_indices.push(i as u32);
         }
-        close_face(&mut mesh).map_err(|w| src.err(line_at(ln), w))?;
+        c.skip_line();
+        close_face(&mut mesh).map_err(|w| src.err(line_at(c.line), w))?;
     }
     Ok(mesh)
 }
@@ -179,6 +204,7 @@ mod tests {
             "STOFF\n4 2 0\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n\n3 0 1 2\n3 0 2 3\n",
             "4OFF\n4 2 0\n0 0 0 2\n2 0 0 2\n2 2 0 2\n0 2 0 2\n3 0 1 2\n3 0 2 3\n",
             "OFF\r\n4 2 0\r\n0 0 0\r\n1 0 0\r\n1 1 0\r\n0 1 0\r\n3 0 1 2\r\n3 0 2 3\r\n",
+            "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 \n1\n 2\n3 0 2 3 # last\n",
         ];
         for v in variants {
             assert_eq!(parse(v).unwrap(), expected, "{v}");
@@ -192,7 +218,7 @@ mod tests {
         assert_eq!(what, "face 0 refers to vertex 7 but the file has 3 vertices");
         let (at, what) = format_error("OFF\n3 1 0\n0 0 0\n1 0 0\n");
         assert_eq!(at, "line 4");
-        assert!(what.contains("2 of 3"), "{what}");
+        assert!(what.contains("vertex 2 of 3"), "{what}");
         let (_, what) = format_error("OFF\n3 1000000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
         assert!(what.contains("1 of 1000000000000 announced faces"), "{what}");
         let (_, what) = format_error("OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n");
@@ -205,6 +231,11 @@ mod tests {
         assert!(what.contains("malformed face count"), "{what}");
         let (_, what) = format_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n");
         assert!(what.contains("lists 2"), "{what}");
+        let (_, what) = format_error("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 3 4 5\n");
+        assert!(what.contains("after 1 of 2"), "{what}");
+        let (at, what) = format_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 x\n");
+        assert_eq!(at, "line 6");
+        assert!(what.contains("'x'"), "{what}");
     }
 
     #[test]
