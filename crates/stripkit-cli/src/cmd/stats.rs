@@ -1,10 +1,68 @@
-//! `stripkit stats` (not built yet).
+//! `stripkit stats`: a mesh's topology facts, as text or one JSON object.
+
+use anyhow::Context;
+use std::path::PathBuf;
+use std::time::Instant;
+use stripkit::topology::MeshFacts;
 
 /// Arguments of `stripkit stats`.
 #[derive(clap::Args)]
-pub struct Args {}
+#[command(after_help = "Definitions (as in ../shared/models/README.md):
+  boundary edge       an edge with exactly one incident face
+  boundary loop       a closed walk along boundary edges (pinch vertices split per fan)
+  non-manifold edge   an edge with three or more incident faces
+  non-manifold vertex a pinch: its faces form more than one edge-connected fan
+  components          edge-connected groups of faces (unreferenced vertices form none)
+  euler               V_used - E + F
+  degenerate face     a repeated vertex index or zero area
+  duplicate face      same vertices as an earlier face (any rotation or orientation)
+  consistently oriented  no two-face edge is traversed in the same direction twice
+
+Example: stripkit stats ../shared/models/bunny.obj --json")]
+pub struct Args {
+    /// The mesh file (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz).
+    pub file: PathBuf,
+    /// Print one JSON object on stdout instead of text (adds the file name and the
+    /// load and analysis times in milliseconds).
+    #[arg(long)]
+    pub json: bool,
+}
 
 /// Runs the command.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`stripkit stats` is not implemented yet")
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let start = Instant::now();
+    let mesh = stripkit::mesh::io::read(&args.file)?;
+    let loaded = Instant::now();
+    let facts = MeshFacts::of(&mesh).with_context(|| format!("{}: malformed mesh", args.file.display()))?;
+    let done = Instant::now();
+    let load_ms = (loaded - start).as_secs_f64() * 1e3;
+    let facts_ms = (done - loaded).as_secs_f64() * 1e3;
+    if args.json {
+        let mut value = serde_json::to_value(&facts)?;
+        if let Some(obj) = value.as_object_mut() {
+            obj.insert("file".into(), args.file.display().to_string().into());
+            obj.insert("load_ms".into(), serde_json::json!(round3(load_ms)));
+            obj.insert("facts_ms".into(), serde_json::json!(round3(facts_ms)));
+        }
+        print_out(&format!("{}\n", serde_json::to_string_pretty(&value)?))
+    } else {
+        print_out(&format!(
+            "{}\n{facts}\ntime                  {load_ms:.1} ms to load, {facts_ms:.1} ms to analyse\n",
+            args.file.display()
+        ))
+    }
+}
+
+/// Writes to stdout; a closed pipe (`stats ... | head`) is not an error.
+fn print_out(text: &str) -> anyhow::Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
+        _ => Ok(()),
+    }
+}
+
+fn round3(x: f64) -> f64 {
+    (x * 1e3).round() / 1e3
 }

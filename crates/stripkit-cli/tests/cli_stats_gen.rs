@@ -1,0 +1,138 @@
+//! `stripkit stats` and `stripkit gen` through the built binary.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn stripkit() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_stripkit"))
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stripkit-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn stats_json(path: &std::path::Path) -> serde_json::Value {
+    let out = stripkit().arg("stats").arg(path).arg("--json").output().unwrap();
+    assert!(out.status.success(), "stats failed: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("one JSON object on stdout")
+}
+
+fn gen_ok(args: &[&str], output: &std::path::Path) -> String {
+    let out = stripkit().arg("gen").args(args).arg("-o").arg(output).output().unwrap();
+    assert!(out.status.success(), "gen {args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+#[test]
+fn gen_then_stats_reports_the_known_figures() {
+    let dir = temp_dir("gen");
+    let ico = dir.join("ico.obj");
+    let line = gen_ok(&["icosphere", "2"], &ico);
+    assert!(line.contains("162 vertices") && line.contains("320 faces"), "{line}");
+    let j = stats_json(&ico);
+    assert_eq!(j["vertices"], 162);
+    assert_eq!(j["faces"], 320);
+    assert_eq!(j["triangles"], 320);
+    assert_eq!(j["quads"], 0);
+    assert_eq!(j["polygons"], 0);
+    assert_eq!(j["unreferenced_vertices"], 0);
+    assert_eq!(j["boundary_edges"], 0);
+    assert_eq!(j["boundary_loops"], 0);
+    assert_eq!(j["nonmanifold_edges"], 0);
+    assert_eq!(j["nonmanifold_vertices"], 0);
+    assert_eq!(j["components"], 1);
+    assert_eq!(j["euler_characteristic"], 2);
+    assert_eq!(j["degenerate_faces"], 0);
+    assert_eq!(j["duplicate_faces"], 0);
+    assert_eq!(j["consistently_oriented"], true);
+
+    let grid = dir.join("grid.off");
+    gen_ok(&["grid", "7", "3", "--quads"], &grid);
+    let j = stats_json(&grid);
+    assert_eq!((j["quads"].as_u64(), j["boundary_edges"].as_u64()), (Some(21), Some(20)));
+    assert_eq!(j["boundary_loops"], 1);
+
+    let torus = dir.join("torus.obj");
+    gen_ok(&["torus", "--major", "9", "--minor", "5"], &torus);
+    let j = stats_json(&torus);
+    assert_eq!((j["triangles"].as_u64(), j["euler_characteristic"].as_i64()), (Some(90), Some(0)));
+
+    let torus_arg = torus.to_str().unwrap();
+    let sub = dir.join("sub.obj");
+    gen_ok(&["subdivide", torus_arg, "--scheme", "loop", "--levels", "2"], &sub);
+    let j = stats_json(&sub);
+    assert_eq!((j["triangles"].as_u64(), j["euler_characteristic"].as_i64()), (Some(90 * 16), Some(0)));
+    assert_eq!(j["consistently_oriented"], true);
+
+    let cc = dir.join("cc.obj");
+    gen_ok(&["subdivide", torus_arg, "--scheme", "catmull-clark"], &cc);
+    assert_eq!(stats_json(&cc)["quads"], 270);
+
+    let cube = dir.join("cube.obj");
+    gen_ok(&["cube", "--levels", "2"], &cube);
+    let j = stats_json(&cube);
+    assert_eq!((j["quads"].as_u64(), j["euler_characteristic"].as_i64()), (Some(96), Some(2)));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bad_input_exits_with_status_two_and_says_why() {
+    let out = stripkit().args(["stats", "/nonexistent/mesh.obj"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/mesh.obj"));
+
+    let dir = temp_dir("bad");
+    let broken = dir.join("broken.obj");
+    std::fs::write(&broken, "v 0 0 0\nv 1 0 0\nf 1 2 9\n").unwrap();
+    let out = stripkit().arg("stats").arg(&broken).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(!String::from_utf8_lossy(&out.stderr).is_empty());
+
+    // Loop subdivision of a quad mesh is refused, not attempted.
+    let quads = dir.join("q.obj");
+    gen_ok(&["grid", "2", "2", "--quads"], &quads);
+    let out = stripkit()
+        .args(["gen", "subdivide"])
+        .arg(&quads)
+        .args(["--scheme", "loop", "-o"])
+        .arg(dir.join("x.obj"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("triangle"));
+
+    let out = stripkit().args(["gen", "icosphere", "40", "-o"]).arg(dir.join("big.obj")).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let out = stripkit().args(["gen", "torus", "--major", "2", "-o"]).arg(dir.join("t.obj")).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let out = stripkit().args(["gen", "grid", "100000", "100000", "-o"]).arg(dir.join("g.obj")).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn stats_on_the_models_matches_the_readme() {
+    let Some(dir) = stripkit::test_support::models_dir() else { return };
+    let j = stats_json(&dir.join("bunny.obj"));
+    assert_eq!(j["vertices"], 35947);
+    assert_eq!(j["faces"], 69451);
+    assert_eq!(j["boundary_edges"], 223);
+    assert_eq!(j["boundary_loops"], 5);
+    assert_eq!(j["unreferenced_vertices"], 1113);
+    assert_eq!(j["euler_characteristic"], -3);
+    let out = stripkit().arg("stats").arg(dir.join("cow.obj")).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("non-manifold vertices 1"), "{text}");
+}
+
+#[test]
+fn help_explains_the_million_triangle_command() {
+    let out = stripkit().args(["gen", "--help"]).output().unwrap();
+    let help = String::from_utf8_lossy(&out.stdout);
+    assert!(help.contains("--scheme loop --levels 2"), "{help}");
+    let out = stripkit().args(["gen", "subdivide", "--help"]).output().unwrap();
+    let help = String::from_utf8_lossy(&out.stdout);
+    assert!(help.contains("catmull-clark") && help.contains("--levels"), "{help}");
+}
