@@ -185,3 +185,27 @@ fn boundary_positions(m: &Mesh) -> Vec<[f32; 3]> {
     out.dedup();
     out.iter().map(|&v| m.positions[v as usize]).collect()
 }
+
+#[test]
+fn pair_contraction_joins_close_pieces_only_when_asked() {
+    // Two grids side by side with a hairline gap between them.
+    let left = grid(6, 6, |_, _| 0.0);
+    let mut right = grid(6, 6, |_, _| 0.0);
+    for p in right.positions.iter_mut() {
+        p[0] += 1.001;
+    }
+    let n = left.positions.len() as u32;
+    let mut positions = left.positions.clone();
+    positions.extend_from_slice(&right.positions);
+    let mut tris = left.triangulate().tris;
+    tris.extend(right.triangulate().tris.iter().map(|t| t.map(|v| v + n)));
+    let mesh = Mesh::from_triangles(positions, &tris);
+    let joined = |s: &Simplified| s.sequence.collapses.iter().any(|c| (c.removed < n) != (c.kept < n));
+    let opts = Options { target: Target::Ratio(0.5), ..Options::default() };
+    let off = simplify(&mesh, &opts, &mut |_| {}).unwrap();
+    assert!(!joined(&off));
+    let opts = Options { target: Target::Ratio(0.5), pair_distance: Some(0.01), boundary_weight: 0.0, ..Options::default() };
+    let on = simplify(&mesh, &opts, &mut |_| {}).unwrap();
+    assert!(joined(&on), "no pair across the gap was contracted");
+    assert!(on.sequence.replay(&mesh, on.sequence.len()).unwrap().to_mesh() == on.mesh);
+}
