@@ -21,16 +21,24 @@ const KIND_EDGE_REVERSED: u8 = 1;
 /// A non-edge vertex pair (pair contraction).
 const KIND_PAIR: u8 = 2;
 
-/// A heap entry; valid while both vertices still have the versions it was made with.
+/// A heap entry, 16 bytes (the heap is the hot spot: smaller entries, fewer cache
+/// misses). Valid while both vertices still have the versions it was made with; the
+/// versions are kept modulo 2^15, and a wrapped stale entry is harmless because the
+/// collapse is re-planned and re-checked when popped.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 struct Entry {
-    /// Bits of a non-negative f64: they order like the number.
-    cost: u64,
+    /// Bits of the non-negative cost as f32: they order like the number.
+    cost: u32,
     removed: u32,
     kept: u32,
-    version_removed: u32,
-    version_kept: u32,
-    kind: u8,
+    /// Removed vertex's version (15 bits), kept vertex's version (15 bits), kind (2 bits).
+    tag: u32,
+}
+
+const VERSION_MASK: u32 = 0x7FFF;
+
+fn tag(version_removed: u32, version_kept: u32, kind: u8) -> u32 {
+    ((version_removed & VERSION_MASK) << 17) | ((version_kept & VERSION_MASK) << 2) | kind as u32
 }
 
 enum Verdict {
@@ -131,12 +139,10 @@ impl State {
 
     fn push_planned(&mut self, cost: f64, removed: u32, kept: u32, kind: u8) {
         self.heap.push(Reverse(Entry {
-            cost: cost.to_bits(),
+            cost: (cost as f32).to_bits(),
             removed,
             kept,
-            version_removed: self.version[removed as usize],
-            version_kept: self.version[kept as usize],
-            kind,
+            tag: tag(self.version[removed as usize], self.version[kept as usize], kind),
         }));
     }
 
@@ -516,25 +522,29 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
     while live > target && sequence.len() < max_collapses {
         let Some(Reverse(e)) = st.heap.pop() else { break };
         let (r, k) = (e.removed, e.kept);
+        let kind = (e.tag & 3) as u8;
         if !st.alive[r as usize]
             || !st.alive[k as usize]
-            || st.version[r as usize] != e.version_removed
-            || st.version[k as usize] != e.version_kept
+            || tag(st.version[r as usize], st.version[k as usize], kind) != e.tag
         {
             continue;
         }
-        let cost = f64::from_bits(e.cost);
+        let (planned_cost, pr, pk, p) = st.plan(r, k);
+        // The plan is a pure function of the versions, so it names the same pair;
+        // a reversed entry forces the other direction.
+        let (r, k, p, cost) = if (pr, pk) == (r, k) {
+            (r, k, p, planned_cost)
+        } else {
+            let q = st.quadric[r as usize].sum(&st.quadric[k as usize]);
+            (r, k, st.pos[k as usize], q.eval(st.pos[k as usize]))
+        };
         if cost > max_cost {
             break;
         }
-        let (_, pr, pk, p) = st.plan(r, k);
-        // The plan is a pure function of the versions, so it names the same pair;
-        // a reversed entry forces the other direction.
-        let (r, k, p) = if (pr, pk) == (r, k) { (r, k, p) } else { (r, k, st.pos[k as usize]) };
-        match st.check(r, k, p, e.kind == KIND_PAIR) {
+        match st.check(r, k, p, kind == KIND_PAIR) {
             Verdict::Stale => continue,
             Verdict::Refused => {
-                if e.kind == KIND_EDGE && options.placement == Placement::Endpoint {
+                if kind == KIND_EDGE && options.placement == Placement::Endpoint {
                     // Try the other direction: k moves onto r.
                     let q = st.quadric[r as usize].sum(&st.quadric[k as usize]);
                     let c = q.eval(st.pos[r as usize]);
