@@ -3,7 +3,7 @@
 //!
 //! * Per-vertex quadrics from area-weighted face planes; boundary edges add penalty
 //!   planes perpendicular to their face, so borders keep their shape.
-//! * Candidates sit in a binary heap keyed by error with lazy invalidation (a vertex
+//! * Candidates sit in a 4-ary min-heap keyed by error with lazy invalidation (a vertex
 //!   version stamp per endpoint), O(n log n) overall.
 //! * A collapse is refused when it would flip a triangle (against its current normal or
 //!   its ancestor's in the input), make it degenerate, break the link condition
