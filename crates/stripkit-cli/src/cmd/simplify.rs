@@ -1,10 +1,120 @@
-//! `stripkit simplify` (not built yet).
+//! `stripkit simplify`: quadric-error edge collapse down to a target, writing the
+//! simplified mesh and (optionally) the collapse sequence.
+
+use anyhow::Context;
+use clap::ValueEnum;
+use std::path::PathBuf;
+use std::time::Instant;
+use stripkit::simplify::{simplify, Options, Placement, Target};
+
+/// Where a collapse puts the surviving vertex.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum PlacementArg {
+    /// Half-edge collapse: the removed vertex moves onto the kept one; no new
+    /// positions (what level-of-detail strips need).
+    Endpoint,
+    /// The quadric's minimiser (best of both ends and the midpoint when singular).
+    Optimal,
+}
 
 /// Arguments of `stripkit simplify`.
 #[derive(clap::Args)]
-pub struct Args {}
+#[command(group(clap::ArgGroup::new("target").required(true).args(["ratio", "triangles", "error"])))]
+pub struct Args {
+    /// Input mesh (OBJ, OFF, ...; `.gz` is decompressed). Polygons are fanned into triangles.
+    pub file: PathBuf,
+    /// Keep at most this fraction of the triangles (0 to 1), e.g. 0.1.
+    #[arg(long)]
+    pub ratio: Option<f64>,
+    /// Keep at most this many triangles.
+    #[arg(long)]
+    pub triangles: Option<usize>,
+    /// Collapse while the cheapest collapse costs at most this quadric error (sum of
+    /// squared distances to the original planes, weighted by their area).
+    #[arg(long)]
+    pub error: Option<f64>,
+    /// Survivor placement: `endpoint` keeps input positions (and ids), `optimal`
+    /// moves the survivor to the quadric's minimiser.
+    #[arg(long, value_enum, default_value = "endpoint")]
+    pub placement: PlacementArg,
+    /// Weight of the boundary penalty planes (0 lets borders move freely).
+    #[arg(long, default_value_t = 100.0)]
+    pub boundary_weight: f64,
+    /// Also contract vertex pairs closer than this distance that share no edge
+    /// (QSlim's pair contraction; may join pieces). Off by default.
+    #[arg(long)]
+    pub pair_distance: Option<f64>,
+    /// Output mesh; vertex ids are kept (removed vertices stay, unreferenced).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Write the collapse sequence here: `.json` for JSON, anything else for the
+    /// compact binary format.
+    #[arg(long)]
+    pub sequence: Option<PathBuf>,
+    /// Print one JSON object (triangles_in, triangles_out, collapses, max_error, ms) on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
 
 /// Runs the command.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`stripkit simplify` is not implemented yet")
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let target = match (args.ratio, args.triangles, args.error) {
+        (Some(r), _, _) => Target::Ratio(r),
+        (_, Some(t), _) => Target::Triangles(t),
+        (_, _, Some(e)) => Target::Error(e),
+        _ => anyhow::bail!("give one of --ratio, --triangles, --error"),
+    };
+    let placement = match args.placement {
+        PlacementArg::Endpoint => Placement::Endpoint,
+        PlacementArg::Optimal => Placement::Optimal,
+    };
+    let mesh = stripkit::mesh::io::read(&args.file)?;
+    let options = Options {
+        target,
+        placement,
+        boundary_weight: args.boundary_weight,
+        pair_distance: args.pair_distance,
+        max_collapses: None,
+    };
+    let bar = indicatif::ProgressBar::with_draw_target(Some(1000), indicatif::ProgressDrawTarget::stderr());
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("simplify {bar:40} {percent:>3}% {elapsed}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let show = mesh.triangle_count() > 200_000;
+    let start = Instant::now();
+    let result = simplify(&mesh, &options, &mut |f| {
+        if show {
+            bar.set_position((f * 1000.0) as u64);
+        }
+    })
+    .with_context(|| format!("simplifying {}", args.file.display()))?;
+    let ms = start.elapsed().as_secs_f64() * 1e3;
+    bar.finish_and_clear();
+    stripkit::mesh::io::write(&args.output, &result.mesh, None)?;
+    if let Some(seq) = &args.sequence {
+        result.sequence.write(seq)?;
+    }
+    if args.json {
+        let out = serde_json::json!({
+            "triangles_in": result.triangles_in,
+            "triangles_out": result.triangles_out(),
+            "collapses": result.sequence.len(),
+            "max_error": result.max_error,
+            "placement": format!("{:?}", placement).to_lowercase(),
+            "ms": ms,
+        });
+        println!("{out}");
+    } else {
+        println!(
+            "{}: {} -> {} triangles, {} collapses, max error {:.3e}, {:.1} ms",
+            args.file.display(),
+            result.triangles_in,
+            result.triangles_out(),
+            result.sequence.len(),
+            result.max_error,
+            ms
+        );
+    }
+    Ok(())
 }

@@ -1,0 +1,131 @@
+//! Quadric-error-metric edge collapse (Garland and Heckbert 1997) that records its
+//! collapse sequence, the input of the multiresolution strip models in [`crate::lod`].
+//!
+//! * Per-vertex quadrics from area-weighted face planes; boundary edges add penalty
+//!   planes perpendicular to their face, so borders keep their shape.
+//! * Candidates sit in a 4-ary min-heap keyed by error with lazy invalidation (a vertex
+//!   version stamp per endpoint), O(n log n) overall.
+//! * A collapse is refused when it would flip a triangle (against its current normal or
+//!   its ancestor's in the input), make it degenerate, break the link condition
+//!   (non-manifold result), pinch a boundary or duplicate a triangle.
+//! * [`Placement::Endpoint`] is a half-edge collapse: the removed vertex moves onto the
+//!   kept one, no new positions (what LoD strips need). [`Placement::Optimal`] puts the
+//!   survivor at the quadric's minimiser, or at the best of both ends and the midpoint
+//!   when that system is singular.
+//!
+//! Every collapse is recorded in a [`CollapseSequence`]; [`CollapseSequence::replay`]
+//! of its first `k` records rebuilds exactly the simplifier's mesh after `k` collapses.
+//! Vertex ids never change: the output keeps all vertex records (removed ones become
+//! unreferenced), triangles keep their input order.
+
+mod collapse;
+pub mod quadric;
+mod sequence;
+
+pub use sequence::{Collapse, CollapseSequence, Replayed};
+
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+
+/// Where the surviving vertex of a collapse goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Placement {
+    /// Half-edge collapse: the removed vertex moves onto the kept one, which keeps its
+    /// id and position.
+    #[default]
+    Endpoint,
+    /// The point minimising the summed quadric (fallback: best of the two ends and
+    /// their midpoint).
+    Optimal,
+}
+
+/// When to stop collapsing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Target {
+    /// Keep at most this fraction of the input triangles (0..=1).
+    Ratio(f64),
+    /// Keep at most this many triangles.
+    Triangles(usize),
+    /// Collapse while the cheapest collapse costs at most this quadric error.
+    Error(f64),
+}
+
+/// Options of [`simplify`].
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// When to stop.
+    pub target: Target,
+    /// Survivor placement.
+    pub placement: Placement,
+    /// Weight of the boundary penalty planes, relative to face planes of the same area
+    /// (each boundary edge adds a plane weighted `boundary_weight * length^2`).
+    pub boundary_weight: f64,
+    /// QSlim's pair contraction: also consider vertex pairs closer than this distance
+    /// that share no edge (joins separate pieces; may create non-manifold vertices).
+    /// `None` (the default) contracts edges only.
+    pub pair_distance: Option<f64>,
+    /// Stop after this many collapses in any case.
+    pub max_collapses: Option<usize>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            target: Target::Ratio(0.5),
+            placement: Placement::Endpoint,
+            boundary_weight: 100.0,
+            pair_distance: None,
+            max_collapses: None,
+        }
+    }
+}
+
+/// What [`simplify`] returns.
+#[derive(Clone, Debug)]
+pub struct Simplified {
+    /// The simplified triangle mesh: all input vertex records (removed vertices
+    /// unreferenced, survivors at their final positions), surviving triangles in input
+    /// order.
+    pub mesh: Mesh,
+    /// The input triangle id (`Mesh::triangulate` order) of each output triangle.
+    pub triangle_ids: Vec<u32>,
+    /// Every collapse, in order.
+    pub sequence: CollapseSequence,
+    /// Non-degenerate input triangles.
+    pub triangles_in: usize,
+    /// Largest error of any performed collapse.
+    pub max_error: f64,
+}
+
+impl Simplified {
+    /// Output triangles.
+    pub fn triangles_out(&self) -> usize {
+        self.triangle_ids.len()
+    }
+}
+
+/// Simplifies `mesh` (faces are fanned into triangles first) by quadric edge collapse.
+/// O(n log n). `progress` is called now and then with the fraction done (0..=1).
+pub fn simplify(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64)) -> Result<Simplified> {
+    if let Target::Ratio(r) = options.target {
+        if !(0.0..=1.0).contains(&r) {
+            return Err(Error::Invalid(format!("ratio {r} is not between 0 and 1")));
+        }
+    }
+    if let Target::Error(e) = options.target {
+        if e.is_nan() || e < 0.0 {
+            return Err(Error::Invalid(format!("error bound {e} is not a non-negative number")));
+        }
+    }
+    if !(options.boundary_weight >= 0.0 && options.boundary_weight.is_finite()) {
+        return Err(Error::Invalid(format!("boundary weight {} is not a finite non-negative number", options.boundary_weight)));
+    }
+    let n = mesh.positions.len();
+    if mesh.face_indices.iter().any(|&v| v as usize >= n) {
+        return Err(Error::Invalid(format!("a face refers to a vertex beyond the mesh's {n} vertices")));
+    }
+    if mesh.positions.iter().flatten().any(|x| !x.is_finite()) {
+        return Err(Error::Invalid("a vertex position is not a finite number".into()));
+    }
+    Ok(collapse::run(mesh, options, progress))
+}

@@ -1,0 +1,211 @@
+//! The simplifier: sequence replay, no flips or degenerate triangles, boundaries,
+//! closed meshes stay closed, flat grids cost nothing.
+
+mod simplify_meshes;
+
+use simplify_meshes::*;
+use stripkit::simplify::{simplify, CollapseSequence, Options, Placement, Simplified, Target};
+use stripkit::Mesh;
+
+fn run(mesh: &Mesh, placement: Placement, target: Target, max: Option<usize>) -> Simplified {
+    let opts = Options { target, placement, max_collapses: max, ..Options::default() };
+    simplify(mesh, &opts, &mut |_| {}).expect("simplify")
+}
+
+#[test]
+fn replaying_any_prefix_gives_the_simplifiers_mesh() {
+    let mesh = shuffled(&bumpy_sphere(4), 7);
+    for placement in [Placement::Endpoint, Placement::Optimal] {
+        let full = run(&mesh, placement, Target::Ratio(0.1), None);
+        assert!(full.triangles_out() <= 205 && full.triangles_out() >= 190, "{}", full.triangles_out());
+        let seq = &full.sequence;
+        assert_eq!(seq.len(), full.triangles_in / 2 - full.triangles_out() / 2);
+        let replay = seq.replay(&mesh, seq.len()).unwrap();
+        assert_eq!(replay.to_mesh(), full.mesh);
+        assert_eq!(replay.triangle_ids, full.triangle_ids);
+        for k in [0, 1, 2, 37, seq.len() / 2, seq.len() - 1] {
+            let part = run(&mesh, placement, Target::Ratio(0.1), Some(k));
+            assert_eq!(part.sequence.len(), k);
+            assert_eq!(part.sequence.collapses[..], seq.collapses[..k], "prefix {k} differs");
+            let replay = seq.replay(&mesh, k).unwrap();
+            assert_eq!(replay.to_mesh(), part.mesh, "{placement:?}, {k} collapses");
+            assert_eq!(replay.triangle_ids, part.triangle_ids);
+        }
+        // Each collapse removed two triangles on a closed mesh, and they contained both vertices.
+        let input = mesh.triangulate().tris;
+        for i in 0..seq.len() {
+            assert_eq!(seq.removed_by(i).len(), 2);
+        }
+        let c = seq.collapses[0];
+        for &t in seq.removed_by(0) {
+            let tri = input[t as usize];
+            assert!(tri.contains(&c.removed) && tri.contains(&c.kept));
+        }
+        if placement == Placement::Endpoint {
+            for c in &seq.collapses {
+                assert_eq!(c.position, mesh.positions[c.kept as usize]);
+            }
+            for (a, b) in full.mesh.positions.iter().zip(&mesh.positions) {
+                assert_eq!(a, b, "endpoint placement moved a vertex");
+            }
+        }
+    }
+}
+
+#[test]
+fn sequence_files_round_trip() {
+    let mesh = bumpy_sphere(3);
+    let s = run(&mesh, Placement::Optimal, Target::Ratio(0.2), None);
+    let dir = std::env::temp_dir().join(format!("stripkit-seq-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in ["seq.json", "seq.bin"] {
+        let path = dir.join(name);
+        s.sequence.write(&path).unwrap();
+        assert!(CollapseSequence::read(&path).unwrap() == s.sequence, "{name} did not round-trip");
+    }
+    // Truncated binary: an error naming the collapse, not a panic.
+    let bytes = std::fs::read(dir.join("seq.bin")).unwrap();
+    std::fs::write(dir.join("cut.bin"), &bytes[..bytes.len() - 3]).unwrap();
+    let err = CollapseSequence::read(&dir.join("cut.bin")).unwrap_err().to_string();
+    assert!(err.contains("collapse"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn no_output_triangle_is_degenerate_or_flipped_against_its_ancestor() {
+    let mesh = shuffled(&sphere(4, |d| 1.0 + 0.3 * (7.0 * d[0]).sin() * (6.0 * d[2]).cos()), 3);
+    let input = mesh.triangulate().tris;
+    for placement in [Placement::Endpoint, Placement::Optimal] {
+        for ratio in [0.3, 0.05, 0.0] {
+            let s = run(&mesh, placement, Target::Ratio(ratio), None);
+            let tris = s.mesh.triangulate().tris;
+            assert!(!tris.is_empty());
+            for (t, &id) in tris.iter().zip(&s.triangle_ids) {
+                let n = normal(&s.mesh, *t);
+                let n0 = normal(&mesh, input[id as usize]);
+                let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                assert!(len > 1e-9, "degenerate output triangle {t:?}");
+                assert!(n[0] * n0[0] + n[1] * n0[1] + n[2] * n0[2] > 0.0, "triangle {id} flipped");
+            }
+        }
+    }
+}
+
+#[test]
+fn closed_mesh_stays_closed_and_manifold() {
+    let mesh = shuffled(&bumpy_sphere(4), 11);
+    assert_eq!(assert_closed_manifold(&mesh), 2);
+    for placement in [Placement::Endpoint, Placement::Optimal] {
+        for ratio in [0.5, 0.1, 0.01, 0.0] {
+            let s = run(&mesh, placement, Target::Ratio(ratio), None);
+            assert_eq!(assert_closed_manifold(&s.mesh), 2, "{placement:?} at {ratio}");
+            if ratio >= 0.01 {
+                assert!(s.triangles_out() as f64 <= (ratio * 2048.0).ceil() + 1.0, "{}", s.triangles_out());
+            }
+        }
+        // Down to the smallest closed surface we allow.
+        let s = run(&mesh, placement, Target::Triangles(0), None);
+        assert!(s.triangles_out() <= 8, "{placement:?} stopped at {}", s.triangles_out());
+    }
+}
+
+#[test]
+fn flat_grid_simplifies_at_zero_error_and_keeps_its_outline() {
+    let mesh = shuffled(&grid(20, 20, |_, _| 0.0), 5);
+    for placement in [Placement::Endpoint, Placement::Optimal] {
+        let s = run(&mesh, placement, Target::Ratio(0.05), None);
+        assert!(s.triangles_out() <= 40, "{placement:?}: {}", s.triangles_out());
+        assert!(s.max_error < 1e-12, "error {}", s.max_error);
+        assert!((area(&s.mesh) - 1.0).abs() < 1e-6, "area {}", area(&s.mesh));
+        for p in used_positions(&s.mesh) {
+            assert_eq!(p[2], 0.0);
+        }
+        for p in boundary_positions(&s.mesh) {
+            let on = |x: f32| x == 0.0 || x == 1.0;
+            assert!(on(p[0]) || on(p[1]), "boundary vertex {p:?} left the outline");
+        }
+        let corners = boundary_positions(&s.mesh);
+        for c in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] {
+            assert!(corners.iter().any(|p| p[0] == c[0] && p[1] == c[1]), "corner {c:?} lost");
+        }
+    }
+}
+
+#[test]
+fn open_grid_boundary_stays_in_place() {
+    let z = |x: f64, y: f64| 0.1 * (6.0 * x).sin() * (5.0 * y).cos();
+    let mesh = shuffled(&grid(24, 24, z), 9);
+    for placement in [Placement::Endpoint, Placement::Optimal] {
+        let s = run(&mesh, placement, Target::Ratio(0.1), None);
+        assert!(s.triangles_out() <= 116);
+        let b = boundary_positions(&s.mesh);
+        assert!(b.len() >= 4);
+        for p in b {
+            let off = [p[0], 1.0 - p[0], p[1], 1.0 - p[1]].iter().fold(f32::MAX, |m, &d| m.min(d.abs()));
+            // Endpoint keeps input positions exactly; optimal may slide a little.
+            let tol = if placement == Placement::Endpoint { 0.0 } else { 2e-3 };
+            assert!(off <= tol, "{placement:?}: boundary vertex {p:?} is {off} off the outline");
+        }
+    }
+}
+
+#[test]
+fn error_target_stops_at_the_bound() {
+    let mesh = bumpy_sphere(4);
+    let all = run(&mesh, Placement::Optimal, Target::Ratio(0.0), None);
+    let bound = all.sequence.collapses[all.sequence.len() / 3].error;
+    let s = run(&mesh, Placement::Optimal, Target::Error(bound), None);
+    assert!(s.max_error <= bound);
+    assert!(s.sequence.len() >= 1 && s.sequence.len() < all.sequence.len());
+}
+
+#[test]
+fn bad_options_are_errors() {
+    let mesh = bumpy_sphere(1);
+    let opts = Options { target: Target::Ratio(1.5), ..Options::default() };
+    assert!(simplify(&mesh, &opts, &mut |_| {}).is_err());
+    let bad = Mesh::from_triangles(vec![[0.0; 3]; 2], &[[0, 1, 2]]);
+    assert!(simplify(&bad, &Options::default(), &mut |_| {}).is_err());
+}
+
+fn used_positions(m: &Mesh) -> Vec<[f32; 3]> {
+    let mut used = vec![false; m.positions.len()];
+    for &v in &m.face_indices {
+        used[v as usize] = true;
+    }
+    m.positions.iter().zip(used).filter(|(_, u)| *u).map(|(p, _)| *p).collect()
+}
+
+fn boundary_positions(m: &Mesh) -> Vec<[f32; 3]> {
+    use std::collections::HashSet;
+    let tris = m.triangulate().tris;
+    let directed: HashSet<(u32, u32)> = tris.iter().flat_map(|t| (0..3).map(move |j| (t[j], t[(j + 1) % 3]))).collect();
+    let mut out: Vec<u32> = directed.iter().filter(|&&(a, b)| !directed.contains(&(b, a))).map(|&(a, _)| a).collect();
+    out.sort_unstable();
+    out.dedup();
+    out.iter().map(|&v| m.positions[v as usize]).collect()
+}
+
+#[test]
+fn pair_contraction_joins_close_pieces_only_when_asked() {
+    // Two grids side by side with a hairline gap between them.
+    let left = grid(6, 6, |_, _| 0.0);
+    let mut right = grid(6, 6, |_, _| 0.0);
+    for p in right.positions.iter_mut() {
+        p[0] += 1.001;
+    }
+    let n = left.positions.len() as u32;
+    let mut positions = left.positions.clone();
+    positions.extend_from_slice(&right.positions);
+    let mut tris = left.triangulate().tris;
+    tris.extend(right.triangulate().tris.iter().map(|t| t.map(|v| v + n)));
+    let mesh = Mesh::from_triangles(positions, &tris);
+    let joined = |s: &Simplified| s.sequence.collapses.iter().any(|c| (c.removed < n) != (c.kept < n));
+    let opts = Options { target: Target::Ratio(0.5), ..Options::default() };
+    let off = simplify(&mesh, &opts, &mut |_| {}).unwrap();
+    assert!(!joined(&off));
+    let opts = Options { target: Target::Ratio(0.5), pair_distance: Some(0.01), boundary_weight: 0.0, ..Options::default() };
+    let on = simplify(&mesh, &opts, &mut |_| {}).unwrap();
+    assert!(joined(&on), "no pair across the gap was contracted");
+    assert!(on.sequence.replay(&mesh, on.sequence.len()).unwrap().to_mesh() == on.mesh);
+}
