@@ -45,7 +45,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {
-            eprintln!("stripkit: error: {err:#}");
+            eprintln!("stripkit: error: {}", cmd::describe(&err));
             cmd::exit_code(&err)
         }
     }

@@ -18,3 +18,20 @@ pub fn exit_code(err: &anyhow::Error) -> ExitCode {
     }
     ExitCode::from(2)
 }
+
+/// The error and its causes on one line, skipping a cause whose text the message
+/// already holds (library errors often print their source themselves).
+pub fn describe(err: &anyhow::Error) -> String {
+    let mut message = String::new();
+    for cause in err.chain() {
+        let text = cause.to_string();
+        if message.contains(&text) {
+            continue;
+        }
+        if !message.is_empty() {
+            message.push_str(": ");
+        }
+        message.push_str(&text);
+    }
+    message
+}
