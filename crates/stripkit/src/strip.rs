@@ -1,9 +1,16 @@
-//! Strips: the [`StripSet`] every stripifier returns, and the decoder that turns strips
-//! back into triangles by the rule of METRICS.md.
+//! Strips: the [`StripSet`] every stripifier returns, the decoder that turns strips
+//! back into triangles by the rule of METRICS.md, the three ways of joining strips into
+//! buffers, and [`verify`], the independent check every output goes through.
 //!
 //! Triangle `i` of a strip `s` is `(s[i], s[i+1], s[i+2])` for even `i` and
 //! `(s[i+1], s[i], s[i+2])` for odd `i`; a triangle with a repeated index is
 //! degenerate and draws nothing.
+//!
+//! Joins:
+//! * [`encode_restart`]: one buffer, strips separated by a primitive-restart index;
+//! * [`encode_stitched`]: one strip, strips joined by degenerate triangles, winding kept
+//!   (2 extra indices per join when the next strip lands on an even position, 3 otherwise);
+//! * [`encode_separate`]: one list per strip.
 
 /// A set of triangle strips, stored flat.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -83,6 +90,200 @@ pub fn decode(strips: &StripSet) -> Vec<[u32; 3]> {
     out
 }
 
+/// The primitive-restart index used unless told otherwise (`0xFFFF_FFFF`, what
+/// `GL_PRIMITIVE_RESTART_FIXED_INDEX` uses for 32-bit indices).
+pub const DEFAULT_RESTART: u32 = u32::MAX;
+
+impl StripSet {
+    /// Total number of indices over all strips (`indices_separate` of METRICS.md).
+    pub fn index_count(&self) -> usize {
+        self.indices.len()
+    }
+
+    /// Number of triangle windows (degenerate ones included) over all strips.
+    pub fn window_count(&self) -> usize {
+        self.iter().map(|s| s.len().saturating_sub(2)).sum()
+    }
+
+    /// Largest index used plus one (0 for an empty set).
+    pub fn vertex_bound(&self) -> usize {
+        self.indices.iter().map(|&i| i as usize + 1).max().unwrap_or(0)
+    }
+}
+
+/// All strips in one buffer, separated by `restart` (no restart before the first or
+/// after the last strip). Length `indices_separate + strips - 1`. The caller makes sure
+/// no strip uses `restart` as a vertex index (see [`decode_restart`]).
+pub fn encode_restart(strips: &StripSet, restart: u32) -> Vec<u32> {
+    let mut out = Vec::with_capacity(strips.indices.len() + strips.len());
+    for (k, s) in strips.iter().enumerate() {
+        if k > 0 {
+            out.push(restart);
+        }
+        out.extend_from_slice(s);
+    }
+    out
+}
+
+/// Splits a buffer at every `restart` index into strips: the inverse of
+/// [`encode_restart`]. An empty buffer gives no strips.
+pub fn decode_restart(buffer: &[u32], restart: u32) -> StripSet {
+    let mut set = StripSet::new();
+    if buffer.is_empty() {
+        return set;
+    }
+    for s in buffer.split(|&i| i == restart) {
+        set.push(s);
+    }
+    set
+}
+
+/// Length of [`encode_stitched`]'s buffer, computed without building it.
+pub fn stitched_len(strips: &StripSet) -> usize {
+    let mut len = 0usize;
+    for s in strips.iter().filter(|s| s.len() >= 3) {
+        if len > 0 {
+            len += if len % 2 == 0 { 2 } else { 3 };
+        }
+        len += s.len();
+    }
+    len
+}
+
+/// All strips stitched into one strip with degenerate triangles, every triangle keeping
+/// its winding. Between strip `a` and strip `b` the join repeats `a`'s last index and
+/// `b`'s first: `..a, a_last, b0, b..` (2 extra) when `b` then starts at an even
+/// position, `..a, a_last, a_last, b0, b..` (3 extra) when it would start at an odd one.
+/// Strips of fewer than 3 indices draw nothing and are left out.
+pub fn encode_stitched(strips: &StripSet) -> Vec<u32> {
+    let mut out: Vec<u32> = Vec::with_capacity(strips.indices.len() + 3 * strips.len());
+    for s in strips.iter().filter(|s| s.len() >= 3) {
+        if let Some(&last) = out.last() {
+            if out.len() % 2 == 0 {
+                out.extend_from_slice(&[last, s[0]]);
+            } else {
+                out.extend_from_slice(&[last, last, s[0]]);
+            }
+        }
+        out.extend_from_slice(s);
+    }
+    out
+}
+
+/// One list per strip.
+pub fn encode_separate(strips: &StripSet) -> Vec<Vec<u32>> {
+    strips.iter().map(|s| s.to_vec()).collect()
+}
+
+/// True when a triangle repeats an index.
+#[inline]
+pub fn is_degenerate(t: &[u32; 3]) -> bool {
+    t[0] == t[1] || t[1] == t[2] || t[2] == t[0]
+}
+
+/// The rotation of `t` that starts at its smallest index: equal for triangles that are
+/// equal up to rotation.
+#[inline]
+pub fn canonical(t: [u32; 3]) -> [u32; 3] {
+    if t[0] <= t[1] && t[0] <= t[2] {
+        t
+    } else if t[1] <= t[2] {
+        [t[1], t[2], t[0]]
+    } else {
+        [t[2], t[0], t[1]]
+    }
+}
+
+/// The result of [`verify`]: how the decoded triangles differ from the expected ones.
+#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Verification {
+    /// Non-degenerate expected triangles.
+    pub expected: usize,
+    /// Degenerate expected triangles (repeated index), left out of the comparison.
+    pub dropped_degenerate: usize,
+    /// Non-degenerate triangles decoded from the strips.
+    pub decoded: usize,
+    /// Expected triangles missing from the output (flipped ones not included).
+    pub lost: usize,
+    /// Output triangles that are not expected (flipped ones not included).
+    pub added: usize,
+    /// Expected triangles that came out with the opposite winding.
+    pub flipped: usize,
+}
+
+impl Verification {
+    /// True when the decoded multiset of oriented triangles equals the expected one.
+    pub fn ok(&self) -> bool {
+        self.lost == 0 && self.added == 0 && self.flipped == 0
+    }
+}
+
+impl std::fmt::Display for Verification {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} triangles expected, {} decoded: {} lost, {} added, {} flipped",
+            self.expected, self.decoded, self.lost, self.added, self.flipped
+        )
+    }
+}
+
+/// Checks strips against the triangles they should draw: the multiset of oriented,
+/// non-degenerate triangles decoded by the METRICS.md rule must equal the multiset of
+/// the non-degenerate `expected` triangles, up to rotation. Degenerate expected
+/// triangles are counted in `dropped_degenerate` and not required. O(n log n).
+pub fn verify(expected: &[[u32; 3]], strips: &StripSet) -> Verification {
+    verify_triangles(expected, &decode(strips))
+}
+
+/// [`verify`] for an already decoded triangle list (degenerate entries are skipped).
+pub fn verify_triangles(expected: &[[u32; 3]], decoded: &[[u32; 3]]) -> Verification {
+    let mut want: Vec<[u32; 3]> =
+        expected.iter().filter(|t| !is_degenerate(t)).map(|&t| canonical(t)).collect();
+    let mut got: Vec<[u32; 3]> =
+        decoded.iter().filter(|t| !is_degenerate(t)).map(|&t| canonical(t)).collect();
+    let mut v = Verification {
+        expected: want.len(),
+        dropped_degenerate: expected.len() - want.len(),
+        decoded: got.len(),
+        ..Verification::default()
+    };
+    want.sort_unstable();
+    got.sort_unstable();
+    let (mut lost, mut added) = (Vec::new(), Vec::new());
+    let (mut i, mut j) = (0, 0);
+    while i < want.len() || j < got.len() {
+        if j == got.len() || (i < want.len() && want[i] < got[j]) {
+            lost.push(want[i]);
+            i += 1;
+        } else if i == want.len() || got[j] < want[i] {
+            added.push(got[j]);
+            j += 1;
+        } else {
+            i += 1;
+            j += 1;
+        }
+    }
+    // A lost triangle that reappears reversed among the added ones is a flip.
+    let mut lost_flipped: Vec<[u32; 3]> = lost.iter().map(|t| canonical([t[0], t[2], t[1]])).collect();
+    lost_flipped.sort_unstable();
+    let (mut i, mut j) = (0, 0);
+    while i < lost_flipped.len() && j < added.len() {
+        match lost_flipped[i].cmp(&added[j]) {
+            std::cmp::Ordering::Less => i += 1,
+            std::cmp::Ordering::Greater => j += 1,
+            std::cmp::Ordering::Equal => {
+                v.flipped += 1;
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    v.lost = lost.len() - v.flipped;
+    v.added = added.len() - v.flipped;
+    v
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -93,5 +294,40 @@ mod tests {
         assert_eq!(set.len(), 2);
         // 0:(0,1,2) 1:(2,1,3) 2:(2,3,3)x 3:(3,3,4)x
         assert_eq!(decode(&set), vec![[0, 1, 2], [2, 1, 3]]);
+    }
+
+    #[test]
+    fn stitching_keeps_winding_with_two_or_three_extra_indices() {
+        // First strip has 4 indices: the next starts at 4 + 2 = 6 (even): 2 extra.
+        let set = StripSet::from_strips(&[vec![0, 1, 2, 3], vec![4, 5, 6]]);
+        let one = encode_stitched(&set);
+        assert_eq!(one, vec![0, 1, 2, 3, 3, 4, 4, 5, 6]);
+        assert_eq!(stitched_len(&set), one.len());
+        assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
+        // First strip has 3 indices: 3 + 2 would be odd, so 3 extra.
+        let set = StripSet::from_strips(&[vec![0, 1, 2], vec![4, 5, 6]]);
+        let one = encode_stitched(&set);
+        assert_eq!(one, vec![0, 1, 2, 2, 2, 4, 4, 5, 6]);
+        assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
+    }
+
+    #[test]
+    fn restart_round_trip() {
+        let set = StripSet::from_strips(&[vec![0, 1, 2, 3], vec![4, 5, 6]]);
+        let buf = encode_restart(&set, 99);
+        assert_eq!(buf, vec![0, 1, 2, 3, 99, 4, 5, 6]);
+        assert_eq!(decode_restart(&buf, 99), set);
+        assert!(decode_restart(&[], 99).is_empty());
+    }
+
+    #[test]
+    fn verify_counts_lost_added_flipped() {
+        let tris = [[0, 1, 2], [2, 1, 3], [3, 4, 5]];
+        let good = StripSet::from_strips(&[vec![0, 1, 2, 3], vec![3, 4, 5]]);
+        assert!(verify(&tris, &good).ok());
+        let v = verify(&tris, &StripSet::from_strips(&[vec![0, 1, 2, 3], vec![3, 5, 4], vec![7, 8, 9]]));
+        assert_eq!((v.lost, v.added, v.flipped), (0, 1, 1));
+        let v = verify(&tris, &StripSet::from_strips(&[vec![1, 2, 0]]));
+        assert_eq!((v.lost, v.added, v.flipped), (2, 0, 0));
     }
 }
