@@ -58,15 +58,26 @@ pub struct CacheOptions {
 
 impl CacheOptions {
     /// The `cache` mode: fewest cache misses for a FIFO of `cache_size` entries.
+    /// Strips end after `cache_size / 4` misses or as soon as they leave the cached
+    /// side of the previous strip.
     pub fn cache(cache_size: u32) -> Self {
         let cache_size = cache_size.max(3);
-        CacheOptions { cache_size, strip_misses: cache_size.saturating_sub(2).max(2), swaps: true, hit_swaps: true, lookahead: 8, max_run: 2, newest_first: true, candidates: 3 }
+        CacheOptions {
+            cache_size,
+            strip_misses: (cache_size / 4).max(2),
+            swaps: true,
+            hit_swaps: true,
+            lookahead: 4,
+            max_run: 2,
+            newest_first: true,
+            candidates: 1,
+        }
     }
 
     /// The `balanced` mode: longer strips (fewer indices) for a few more misses.
+    /// Strips end only after `5 * cache_size / 8` misses.
     pub fn balanced(cache_size: u32) -> Self {
-        let cache_size = cache_size.max(3);
-        CacheOptions { cache_size, strip_misses: cache_size * 2, swaps: true, hit_swaps: false, lookahead: 8, max_run: 2, newest_first: true, candidates: 3 }
+        CacheOptions { strip_misses: (cache_size.max(3) * 5 / 8).max(2), max_run: 0, ..CacheOptions::cache(cache_size) }
     }
 }
 
