@@ -1,0 +1,142 @@
+//! `stripkit strip` end to end: outputs, figures, errors and exit statuses.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn stripkit(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_stripkit")).args(args).output().expect("runs")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stripkit-cli-strip-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn spot() -> String {
+    stripkit::test_support::assets_dir().join("spot.obj").to_string_lossy().into_owned()
+}
+
+fn json(out: &Output) -> serde_json::Value {
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+#[test]
+fn spot_to_ply_verifies_and_reads_back() {
+    let out_path = tmp("spot.ply");
+    let out = stripkit(&["strip", &spot(), "-o", out_path.to_str().unwrap(), "--json"]);
+    let v = json(&out);
+    for key in [
+        "triangles", "strips", "swaps", "indices_separate", "indices_restart", "indices_degenerate",
+        "indices_per_triangle", "acmr16", "acmr32", "verified", "winding_preserved", "dropped_degenerate", "ms",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key} in {v}");
+    }
+    assert_eq!(v["triangles"], 5856);
+    assert_eq!(v["verified"], true);
+    assert_eq!(v["winding_preserved"], true);
+    let strips = v["strips"].as_u64().unwrap();
+    assert!(strips > 0 && strips < 300, "{strips}");
+    let restart = v["indices_restart"].as_u64().unwrap();
+    assert!(restart < 5856 * 125 / 100, "{restart}");
+    // The written file holds the same triangles.
+    let input = stripkit::mesh::io::read(Path::new(&spot())).unwrap();
+    let back = stripkit::mesh::io::read(&out_path).unwrap();
+    let check = stripkit::strip::verify_triangles(&input.triangulate().tris, &back.triangulate().tris);
+    assert!(check.ok(), "{check}");
+}
+
+#[test]
+fn json_output_holds_strips_for_every_join() {
+    let input = stripkit::mesh::io::read(Path::new(&spot())).unwrap();
+    let tris = input.triangulate().tris;
+    for join in ["restart", "degenerate", "separate"] {
+        for heuristic in ["strips", "indices"] {
+            let out_path = tmp(&format!("spot-{join}-{heuristic}.json"));
+            let out = stripkit(&[
+                "strip", &spot(), "-o", out_path.to_str().unwrap(), "--join", join, "--heuristic", heuristic, "--json",
+                "--restart-index", "70000",
+            ]);
+            let printed = json(&out);
+            let file: serde_json::Value = serde_json::from_slice(&std::fs::read(&out_path).unwrap()).unwrap();
+            let strips: Vec<Vec<u32>> = serde_json::from_value(file["strips"].clone()).unwrap();
+            let set = stripkit::StripSet::from_strips(&strips);
+            assert!(stripkit::strip::verify(&tris, &set).ok(), "{join}");
+            if join == "degenerate" {
+                assert_eq!(strips.len(), 1);
+                assert_eq!(strips[0].len() as u64, printed["indices_degenerate"].as_u64().unwrap());
+            } else {
+                assert_eq!(strips.len() as u64, printed["strips"].as_u64().unwrap());
+            }
+            if join == "restart" {
+                let buf: Vec<u32> = serde_json::from_value(file["indices"].clone()).unwrap();
+                assert_eq!(buf.len() as u64, printed["indices_restart"].as_u64().unwrap());
+                assert_eq!(file["restart_index"], 70000);
+                assert!(stripkit::strip::verify(&tris, &stripkit::strip::decode_restart(&buf, 70000)).ok());
+            }
+            assert_eq!(file["figures"]["verified"], true);
+        }
+    }
+}
+
+#[test]
+fn text_summary_says_verified() {
+    let out = stripkit(&["strip", &spot(), "-o", tmp("s.ply").to_str().unwrap(), "--cache", "8", "--lru"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("verified: 5856 triangles, 0 lost, 0 added, 0 flipped"), "{text}");
+    assert!(text.contains("indices_restart") && text.contains("acmr8 (LRU)"), "{text}");
+}
+
+#[test]
+fn mesh_without_triangles_gives_empty_valid_outputs() {
+    let empty = tmp("empty.off");
+    std::fs::write(&empty, "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n").unwrap();
+    for out_name in ["empty.json", "empty.ply"] {
+        let out_path = tmp(out_name);
+        let v = json(&stripkit(&["strip", empty.to_str().unwrap(), "-o", out_path.to_str().unwrap(), "--json"]));
+        assert_eq!(v["strips"], 0);
+        assert_eq!(v["triangles"], 0);
+        assert_eq!(v["verified"], true);
+        assert!(out_path.exists());
+    }
+}
+
+#[test]
+fn bad_arguments_exit_with_2_and_say_why() {
+    let cases: [(&[&str], &str); 4] = [
+        (&["--cache", "0"], "--cache"),
+        (&["--restart-index", "7"], "vertex id"),
+        (&[], "no/such/folder"),
+        (&[], "nothing.ply"),
+    ];
+    for (i, (extra, needle)) in cases.iter().enumerate() {
+        let mut args = vec!["strip".to_string()];
+        if i == 3 {
+            args.push("/no/such/nothing.ply".into());
+        } else {
+            args.push(spot());
+        }
+        args.push("-o".into());
+        args.push(if i == 2 { "/no/such/folder/out.ply".into() } else { tmp("x.ply").to_string_lossy().into_owned() });
+        args.extend(extra.iter().map(|s| s.to_string()));
+        let argv: Vec<&str> = args.iter().map(|s| s.as_str()).collect();
+        let out = stripkit(&argv);
+        assert_eq!(out.status.code(), Some(2), "{argv:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{argv:?}: {err}");
+    }
+    let out = stripkit(&["strip", &spot(), "-o", tmp("x.obj").to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains(".ply, .json, .gltf or .glb"));
+}
+
+#[test]
+fn help_explains_every_option() {
+    let out = stripkit(&["strip", "--help"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    for opt in ["--algo", "--heuristic", "--join", "--restart-index", "--cache", "--lru", "--json", "--output"] {
+        assert!(text.contains(opt), "{opt} missing from help");
+    }
+}
