@@ -212,7 +212,7 @@ impl<'a> State<'a> {
     #[inline]
     fn cached(&self, v: u32) -> bool {
         let s = self.stamp[v as usize];
-        s != NEVER && self.time - s < self.cache_size
+        s != NEVER && self.time - s <= self.cache_size
     }
 
     /// Feeds one vertex to the FIFO; returns true on a miss.
