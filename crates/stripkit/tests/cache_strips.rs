@@ -26,8 +26,8 @@ fn modes() -> Vec<CacheOptions> {
         v.push(CacheOptions::cache(n));
         v.push(CacheOptions::balanced(n));
     }
-    v.push(CacheOptions { swaps: false, hit_swaps: false, ..CacheOptions::cache(16) });
-    v.push(CacheOptions { newest_first: false, candidates: 4, ..CacheOptions::balanced(16) });
+    v.push(CacheOptions { swaps: false, ..CacheOptions::cache(16) });
+    v.push(CacheOptions { start_penalty: 0.0, swap_bonus: -1.0, ..CacheOptions::balanced(16) });
     v
 }
 

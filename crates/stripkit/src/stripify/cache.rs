@@ -1,83 +1,92 @@
-//! Cache-aware strips: short strips laid side by side, ordered for a FIFO vertex
-//! cache.
+//! Cache-aware strips: a vertex-cache-optimised triangle order whose consecutive
+//! triangles are, as often as the cache allows, strip neighbours.
 //!
-//! The stripifier grows one strip at a time while it simulates the FIFO cache of
+//! One pass builds the order and the strips together, in the manner of Forsyth's
+//! linear-speed vertex cache optimisation, while it simulates the FIFO cache of
 //! METRICS.md (`cache_size` entries, a hit does not reorder, a miss evicts the
-//! oldest entry), so every decision sees exactly the cache the figures will measure.
+//! oldest), so every decision sees the cache the figures will measure:
 //!
-//! * **Growing.** A strip steps only between [`DualGraph`] neighbours, so winding is
-//!   kept. It takes the neighbour across the "natural" edge (no extra index) when that
-//!   triangle is still free, otherwise the one across the other edge at the cost of a
-//!   swap (one repeated index, cheaper than a restart's three). A strip ends when no
-//!   neighbour is free or when it has pushed `strip_misses` new vertices into the
-//!   cache: bounded that way, the vertices it shares with the *next* strip are still
-//!   cached when the next strip comes back along it.
-//! * **Starting.** The next strip starts at the *oldest* vertex still in the cache
-//!   that has free triangles: the vertex that would be evicted first, at the head of
-//!   the strip just finished, so the new strip runs along the previous one in the same
-//!   direction and every vertex it shares is used about `strip_misses` pushes after it
-//!   entered the cache. Among that vertex's free triangles the start is the one with
-//!   the most cached vertices and the fewest free neighbours (a corner of the free
-//!   region, so strips do not cut it into islands); the strip leaves it across the
-//!   edge whose next triangles hit the cache most.
-//! * **Falling back.** When no cached vertex has free triangles, a stack of recently
-//!   used vertices (as in Tipsify) gives a start near the last strips, and only when
-//!   that is empty too does a scan over the triangles pick the next free one. The
-//!   input order matters only there, so shuffled inputs give the same figures.
+//! * **Scores.** A vertex scores by its place in the FIFO (a cached vertex scores
+//!   more the newer it is; the newest three score a flat value, as in Forsyth) plus a
+//!   bonus that falls with the number of its triangles still free (finishing a vertex
+//!   frees its slot for good). A free triangle scores the sum of its vertices.
+//! * **Coupling.** The triangle that continues the current strip across its last
+//!   edge (no extra index) gets `continue_bonus` on top, the one across the other edge
+//!   (one repeated index, a "swap") `swap_bonus`; any other triangle starts a new
+//!   strip (three more indices with a restart index) and pays `start_penalty` per
+//!   free neighbour it has, so new strips start in corners of the free region
+//!   rather than cutting it into islands. Large bonuses give long strips (few
+//!   indices), small ones give the order a pure cache optimiser would pick.
+//! * **Choosing.** The next triangle is the best-scored free triangle around the
+//!   cached vertices; when none is left, a stack of recently used vertices (as in
+//!   Tipsify) gives one near the last strips, and only then a scan of the input.
+//!   The input order matters only there and in ties, so shuffled inputs give about
+//!   the same figures.
+//! * **Strips.** A strip's first triangle may still be rotated, so its second
+//!   triangle may lie across any of its edges; after that, steps follow the
+//!   [`DualGraph`] only (which keeps the winding).
 //!
-//! Cost: O(T + V) time and memory, a few flat arrays, nothing allocated per strip.
+//! Cost: O(T + V) time and memory (each step looks at the free triangles around the
+//! `cache_size` cached vertices), flat arrays, nothing allocated per step.
 
 use crate::strip::StripSet;
 use crate::topology::{DualGraph, NO_NEIGHBOR};
 
 /// Settings of the cache-aware stripifier.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CacheOptions {
     /// Entries of the FIFO vertex cache the order is tuned for (at least 3).
     pub cache_size: u32,
-    /// A strip ends after pushing this many new vertices into the cache; smaller
-    /// gives fewer cache misses, larger gives fewer strips (fewer indices).
-    pub strip_misses: u32,
-    /// Let a strip turn the "wrong" way at the cost of one repeated index rather
-    /// than end (a restart costs three).
+    /// Score added to the triangle that continues the current strip without a swap.
+    /// Larger: longer strips (fewer indices), more cache misses.
+    pub continue_bonus: f32,
+    /// Score added to the triangle that continues the current strip with a swap (one
+    /// repeated index).
+    pub swap_bonus: f32,
+    /// Allow swaps at all.
     pub swaps: bool,
-    /// Also turn the "wrong" way (one repeated index) when that reaches a cached
-    /// vertex and the natural turn would miss.
-    pub hit_swaps: bool,
-    /// Triangles looked ahead when choosing the direction a strip leaves its start.
-    pub lookahead: u32,
-    /// End a strip after this many consecutive missing vertices (0: never): the
-    /// strip has left the cached side of the previous strip.
-    pub max_run: u32,
-    /// Start the next strip at the newest cached vertex with free triangles (the
-    /// strip runs back along the previous one) rather than the oldest.
-    pub newest_first: bool,
-    /// Cached vertices with free triangles whose triangles are tried as starts.
-    pub candidates: u32,
+    /// Score taken off a triangle that would start a new strip, per free neighbour.
+    pub start_penalty: f32,
+    /// The continuation bonuses fall linearly to zero once the current strip has
+    /// missed the cache this many times (0: they never fall): a strip that has left
+    /// the cached side of the previous strip ends.
+    pub strip_misses: u32,
+    /// Weight of the "few free triangles left" vertex bonus (`weight / sqrt(free)`).
+    pub valence_weight: f32,
+    /// A cached vertex scores `1 + age_tilt * age / cache_size` (age 1 = newest push):
+    /// negative prefers the newest vertices, positive the ones about to be evicted.
+    /// Small values mostly break ties, so the input order does not.
+    pub age_tilt: f32,
 }
 
 impl CacheOptions {
-    /// The `cache` mode: fewest cache misses for a FIFO of `cache_size` entries.
-    /// Strips end after `cache_size / 4` misses or as soon as they leave the cached
-    /// side of the previous strip.
+    /// The `cache` mode: about the cache misses of a pure vertex-cache order, with
+    /// strips as long as that order allows.
     pub fn cache(cache_size: u32) -> Self {
         let cache_size = cache_size.max(3);
         CacheOptions {
             cache_size,
-            strip_misses: (cache_size / 4).max(2),
+            continue_bonus: 1.5,
+            swap_bonus: 0.3,
             swaps: true,
-            hit_swaps: true,
-            lookahead: 4,
-            max_run: 2,
-            newest_first: true,
-            candidates: 1,
+            start_penalty: 0.0,
+            strip_misses: (cache_size * 3 / 8).max(1),
+            valence_weight: 1.0,
+            age_tilt: -0.03,
         }
     }
 
     /// The `balanced` mode: longer strips (fewer indices) for a few more misses.
-    /// Strips end only after `5 * cache_size / 8` misses.
     pub fn balanced(cache_size: u32) -> Self {
-        CacheOptions { strip_misses: (cache_size.max(3) * 5 / 8).max(2), max_run: 0, ..CacheOptions::cache(cache_size) }
+        let cache_size = cache_size.max(3);
+        CacheOptions {
+            continue_bonus: 2.0,
+            swap_bonus: 0.5,
+            start_penalty: 0.1,
+            strip_misses: cache_size * 5 / 4,
+            age_tilt: 0.1,
+            ..CacheOptions::cache(cache_size)
+        }
     }
 }
 
@@ -108,6 +117,8 @@ pub fn stripify_with_graph(
 }
 
 const NEVER: u32 = u32::MAX;
+/// Valence bonus table length; vertices with more free triangles share the last entry.
+const VALENCE_TABLE: usize = 32;
 
 fn is_degenerate(t: &[u32; 3]) -> bool {
     t[0] == t[1] || t[1] == t[2] || t[2] == t[0]
@@ -116,14 +127,12 @@ fn is_degenerate(t: &[u32; 3]) -> bool {
 struct State<'a> {
     tris: &'a [[u32; 3]],
     graph: &'a DualGraph,
+    o: CacheOptions,
     cache_size: u32,
-    strip_misses: u32,
-    swaps: bool,
-    hit_swaps: bool,
-    depth: u32,
-    max_run: u32,
-    newest_first: bool,
-    candidates: u32,
+    /// Score of a cached vertex by age (1 = newest push .. cache_size).
+    age_score: Vec<f32>,
+    /// Score of a vertex by its number of free triangles.
+    valence_score: [f32; VALENCE_TABLE],
     /// Triangle already in a strip (degenerate ones count as done from the start).
     done: Vec<bool>,
     /// Free triangles around each vertex: `vt_tris[vt_start[v]..vt_start[v] + vt_live[v]]`.
@@ -140,7 +149,10 @@ struct State<'a> {
     /// Vertices of emitted triangles, most recent last (Tipsify's dead-end stack).
     dead_end: Vec<u32>,
     scan: usize,
+    /// The strip being built and the triangle at its end.
     strip: Vec<u32>,
+    cur: u32,
+    strip_misses: u32,
     out: StripSet,
 }
 
@@ -176,17 +188,20 @@ impl<'a> State<'a> {
             }
         }
         let cache_size = o.cache_size.max(3);
+        let tilt = o.age_tilt;
+        let mut age_score: Vec<f32> = (0..=cache_size).map(|a| 1.0 + tilt * a as f32 / cache_size as f32).collect();
+        age_score[0] = 0.0;
+        let mut valence_score = [0.0f32; VALENCE_TABLE];
+        for (k, s) in valence_score.iter_mut().enumerate().skip(1) {
+            *s = o.valence_weight / (k as f32).sqrt();
+        }
         State {
             tris,
             graph,
+            o: *o,
             cache_size,
-            strip_misses: o.strip_misses.max(1),
-            swaps: o.swaps,
-            hit_swaps: o.hit_swaps,
-            depth: o.lookahead,
-            max_run: o.max_run,
-            newest_first: o.newest_first,
-            candidates: o.candidates.max(1),
+            age_score,
+            valence_score,
             done,
             vt_start,
             vt_live,
@@ -198,8 +213,10 @@ impl<'a> State<'a> {
             dead_end: Vec::with_capacity(3 * n),
             scan: 0,
             strip: Vec::with_capacity(64),
+            cur: NO_NEIGHBOR,
+            strip_misses: 0,
             out: StripSet {
-                indices: Vec::with_capacity(n + n / 4),
+                indices: Vec::with_capacity(n + n / 2),
                 offsets: {
                     let mut o = Vec::with_capacity(n / 4 + 2);
                     o.push(0);
@@ -209,53 +226,43 @@ impl<'a> State<'a> {
         }
     }
 
+    /// Age of `v` in the FIFO (1 = newest), or 0 when not cached.
     #[inline]
-    fn cached(&self, v: u32) -> bool {
+    fn age(&self, v: u32) -> u32 {
         let s = self.stamp[v as usize];
-        s != NEVER && self.time - s <= self.cache_size
+        if s == NEVER {
+            return 0;
+        }
+        let a = self.time - s;
+        if a <= self.cache_size {
+            a
+        } else {
+            0
+        }
     }
 
-    /// Feeds one vertex to the FIFO; returns true on a miss.
+    /// Feeds one vertex to the FIFO.
     #[inline]
-    fn touch(&mut self, v: u32) -> bool {
-        if self.cached(v) {
-            return false;
+    fn touch(&mut self, v: u32) {
+        if self.age(v) != 0 {
+            return;
         }
+        self.strip_misses += 1;
         self.stamp[v as usize] = self.time;
         self.ring[(self.time % self.cache_size) as usize] = v;
         self.time = self.time.wrapping_add(1);
-        true
     }
 
-    /// Marks triangle `t` emitted (decoded as `decoded`); returns the misses.
-    fn emit(&mut self, t: u32, decoded: [u32; 3]) -> u32 {
-        self.done[t as usize] = true;
-        let tri = self.tris[t as usize];
-        for (c, &v) in tri.iter().enumerate() {
-            // Swap-remove t from v's free list.
-            let v = v as usize;
-            let p = self.corner_pos[3 * t as usize + c];
-            let last = self.vt_start[v] + self.vt_live[v] - 1;
-            let moved = self.vt_tris[last as usize];
-            self.vt_tris[p as usize] = moved;
-            let mt = self.tris[moved as usize];
-            let mc = (0..3).find(|&k| mt[k] as usize == v).unwrap_or(0);
-            self.corner_pos[3 * moved as usize + mc] = p;
-            self.vt_live[v] -= 1;
-            self.dead_end.push(v as u32);
-        }
-        let mut misses = 0;
-        for v in decoded {
-            misses += self.touch(v) as u32;
-        }
-        misses
+    #[inline]
+    fn vertex_score(&self, v: u32) -> f32 {
+        let live = self.vt_live[v as usize] as usize;
+        self.age_score[self.age(v) as usize] + self.valence_score[live.min(VALENCE_TABLE - 1)]
     }
 
     fn free(&self, t: u32) -> bool {
         t != NO_NEIGHBOR && !self.done[t as usize]
     }
 
-    /// Free neighbours of `t`.
     fn free_degree(&self, t: u32) -> u32 {
         self.graph.neighbors[t as usize].iter().filter(|&&n| self.free(n)).count() as u32
     }
@@ -277,182 +284,147 @@ impl<'a> State<'a> {
         tri.into_iter().find(|&v| v != a && v != b).unwrap_or(tri[0])
     }
 
-    fn run(&mut self) {
-        while let Some(t) = self.next_start() {
-            self.grow(t);
-        }
-    }
-
-    /// Scores a free triangle as a strip start: cached vertices first, then few free
-    /// neighbours.
-    fn start_score(&self, t: u32) -> i32 {
+    /// Marks `t` emitted: off its vertices' free lists, onto the dead-end stack.
+    fn take(&mut self, t: u32) {
+        self.done[t as usize] = true;
         let tri = self.tris[t as usize];
-        let cached = tri.iter().filter(|&&v| self.cached(v)).count() as i32;
-        cached * 8 - self.free_degree(t) as i32
-    }
-
-    fn best_around(&self, v: u32) -> u32 {
-        let start = self.vt_start[v as usize] as usize;
-        let live = self.vt_live[v as usize] as usize;
-        let mut best = NO_NEIGHBOR;
-        let mut best_score = i32::MIN;
-        for &t in &self.vt_tris[start..start + live] {
-            let s = self.start_score(t);
-            if s > best_score {
-                best_score = s;
-                best = t;
-            }
+        for (c, &v) in tri.iter().enumerate() {
+            let v = v as usize;
+            let p = self.corner_pos[3 * t as usize + c];
+            let last = self.vt_start[v] + self.vt_live[v] - 1;
+            let moved = self.vt_tris[last as usize];
+            self.vt_tris[p as usize] = moved;
+            let mt = self.tris[moved as usize];
+            let mc = (0..3).find(|&k| mt[k] as usize == v).unwrap_or(0);
+            self.corner_pos[3 * moved as usize + mc] = p;
+            self.vt_live[v] -= 1;
+            self.dead_end.push(v as u32);
         }
-        best
     }
 
-    fn next_start(&mut self) -> Option<u32> {
-        // Oldest cached vertex with free triangles.
-        let n = self.cache_size.min(self.time);
-        let mut found = 0;
-        let mut best = NO_NEIGHBOR;
-        let mut best_score = i32::MIN;
-        for i in 0..n {
-            let k = if self.newest_first { i } else { n - 1 - i };
-            let v = self.ring[((self.time - 1 - k) % self.cache_size) as usize];
-            let live = self.vt_live[v as usize] as usize;
-            if live > 0 {
+    fn finish_strip(&mut self) {
+        if !self.strip.is_empty() {
+            self.out.indices.extend_from_slice(&self.strip);
+            self.out.offsets.push(self.out.indices.len() as u32);
+            self.strip.clear();
+        }
+        self.cur = NO_NEIGHBOR;
+    }
+
+    fn run(&mut self) {
+        loop {
+            // Continuations of the current strip: across any edge while it has one
+            // triangle (it can still be rotated), else across its last edge (natural)
+            // or, with a swap, across the edge before.
+            let (mut nat, mut swp, mut first) = (NO_NEIGHBOR, NO_NEIGHBOR, [NO_NEIGHBOR; 3]);
+            if self.cur != NO_NEIGHBOR {
+                let len = self.strip.len();
+                if len == 3 {
+                    first = self.graph.neighbors[self.cur as usize];
+                } else {
+                    let (p, u, w) = (self.strip[len - 3], self.strip[len - 2], self.strip[len - 1]);
+                    nat = self.across(self.cur, u, w);
+                    if self.o.swaps {
+                        swp = self.across(self.cur, p, w);
+                    }
+                }
+            }
+            let f = if self.o.strip_misses > 0 {
+                (1.0 - self.strip_misses as f32 / self.o.strip_misses as f32).max(0.0)
+            } else {
+                1.0
+            };
+            let (cb, sb) = (self.o.continue_bonus * f, self.o.swap_bonus * f);
+            let mut best = NO_NEIGHBOR;
+            let mut best_score = f32::NEG_INFINITY;
+            for i in 0..self.cache_size.min(self.time) {
+                let v = self.ring[((self.time - 1 - i) % self.cache_size) as usize];
                 let start = self.vt_start[v as usize] as usize;
+                let live = self.vt_live[v as usize] as usize;
                 for idx in start..start + live {
                     let t = self.vt_tris[idx];
-                    let (_, score) = self.best_rotation(t);
-                    let score = score - found as i32;
-                    if score > best_score {
-                        best_score = score;
+                    let tri = self.tris[t as usize];
+                    let mut s = self.vertex_score(tri[0]) + self.vertex_score(tri[1]) + self.vertex_score(tri[2]);
+                    if t == nat || first.contains(&t) {
+                        s += cb;
+                    } else if t == swp {
+                        s += sb;
+                    } else if self.o.start_penalty != 0.0 {
+                        s -= self.o.start_penalty * self.free_degree(t) as f32;
+                    }
+                    if s > best_score {
+                        best_score = s;
                         best = t;
                     }
                 }
-                found += 1;
-                if found >= self.candidates {
-                    break;
-                }
             }
+            if best == NO_NEIGHBOR {
+                best = match self.fallback() {
+                    Some(t) => t,
+                    None => break,
+                };
+            }
+            self.step(best, nat, swp, first);
         }
-        if best != NO_NEIGHBOR {
-            return Some(best);
-        }
+        self.finish_strip();
+    }
+
+    /// A free triangle when no cached vertex has one: around the most recently used
+    /// vertex that still has free triangles, else the next free one in input order.
+    fn fallback(&mut self) -> Option<u32> {
         while let Some(v) = self.dead_end.pop() {
-            if self.vt_live[v as usize] > 0 {
-                return Some(self.best_around(v));
+            let live = self.vt_live[v as usize] as usize;
+            if live > 0 {
+                let start = self.vt_start[v as usize] as usize;
+                let list = &self.vt_tris[start..start + live];
+                return list.iter().copied().min_by_key(|&t| self.free_degree(t));
             }
         }
         while self.scan < self.tris.len() {
-            let t = self.scan as u32;
             if !self.done[self.scan] {
-                return Some(t);
+                return Some(self.scan as u32);
             }
             self.scan += 1;
         }
         None
     }
 
-    /// Cache hits of the first `depth` triangles along the natural path leaving the
-    /// strip `[a, b]` through `next`.
-    fn lookahead(&self, mut a: u32, mut b: u32, mut next: u32, depth: u32) -> i32 {
-        let mut score = 0;
-        for _ in 0..depth {
-            if !self.free(next) {
-                break;
-            }
-            let x = self.third(next, a, b);
-            score += if self.cached(x) { 1 } else { 0 };
-            let nn = self.across(next, b, x);
-            a = b;
-            b = x;
-            next = nn;
-        }
-        score
-    }
-
-    /// The best rotation `k` to start a strip at `t0` (strip `[tri[k], tri[k+1],
-    /// tri[k+2]]` leaves across edge `(tri[k+1], tri[k+2])` = dual edge `(k + 1) % 3`),
-    /// and its score.
-    fn best_rotation(&self, t0: u32) -> (usize, i32) {
-        let tri = self.tris[t0 as usize];
-        let mut best_k = 0;
-        let mut best_score = i32::MIN;
-        for k in 0..3 {
-            let j = (k + 1) % 3;
-            let next = self.graph.neighbors[t0 as usize][j];
-            let score = self.lookahead(tri[j], tri[(j + 1) % 3], next, self.depth) * 4
-                - if self.free(next) { self.free_degree(next) as i32 } else { 1000 }
-                + if self.cached(tri[k]) { 1 } else { 0 };
-            if score > best_score {
-                best_score = score;
-                best_k = k;
-            }
-        }
-        let own = tri.iter().filter(|&&v| self.cached(v)).count() as i32;
-        (best_k, best_score + own)
-    }
-
-    fn grow(&mut self, t0: u32) {
-        let tri = self.tris[t0 as usize];
-        let (best_k, _) = self.best_rotation(t0);
-        let (a, b, c) = (tri[best_k], tri[(best_k + 1) % 3], tri[(best_k + 2) % 3]);
-        self.strip.clear();
-        self.strip.extend_from_slice(&[a, b, c]);
-        let mut misses = self.emit(t0, [a, b, c]);
-        // Decoded position of the newest triangle in the strip (parity).
-        let mut pos = 0usize;
-        let mut run = 0u32;
-        let mut hugging = false;
-        let mut cur = t0;
-        loop {
-            if misses >= self.strip_misses && !hugging {
-                break;
-            }
-            if misses >= 2 * self.strip_misses {
-                break;
-            }
+    /// Emits `t`: continues the current strip when it is a continuation, else starts
+    /// a new strip with it.
+    fn step(&mut self, t: u32, nat: u32, swp: u32, first: [u32; 3]) {
+        self.take(t);
+        if let Some(j) = first.iter().position(|&n| n == t) {
+            // Rotate the one-triangle strip so it leaves across edge j.
+            let tri = self.tris[self.cur as usize];
+            self.strip.clear();
+            self.strip.extend_from_slice(&[tri[(j + 2) % 3], tri[j], tri[(j + 1) % 3]]);
+        } else if t == swp {
+            // [.., p, u, w] -> [.., p, u, p, w]: the current triangle decodes the same
+            // and the strip now ends on edge (p, w).
             let len = self.strip.len();
-            let (p, u, w) = (self.strip[len - 3], self.strip[len - 2], self.strip[len - 1]);
-            let natural = self.across(cur, u, w);
-            let other = if self.swaps { self.across(cur, p, w) } else { NO_NEIGHBOR };
-            let (next, swap) = if self.free(natural)
-                && !(self.hit_swaps
-                    && pos > 0
-                    && self.free(other)
-                    && !self.cached(self.third(natural, u, w))
-                    && self.cached(self.third(other, p, w)))
-            {
-                (natural, false)
-            } else if self.free(other) {
-                (other, true)
-            } else {
-                break;
-            };
-            let x = if swap { self.third(next, p, w) } else { self.third(next, u, w) };
-            let x_cached = self.cached(x);
-            if self.max_run > 0 && hugging && run + 1 >= self.max_run && !x_cached {
-                break;
+            let (p, w) = (self.strip[len - 3], self.strip[len - 1]);
+            self.strip[len - 1] = p;
+            self.strip.push(w);
+        } else if t != nat {
+            self.finish_strip();
+            let tri = self.tris[t as usize];
+            self.strip.extend_from_slice(&tri);
+            self.cur = t;
+            self.strip_misses = 0;
+            for v in tri {
+                self.touch(v);
             }
-            if swap {
-                // [.., p, u, w] -> [.., p, u, p, w]: the current triangle decodes the
-                // same and the strip now ends on edge (p, w).
-                self.strip[len - 1] = p;
-                self.strip.push(w);
-                pos += 1;
-            }
-            let len = self.strip.len();
-            let (u, w) = (self.strip[len - 2], self.strip[len - 1]);
-            let x = self.third(next, u, w);
-            self.strip.push(x);
-            pos += 1;
-            let decoded = if pos % 2 == 0 { [u, w, x] } else { [w, u, x] };
-            let m = self.emit(next, decoded);
-            misses += m;
-            run = if m > 0 { run + 1 } else { 0 };
-            hugging |= x_cached;
-            cur = next;
+            return;
         }
-        self.out.indices.extend_from_slice(&self.strip);
-        self.out.offsets.push(self.out.indices.len() as u32);
+        let len = self.strip.len();
+        let (u, w) = (self.strip[len - 2], self.strip[len - 1]);
+        let x = self.third(t, u, w);
+        self.strip.push(x);
+        // Decoded order: (u, w, x) or (w, u, x); u and w are cached already.
+        self.touch(u);
+        self.touch(w);
+        self.touch(x);
+        self.cur = t;
     }
 }
 
