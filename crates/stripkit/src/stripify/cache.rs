@@ -57,6 +57,10 @@ pub struct CacheOptions {
     /// negative prefers the newest vertices, positive the ones about to be evicted.
     /// Small values mostly break ties, so the input order does not.
     pub age_tilt: f32,
+    /// Candidates are the free triangles around the newest `scan_entries` cache
+    /// entries (at most `cache_size`): fewer is faster and keeps the order closer to
+    /// the newest vertices.
+    pub scan_entries: u32,
 }
 
 impl CacheOptions {
@@ -73,6 +77,7 @@ impl CacheOptions {
             strip_misses: (cache_size * 3 / 8).max(1),
             valence_weight: 1.0,
             age_tilt: -0.03,
+            scan_entries: cache_size / 2,
         }
     }
 
@@ -82,9 +87,10 @@ impl CacheOptions {
         CacheOptions {
             continue_bonus: 2.0,
             swap_bonus: 0.5,
-            start_penalty: 0.1,
+            start_penalty: 0.15,
             strip_misses: cache_size * 5 / 4,
             age_tilt: 0.1,
+            scan_entries: cache_size,
             ..CacheOptions::cache(cache_size)
         }
     }
@@ -124,17 +130,32 @@ fn is_degenerate(t: &[u32; 3]) -> bool {
     t[0] == t[1] || t[1] == t[2] || t[2] == t[0]
 }
 
+/// A triangle's score is `base + tilt * (cached * time - stamps)`: the flat and
+/// valence parts of its vertices, plus the age part of its cached vertices (the sum
+/// of their ages is `cached * time - stamps`), so it changes only when one of its
+/// vertices enters or leaves the cache or loses a triangle.
+#[derive(Clone, Copy, Default)]
+struct TriScore {
+    base: f32,
+    cached: i32,
+    stamps: i64,
+}
+
 struct State<'a> {
     tris: &'a [[u32; 3]],
     graph: &'a DualGraph,
     o: CacheOptions,
     cache_size: u32,
-    /// Score of a cached vertex by age (1 = newest push .. cache_size).
-    age_score: Vec<f32>,
+    /// Score of a cached vertex per push of age (`age_tilt / cache_size`).
+    tilt: f32,
     /// Score of a vertex by its number of free triangles.
     valence_score: [f32; VALENCE_TABLE],
     /// Triangle already in a strip (degenerate ones count as done from the start).
     done: Vec<bool>,
+    /// Score parts of each free triangle, kept up to date as its vertices change.
+    score: Vec<TriScore>,
+    /// Free neighbours of each triangle.
+    free_nb: Vec<u8>,
     /// Free triangles around each vertex: `vt_tris[vt_start[v]..vt_start[v] + vt_live[v]]`.
     vt_start: Vec<u32>,
     vt_live: Vec<u32>,
@@ -188,20 +209,19 @@ impl<'a> State<'a> {
             }
         }
         let cache_size = o.cache_size.max(3);
-        let tilt = o.age_tilt;
-        let mut age_score: Vec<f32> = (0..=cache_size).map(|a| 1.0 + tilt * a as f32 / cache_size as f32).collect();
-        age_score[0] = 0.0;
         let mut valence_score = [0.0f32; VALENCE_TABLE];
         for (k, s) in valence_score.iter_mut().enumerate().skip(1) {
             *s = o.valence_weight / (k as f32).sqrt();
         }
-        State {
+        let mut state = State {
             tris,
             graph,
             o: *o,
             cache_size,
-            age_score,
+            tilt: o.age_tilt / cache_size as f32,
             valence_score,
+            score: vec![TriScore::default(); n],
+            free_nb: vec![0; n],
             done,
             vt_start,
             vt_live,
@@ -223,7 +243,49 @@ impl<'a> State<'a> {
                     o
                 },
             },
+        };
+        for t in 0..n {
+            if !state.done[t] {
+                state.free_nb[t] = state.graph.neighbors[t].iter().filter(|&&m| state.free(m)).count() as u8;
+                state.rescore(t as u32);
+            }
         }
+        state
+    }
+
+    /// Recomputes the score parts of free triangle `t` from its vertices.
+    #[inline]
+    fn rescore(&mut self, t: u32) {
+        let mut sc = TriScore::default();
+        for v in self.tris[t as usize] {
+            let live = self.vt_live[v as usize] as usize;
+            sc.base += self.valence_score[live.min(VALENCE_TABLE - 1)];
+            if self.age(v) != 0 {
+                sc.base += 1.0;
+                sc.cached += 1;
+                sc.stamps += self.stamp[v as usize] as i64;
+            }
+        }
+        self.score[t as usize] = sc;
+    }
+
+    /// Changes the score parts of the free triangles around `v` when `v` changes.
+    #[inline]
+    fn shift(&mut self, v: u32, base: f32, cached: i32, stamps: i64) {
+        let start = self.vt_start[v as usize] as usize;
+        for idx in start..start + self.vt_live[v as usize] as usize {
+            let sc = &mut self.score[self.vt_tris[idx] as usize];
+            sc.base += base;
+            sc.cached += cached;
+            sc.stamps += stamps;
+        }
+    }
+
+    /// Current score of free triangle `t` (without strip bonuses).
+    #[inline]
+    fn score_of(&self, t: u32) -> f32 {
+        let sc = self.score[t as usize];
+        sc.base + self.tilt * (sc.cached as i64 * self.time as i64 - sc.stamps) as f32
     }
 
     /// Age of `v` in the FIFO (1 = newest), or 0 when not cached.
@@ -248,15 +310,16 @@ impl<'a> State<'a> {
             return;
         }
         self.strip_misses += 1;
+        let slot = (self.time % self.cache_size) as usize;
+        let old = self.ring[slot];
+        if old != NEVER && self.time >= self.cache_size {
+            // `old` leaves the cache.
+            self.shift(old, -1.0, -1, -(self.stamp[old as usize] as i64));
+        }
         self.stamp[v as usize] = self.time;
-        self.ring[(self.time % self.cache_size) as usize] = v;
+        self.ring[slot] = v;
+        self.shift(v, 1.0, 1, self.time as i64);
         self.time = self.time.wrapping_add(1);
-    }
-
-    #[inline]
-    fn vertex_score(&self, v: u32) -> f32 {
-        let live = self.vt_live[v as usize] as usize;
-        self.age_score[self.age(v) as usize] + self.valence_score[live.min(VALENCE_TABLE - 1)]
     }
 
     fn free(&self, t: u32) -> bool {
@@ -264,7 +327,7 @@ impl<'a> State<'a> {
     }
 
     fn free_degree(&self, t: u32) -> u32 {
-        self.graph.neighbors[t as usize].iter().filter(|&&n| self.free(n)).count() as u32
+        self.free_nb[t as usize] as u32
     }
 
     /// Neighbour of `t` across the undirected edge `{a, b}` (or NO_NEIGHBOR).
@@ -287,6 +350,11 @@ impl<'a> State<'a> {
     /// Marks `t` emitted: off its vertices' free lists, onto the dead-end stack.
     fn take(&mut self, t: u32) {
         self.done[t as usize] = true;
+        for m in self.graph.neighbors[t as usize] {
+            if self.free(m) {
+                self.free_nb[m as usize] -= 1;
+            }
+        }
         let tri = self.tris[t as usize];
         for (c, &v) in tri.iter().enumerate() {
             let v = v as usize;
@@ -297,8 +365,14 @@ impl<'a> State<'a> {
             let mt = self.tris[moved as usize];
             let mc = (0..3).find(|&k| mt[k] as usize == v).unwrap_or(0);
             self.corner_pos[3 * moved as usize + mc] = p;
+            let live = self.vt_live[v] as usize;
             self.vt_live[v] -= 1;
             self.dead_end.push(v as u32);
+            let delta = self.valence_score[(live - 1).min(VALENCE_TABLE - 1)]
+                - self.valence_score[live.min(VALENCE_TABLE - 1)];
+            if delta != 0.0 {
+                self.shift(v as u32, delta, 0, 0);
+            }
         }
     }
 
@@ -337,14 +411,13 @@ impl<'a> State<'a> {
             let (cb, sb) = (self.o.continue_bonus * f, self.o.swap_bonus * f);
             let mut best = NO_NEIGHBOR;
             let mut best_score = f32::NEG_INFINITY;
-            for i in 0..self.cache_size.min(self.time) {
+            for i in 0..self.cache_size.min(self.time).min(self.o.scan_entries.max(1)) {
                 let v = self.ring[((self.time - 1 - i) % self.cache_size) as usize];
                 let start = self.vt_start[v as usize] as usize;
                 let live = self.vt_live[v as usize] as usize;
                 for idx in start..start + live {
                     let t = self.vt_tris[idx];
-                    let tri = self.tris[t as usize];
-                    let mut s = self.vertex_score(tri[0]) + self.vertex_score(tri[1]) + self.vertex_score(tri[2]);
+                    let mut s = self.score_of(t);
                     if t == nat || first.contains(&t) {
                         s += cb;
                     } else if t == swp {
@@ -393,6 +466,11 @@ impl<'a> State<'a> {
     /// a new strip with it.
     fn step(&mut self, t: u32, nat: u32, swp: u32, first: [u32; 3]) {
         self.take(t);
+        self.place(t, nat, swp, first);
+    }
+
+    /// Puts the emitted `t` into the strips and feeds its decoded vertices to the FIFO.
+    fn place(&mut self, t: u32, nat: u32, swp: u32, first: [u32; 3]) {
         if let Some(j) = first.iter().position(|&n| n == t) {
             // Rotate the one-triangle strip so it leaves across edge j.
             let tri = self.tris[self.cur as usize];
@@ -420,7 +498,7 @@ impl<'a> State<'a> {
         let (u, w) = (self.strip[len - 2], self.strip[len - 1]);
         let x = self.third(t, u, w);
         self.strip.push(x);
-        // Decoded order: (u, w, x) or (w, u, x); u and w are cached already.
+        // Decoded order: (u, w, x) or (w, u, x); u and w are usually cached already.
         self.touch(u);
         self.touch(w);
         self.touch(x);
