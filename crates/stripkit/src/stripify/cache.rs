@@ -87,10 +87,10 @@ impl CacheOptions {
         CacheOptions {
             continue_bonus: 2.0,
             swap_bonus: 0.5,
-            start_penalty: 0.15,
+            start_penalty: 0.2,
             strip_misses: cache_size * 5 / 4,
-            age_tilt: 0.1,
-            scan_entries: cache_size,
+            age_tilt: 0.2,
+            scan_entries: cache_size * 3 / 4,
             ..CacheOptions::cache(cache_size)
         }
     }
