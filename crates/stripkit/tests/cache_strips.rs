@@ -263,9 +263,14 @@ fn research_meshes_are_verified_in_both_modes() {
     for name in ["bunny_res4.ply", "bunny_res3.ply", "cow.obj", "spot_triangulated.obj", "fandisk.obj", "bunny.obj"] {
         let mesh = stripkit::mesh::io::read(&dir.join(name)).expect(name);
         let tris = mesh.triangulate().tris;
+        let graph = stripkit::topology::DualGraph::from_triangles(&tris, mesh.vertex_count());
         for o in [CacheOptions::cache(16), CacheOptions::balanced(16), CacheOptions::cache(32)] {
-            let (_, f) = check(&tris, mesh.vertex_count(), &o);
+            let (strips, f) = check(&tris, mesh.vertex_count(), &o);
             assert!(f.acmr < 0.9, "{name}: acmr16 {}", f.acmr);
+            // Its own neighbour search gives what the shared dual graph gives.
+            let with_graph = cache::stripify_with_graph(&tris, mesh.vertex_count(), &graph, &o);
+            assert_eq!(strips.indices, with_graph.indices, "{name}");
+            assert_eq!(strips.offsets, with_graph.offsets, "{name}");
         }
     }
 }

@@ -104,10 +104,12 @@ impl Default for CacheOptions {
 
 /// Strips for `tris` (indices below `vertex_count`), ordered for a FIFO vertex cache.
 /// Degenerate triangles are dropped; every other triangle appears exactly once with
-/// its winding. Builds the dual graph itself; see [`stripify_with_graph`].
+/// its winding. Finds the [`DualGraph`] neighbours itself, from the lists of triangles
+/// around each vertex it keeps anyway; see [`stripify_with_graph`].
 pub fn stripify(tris: &[[u32; 3]], vertex_count: usize, options: &CacheOptions) -> StripSet {
-    let graph = DualGraph::from_triangles(tris, vertex_count);
-    stripify_with_graph(tris, vertex_count, &graph, options)
+    let mut s = State::new(tris, vertex_count, None, options);
+    s.run();
+    s.out
 }
 
 /// As [`stripify`], with the dual graph of `tris` already built.
@@ -117,7 +119,7 @@ pub fn stripify_with_graph(
     graph: &DualGraph,
     options: &CacheOptions,
 ) -> StripSet {
-    let mut s = State::new(tris, vertex_count, graph, options);
+    let mut s = State::new(tris, vertex_count, Some(graph), options);
     s.run();
     s.out
 }
@@ -141,9 +143,44 @@ struct TriScore {
     stamps: i64,
 }
 
+/// The [`DualGraph`] neighbours from the lists of triangles around each vertex: the
+/// triangle across edge `(a, b)` of `t` is the other triangle around `a` that holds
+/// `b`, when there is exactly one and it runs `b -> a` (a manifold, consistently
+/// oriented edge), as [`DualGraph::from_triangles`] defines it.
+fn dual_neighbors(tris: &[[u32; 3]], degenerate: &[bool], vt_start: &[u32], vt_tris: &[u32]) -> Vec<[u32; 3]> {
+    let mut nb = vec![[NO_NEIGHBOR; 3]; tris.len()];
+    for (t, tri) in tris.iter().enumerate() {
+        if degenerate[t] {
+            continue;
+        }
+        for j in 0..3 {
+            let (a, b) = (tri[j], tri[(j + 1) % 3]);
+            let around = &vt_tris[vt_start[a as usize] as usize..vt_start[a as usize + 1] as usize];
+            let mut count = 0;
+            let mut partner = NO_NEIGHBOR;
+            for &u in around {
+                let ut = tris[u as usize];
+                for k in 0..3 {
+                    if ut[k] == b {
+                        count += 1;
+                        if ut[(k + 1) % 3] == a {
+                            partner = u;
+                        }
+                    }
+                }
+            }
+            if count == 2 {
+                nb[t][j] = partner;
+            }
+        }
+    }
+    nb
+}
+
 struct State<'a> {
     tris: &'a [[u32; 3]],
-    graph: &'a DualGraph,
+    /// [`DualGraph`] neighbours of each triangle.
+    neighbors: Vec<[u32; 3]>,
     o: CacheOptions,
     cache_size: u32,
     /// Score of a cached vertex per push of age (`age_tilt / cache_size`).
@@ -178,7 +215,7 @@ struct State<'a> {
 }
 
 impl<'a> State<'a> {
-    fn new(tris: &'a [[u32; 3]], vertex_count: usize, graph: &'a DualGraph, o: &CacheOptions) -> Self {
+    fn new(tris: &'a [[u32; 3]], vertex_count: usize, graph: Option<&DualGraph>, o: &CacheOptions) -> Self {
         let n = tris.len();
         let mut done = vec![false; n];
         let mut vt_start = vec![0u32; vertex_count + 1];
@@ -215,7 +252,10 @@ impl<'a> State<'a> {
         }
         let mut state = State {
             tris,
-            graph,
+            neighbors: match graph {
+                Some(g) => g.neighbors.clone(),
+                None => dual_neighbors(tris, &done, &vt_start, &vt_tris),
+            },
             o: *o,
             cache_size,
             tilt: o.age_tilt / cache_size as f32,
@@ -246,7 +286,7 @@ impl<'a> State<'a> {
         };
         for t in 0..n {
             if !state.done[t] {
-                state.free_nb[t] = state.graph.neighbors[t].iter().filter(|&&m| state.free(m)).count() as u8;
+                state.free_nb[t] = state.neighbors[t].iter().filter(|&&m| state.free(m)).count() as u8;
                 state.rescore(t as u32);
             }
         }
@@ -336,7 +376,7 @@ impl<'a> State<'a> {
         for j in 0..3 {
             let (x, y) = (tri[j], tri[(j + 1) % 3]);
             if (x == a && y == b) || (x == b && y == a) {
-                return self.graph.neighbors[t as usize][j];
+                return self.neighbors[t as usize][j];
             }
         }
         NO_NEIGHBOR
@@ -350,7 +390,7 @@ impl<'a> State<'a> {
     /// Marks `t` emitted: off its vertices' free lists, onto the dead-end stack.
     fn take(&mut self, t: u32) {
         self.done[t as usize] = true;
-        for m in self.graph.neighbors[t as usize] {
+        for m in self.neighbors[t as usize] {
             if self.free(m) {
                 self.free_nb[m as usize] -= 1;
             }
@@ -394,7 +434,7 @@ impl<'a> State<'a> {
             if self.cur != NO_NEIGHBOR {
                 let len = self.strip.len();
                 if len == 3 {
-                    first = self.graph.neighbors[self.cur as usize];
+                    first = self.neighbors[self.cur as usize];
                 } else {
                     let (p, u, w) = (self.strip[len - 3], self.strip[len - 2], self.strip[len - 1]);
                     nat = self.across(self.cur, u, w);
@@ -529,6 +569,27 @@ mod tests {
             }
         }
         (tris, ((w + 1) * (h + 1)) as usize)
+    }
+
+    #[test]
+    fn own_neighbours_match_the_dual_graph() {
+        let (mut tris, vc) = grid(9, 7);
+        // Awkward bits: a duplicated triangle, a flipped one, a degenerate one, three
+        // triangles on one edge, a triangle whose neighbour runs the same way.
+        tris.push(tris[5]);
+        let t = tris[20];
+        tris[20] = [t[0], t[2], t[1]];
+        tris.push([3, 3, 4]);
+        tris.push([40, 41, 70]);
+        tris.push([41, 40, 71]);
+        tris.push([40, 41, 72]);
+        tris.push([60, 61, 73]);
+        tris.push([61, 60, 74]);
+        let vc = vc.max(75);
+        let graph = DualGraph::from_triangles(&tris, vc);
+        let s = State::new(&tris, vc, None, &CacheOptions::default());
+        assert_eq!(s.neighbors, graph.neighbors);
+        assert!(graph.neighbors.iter().flatten().any(|&n| n == NO_NEIGHBOR));
     }
 
     #[test]
