@@ -139,8 +139,10 @@ fn is_degenerate(t: &[u32; 3]) -> bool {
 #[derive(Clone, Copy, Default)]
 struct TriScore {
     base: f32,
-    cached: i32,
-    stamps: i64,
+    cached: u32,
+    /// Sum of the push stamps of the cached vertices, wrapping: `cached * time -
+    /// stamps` (wrapping too) is the sum of their ages, small and exact.
+    stamps: u32,
 }
 
 /// The [`DualGraph`] neighbours from the lists of triangles around each vertex: the
@@ -303,7 +305,7 @@ impl<'a> State<'a> {
             if self.age(v) != 0 {
                 sc.base += 1.0;
                 sc.cached += 1;
-                sc.stamps += self.stamp[v as usize] as i64;
+                sc.stamps = sc.stamps.wrapping_add(self.stamp[v as usize]);
             }
         }
         self.score[t as usize] = sc;
@@ -311,13 +313,13 @@ impl<'a> State<'a> {
 
     /// Changes the score parts of the free triangles around `v` when `v` changes.
     #[inline]
-    fn shift(&mut self, v: u32, base: f32, cached: i32, stamps: i64) {
+    fn shift(&mut self, v: u32, base: f32, cached: u32, stamps: u32) {
         let start = self.vt_start[v as usize] as usize;
         for idx in start..start + self.vt_live[v as usize] as usize {
             let sc = &mut self.score[self.vt_tris[idx] as usize];
             sc.base += base;
-            sc.cached += cached;
-            sc.stamps += stamps;
+            sc.cached = sc.cached.wrapping_add(cached);
+            sc.stamps = sc.stamps.wrapping_add(stamps);
         }
     }
 
@@ -325,7 +327,7 @@ impl<'a> State<'a> {
     #[inline]
     fn score_of(&self, t: u32) -> f32 {
         let sc = self.score[t as usize];
-        sc.base + self.tilt * (sc.cached as i64 * self.time as i64 - sc.stamps) as f32
+        sc.base + self.tilt * sc.cached.wrapping_mul(self.time).wrapping_sub(sc.stamps) as f32
     }
 
     /// Age of `v` in the FIFO (1 = newest), or 0 when not cached.
@@ -354,11 +356,11 @@ impl<'a> State<'a> {
         let old = self.ring[slot];
         if old != NEVER && self.time >= self.cache_size {
             // `old` leaves the cache.
-            self.shift(old, -1.0, -1, -(self.stamp[old as usize] as i64));
+            self.shift(old, -1.0, u32::MAX, self.stamp[old as usize].wrapping_neg());
         }
         self.stamp[v as usize] = self.time;
         self.ring[slot] = v;
-        self.shift(v, 1.0, 1, self.time as i64);
+        self.shift(v, 1.0, 1, self.time);
         self.time = self.time.wrapping_add(1);
     }
 
