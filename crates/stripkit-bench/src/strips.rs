@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stripkit::metrics::{self, CacheModel, Figures};
 use stripkit::strip::{self, StripSet};
+use stripkit::stripify::cache::{self, CacheOptions};
 use stripkit::stripify::greedy::{self, GreedyOptions, Heuristic};
 
 /// Arguments of the `strips` comparison.
@@ -23,6 +24,10 @@ pub struct Args {
     /// Timed runs per row; the table shows the median.
     #[arg(long, default_value_t = 5)]
     pub runs: usize,
+    /// Also write an SVG plot of indices per triangle against acmr16 (one point per
+    /// row and model: the Pareto picture) to this file.
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
     /// Only meshes whose file name contains this text.
     #[arg(long)]
     pub only: Option<String>,
@@ -93,16 +98,10 @@ pub fn modes() -> Vec<Mode> {
                 },
             )
         }),
-        peer(
-            "meshopt optimize_vertex_cache + stripify",
-            reorder_cache,
-            meshopt_stripify,
-        ),
-        peer(
-            "meshopt optimize_vertex_cache_strip + stripify",
-            reorder_strip,
-            meshopt_stripify,
-        ),
+        ours("stripkit cache", |t, n| cache::stripify(t, n, &CacheOptions::cache(16))),
+        ours("stripkit balanced", |t, n| cache::stripify(t, n, &CacheOptions::balanced(16))),
+        peer("meshopt optimize_vertex_cache + stripify", reorder_cache, meshopt_stripify),
+        peer("meshopt optimize_vertex_cache_strip + stripify", reorder_strip, meshopt_stripify),
     ]
 }
 
@@ -244,11 +243,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(out) = &args.out {
         std::fs::write(out, &table).with_context(|| format!("writing {}", out.display()))?;
     }
-    let failed: Vec<String> = rows
-        .iter()
-        .filter(|r| r.ours && !r.figures.verified)
-        .map(|r| format!("{} on {}", r.mode, r.model))
-        .collect();
+    if let Some(svg) = &args.svg {
+        std::fs::write(svg, pareto_svg(&rows)).with_context(|| format!("writing {}", svg.display()))?;
+    }
+    let failed: Vec<String> =
+        rows.iter().filter(|r| r.ours && !r.figures.verified).map(|r| format!("{} on {}", r.mode, r.model)).collect();
     if !failed.is_empty() {
         anyhow::bail!("verification failed: {}", failed.join(", "));
     }
@@ -351,4 +350,60 @@ fn group(n: usize) -> String {
         out.push(c);
     }
     out
+}
+
+/// Indices per triangle (x) against acmr16 (y), one point per row, one colour per
+/// stripifier; lower-left is better on both figures.
+fn pareto_svg(rows: &[Row]) -> String {
+    let (w, h, m) = (640.0, 420.0, 50.0);
+    let (x0, x1, y0, y1) = (1.0f64, 2.2f64, 0.5f64, 1.2f64);
+    let px = |x: f64| m + (x.clamp(x0, x1) - x0) / (x1 - x0) * (w - 2.0 * m);
+    let py = |y: f64| h - m - (y.clamp(y0, y1) - y0) / (y1 - y0) * (h - 2.0 * m);
+    let colours = ["#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f"];
+    let mut names: Vec<&str> = Vec::new();
+    for r in rows {
+        if !names.contains(&r.mode) {
+            names.push(r.mode);
+        }
+    }
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"11\">\n\
+         <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n\
+         <line x1=\"{m}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n\
+         <line x1=\"{m}\" y1=\"{m}\" x2=\"{m}\" y2=\"{}\" stroke=\"black\"/>\n\
+         <text x=\"{}\" y=\"{}\" text-anchor=\"middle\">indices_restart per triangle</text>\n\
+         <text x=\"12\" y=\"{}\" transform=\"rotate(-90 12 {})\" text-anchor=\"middle\">acmr16 (FIFO 16)</text>\n",
+        h - m, w - m, h - m, h - m, w / 2.0, h - 12.0, h / 2.0, h / 2.0
+    );
+    for i in 0..=6 {
+        let x = x0 + (x1 - x0) * i as f64 / 6.0;
+        s.push_str(&format!("<text x=\"{:.1}\" y=\"{}\" text-anchor=\"middle\">{x:.1}</text>\n", px(x), h - m + 14.0));
+        let y = y0 + (y1 - y0) * i as f64 / 6.0;
+        s.push_str(&format!("<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{y:.2}</text>\n", m - 4.0, py(y) + 4.0));
+    }
+    for r in rows {
+        let k = names.iter().position(|&n| n == r.mode).unwrap_or(0) % colours.len();
+        s.push_str(&format!(
+            "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"3.5\" fill=\"{}\"><title>{} {}: {:.3} idx/tri, acmr16 {:.3}</title></circle>\n",
+            px(r.figures.indices_per_triangle),
+            py(r.figures.acmr16),
+            colours[k],
+            r.model,
+            r.mode,
+            r.figures.indices_per_triangle,
+            r.figures.acmr16
+        ));
+    }
+    for (k, n) in names.iter().enumerate() {
+        let y = m + 14.0 * k as f64;
+        s.push_str(&format!(
+            "<circle cx=\"{}\" cy=\"{y}\" r=\"4\" fill=\"{}\"/><text x=\"{}\" y=\"{}\">{n}</text>\n",
+            w - 290.0,
+            colours[k % colours.len()],
+            w - 282.0,
+            y + 4.0
+        ));
+    }
+    s.push_str("</svg>\n");
+    s
 }

@@ -14,6 +14,7 @@
 //! `t0`, `t1` needs a swap when its pivot is the *tail* of `E(1)` as `t0` runs it.
 //! [`encode_path`] therefore reads a walk from whichever end needs fewer swaps.
 
+pub mod cache;
 pub mod greedy;
 pub mod quad;
 pub mod quad_single;
