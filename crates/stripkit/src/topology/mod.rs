@@ -11,6 +11,8 @@
 
 pub mod facts;
 
+pub use facts::{validate, MeshFacts};
+
 use crate::mesh::Mesh;
 
 /// Marks "no neighbour" in [`DualGraph::neighbors`].

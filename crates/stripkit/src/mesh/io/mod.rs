@@ -1,19 +1,237 @@
 //! Mesh files in and out, chosen by extension: OBJ, PLY, OFF, STL, glTF (`.gltf`,
-//! `.glb`); a trailing `.gz` is decompressed transparently.
+//! `.glb`); a trailing `.gz` is decompressed (or compressed) transparently.
+//!
+//! Every reader takes the whole file into memory and parses bytes; malformed input
+//! gives [`Error::Format`] naming the file, the line (text) or element / byte offset
+//! (binary) and what is wrong. Counts announced in headers are checked against the
+//! file's size before anything is allocated from them. Vertex ids are the file's:
+//! unreferenced vertices are kept (STL, which has no shared vertices, welds identical
+//! positions in first-seen order).
+//!
+//! | format | read | write |
+//! |---|---|---|
+//! | OBJ | `v`, `f` (all `v/vt/vn` forms, negative indices), polygons kept | `v`, `f` |
+//! | PLY | ASCII, binary LE/BE; `face` lists or `tristrips` | ASCII or binary LE; faces or `tristrips` |
+//! | OFF | `[ST][C][N][4]OFF`, comments, face colours | `OFF` |
+//! | STL | ASCII and binary, identical positions welded | binary, polygons fanned |
+//! | glTF | `.gltf` (data URIs, external files), `.glb`; modes 4/5/6 | `.gltf` (embedded), `.glb`; TRIANGLES or one TRIANGLE_STRIP per strip |
+
+mod common;
+mod gltf;
+mod obj;
+mod off;
+mod ply;
+mod stl;
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::strip::StripSet;
+use std::io::{Read, Write};
 use std::path::Path;
+
+/// The extensions [`read`] and [`write`] understand, as shown in error messages.
+pub const SUPPORTED_EXTENSIONS: &str =
+    ".obj, .ply, .off, .stl, .gltf, .glb (each optionally followed by .gz)";
+
+/// The extensions [`read`] understands, for help texts and error messages.
+pub fn supported_read_extensions() -> &'static str {
+    SUPPORTED_EXTENSIONS
+}
+
+/// The extensions [`write`] understands, for help texts and error messages.
+pub fn supported_write_extensions() -> &'static str {
+    SUPPORTED_EXTENSIONS
+}
+
+/// Options for [`write_with`].
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct WriteOptions {
+    /// Write PLY as ASCII text instead of binary little-endian (the default).
+    pub ply_ascii: bool,
+}
+
+/// A mesh file format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// Wavefront OBJ.
+    Obj,
+    /// Stanford PLY.
+    Ply,
+    /// Object File Format.
+    Off,
+    /// Stereolithography, ASCII or binary.
+    Stl,
+    /// glTF 2.0 JSON.
+    Gltf,
+    /// glTF 2.0 binary container.
+    Glb,
+}
+
+impl Format {
+    /// The format named by a file's extension (case-insensitive), and whether the
+    /// name ends in `.gz`; `None` for an extension we do not know.
+    pub fn from_path(path: &Path) -> Option<(Format, bool)> {
+        let name = path.file_name()?.to_str()?.to_ascii_lowercase();
+        let (name, gz) = match name.strip_suffix(".gz") {
+            Some(inner) => (inner.to_string(), true),
+            None => (name, false),
+        };
+        let ext = name.rsplit_once('.')?.1;
+        let format = match ext {
+            "obj" => Format::Obj,
+            "ply" => Format::Ply,
+            "off" => Format::Off,
+            "stl" => Format::Stl,
+            "gltf" => Format::Gltf,
+            "glb" => Format::Glb,
+            _ => return None,
+        };
+        Some((format, gz))
+    }
+}
+
+fn unknown(path: &Path) -> Error {
+    Error::UnknownFormat { path: path.to_path_buf(), expected: SUPPORTED_EXTENSIONS }
+}
+
+fn io_error(path: &Path, source: std::io::Error) -> Error {
+    Error::Io { path: path.to_path_buf(), source }
+}
 
 /// Reads a mesh, choosing the format by the file's extension.
 pub fn read(path: &Path) -> Result<Mesh> {
-    Err(Error::UnknownFormat { path: path.to_path_buf(), expected: "(readers not built yet)" })
+    let (format, gz) = Format::from_path(path).ok_or_else(|| unknown(path))?;
+    let raw = std::fs::read(path).map_err(|e| io_error(path, e))?;
+    let data = if gz { gunzip(path, &raw)? } else { raw };
+    read_bytes(path, format, &data)
+}
+
+/// Parses a mesh already in memory (uncompressed) as `format`; `path` names the file
+/// in errors and locates external glTF buffers.
+pub fn read_bytes(path: &Path, format: Format, data: &[u8]) -> Result<Mesh> {
+    match format {
+        Format::Obj => obj::read(path, data),
+        Format::Ply => ply::read(path, data),
+        Format::Off => off::read(path, data),
+        Format::Stl => stl::read(path, data),
+        Format::Gltf => gltf::read_gltf(path, data),
+        Format::Glb => gltf::read_glb(path, data),
+    }
+}
+
+fn gunzip(path: &Path, raw: &[u8]) -> Result<Vec<u8>> {
+    let mut out = Vec::with_capacity(raw.len().saturating_mul(3));
+    flate2::read::MultiGzDecoder::new(raw).read_to_end(&mut out).map_err(|e| Error::Format {
+        path: path.to_path_buf(),
+        at: format!("gzip stream (after {} decompressed bytes)", out.len()),
+        what: format!("cannot decompress: {e}"),
+    })?;
+    Ok(out)
 }
 
 /// Writes a mesh, choosing the format by extension. With `strips`, formats that can
-/// hold strips (PLY `tristrips`, glTF `TRIANGLE_STRIP`) write them instead of faces.
+/// hold strips (PLY `tristrips`, glTF `TRIANGLE_STRIP`) write them instead of faces;
+/// OBJ, OFF and STL always write the mesh's faces. PLY is binary little-endian; see
+/// [`write_with`] for ASCII.
 pub fn write(path: &Path, mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> {
-    let _ = (mesh, strips);
-    Err(Error::UnknownFormat { path: path.to_path_buf(), expected: "(writers not built yet)" })
+    write_with(path, mesh, strips, &WriteOptions::default())
+}
+
+/// [`write`] with options. The mesh's and the strips' indices are checked against the
+/// vertex count first ([`Error::Invalid`] when one is out of range). A name ending in
+/// `.gz` is gzip-compressed.
+pub fn write_with(
+    path: &Path,
+    mesh: &Mesh,
+    strips: Option<&StripSet>,
+    options: &WriteOptions,
+) -> Result<()> {
+    let (format, gz) = Format::from_path(path).ok_or_else(|| unknown(path))?;
+    let bytes = write_bytes(format, mesh, strips, options)?;
+    let bytes = if gz {
+        let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+        enc.write_all(&bytes).and_then(|_| enc.finish()).map_err(|e| io_error(path, e))?
+    } else {
+        bytes
+    };
+    std::fs::write(path, bytes).map_err(|e| io_error(path, e))
+}
+
+/// Encodes a mesh (or its strips) in `format` into memory. glTF output is
+/// self-contained (its buffer embedded as a data URI).
+pub fn write_bytes(
+    format: Format,
+    mesh: &Mesh,
+    strips: Option<&StripSet>,
+    options: &WriteOptions,
+) -> Result<Vec<u8>> {
+    check_indices(mesh, strips)?;
+    match format {
+        Format::Obj => Ok(obj::write(mesh)),
+        Format::Ply => ply::write(mesh, strips, options.ply_ascii),
+        Format::Off => Ok(off::write(mesh)),
+        Format::Stl => stl::write(mesh),
+        Format::Gltf => gltf::write_gltf(mesh, strips),
+        Format::Glb => gltf::write_glb(mesh, strips),
+    }
+}
+
+fn check_indices(mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> {
+    let n = mesh.positions.len();
+    if n > u32::MAX as usize {
+        return Err(Error::Invalid(format!("{n} vertices do not fit 32-bit indices")));
+    }
+    if mesh.face_offsets.first().is_some_and(|&o| o != 0)
+        || mesh.face_offsets.last().is_some_and(|&o| o as usize != mesh.face_indices.len())
+        || mesh.face_offsets.windows(2).any(|w| w[1].saturating_sub(w[0]) < 3)
+    {
+        return Err(Error::Invalid("mesh faces are malformed (offsets, or a face with fewer than 3 vertices)".into()));
+    }
+    if let Some(f) = mesh.faces().position(|f| f.iter().any(|&i| i as usize >= n)) {
+        let bad = mesh.face(f).iter().find(|&&i| i as usize >= n).copied().unwrap_or(0);
+        return Err(Error::Invalid(format!("face {f} refers to vertex {bad} but the mesh has {n} vertices")));
+    }
+    if let Some(s) = strips {
+        if s.offsets.first().is_some_and(|&o| o != 0)
+            || s.offsets.last().is_some_and(|&o| o as usize != s.indices.len())
+            || s.offsets.windows(2).any(|w| w[1] < w[0])
+        {
+            return Err(Error::Invalid("strip offsets are malformed".into()));
+        }
+        if let Some(&bad) = s.indices.iter().find(|&&i| i as usize >= n) {
+            return Err(Error::Invalid(format!("a strip refers to vertex {bad} but the mesh has {n} vertices")));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn formats_are_chosen_by_extension_case_insensitively() {
+        assert_eq!(Format::from_path(Path::new("a/b.OBJ")), Some((Format::Obj, false)));
+        assert_eq!(Format::from_path(Path::new("x.ply.GZ")), Some((Format::Ply, true)));
+        assert_eq!(Format::from_path(Path::new("horse-gallop-01.obj.gz")), Some((Format::Obj, true)));
+        assert_eq!(Format::from_path(Path::new("m.glb")), Some((Format::Glb, false)));
+        assert_eq!(Format::from_path(Path::new("m.txt")), None);
+        assert_eq!(Format::from_path(Path::new("gz")), None);
+        assert_eq!(Format::from_path(Path::new("m.gz")), None);
+    }
+
+    #[test]
+    fn unknown_extension_lists_the_supported_ones() {
+        let e = read(Path::new("mesh.xyz")).unwrap_err();
+        let msg = e.to_string();
+        assert!(matches!(e, Error::UnknownFormat { .. }));
+        assert!(msg.contains("mesh.xyz") && msg.contains(".obj") && msg.contains(".glb"), "{msg}");
+    }
+
+    #[test]
+    fn writers_refuse_out_of_range_indices() {
+        let mesh = Mesh::from_triangles(vec![[0.0; 3]; 3], &[[0, 1, 3]]);
+        let e = write_bytes(Format::Obj, &mesh, None, &WriteOptions::default()).unwrap_err();
+        assert!(e.to_string().contains("vertex 3"), "{e}");
+    }
 }

@@ -1,0 +1,257 @@
+//! Wavefront OBJ: `v x y z` and `f` with `v`, `v/vt`, `v//vn`, `v/vt/vn` corners,
+//! 1-based or negative (relative) indices; polygons are kept. Every other statement
+//! (`vt`, `vn`, `o`, `g`, `usemtl`, `l`, ...) is ignored.
+
+use super::common::{
+    close_face, finite, index_message, is_space, line_at, parse_f32, parse_i64, show, strip_comment,
+    tokens, Lines, Src,
+};
+use crate::error::Result;
+use crate::mesh::Mesh;
+use std::path::Path;
+
+/// Parses an OBJ file held in memory.
+pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
+    let src = Src { path };
+    let mut mesh = Mesh::new();
+    // Faces may name vertices defined later in the file, so positive indices are
+    // range-checked once at the end; this is the largest seen (0-based).
+    let mut max_index: u64 = 0;
+    for (ln, line) in Lines::new(data) {
+        let start = line.iter().position(|&b| !is_space(b)).unwrap_or(line.len());
+        let line = &line[start..];
+        match line {
+            [b'v', c, rest @ ..] if is_space(*c) => {
+                let mut toks = tokens(strip_comment(rest));
+                let mut p = [0.0f32; 3];
+                for (k, slot) in p.iter_mut().enumerate() {
+                    let tok = toks.next().ok_or_else(|| {
+                        src.err(line_at(ln), format!("vertex has {k} coordinates, needs 3"))
+                    })?;
+                    let v = parse_f32(tok).ok_or_else(|| {
+                        src.err(line_at(ln), format!("malformed number '{}'", show(tok)))
+                    })?;
+                    *slot = finite(v, tok).map_err(|w| src.err(line_at(ln), w))?;
+                }
+                if mesh.positions.len() >= u32::MAX as usize {
+                    return Err(src.err(line_at(ln), "more than 4294967295 vertices"));
+                }
+                mesh.positions.push(p);
+            }
+            [b'v'] => return Err(src.err(line_at(ln), "vertex has 0 coordinates, needs 3")),
+            [b'f', c, rest @ ..] if is_space(*c) => {
+                let first = mesh.face_indices.len();
+                let defined = mesh.positions.len() as i64;
+                for tok in tokens(strip_comment(rest)) {
+                    let vpart = match tok.iter().position(|&b| b == b'/') {
+                        Some(i) => &tok[..i],
+                        None => tok,
+                    };
+                    let idx = parse_i64(vpart).ok_or_else(|| {
+                        src.err(line_at(ln), format!("malformed vertex index '{}'", show(tok)))
+                    })?;
+                    let zero_based = if idx > 0 {
+                        idx - 1
+                    } else if idx < 0 {
+                        let r = defined + idx;
+                        if r < 0 {
+                            return Err(src.err(
+                                line_at(ln),
+                                format!(
+                                    "relative index {idx} reaches before the first vertex ({defined} vertices defined so far)"
+                                ),
+                            ));
+                        }
+                        r
+                    } else {
+                        return Err(src.err(line_at(ln), "vertex index 0 (OBJ indices start at 1)"));
+                    };
+                    if zero_based >= u32::MAX as i64 {
+                        return Err(src.err(
+                            line_at(ln),
+                            format!("vertex index {idx} is beyond any vertex the file can hold"),
+                        ));
+                    }
+                    max_index = max_index.max(zero_based as u64);
+                    mesh.face_indices.push(zero_based as u32);
+                }
+                let k = mesh.face_indices.len() - first;
+                if k < 3 {
+                    return Err(src.err(line_at(ln), format!("face has {k} vertices, needs at least 3")));
+                }
+                close_face(&mut mesh).map_err(|w| src.err(line_at(ln), w))?;
+            }
+            [b'f'] => return Err(src.err(line_at(ln), "face has 0 vertices, needs at least 3")),
+            _ => {}
+        }
+    }
+    let nv = mesh.positions.len();
+    if mesh.face_count() > 0 && max_index as usize >= nv {
+        // Error path only: find the first offending face and its line.
+        let face = mesh.faces().position(|f| f.iter().any(|&i| i as usize >= nv)).unwrap_or(0);
+        let bad = mesh.face(face).iter().copied().find(|&i| i as usize >= nv).unwrap_or(0);
+        let line = face_line(data, face);
+        return Err(src.err(line_at(line), index_message(face, bad as u64 + 1, nv)));
+    }
+    Ok(mesh)
+}
+
+/// The line number of the `face`-th `f` statement.
+fn face_line(data: &[u8], face: usize) -> usize {
+    let mut seen = 0;
+    for (ln, line) in Lines::new(data) {
+        let start = line.iter().position(|&b| !is_space(b)).unwrap_or(line.len());
+        if let [b'f', c, ..] = &line[start..] {
+            if is_space(*c) {
+                if seen == face {
+                    return ln;
+                }
+                seen += 1;
+            }
+        }
+    }
+    0
+}
+
+/// Appends the decimal digits of `v`.
+pub(crate) fn push_u64(out: &mut Vec<u8>, mut v: u64) {
+    let mut buf = [0u8; 20];
+    let mut i = buf.len();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (v % 10) as u8;
+        v /= 10;
+        if v == 0 {
+            break;
+        }
+    }
+    out.extend_from_slice(&buf[i..]);
+}
+
+/// Appends the shortest decimal text that reads back as exactly `v`.
+pub(crate) fn push_f32(out: &mut Vec<u8>, v: f32) {
+    use std::io::Write;
+    if v == v.trunc() && v.abs() < 1e7 {
+        // Integral values: "3" rather than "3.0" keeps files short.
+        if v == 0.0 && v.is_sign_negative() {
+            out.extend_from_slice(b"-0");
+        } else {
+            if v < 0.0 {
+                out.push(b'-');
+            }
+            push_u64(out, v.abs() as u64);
+        }
+    } else {
+        // Debug prints the shortest round-trip form, with an exponent for extremes.
+        let _ = write!(out, "{v:?}");
+    }
+}
+
+/// Encodes a mesh as OBJ text (1-based indices, polygons as they are).
+pub(crate) fn write(mesh: &Mesh) -> Vec<u8> {
+    let mut out = Vec::with_capacity(mesh.positions.len() * 32 + mesh.face_indices.len() * 8 + 64);
+    out.extend_from_slice(
+        format!(
+            "# written by stripkit: {} vertices, {} faces\n",
+            mesh.positions.len(),
+            mesh.face_count()
+        )
+        .as_bytes(),
+    );
+    for p in &mesh.positions {
+        out.push(b'v');
+        for &c in p {
+            out.push(b' ');
+            push_f32(&mut out, c);
+        }
+        out.push(b'\n');
+    }
+    for f in mesh.faces() {
+        out.push(b'f');
+        for &i in f {
+            out.push(b' ');
+            push_u64(&mut out, i as u64 + 1);
+        }
+        out.push(b'\n');
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error::Error;
+
+    fn parse(text: &str) -> Result<Mesh> {
+        read(Path::new("t.obj"), text.as_bytes())
+    }
+
+    fn format_error(text: &str) -> (String, String) {
+        match parse(text) {
+            Err(Error::Format { at, what, .. }) => (at, what),
+            other => panic!("expected a format error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn all_face_forms_and_negative_indices_read_alike() {
+        let text = "# c\nv 0 0 0\nv 1 0 0\nvt 0 0\nvn 0 0 1\nv 1 1 0\nv 0 1 0\n\
+                    f 1 2 3\nf 1/1 3/1 4/1\nf 1//1 2//1 4//1\nf 2/1/1 3/1/1 4/1/1\nf -4 -3 -2 -1\n\
+                    o name\ng grp\nusemtl m\ns off\nl 1 2\n";
+        let m = parse(text).unwrap();
+        assert_eq!(m.positions.len(), 4);
+        assert_eq!(m.face(0), &[0, 1, 2]);
+        assert_eq!(m.face(1), &[0, 2, 3]);
+        assert_eq!(m.face(2), &[0, 1, 3]);
+        assert_eq!(m.face(3), &[1, 2, 3]);
+        assert_eq!(m.face(4), &[0, 1, 2, 3]);
+        assert_eq!(m.positions[2], [1.0, 1.0, 0.0]);
+    }
+
+    #[test]
+    fn relative_indices_refer_to_vertices_defined_so_far() {
+        let m = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 5 5 5\nf -4 -3 -1\n").unwrap();
+        assert_eq!(m.face(0), &[0, 1, 2]);
+        assert_eq!(m.face(1), &[0, 1, 3]);
+    }
+
+    #[test]
+    fn forward_references_are_allowed() {
+        let m = parse("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n").unwrap();
+        assert_eq!(m.face(0), &[0, 1, 2]);
+    }
+
+    #[test]
+    fn bad_lines_are_named() {
+        let (at, what) = format_error("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 9\n");
+        assert_eq!(at, "line 5");
+        assert!(what.contains("vertex 9") && what.contains("3 vertices"), "{what}");
+        let (at, what) = format_error("v 0 0 0\nv 1 x 0\n");
+        assert_eq!(at, "line 2");
+        assert!(what.contains("malformed number 'x'"), "{what}");
+        let (at, what) = format_error("v 0 0 nan\n");
+        assert_eq!(at, "line 1");
+        assert!(what.contains("NaN or infinite"), "{what}");
+        let (_, what) = format_error("v 0 0 0\nv 0 0 0\nf 1 2\n");
+        assert!(what.contains("2 vertices"), "{what}");
+        let (_, what) = format_error("v 0 0 0\nf 0 1 1\n");
+        assert!(what.contains("index 0"), "{what}");
+        let (_, what) = format_error("v 0 0 0\nf -2 1 1\n");
+        assert!(what.contains("relative index -2"), "{what}");
+        let (_, what) = format_error("v 1 2\n");
+        assert!(what.contains("2 coordinates"), "{what}");
+        let (_, what) = format_error("v 0 0 0\nf 1 a/1 1\n");
+        assert!(what.contains("'a/1'"), "{what}");
+    }
+
+    #[test]
+    fn written_text_reads_back_exactly() {
+        let positions = vec![[0.1, -2.5, 3.0], [1e-7, 1e30, -0.0], [f32::MIN_POSITIVE, 7.0, 12345.678]];
+        let mesh = Mesh::from_polygons(positions, &[vec![0, 1, 2], vec![2, 1, 0]]);
+        let back = read(Path::new("t.obj"), &write(&mesh)).unwrap();
+        assert_eq!(back, mesh);
+        for (a, b) in back.positions.iter().flatten().zip(mesh.positions.iter().flatten()) {
+            assert_eq!(a.to_bits(), b.to_bits());
+        }
+    }
+}

@@ -1,0 +1,225 @@
+//! Object File Format: a header keyword `[ST][C][N][4]OFF` (texture coordinates,
+//! colours, normals, homogeneous coordinates), counts `V F [E]` on the same or the
+//! next line, then one vertex per line and one face `k i0 .. ik-1 [colour]` per line.
+//! `#` starts a comment. Values after the first three (four for `4OFF`) on a vertex
+//! line and after the `k` indices on a face line are ignored, which covers every
+//! colour / normal / texture variant without knowing how many numbers each carries.
+
+use super::common::{
+    capped, close_face, finite, index_message, line_at, parse_count, parse_f32, show, strip_comment,
+    tokens, Lines, Src,
+};
+use super::obj::{push_f32, push_u64};
+use crate::error::Result;
+use crate::mesh::Mesh;
+use std::path::Path;
+
+/// Parses an OFF file held in memory.
+pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
+    let src = Src { path };
+    // Non-empty lines with comments removed.
+    let mut lines = Lines::new(data)
+        .map(|(ln, l)| (ln, strip_comment(l)))
+        .filter(|(_, l)| tokens(l).next().is_some());
+
+    let (ln, header) = lines.next().ok_or_else(|| src.err("line 1", "empty file, expected the OFF keyword"))?;
+    let mut toks = tokens(header);
+    let keyword = toks.next().unwrap_or_default();
+    let homogeneous = parse_keyword(keyword)
+        .ok_or_else(|| src.err(line_at(ln), format!("expected an OFF keyword such as OFF or COFF, found '{}'", show(keyword))))?;
+    // Counts follow on the same line or on the next one.
+    let mut counts: Vec<&[u8]> = toks.collect();
+    let mut counts_line = ln;
+    if counts.is_empty() {
+        let (ln2, l) = lines.next().ok_or_else(|| src.err(line_at(ln), "file ends before the vertex and face counts"))?;
+        counts = tokens(l).collect();
+        counts_line = ln2;
+    }
+    if counts.len() < 2 {
+        return Err(src.err(line_at(counts_line), "expected the counts 'vertices faces [edges]'"));
+    }
+    let count = |tok: &[u8], what: &str| {
+        parse_count(tok)
+            .ok_or_else(|| src.err(line_at(counts_line), format!("malformed {what} count '{}'", show(tok))))
+    };
+    let nv = count(counts[0], "vertex")?;
+    let nf = count(counts[1], "face")?;
+    if nv > u32::MAX as u64 {
+        return Err(src.err(line_at(counts_line), format!("{nv} vertices do not fit 32-bit indices")));
+    }
+
+    let mut mesh = Mesh::new();
+    // A vertex line needs at least 6 bytes ("0 0 0\n"), a face line 8.
+    mesh.positions.reserve(capped(nv, data.len(), 6));
+    mesh.face_offsets.reserve(capped(nf, data.len(), 8));
+    mesh.face_indices.reserve(capped(nf, data.len(), 8) * 3);
+    let mut last_line = counts_line;
+    for v in 0..nv {
+        let (ln, l) = lines.next().ok_or_else(|| {
+            src.err(line_at(last_line), format!("file ends after {v} of {nv} announced vertices"))
+        })?;
+        last_line = ln;
+        let mut toks = tokens(l);
+        let mut p = [0.0f32; 4];
+        let dims = if homogeneous { 4 } else { 3 };
+        for (k, slot) in p.iter_mut().take(dims).enumerate() {
+            let tok = toks
+                .next()
+                .ok_or_else(|| src.err(line_at(ln), format!("vertex {v} has {k} coordinates, needs {dims}")))?;
+            let x = parse_f32(tok).ok_or_else(|| src.err(line_at(ln), format!("malformed number '{}'", show(tok))))?;
+            *slot = finite(x, tok).map_err(|w| src.err(line_at(ln), w))?;
+        }
+        if homogeneous {
+            if p[3] == 0.0 {
+                return Err(src.err(line_at(ln), format!("vertex {v} has homogeneous coordinate 0")));
+            }
+            for k in 0..3 {
+                p[k] /= p[3];
+            }
+        }
+        mesh.positions.push([p[0], p[1], p[2]]);
+    }
+    for f in 0..nf {
+        let (ln, l) = lines.next().ok_or_else(|| {
+            src.err(line_at(last_line), format!("file ends after {f} of {nf} announced faces"))
+        })?;
+        last_line = ln;
+        let mut toks = tokens(l);
+        let ktok = toks.next().unwrap_or_default();
+        let k = parse_count(ktok)
+            .ok_or_else(|| src.err(line_at(ln), format!("malformed vertex count '{}'", show(ktok))))?;
+        if k < 3 {
+            return Err(src.err(line_at(ln), format!("face {f} has {k} vertices, needs at least 3")));
+        }
+        for j in 0..k {
+            let tok = toks
+                .next()
+                .ok_or_else(|| src.err(line_at(ln), format!("face {f} announces {k} vertices but lists {j}")))?;
+            let i = parse_count(tok)
+                .ok_or_else(|| src.err(line_at(ln), format!("malformed vertex index '{}'", show(tok))))?;
+            if i >= nv {
+                return Err(src.err(line_at(ln), index_message(f as usize, i, nv as usize)));
+            }
+            mesh.face_indices.push(i as u32);
+        }
+        close_face(&mut mesh).map_err(|w| src.err(line_at(ln), w))?;
+    }
+    Ok(mesh)
+}
+
+/// Checks an OFF keyword; returns whether vertices carry a homogeneous coordinate.
+fn parse_keyword(k: &[u8]) -> Option<bool> {
+    let mut rest = k.strip_suffix(b"OFF")?;
+    if let Some(r) = rest.strip_prefix(b"ST") {
+        rest = r;
+    }
+    for prefix in [&b"C"[..], b"N"] {
+        if let Some(r) = rest.strip_prefix(prefix) {
+            rest = r;
+        }
+    }
+    let homogeneous = match rest {
+        b"" => false,
+        b"4" => true,
+        _ => return None,
+    };
+    Some(homogeneous)
+}
+
+/// Encodes a mesh as OFF text.
+pub(crate) fn write(mesh: &Mesh) -> Vec<u8> {
+    let mut out = Vec::with_capacity(mesh.positions.len() * 32 + mesh.face_indices.len() * 8 + 64);
+    out.extend_from_slice(format!("OFF\n{} {} 0\n", mesh.positions.len(), mesh.face_count()).as_bytes());
+    for p in &mesh.positions {
+        for (k, &c) in p.iter().enumerate() {
+            if k > 0 {
+                out.push(b' ');
+            }
+            push_f32(&mut out, c);
+        }
+        out.push(b'\n');
+    }
+    for f in mesh.faces() {
+        push_u64(&mut out, f.len() as u64);
+        for &i in f {
+            out.push(b' ');
+            push_u64(&mut out, i as u64);
+        }
+        out.push(b'\n');
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error::Error;
+
+    fn parse(text: &str) -> Result<Mesh> {
+        read(Path::new("t.off"), text.as_bytes())
+    }
+
+    fn format_error(text: &str) -> (String, String) {
+        match parse(text) {
+            Err(Error::Format { at, what, .. }) => (at, what),
+            other => panic!("expected a format error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn header_variants_comments_and_colours_are_read() {
+        let plain = "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+        let expected = parse(plain).unwrap();
+        assert_eq!(expected.face_count(), 2);
+        let variants = [
+            "# comment\nOFF 4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n",
+            "COFF\n4 2 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n1 1 0 0 0 255 255\n0 1 0 1 1 1 1\n3 0 1 2\n3 0 2 3\n",
+            "NOFF\n# normals\n4 2\n0 0 0 0 0 1\n1 0 0 0 0 1\n1 1 0 0 0 1 # c\n0 1 0 0 0 1\n3 0 1 2 255 0 0\n3 0 2 3 0.5 0.5 0.5 1\n",
+            "CNOFF\n4 2 0\n0 0 0 0 0 1 1 1 1 1\n1 0 0 0 0 1 1 1 1 1\n1 1 0 0 0 1 1 1 1 1\n0 1 0 0 0 1 1 1 1 1\n3 0 1 2\n3 0 2 3\n",
+            "STOFF\n4 2 0\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n\n3 0 1 2\n3 0 2 3\n",
+            "4OFF\n4 2 0\n0 0 0 2\n2 0 0 2\n2 2 0 2\n0 2 0 2\n3 0 1 2\n3 0 2 3\n",
+            "OFF\r\n4 2 0\r\n0 0 0\r\n1 0 0\r\n1 1 0\r\n0 1 0\r\n3 0 1 2\r\n3 0 2 3\r\n",
+        ];
+        for v in variants {
+            assert_eq!(parse(v).unwrap(), expected, "{v}");
+        }
+    }
+
+    #[test]
+    fn bad_input_is_named() {
+        let (at, what) = format_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+        assert_eq!(at, "line 6");
+        assert_eq!(what, "face 0 refers to vertex 7 but the file has 3 vertices");
+        let (at, what) = format_error("OFF\n3 1 0\n0 0 0\n1 0 0\n");
+        assert_eq!(at, "line 4");
+        assert!(what.contains("2 of 3"), "{what}");
+        let (_, what) = format_error("OFF\n3 1000000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+        assert!(what.contains("1 of 1000000000000 announced faces"), "{what}");
+        let (_, what) = format_error("OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n");
+        assert!(what.contains("NaN or infinite"), "{what}");
+        let (_, what) = format_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n");
+        assert!(what.contains("2 vertices"), "{what}");
+        let (_, what) = format_error("PLY\n");
+        assert!(what.contains("OFF keyword"), "{what}");
+        let (_, what) = format_error("OFF\n3 x 0\n");
+        assert!(what.contains("malformed face count"), "{what}");
+        let (_, what) = format_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n");
+        assert!(what.contains("lists 2"), "{what}");
+    }
+
+    #[test]
+    fn empty_mesh_round_trips() {
+        let m = parse("OFF\n0 0 0\n").unwrap();
+        assert_eq!(m, Mesh::new());
+        assert_eq!(read(Path::new("t.off"), &write(&m)).unwrap(), m);
+    }
+
+    #[test]
+    fn written_text_reads_back_exactly() {
+        let mesh = Mesh::from_polygons(
+            vec![[0.1, -2.5, 3.0], [1e-7, 1e30, -0.0], [0.25, 7.0, 12345.678], [4.0, 5.0, 6.0]],
+            &[vec![0, 1, 2, 3], vec![2, 1, 0]],
+        );
+        assert_eq!(read(Path::new("t.off"), &write(&mesh)).unwrap(), mesh);
+    }
+}
