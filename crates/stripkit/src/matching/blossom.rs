@@ -8,20 +8,21 @@
 //! * **Greedy dual initialisation.** `y_v = max w / 2`, then every vertex lowers its
 //!   dual to its smallest slack and is matched along a tight edge to a free neighbour.
 //!   On mesh dual graphs this leaves only a few percent of the vertices exposed.
-//! * **One alternating tree at a time, grown Dijkstra-like.** Each search starts at an
-//!   exposed vertex and only touches the tree it grows; dual updates are *lazy*: a tree
-//!   blossom stores the time `t` it was labelled, and its true dual is the stored one
-//!   plus/minus `D - t` where `D` is the search's running total. Nothing outside the
-//!   tree moves, so an augmentation costs about the size of the explored region.
-//! * **A priority queue of events** keyed by the `D` at which they happen (an edge
-//!   from the tree to a free vertex becomes tight, an edge between two outer blossoms
+//! * **All alternating trees grown at once** (one per exposed vertex) with one global
+//!   dual change `D`, and *lazy* dual updates: a tree blossom stores the `D` at which
+//!   it was labelled, and its true dual is the stored one plus/minus the difference.
+//!   Nothing is touched per dual step; when two trees meet they augment and only those
+//!   two trees are written back and dissolved.
+//! * **One priority queue of events** keyed by the `D` at which they happen (an edge
+//!   from a tree to a free vertex becomes tight, an edge between two outer blossoms
 //!   becomes tight, an inner blossom's dual reaches zero); entries are checked when
 //!   popped (lazy deletion) instead of being updated.
 //!
-//! Integrality: the caller doubles the weights, so every weight is even. Vertices of
-//! one tree are joined by tight edges, hence their duals have equal parity and the
-//! slack between two outer vertices is even: every dual change is an integer and the
-//! result is exact.
+//! Integrality: the caller doubles the weights, so every weight is even, and the roots'
+//! duals are made even at the start. Tree vertices are joined to their root by tight
+//! edges and all trees move by the same `D`, so all tree vertices share one dual
+//! parity: the slack between two outer vertices is even, every dual change is an
+//! integer and the result is exact.
 //!
 //! Conventions: dual feasibility is `y_u + y_v + sum(z_B : u, v in B) >= w_uv`,
 //! `z_B >= 0`; vertex duals are free in sign (perfect matching). An endpoint `p` of
@@ -129,7 +130,11 @@ pub(crate) struct Engine<'g> {
     // Search state.
     d: i64,
     heap: BinaryHeap<Reverse<(i64, u64)>>,
-    tree: Vec<u32>,
+    /// Tree of each labelled top-level node.
+    tree_of: Vec<u32>,
+    /// Nodes ever labelled in each tree (stale entries are skipped when read).
+    trees: Vec<Vec<u32>>,
+    live_trees: usize,
     mark_stamp: u32,
     scratch: Vec<u32>,
     stack: Vec<u32>,
@@ -158,7 +163,9 @@ impl<'g> Engine<'g> {
             free_blossoms: Vec::new(),
             d: 0,
             heap: BinaryHeap::new(),
-            tree: Vec::new(),
+            tree_of: vec![NONE; n],
+            trees: Vec::new(),
+            live_trees: 0,
             mark_stamp: 0,
             scratch: Vec::new(),
             stack: Vec::new(),
@@ -203,13 +210,37 @@ impl<'g> Engine<'g> {
         self.stats.exposed_after_init = self.mate.iter().filter(|&&m| m == NONE).count();
     }
 
-    /// Runs searches from every exposed vertex. Returns false when some search gets
-    /// stuck: then the graph has no perfect matching.
+    /// Grows alternating trees from all exposed vertices at once, with one global dual
+    /// change `D`, until every tree has augmented. Returns false when the queue runs
+    /// dry with trees left: then the graph has no perfect matching.
     pub fn run(&mut self) -> bool {
+        // All tree vertices must share one dual parity (so that the slack between two
+        // outer vertices, even of different trees, is even): make the roots' duals
+        // even. Raising a dual keeps every constraint satisfied.
         for v in 0..self.n {
-            if self.mate[v] == NONE && !self.search(v as u32) {
-                return false;
+            if self.mate[v] == NONE && self.y[v] & 1 != 0 {
+                self.y[v] += 1;
             }
+        }
+        self.d = 0;
+        for v in 0..self.n {
+            if self.mate[v] == NONE {
+                let t = self.trees.len() as u32;
+                self.trees.push(Vec::new());
+                self.live_trees += 1;
+                self.set_label(v as u32, PLUS, NONE, t);
+            }
+        }
+        // Scan after all roots are labelled so that root-root edges are seen as such.
+        for v in 0..self.n {
+            if self.mate[v] == NONE {
+                self.scan_outer(v as u32);
+            }
+        }
+        while self.live_trees > 0 {
+            let Some(Reverse((key, payload))) = self.heap.pop() else { return false };
+            self.stats.events += 1;
+            self.event(key, payload);
         }
         true
     }
@@ -334,17 +365,18 @@ impl<'g> Engine<'g> {
         }
     }
 
-    fn set_label(&mut self, b: u32, label: u8, labelend: u32) {
+    fn set_label(&mut self, b: u32, label: u8, labelend: u32, tree: u32) {
         let bi = b as usize;
         self.label[bi] = label;
         self.labelend[bi] = labelend;
         self.tstamp[bi] = self.d;
-        self.tree.push(b);
+        self.tree_of[bi] = tree;
+        self.trees[tree as usize].push(b);
     }
 
     /// Labels free top-level node `b` outer and queues its edges.
-    fn make_outer(&mut self, b: u32, labelend: u32) {
-        self.set_label(b, PLUS, labelend);
+    fn make_outer(&mut self, b: u32, labelend: u32, tree: u32) {
+        self.set_label(b, PLUS, labelend, tree);
         let mut buf = std::mem::take(&mut self.scratch);
         self.leaves(b, &mut buf);
         for &x in &buf {
@@ -354,8 +386,8 @@ impl<'g> Engine<'g> {
     }
 
     /// Labels top-level node `b` inner.
-    fn make_inner(&mut self, b: u32, labelend: u32) {
-        self.set_label(b, MINUS, labelend);
+    fn make_inner(&mut self, b: u32, labelend: u32, tree: u32) {
+        self.set_label(b, MINUS, labelend, tree);
         if b as usize >= self.n {
             let z = self.z[b as usize - self.n];
             debug_assert!(z >= 0 && z % 2 == 0);
@@ -365,103 +397,103 @@ impl<'g> Engine<'g> {
 
     // ---------------------------------------------------------------- search
 
-    fn search(&mut self, root: u32) -> bool {
-        self.d = 0;
-        self.heap.clear();
-        self.tree.clear();
-        let rb = self.inb[root as usize];
-        self.make_outer(rb, NONE);
-        let found = loop {
-            let Some(Reverse((key, payload))) = self.heap.pop() else { break false };
-            self.stats.events += 1;
-            let kind = payload & 3;
-            let id = (payload >> 2) as u32;
-            match kind {
-                EV_GROW | EV_BLOSSOM => {
-                    let k = id as usize;
-                    let [a, b] = self.g.ends[k];
-                    let (ba, bb) = (self.inb[a as usize], self.inb[b as usize]);
-                    if ba == bb {
-                        continue;
-                    }
-                    let (la, lb) = (self.label[ba as usize], self.label[bb as usize]);
-                    // Check the entry is current: its kind matches the labels now and
-                    // the edge is tight at its key.
-                    let current = if kind == EV_GROW {
-                        (la == PLUS && lb == FREE) || (la == FREE && lb == PLUS)
-                    } else {
-                        la == PLUS && lb == PLUS
-                    };
-                    if !current {
-                        continue;
-                    }
-                    let saved = self.d;
-                    self.d = key;
-                    if self.slack(k) != 0 {
-                        debug_assert!(self.slack(k) > 0, "negative slack");
-                        self.d = saved;
-                        continue;
-                    }
-                    if kind == EV_GROW {
-                        // Outer end u, free end v (remote endpoint pv).
-                        let (u_end, v) = if la == PLUS { (2 * k as u32, b) } else { (2 * k as u32 + 1, a) };
-                        let bv = self.inb[v as usize];
-                        let vbase = self.base[bv as usize];
-                        if self.mate[vbase as usize] == NONE {
-                            self.augment(k);
-                            break true;
-                        }
-                        self.make_inner(bv, u_end);
-                        let mp = self.mate[vbase as usize];
-                        let m = self.g.endpoint(mp);
-                        let bm = self.inb[m as usize];
-                        self.make_outer(bm, mp ^ 1);
-                    } else {
-                        match self.scan_blossom(a, b) {
-                            Some(base) => self.add_blossom(base, k),
-                            None => {
-                                self.augment(k);
-                                break true;
-                            }
-                        }
-                    }
-                }
-                _ => {
-                    let b = id;
-                    let bi = b as usize;
-                    if bi < self.n
-                        || !self.alive[bi - self.n]
-                        || self.parent[bi] != NONE
-                        || self.label[bi] != MINUS
-                    {
-                        continue;
-                    }
-                    let saved = self.d;
-                    self.d = key;
-                    if self.zb(b) != 0 {
-                        self.d = saved;
-                        continue;
-                    }
-                    self.expand_inner(b);
+    /// Handles one popped queue entry, after checking that it is still current.
+    fn event(&mut self, key: i64, payload: u64) {
+        let kind = payload & 3;
+        let id = (payload >> 2) as u32;
+        if kind == EV_EXPAND {
+            let b = id;
+            let bi = b as usize;
+            if bi < self.n || !self.alive[bi - self.n] || self.parent[bi] != NONE || self.label[bi] != MINUS {
+                return;
+            }
+            let saved = self.d;
+            self.d = key;
+            if self.zb(b) != 0 {
+                self.d = saved;
+                return;
+            }
+            self.expand_inner(b);
+            return;
+        }
+        let k = id as usize;
+        let [a, b] = self.g.ends[k];
+        let (ba, bb) = (self.inb[a as usize], self.inb[b as usize]);
+        if ba == bb {
+            return;
+        }
+        let (la, lb) = (self.label[ba as usize], self.label[bb as usize]);
+        // The entry is current when its kind matches the labels now and the edge is
+        // tight at its key.
+        let current = if kind == EV_GROW {
+            (la == PLUS && lb == FREE) || (la == FREE && lb == PLUS)
+        } else {
+            la == PLUS && lb == PLUS
+        };
+        if !current {
+            return;
+        }
+        let saved = self.d;
+        self.d = key;
+        if self.slack(k) != 0 {
+            debug_assert!(self.slack(k) > 0, "negative slack");
+            self.d = saved;
+            return;
+        }
+        if kind == EV_GROW {
+            // Outer end u, free (matched, outside every tree) end v.
+            let (u_end, u, v) = if la == PLUS { (2 * k as u32, a, b) } else { (2 * k as u32 + 1, b, a) };
+            let tree = self.tree_of[self.inb[u as usize] as usize];
+            let bv = self.inb[v as usize];
+            let vbase = self.base[bv as usize];
+            let mp = self.mate[vbase as usize];
+            debug_assert!(mp != NONE, "exposed vertex outside the trees");
+            self.make_inner(bv, u_end, tree);
+            let m = self.g.endpoint(mp);
+            let bm = self.inb[m as usize];
+            self.make_outer(bm, mp ^ 1, tree);
+        } else {
+            match self.scan_blossom(a, b) {
+                Some(base) => self.add_blossom(base, k),
+                None => {
+                    let (ta, tb) = (self.tree_of[ba as usize], self.tree_of[bb as usize]);
+                    self.augment(k);
+                    self.stats.augmentations += 1;
+                    self.dissolve(ta);
+                    self.dissolve(tb);
                 }
             }
-        };
-        // End of the search: write the lazy duals back and clear the labels.
-        let tree = std::mem::take(&mut self.tree);
-        for &b in &tree {
+        }
+    }
+
+    /// Ends tree `t` after its augmentation: writes its lazy duals back, clears its
+    /// labels, and queues the edges from other trees' outer vertices into it.
+    fn dissolve(&mut self, t: u32) {
+        let nodes = std::mem::take(&mut self.trees[t as usize]);
+        self.live_trees -= 1;
+        let mut freed = Vec::new();
+        for &b in &nodes {
             let bi = b as usize;
-            if self.label[bi] != FREE && self.parent[bi] == NONE && (bi < self.n || self.alive[bi - self.n]) {
+            if self.label[bi] != FREE
+                && self.parent[bi] == NONE
+                && self.tree_of[bi] == t
+                && (bi < self.n || self.alive[bi - self.n])
+            {
                 self.flush(b);
                 self.label[bi] = FREE;
                 self.labelend[bi] = NONE;
+                self.tree_of[bi] = NONE;
+                freed.push(b);
             }
         }
-        self.tree = tree;
-        self.tree.clear();
-        if found {
-            self.stats.augmentations += 1;
+        let mut buf = std::mem::take(&mut self.scratch);
+        for b in freed {
+            self.leaves(b, &mut buf);
+            for &x in &buf {
+                self.scan_free(x);
+            }
         }
-        found
+        self.scratch = buf;
     }
 
     /// Walks up the tree from outer vertices `v` and `w`; returns the base vertex of the
@@ -510,6 +542,7 @@ impl<'g> Engine<'g> {
         self.label.push(FREE);
         self.labelend.push(NONE);
         self.tstamp.push(0);
+        self.tree_of.push(NONE);
         self.base.push(NONE);
         self.mark.push(0);
         b
@@ -547,6 +580,7 @@ impl<'g> Engine<'g> {
         }
         debug_assert!(path.len() % 2 == 1 && path.len() >= 3);
         let labelend_bb = self.labelend[bb as usize];
+        let tree = self.tree_of[bb as usize];
         // Flush the children's lazy duals, remember which were inner.
         let mut was_inner = Vec::new();
         for &c in &path {
@@ -556,6 +590,7 @@ impl<'g> Engine<'g> {
             }
             self.label[c as usize] = FREE;
             self.labelend[c as usize] = NONE;
+            self.tree_of[c as usize] = NONE;
             self.parent[c as usize] = b;
         }
         self.base[bi] = base;
@@ -563,7 +598,7 @@ impl<'g> Engine<'g> {
         self.parent[bi] = NONE;
         self.childs[bi - self.n] = path;
         self.endps[bi - self.n] = endps;
-        self.set_label(b, PLUS, labelend_bb);
+        self.set_label(b, PLUS, labelend_bb, tree);
         let mut buf = std::mem::take(&mut self.scratch);
         self.leaves(b, &mut buf);
         for &x in &buf {
@@ -585,6 +620,7 @@ impl<'g> Engine<'g> {
         self.stats.blossoms_expanded += 1;
         let bi = b as usize;
         let nb = bi - self.n;
+        let tree = self.tree_of[bi];
         self.flush(b);
         let entry_vertex = self.g.endpoint(self.labelend[bi] ^ 1);
         let mut entry = entry_vertex;
@@ -632,6 +668,7 @@ impl<'g> Engine<'g> {
         // Retire b.
         self.label[bi] = FREE;
         self.labelend[bi] = NONE;
+        self.tree_of[bi] = NONE;
         self.parent[bi] = NONE;
         self.alive[nb] = false;
         self.free_blossoms.push(b);
@@ -643,13 +680,13 @@ impl<'g> Engine<'g> {
         self.endps[nb] = ev;
         // Labels first, then scans, so every scan sees the final labels.
         for &(c, p) in &inner {
-            self.make_inner(c, p);
+            self.make_inner(c, p, tree);
         }
         for &c in &outer {
             // Its base is matched into the inner child before it: that is its parent.
             let mp = self.mate[self.base[c as usize] as usize];
             debug_assert!(mp != NONE);
-            self.set_label(c, PLUS, mp);
+            self.set_label(c, PLUS, mp, tree);
         }
         for &c in &outer {
             self.leaves(c, &mut buf);
