@@ -71,7 +71,9 @@ pub struct Matching {
     /// [`certificate`]); `None` when not perfect.
     pub certificate: Option<Certificate>,
     /// True when the solver's own certificate passed [`certificate::check`] (for a
-    /// non-perfect result: the certificate of the auxiliary doubled problem).
+    /// non-perfect result: the certificate of the auxiliary perfect-matching problem,
+    /// the graph plus `k` dummy vertices joined to every vertex, or for large
+    /// deficiency `k` the doubled graph).
     pub certified: bool,
     /// Work counters.
     pub stats: Stats,
@@ -203,40 +205,63 @@ pub fn solve(g: &Graph, obj: Objective) -> Result<Matching> {
             return Ok(finish(g, true, matched, Some(cert), true, stats));
         }
     }
-    // No perfect matching: maximum cardinality, then best weight, through the doubled
-    // graph (two copies, each vertex joined to its copy by a zero edge; real edges
-    // get a bonus C larger than any weight difference a smaller matching could win).
+    // No perfect matching: maximum cardinality, then best weight.
     let (ends, ws, ids) = simplify(g, obj);
-    let (wmin, wmax) = ws.iter().fold((0i64, 0i64), |(lo, hi), &w| (lo.min(w), hi.max(w)));
-    let c: i128 = (n as i128 / 2 + 1) * (wmax as i128 - wmin as i128) + (wmin as i128).abs() + 2;
-    let big = (c + wmax.abs().max(wmin.abs()) as i128) * 2;
-    if big > (1i128 << 56) {
-        return Err(Error::Invalid(format!(
-            "no perfect matching, and the weights are too large (bonus {c}) for the exact \
-             maximum-cardinality fallback; scale them down"
-        )));
-    }
-    let c = c as i64;
     let m = ends.len();
-    let mut dends = Vec::with_capacity(2 * m + n);
-    let mut dws = Vec::with_capacity(2 * m + n);
-    for (e, &w) in ends.iter().zip(&ws) {
-        dends.push(*e);
-        dws.push(2 * (w + c));
-    }
-    for (e, &w) in ends.iter().zip(&ws) {
-        dends.push([e[0] + n as u32, e[1] + n as u32]);
-        dws.push(2 * (w + c));
-    }
-    for v in 0..n as u32 {
-        dends.push([v, v + n as u32]);
-        dws.push(0);
-    }
-    let sg = SimpleGraph::new(2 * n, dends, dws);
+    // The deficiency k = n - 2 * (maximum cardinality), from the unweighted matcher.
+    let plain = Graph::new(n, ends.clone(), vec![0; m])?;
+    let card = unweighted::maximum_cardinality_matching(&plain).iter().filter(|&&x| x != UNMATCHED).count();
+    let k = n - card;
+    let (n2, dends, dws) = if (k as u64) * (n as u64) <= 4 * (n as u64 + m as u64) {
+        // Few vertices stay exposed: add k dummy vertices joined to every vertex by
+        // zero-weight edges. A perfect matching there is a matching of G of maximum
+        // cardinality plus dummy edges, so its optimum is the best such matching.
+        let mut dends = ends.clone();
+        let mut dws = ws.clone();
+        dends.reserve(k * n);
+        dws.reserve(k * n);
+        for d in 0..k {
+            for v in 0..n as u32 {
+                dends.push([v, (n + d) as u32]);
+                dws.push(0);
+            }
+        }
+        (n + k, dends, dws)
+    } else {
+        // Many exposed vertices: the doubled graph (two copies, each vertex joined to
+        // its copy by a zero edge; real edges get a bonus C larger than any weight
+        // difference a smaller matching could win).
+        let (wmin, wmax) = ws.iter().fold((0i64, 0i64), |(lo, hi), &w| (lo.min(w), hi.max(w)));
+        let c: i128 = (n as i128 / 2 + 1) * (wmax as i128 - wmin as i128) + (wmin as i128).abs() + 2;
+        let big = (c + wmax.abs().max(wmin.abs()) as i128) * 2;
+        if big > (1i128 << 56) {
+            return Err(Error::Invalid(format!(
+                "no perfect matching, and the weights are too large (bonus {c}) for the exact \
+                 maximum-cardinality fallback; scale them down"
+            )));
+        }
+        let c = c as i64;
+        let mut dends = Vec::with_capacity(2 * m + n);
+        let mut dws = Vec::with_capacity(2 * m + n);
+        for (e, &w) in ends.iter().zip(&ws) {
+            dends.push(*e);
+            dws.push(2 * (w + c));
+        }
+        for (e, &w) in ends.iter().zip(&ws) {
+            dends.push([e[0] + n as u32, e[1] + n as u32]);
+            dws.push(2 * (w + c));
+        }
+        for v in 0..n as u32 {
+            dends.push([v, v + n as u32]);
+            dws.push(0);
+        }
+        (2 * n, dends, dws)
+    };
+    let sg = SimpleGraph::new(n2, dends, dws);
     let mut engine = Engine::new(&sg);
     engine.init_greedy();
     if !engine.run() {
-        return Err(Error::Verification("the doubled graph has no perfect matching (bug)".into()));
+        return Err(Error::Verification("the auxiliary graph has no perfect matching (bug)".into()));
     }
     let stats = engine.stats;
     let sol = engine.solution();
@@ -245,16 +270,22 @@ pub fn solve(g: &Graph, obj: Objective) -> Result<Matching> {
         blossoms: sol.blossoms.iter().map(|&(z, parent)| DualBlossom { z, parent }).collect(),
         vertex_blossom: sol.vertex_blossom,
     };
-    let all: Vec<u32> = (0..2 * n)
+    let all: Vec<u32> = (0..n2)
         .filter(|&v| {
             let [a, b] = sg.ends[sol.mate_edge[v] as usize];
             v as u32 == a.min(b)
         })
         .map(|v| sol.mate_edge[v])
         .collect();
-    certificate::check(2 * n, &sg.ends, &sg.w, &all, &cert)?;
+    certificate::check(n2, &sg.ends, &sg.w, &all, &cert)?;
     let mut matched: Vec<u32> = all.iter().filter(|&&e| (e as usize) < m).map(|&e| ids[e as usize]).collect();
     matched.sort_unstable();
+    if matched.len() * 2 != card {
+        return Err(Error::Verification(format!(
+            "weighted fallback matched {} vertices, the maximum is {card} (bug)",
+            matched.len() * 2
+        )));
+    }
     Ok(finish(g, false, matched, None, true, stats))
 }
 
