@@ -113,7 +113,14 @@ pub(crate) struct Engine<'g> {
     // Per vertex.
     mate: Vec<u32>, // remote endpoint of the matched edge
     y: Vec<i64>,
-    inb: Vec<u32>, // top-level blossom (node id)
+    /// A node containing the vertex (itself or a blossom around it); following
+    /// `parent` from it reaches the top-level blossom. Compressed on every lookup.
+    hint: Vec<u32>,
+    /// Sum of `boff` over the blossoms strictly between the vertex and its hint.
+    hsum: Vec<i64>,
+    /// Per node: a dual change owed to every vertex inside (written when a top-level
+    /// blossom stops being top-level, instead of touching its vertices).
+    boff: Vec<i64>,
     // Per node (vertex ids 0..n, blossoms n..).
     parent: Vec<u32>,
     label: Vec<u8>,
@@ -149,7 +156,9 @@ impl<'g> Engine<'g> {
             n,
             mate: vec![NONE; n],
             y: vec![0; n],
-            inb: (0..n as u32).collect(),
+            hint: (0..n as u32).collect(),
+            hsum: vec![0; n],
+            boff: vec![0; n],
             parent: vec![NONE; n],
             label: vec![FREE; n],
             labelend: vec![NONE; n],
@@ -247,18 +256,37 @@ impl<'g> Engine<'g> {
 
     // ---------------------------------------------------------------- duals
 
+    /// The top-level node containing vertex `v` (compresses `v`'s hint).
     #[inline]
-    fn yv(&self, v: u32) -> i64 {
-        let b = self.inb[v as usize] as usize;
+    fn top(&mut self, v: u32) -> u32 {
+        let mut a = self.hint[v as usize];
+        if self.parent[a as usize] == NONE {
+            return a;
+        }
+        let mut s = self.hsum[v as usize];
+        while self.parent[a as usize] != NONE {
+            s += self.boff[a as usize];
+            a = self.parent[a as usize];
+        }
+        self.hint[v as usize] = a;
+        self.hsum[v as usize] = s;
+        a
+    }
+
+    /// True dual of vertex `v`.
+    #[inline]
+    fn yv(&mut self, v: u32) -> i64 {
+        let b = self.top(v) as usize;
+        let y = self.y[v as usize] + self.hsum[v as usize] + if b >= self.n { self.boff[b] } else { 0 };
         match self.label[b] {
-            PLUS => self.y[v as usize] - (self.d - self.tstamp[b]),
-            MINUS => self.y[v as usize] + (self.d - self.tstamp[b]),
-            _ => self.y[v as usize],
+            PLUS => y - (self.d - self.tstamp[b]),
+            MINUS => y + (self.d - self.tstamp[b]),
+            _ => y,
         }
     }
 
     #[inline]
-    fn slack(&self, k: usize) -> i64 {
+    fn slack(&mut self, k: usize) -> i64 {
         let [a, b] = self.g.ends[k];
         self.yv(a) + self.yv(b) - self.g.w[k]
     }
@@ -294,8 +322,8 @@ impl<'g> Engine<'g> {
         self.stack = stack;
     }
 
-    /// Writes the lazy dual change of top-level node `b` into its vertices and its own
-    /// dual, and restarts its clock at `D`.
+    /// Writes the lazy dual change of top-level node `b` into its owed offset (or the
+    /// vertex's dual) and its own dual, and restarts its clock at `D`. O(1).
     fn flush(&mut self, b: u32) {
         let bi = b as usize;
         let delta = self.d - self.tstamp[bi];
@@ -306,15 +334,10 @@ impl<'g> Engine<'g> {
         let sign = if self.label[bi] == PLUS { -1 } else { 1 };
         if bi < self.n {
             self.y[bi] += sign * delta;
-            return;
+        } else {
+            self.boff[bi] += sign * delta;
+            self.z[bi - self.n] -= 2 * sign * delta;
         }
-        self.z[bi - self.n] -= 2 * sign * delta;
-        let mut buf = std::mem::take(&mut self.scratch);
-        self.leaves(b, &mut buf);
-        for &v in &buf {
-            self.y[v as usize] += sign * delta;
-        }
-        self.scratch = buf;
     }
 
     // ---------------------------------------------------------------- events
@@ -328,10 +351,10 @@ impl<'g> Engine<'g> {
     /// Queues the events of the edges of vertex `x`, which has just become outer.
     fn scan_outer(&mut self, x: u32) {
         let g = self.g;
-        let bx = self.inb[x as usize];
+        let bx = self.top(x);
         for &p in &g.adj[g.off[x as usize] as usize..g.off[x as usize + 1] as usize] {
             let u = g.endpoint(p);
-            let bu = self.inb[u as usize];
+            let bu = self.top(u);
             if bu == bx {
                 continue;
             }
@@ -357,7 +380,8 @@ impl<'g> Engine<'g> {
         let g = self.g;
         for &p in &g.adj[g.off[x as usize] as usize..g.off[x as usize + 1] as usize] {
             let u = g.endpoint(p);
-            if self.label[self.inb[u as usize] as usize] == PLUS {
+            let tu = self.top(u) as usize;
+            if self.label[tu] == PLUS {
                 let k = (p >> 1) as usize;
                 let s = self.slack(k);
                 self.push(self.d + s, EV_GROW, k as u32);
@@ -418,7 +442,7 @@ impl<'g> Engine<'g> {
         }
         let k = id as usize;
         let [a, b] = self.g.ends[k];
-        let (ba, bb) = (self.inb[a as usize], self.inb[b as usize]);
+        let (ba, bb) = (self.top(a), self.top(b));
         if ba == bb {
             return;
         }
@@ -443,14 +467,15 @@ impl<'g> Engine<'g> {
         if kind == EV_GROW {
             // Outer end u, free (matched, outside every tree) end v.
             let (u_end, u, v) = if la == PLUS { (2 * k as u32, a, b) } else { (2 * k as u32 + 1, b, a) };
-            let tree = self.tree_of[self.inb[u as usize] as usize];
-            let bv = self.inb[v as usize];
+            let tu = self.top(u);
+            let tree = self.tree_of[tu as usize];
+            let bv = self.top(v);
             let vbase = self.base[bv as usize];
             let mp = self.mate[vbase as usize];
             debug_assert!(mp != NONE, "exposed vertex outside the trees");
             self.make_inner(bv, u_end, tree);
             let m = self.g.endpoint(mp);
-            let bm = self.inb[m as usize];
+            let bm = self.top(m);
             self.make_outer(bm, mp ^ 1, tree);
         } else {
             match self.scan_blossom(a, b) {
@@ -508,7 +533,7 @@ impl<'g> Engine<'g> {
         let (mut v, mut w) = (v, w);
         while v != NONE || w != NONE {
             if v != NONE {
-                let b = self.inb[v as usize];
+                let b = self.top(v);
                 if self.mark[b as usize] == stamp {
                     return Some(self.base[b as usize]);
                 }
@@ -517,7 +542,7 @@ impl<'g> Engine<'g> {
                     v = NONE;
                 } else {
                     let t = self.g.endpoint(self.labelend[b as usize]);
-                    let bt = self.inb[t as usize];
+                    let bt = self.top(t);
                     v = self.g.endpoint(self.labelend[bt as usize]);
                 }
             }
@@ -542,6 +567,7 @@ impl<'g> Engine<'g> {
         self.label.push(FREE);
         self.labelend.push(NONE);
         self.tstamp.push(0);
+        self.boff.push(0);
         self.tree_of.push(NONE);
         self.base.push(NONE);
         self.mark.push(0);
@@ -553,9 +579,9 @@ impl<'g> Engine<'g> {
     fn add_blossom(&mut self, base: u32, k: usize) {
         self.stats.blossoms_formed += 1;
         let [v, w] = self.g.ends[k];
-        let bb = self.inb[base as usize];
-        let mut bv = self.inb[v as usize];
-        let mut bw = self.inb[w as usize];
+        let bb = self.top(base);
+        let mut bv = self.top(v);
+        let mut bw = self.top(w);
         let b = self.alloc_blossom();
         let bi = b as usize;
         let mut path = std::mem::take(&mut self.childs[bi - self.n]);
@@ -566,7 +592,7 @@ impl<'g> Engine<'g> {
             path.push(bv);
             endps.push(self.labelend[bv as usize]);
             let x = self.g.endpoint(self.labelend[bv as usize]);
-            bv = self.inb[x as usize];
+            bv = self.top(x);
         }
         path.push(bb);
         path.reverse();
@@ -576,7 +602,7 @@ impl<'g> Engine<'g> {
             path.push(bw);
             endps.push(self.labelend[bw as usize] ^ 1);
             let x = self.g.endpoint(self.labelend[bw as usize]);
-            bw = self.inb[x as usize];
+            bw = self.top(x);
         }
         debug_assert!(path.len() % 2 == 1 && path.len() >= 3);
         let labelend_bb = self.labelend[bb as usize];
@@ -599,11 +625,8 @@ impl<'g> Engine<'g> {
         self.childs[bi - self.n] = path;
         self.endps[bi - self.n] = endps;
         self.set_label(b, PLUS, labelend_bb, tree);
+        // No vertex is touched for the new level: hints find it, offsets carry duals.
         let mut buf = std::mem::take(&mut self.scratch);
-        self.leaves(b, &mut buf);
-        for &x in &buf {
-            self.inb[x as usize] = b;
-        }
         // Vertices of formerly inner children are outer now: queue their edges.
         for c in was_inner {
             self.leaves(c, &mut buf);
@@ -630,14 +653,34 @@ impl<'g> Engine<'g> {
         let childs = std::mem::take(&mut self.childs[nb]);
         let endps = std::mem::take(&mut self.endps[nb]);
         let mut buf = std::mem::take(&mut self.scratch);
+        // Push b's owed offset down to its children; re-point the hints of b's
+        // vertices (the only hints that can name b) at the child holding them.
+        let owed = std::mem::replace(&mut self.boff[bi], 0);
+        let mut dfs: Vec<(u32, i64)> = Vec::new();
         for &s in &childs {
             self.parent[s as usize] = NONE;
             self.label[s as usize] = FREE;
             self.labelend[s as usize] = NONE;
             self.tstamp[s as usize] = self.d;
-            self.leaves(s, &mut buf);
-            for &x in &buf {
-                self.inb[x as usize] = s;
+            if (s as usize) < self.n {
+                self.y[s as usize] += owed;
+                self.hint[s as usize] = s;
+                self.hsum[s as usize] = 0;
+                continue;
+            }
+            self.boff[s as usize] += owed;
+            dfs.clear();
+            dfs.push((s, 0));
+            while let Some((x, acc)) = dfs.pop() {
+                for i in 0..self.childs[x as usize - self.n].len() {
+                    let c = self.childs[x as usize - self.n][i];
+                    if (c as usize) < self.n {
+                        self.hint[c as usize] = s;
+                        self.hsum[c as usize] = acc;
+                    } else {
+                        dfs.push((c, acc + self.boff[c as usize]));
+                    }
+                }
             }
         }
         let len = childs.len() as i64;
@@ -754,7 +797,7 @@ impl<'g> Engine<'g> {
         for (s0, p0) in [(v, 2 * k as u32 + 1), (w, 2 * k as u32)] {
             let (mut s, mut p) = (s0, p0);
             loop {
-                let bs = self.inb[s as usize];
+                let bs = self.top(s);
                 if bs as usize >= self.n {
                     self.augment_blossom(bs, s);
                 }
@@ -764,7 +807,7 @@ impl<'g> Engine<'g> {
                     break;
                 }
                 let t = self.g.endpoint(le);
-                let bt = self.inb[t as usize];
+                let bt = self.top(t);
                 let lt = self.labelend[bt as usize];
                 s = self.g.endpoint(lt);
                 let j = self.g.endpoint(lt ^ 1);
@@ -846,6 +889,12 @@ impl<'g> Engine<'g> {
                 }
             })
             .collect();
-        Solution { mate_edge, y: self.y.clone(), blossoms, vertex_blossom }
+        let y = (0..n as u32)
+            .map(|v| {
+                let t = self.top(v) as usize;
+                self.y[v as usize] + self.hsum[v as usize] + if t >= n { self.boff[t] } else { 0 }
+            })
+            .collect();
+        Solution { mate_edge, y, blossoms, vertex_blossom }
     }
 }
