@@ -28,8 +28,58 @@
 //! `z_B >= 0`; vertex duals are free in sign (perfect matching). An endpoint `p` of
 //! edge `e` is `2e` (first end) or `2e + 1` (second end); `p ^ 1` is the other end.
 
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
+/// A radix heap: a priority queue for monotone integer keys (every key pushed is at
+/// least the last key popped, which holds because `D` only grows). Bucket `i` holds
+/// keys whose highest bit differing from the last popped key is bit `i - 1`; a pop
+/// empties the lowest non-empty bucket into lower ones. Amortised O(log range) per
+/// entry, with plain vectors instead of sifting.
+struct RadixHeap {
+    last: u64,
+    len: usize,
+    buckets: Vec<Vec<(u64, u64)>>,
+}
+
+impl RadixHeap {
+    fn new() -> RadixHeap {
+        RadixHeap { last: 0, len: 0, buckets: (0..65).map(|_| Vec::new()).collect() }
+    }
+
+    #[inline]
+    fn bucket(&self, key: u64) -> usize {
+        (64 - (key ^ self.last).leading_zeros()) as usize
+    }
+
+    #[inline]
+    fn push(&mut self, key: u64, payload: u64) {
+        debug_assert!(key >= self.last);
+        let b = self.bucket(key);
+        self.buckets[b].push((key, payload));
+        self.len += 1;
+    }
+
+    fn pop(&mut self) -> Option<(u64, u64)> {
+        if self.len == 0 {
+            return None;
+        }
+        if self.buckets[0].is_empty() {
+            let i = (1..65).find(|&i| !self.buckets[i].is_empty())?;
+            let items = std::mem::take(&mut self.buckets[i]);
+            self.last = items.iter().map(|&(k, _)| k).min().unwrap_or(self.last);
+            for &(k, p) in &items {
+                let b = self.bucket(k);
+                self.buckets[b].push((k, p));
+            }
+            // Keep the emptied bucket's allocation for later use.
+            let mut items = items;
+            items.clear();
+            if self.buckets[i].is_empty() {
+                self.buckets[i] = items;
+            }
+        }
+        self.len -= 1;
+        self.buckets[0].pop()
+    }
+}
 
 pub(crate) const NONE: u32 = u32::MAX;
 
@@ -136,7 +186,7 @@ pub(crate) struct Engine<'g> {
     free_blossoms: Vec<u32>,
     // Search state.
     d: i64,
-    heap: BinaryHeap<Reverse<(i64, u64)>>,
+    heap: RadixHeap,
     /// Tree of each labelled top-level node.
     tree_of: Vec<u32>,
     /// Nodes ever labelled in each tree (stale entries are skipped when read).
@@ -171,7 +221,7 @@ impl<'g> Engine<'g> {
             alive: Vec::new(),
             free_blossoms: Vec::new(),
             d: 0,
-            heap: BinaryHeap::new(),
+            heap: RadixHeap::new(),
             tree_of: vec![NONE; n],
             trees: Vec::new(),
             live_trees: 0,
@@ -247,9 +297,9 @@ impl<'g> Engine<'g> {
             }
         }
         while self.live_trees > 0 {
-            let Some(Reverse((key, payload))) = self.heap.pop() else { return false };
+            let Some((key, payload)) = self.heap.pop() else { return false };
             self.stats.events += 1;
-            self.event(key, payload);
+            self.event(key as i64, payload);
         }
         true
     }
@@ -344,8 +394,8 @@ impl<'g> Engine<'g> {
 
     #[inline]
     fn push(&mut self, key: i64, kind: u64, id: u32) {
-        debug_assert!(key >= self.d);
-        self.heap.push(Reverse((key, (id as u64) << 2 | kind)));
+        debug_assert!(key >= self.d && self.d >= 0);
+        self.heap.push(key as u64, (id as u64) << 2 | kind);
     }
 
     /// Queues the events of the edges of vertex `x`, which has just become outer.
