@@ -109,7 +109,7 @@ fn all_small_random_graphs_match_exhaustive_search() {
     let mut rng = Rng(0x9E3779B97F4A7C15);
     let mut perfect = 0;
     let mut total = 0;
-    let (mut formed, mut expanded) = (0, 0);
+    let (mut formed, mut expanded, mut dissolved) = (0, 0, 0);
     for round in 0..3000 {
         let n = 1 + (round % 12);
         let density = [20, 35, 50, 70, 100][round % 5];
@@ -121,13 +121,14 @@ fn all_small_random_graphs_match_exhaustive_search() {
             perfect += m.perfect as usize;
             formed += m.stats.blossoms_formed;
             expanded += m.stats.blossoms_expanded;
+            dissolved += m.stats.blossoms_dissolved;
         }
     }
     // Both kinds of result are exercised.
     assert!(perfect > total / 5 && perfect < total * 4 / 5, "{perfect} of {total}");
     // And the blossom machinery is exercised, not just greedy plus simple paths.
-    eprintln!("{perfect} perfect of {total}; blossoms formed {formed}, expanded {expanded}");
-    assert!(formed > 1000 && expanded > 100, "formed {formed}, expanded {expanded}");
+    eprintln!("{perfect} perfect of {total}; blossoms formed {formed}, expanded {expanded}, dissolved {dissolved}");
+    assert!(formed > 1000 && dissolved > 500 && expanded >= 1, "formed {formed}, expanded {expanded}, dissolved {dissolved}");
 }
 
 #[test]

@@ -151,8 +151,10 @@ pub struct Stats {
     pub augmentations: usize,
     /// Blossoms formed.
     pub blossoms_formed: usize,
-    /// Inner blossoms expanded.
+    /// Inner blossoms expanded (dual reached zero).
     pub blossoms_expanded: usize,
+    /// Free blossoms with zero dual dissolved after their tree augmented.
+    pub blossoms_dissolved: usize,
     /// Events popped from the queues.
     pub events: usize,
 }
@@ -564,11 +566,71 @@ impl<'g> Engine<'g> {
         let mut buf = std::mem::take(&mut self.scratch);
         for b in freed {
             self.leaves(b, &mut buf);
+            if b as usize >= self.n && self.z[b as usize - self.n] == 0 {
+                self.expand_free(b);
+            }
             for &x in &buf {
                 self.scan_free(x);
             }
         }
         self.scratch = buf;
+    }
+
+    /// Dissolves free blossom `b` whose dual is zero, and, recursively, its sub-blossoms
+    /// with dual zero (as at the end of a stage in the classic algorithm). Keeps nesting
+    /// shallow when many weights tie; the matching inside stays as it is.
+    fn expand_free(&mut self, b: u32) {
+        let mut work = vec![b];
+        let mut dfs: Vec<(u32, i64)> = Vec::new();
+        while let Some(b) = work.pop() {
+            self.stats.blossoms_dissolved += 1;
+            let bi = b as usize;
+            let nb = bi - self.n;
+            let owed = std::mem::replace(&mut self.boff[bi], 0);
+            let childs = std::mem::take(&mut self.childs[nb]);
+            for &s in &childs {
+                let si = s as usize;
+                self.parent[si] = NONE;
+                self.label[si] = FREE;
+                self.labelend[si] = NONE;
+                self.tree_of[si] = NONE;
+                self.tstamp[si] = self.d;
+                if si < self.n {
+                    self.y[si] += owed;
+                    self.hint[si] = s;
+                    self.hsum[si] = 0;
+                    continue;
+                }
+                self.boff[si] += owed;
+                if self.z[si - self.n] == 0 {
+                    work.push(s);
+                    continue;
+                }
+                dfs.clear();
+                dfs.push((s, 0));
+                while let Some((x, acc)) = dfs.pop() {
+                    for i in 0..self.childs[x as usize - self.n].len() {
+                        let c = self.childs[x as usize - self.n][i];
+                        if (c as usize) < self.n {
+                            self.hint[c as usize] = s;
+                            self.hsum[c as usize] = acc;
+                        } else {
+                            dfs.push((c, acc + self.boff[c as usize]));
+                        }
+                    }
+                }
+            }
+            let mut cv = childs;
+            cv.clear();
+            self.childs[nb] = cv;
+            self.endps[nb].clear();
+            self.label[bi] = FREE;
+            self.labelend[bi] = NONE;
+            self.tree_of[bi] = NONE;
+            self.parent[bi] = NONE;
+            self.alive[nb] = false;
+            self.free_blossoms.push(b);
+        }
     }
 
     /// Walks up the tree from outer vertices `v` and `w`; returns the base vertex of the
