@@ -173,8 +173,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     };
     let lemon = if args.no_lemon { None } else { build_lemon(&tmp)? };
-    println!("| graph | nodes | edges | perfect | stripkit weight | stripkit ms (median of {runs}) | exposed after greedy | LEMON ms | LEMON weight |");
-    println!("|---|---|---|---|---|---|---|---|---|");
+    println!("| graph | nodes | edges | perfect | stripkit weight | stripkit ms (median of {runs}) | exposed after greedy | LEMON ms | LEMON weight | stripkit unweighted ms |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
     for (i, row) in rows.iter().enumerate() {
         let g = &row.graph;
         let mut times = Vec::new();
@@ -189,6 +189,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             last = Some(m);
         }
         let m = last.context("no run")?;
+        let mut ut = Vec::new();
+        for _ in 0..runs {
+            let t = Instant::now();
+            let mate = matching::unweighted::maximum_cardinality_matching(g);
+            ut.push(t.elapsed().as_secs_f64() * 1e3);
+            let card = mate.iter().filter(|&&x| x != matching::UNMATCHED).count();
+            if card != 2 * m.edges.len() {
+                bail!("{}: unweighted cardinality {card} differs from {}", row.name, 2 * m.edges.len());
+            }
+        }
         let (lemon_ms, lemon_w) = match &lemon {
             None if args.no_lemon => ("skipped".to_string(), "-".to_string()),
             None => ("LEMON not installed".to_string(), "-".to_string()),
@@ -214,7 +224,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             }
         };
         println!(
-            "| {} | {} | {} | {} | {} | {:.1} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {:.1} | {} | {} | {} | {:.1} |",
             row.name,
             g.node_count(),
             g.edge_count(),
@@ -223,7 +233,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             median(times),
             m.stats.exposed_after_init,
             lemon_ms,
-            lemon_w
+            lemon_w,
+            median(ut)
         );
     }
     if args.keep.is_none() {

@@ -213,9 +213,14 @@ pub fn solve(g: &Graph, obj: Objective) -> Result<Matching> {
     let card = unweighted::maximum_cardinality_matching(&plain).iter().filter(|&&x| x != UNMATCHED).count();
     let k = n - card;
     let (n2, dends, dws) = if (k as u64) * (n as u64) <= 4 * (n as u64 + m as u64) {
-        // Few vertices stay exposed: add k dummy vertices joined to every vertex by
-        // zero-weight edges. A perfect matching there is a matching of G of maximum
-        // cardinality plus dummy edges, so its optimum is the best such matching.
+        // Few vertices stay exposed: add k dummy vertices joined to every vertex. A
+        // perfect matching there is a maximum-cardinality matching of G plus exactly k
+        // dummy edges, so with equal dummy weights its optimum is the best such
+        // matching, whatever that weight. A strongly negative one keeps the trees from
+        // running through the dummies (each would rescan its n edges) until nothing
+        // else is left.
+        let maxabs = ws.iter().map(|w| w.abs()).max().unwrap_or(0);
+        let penalty = 2 * (64 * (maxabs / 2 + 1)).min(1 << 50);
         let mut dends = ends.clone();
         let mut dws = ws.clone();
         dends.reserve(k * n);
@@ -223,7 +228,7 @@ pub fn solve(g: &Graph, obj: Objective) -> Result<Matching> {
         for d in 0..k {
             for v in 0..n as u32 {
                 dends.push([v, (n + d) as u32]);
-                dws.push(0);
+                dws.push(-penalty);
             }
         }
         (n + k, dends, dws)
