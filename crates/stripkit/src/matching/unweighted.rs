@@ -1,5 +1,5 @@
 //! Maximum-cardinality matching for the uniform-weight case: Edmonds' blossom
-//! algorithm without duals. Greedy start, then one breadth-first search per exposed
+//! algorithm without duals. Karp-Sipser greedy start, then one breadth-first search per exposed
 //! vertex; blossoms are contracted with a union-find forest over the bases, so a
 //! search costs about the size of its tree (times a near-constant).
 //! A search that fails from a vertex can be skipped for good (Edmonds' theorem), so
@@ -25,22 +25,7 @@ pub fn maximum_cardinality_matching(g: &Graph) -> Vec<u32> {
         touched: Vec::new(),
         queue: std::collections::VecDeque::new(),
     };
-    // Greedy start: low-degree vertices first take a free neighbour.
-    let mut order: Vec<u32> = (0..n as u32).collect();
-    order.sort_by_key(|&v| g.adjacency(v as usize).len());
-    for &v in &order {
-        if s.mate[v as usize] != NONE {
-            continue;
-        }
-        for &e in g.adjacency(v as usize) {
-            let u = other(g, e, v);
-            if u != v && s.mate[u as usize] == NONE {
-                s.mate[v as usize] = u;
-                s.mate[u as usize] = v;
-                break;
-            }
-        }
-    }
+    karp_sipser(g, &mut s.mate);
     for v in 0..n as u32 {
         if s.mate[v as usize] == NONE {
             if let Some(end) = s.find_path(g, v) {
@@ -60,6 +45,61 @@ pub fn perfect_matching(g: &Graph) -> Option<Vec<u32>> {
         Some(mate)
     } else {
         None
+    }
+}
+
+/// Karp-Sipser greedy start: a vertex with a single free neighbour is matched to it
+/// first (always safe); when none is left, a vertex of least free degree seen so far
+/// takes its free neighbour of least free degree. O(n + m); on sparse graphs it
+/// leaves few vertices for the searches.
+fn karp_sipser(g: &Graph, mate: &mut [u32]) {
+    let n = g.node_count();
+    let mut deg: Vec<u32> = (0..n)
+        .map(|v| g.adjacency(v).iter().filter(|&&e| other(g, e, v as u32) != v as u32).count() as u32)
+        .collect();
+    let mut ones: Vec<u32> = (0..n as u32).filter(|&v| deg[v as usize] == 1).collect();
+    let mut next = 0usize;
+    let matched = |v: u32, mate: &mut [u32], deg: &mut [u32], ones: &mut Vec<u32>| {
+        for &e in g.adjacency(v as usize) {
+            let u = other(g, e, v);
+            if u != v && mate[u as usize] == NONE {
+                deg[u as usize] -= 1;
+                if deg[u as usize] == 1 {
+                    ones.push(u);
+                }
+            }
+        }
+    };
+    loop {
+        let v = if let Some(v) = ones.pop() {
+            v
+        } else {
+            // Next free vertex with a free neighbour, in id order.
+            while next < n && (mate[next] != NONE || deg[next] == 0) {
+                next += 1;
+            }
+            if next == n {
+                break;
+            }
+            next as u32
+        };
+        if mate[v as usize] != NONE || deg[v as usize] == 0 {
+            continue;
+        }
+        let mut best = NONE;
+        for &e in g.adjacency(v as usize) {
+            let u = other(g, e, v);
+            if u != v && mate[u as usize] == NONE && (best == NONE || deg[u as usize] < deg[best as usize]) {
+                best = u;
+            }
+        }
+        if best == NONE {
+            continue;
+        }
+        mate[v as usize] = best;
+        mate[best as usize] = v;
+        matched(v, mate, &mut deg, &mut ones);
+        matched(best, mate, &mut deg, &mut ones);
     }
 }
 
