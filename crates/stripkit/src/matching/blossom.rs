@@ -18,6 +18,17 @@
 //!   becomes tight, an inner blossom's dual reaches zero); entries are checked when
 //!   popped (lazy deletion) instead of being updated.
 //!
+//! * **Blossoms without touching their vertices.** A vertex keeps a *hint* (a node
+//!   containing it) compressed on lookup, and every blossom an owed dual offset, so
+//!   forming a blossom costs its number of children, not its size.
+//! * **Zero-dual blossoms are dissolved** when their tree has augmented (the classic
+//!   end-of-stage expansion). With many equal weights this is what keeps the nesting
+//!   shallow: the Loop-subdivided dragon with weights 1|2 went from 55 s to 13 s.
+//!   Ties are *not* broken by perturbing weights: a random perturbation below the
+//!   weight unit was tried and made the greedy start worse and the run about twice as
+//!   slow.
+//! * **A radix heap** for the event keys, which only grow.
+//!
 //! Integrality: the caller doubles the weights, so every weight is even, and the roots'
 //! duals are made even at the start. Tree vertices are joined to their root by tight
 //! edges and all trees move by the same `D`, so all tree vertices share one dual

@@ -1,7 +1,7 @@
 //! Maximum-cardinality matching for the uniform-weight case: Edmonds' blossom
 //! algorithm without duals. Karp-Sipser greedy start, then one breadth-first search per exposed
-//! vertex; blossoms are contracted with a union-find forest over the bases, so a
-//! search costs about the size of its tree (times a near-constant).
+//! vertex; blossoms are contracted by relabelling bases, but only over the vertices
+//! the search has touched, so a search costs about its tree size per blossom.
 //! A search that fails from a vertex can be skipped for good (Edmonds' theorem), so
 //! every vertex starts at most one search.
 
@@ -20,6 +20,7 @@ pub fn maximum_cardinality_matching(g: &Graph) -> Vec<u32> {
         parent: vec![NONE; n],
         base: (0..n as u32).collect(),
         used: vec![false; n],
+        in_blossom: vec![false; n],
         stamp: vec![0; n],
         stamp_now: 0,
         touched: Vec::new(),
@@ -94,6 +95,8 @@ fn karp_sipser(g: &Graph, mate: &mut [u32]) {
             }
         }
         if best == NONE {
+            debug_assert!(false, "free degree out of step");
+            deg[v as usize] = 0;
             continue;
         }
         mate[v as usize] = best;
@@ -116,10 +119,9 @@ fn other(g: &Graph, e: u32, v: u32) -> u32 {
 struct State {
     mate: Vec<u32>,
     parent: Vec<u32>,
-    /// Union-find forest of contracted blossoms; the root of a vertex's set is the
-    /// base of its outermost blossom.
     base: Vec<u32>,
     used: Vec<bool>,
+    in_blossom: Vec<bool>,
     stamp: Vec<u32>,
     stamp_now: u32,
     touched: Vec<u32>,
@@ -136,23 +138,10 @@ impl State {
             self.parent[v as usize] = NONE;
             self.base[v as usize] = v;
             self.used[v as usize] = false;
+            self.in_blossom[v as usize] = false;
         }
         self.touched.clear();
         self.queue.clear();
-    }
-
-    fn find(&mut self, v: u32) -> u32 {
-        let mut r = v;
-        while self.base[r as usize] != r {
-            r = self.base[r as usize];
-        }
-        let mut x = v;
-        while self.base[x as usize] != r {
-            let next = self.base[x as usize];
-            self.base[x as usize] = r;
-            x = next;
-        }
-        r
     }
 
     fn lca(&mut self, a: u32, b: u32) -> u32 {
@@ -164,7 +153,7 @@ impl State {
         let st = self.stamp_now;
         let mut a = a;
         loop {
-            a = self.find(a);
+            a = self.base[a as usize];
             self.stamp[a as usize] = st;
             if self.mate[a as usize] == NONE {
                 break;
@@ -173,7 +162,7 @@ impl State {
         }
         let mut b = b;
         loop {
-            b = self.find(b);
+            b = self.base[b as usize];
             if self.stamp[b as usize] == st {
                 return b;
             }
@@ -181,20 +170,13 @@ impl State {
         }
     }
 
-    /// Contracts the path from `v` up to base `b` into the blossom of `b`: its odd
-    /// vertices become even (queued), and the parent links are reversed so paths can
-    /// run through the blossom both ways.
     fn mark_path(&mut self, mut v: u32, b: u32, mut child: u32) {
-        while self.find(v) != b {
+        while self.base[v as usize] != b {
             let m = self.mate[v as usize];
-            let bv = self.find(v);
-            let bm = self.find(m);
-            self.base[bv as usize] = b;
-            self.base[bm as usize] = b;
-            if !self.used[m as usize] {
-                self.used[m as usize] = true;
-                self.queue.push_back(m);
-            }
+            let bv = self.base[v as usize] as usize;
+            let bm = self.base[m as usize] as usize;
+            self.in_blossom[bv] = true;
+            self.in_blossom[bm] = true;
             self.parent[v as usize] = child;
             child = m;
             v = self.parent[m as usize];
@@ -208,7 +190,7 @@ impl State {
         while let Some(v) = self.queue.pop_front() {
             for &e in g.adjacency(v as usize) {
                 let to = other(g, e, v);
-                if to == v || self.mate[v as usize] == to || self.find(v) == self.find(to) {
+                if to == v || self.base[v as usize] == self.base[to as usize] || self.mate[v as usize] == to {
                     continue;
                 }
                 let to_mate = self.mate[to as usize];
@@ -216,6 +198,24 @@ impl State {
                     let cur = self.lca(v, to);
                     self.mark_path(v, cur, to);
                     self.mark_path(to, cur, v);
+                    // Only touched vertices can lie in the blossom.
+                    let mut i = 0;
+                    while i < self.touched.len() {
+                        let x = self.touched[i];
+                        let bx = self.base[x as usize] as usize;
+                        if self.in_blossom[bx] {
+                            self.base[x as usize] = cur;
+                            if !self.used[x as usize] {
+                                self.used[x as usize] = true;
+                                self.queue.push_back(x);
+                            }
+                        }
+                        i += 1;
+                    }
+                    for i in 0..self.touched.len() {
+                        let x = self.touched[i] as usize;
+                        self.in_blossom[x] = false;
+                    }
                 } else if self.parent[to as usize] == NONE {
                     self.parent[to as usize] = v;
                     self.touch(to);
