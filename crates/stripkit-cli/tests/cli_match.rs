@@ -1,0 +1,120 @@
+//! `stripkit match` end to end: JSON fields, objectives, dual graphs of meshes, and
+//! exit status 2 with a clear message on bad input.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stripkit-cli-match-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn stripkit(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_stripkit")).args(args).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let (code, out, err) = stripkit(args);
+    assert_eq!(code, 0, "{err}");
+    serde_json::from_str(out.trim()).unwrap()
+}
+
+#[test]
+fn matches_a_dimacs_file_both_ways() {
+    // A hexagon: max picks 1-2, 3-4, 5-6 (5 + 5 + 5); the self-loop is ignored and of
+    // the parallel edges 1-2 the best one counts.
+    let f = tmp("hex.dimacs");
+    std::fs::write(
+        &f,
+        "c hexagon\np edge 6 8\ne 1 2 5\ne 2 3 1\ne 3 4 5\ne 4 5 1\ne 5 6 5\ne 6 1 1\ne 1 1 50\ne 2 1 -3\n",
+    )
+    .unwrap();
+    let v = json(&["match", f.to_str().unwrap(), "--json"]);
+    assert_eq!(v["nodes"], 6);
+    assert_eq!(v["edges"], 8);
+    assert_eq!(v["perfect"], true);
+    assert_eq!(v["matched_nodes"], 6);
+    assert_eq!(v["total_weight"], 15);
+    assert_eq!(v["certified"], true);
+    assert!(v["ms"].as_f64().unwrap() >= 0.0);
+    // Minimum cost: 2-1 (-3), 3-4 (5), 5-6 (5) = 7 against 2-3, 4-5, 6-1 = 3.
+    let v = json(&["match", f.to_str().unwrap(), "--minimize", "--json"]);
+    assert_eq!(v["total_weight"], 3);
+    // Text output and the matched-edges file.
+    let out_file = tmp("hex.match");
+    let (code, out, _) = stripkit(&["match", f.to_str().unwrap(), "-o", out_file.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(out.contains("perfect matching") && out.contains("total weight 15"), "{out}");
+    let written = std::fs::read_to_string(&out_file).unwrap();
+    assert_eq!(written.lines().count(), 3);
+}
+
+#[test]
+fn reports_when_there_is_no_perfect_matching() {
+    let f = tmp("path3.dimacs");
+    std::fs::write(&f, "p edge 3 2\ne 1 2 4\ne 2 3 7\n").unwrap();
+    let v = json(&["match", f.to_str().unwrap(), "--json"]);
+    assert_eq!(v["perfect"], false);
+    assert_eq!(v["matched_nodes"], 2);
+    assert_eq!(v["total_weight"], 7);
+    let (code, out, _) = stripkit(&["match", f.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(out.contains("no perfect matching"), "{out}");
+}
+
+#[test]
+fn matches_the_dual_graph_of_a_mesh() {
+    let mesh = stripkit::gen::icosphere(2);
+    let f = tmp("ico2.obj");
+    stripkit::mesh::io::write(&f, &mesh, None).unwrap();
+    for w in ["uniform", "random", "normal-angle"] {
+        let v = json(&["match", "--dual", f.to_str().unwrap(), "--weights", w, "--seed", "5", "--json"]);
+        assert_eq!(v["nodes"], 320);
+        assert_eq!(v["edges"], 480);
+        assert_eq!(v["perfect"], true);
+        assert_eq!(v["matched_nodes"], 320);
+        assert_eq!(v["certified"], true);
+        if w == "uniform" {
+            assert_eq!(v["total_weight"], 160);
+        }
+    }
+    // The seed changes random weights, deterministically.
+    let a = json(&["match", "--dual", f.to_str().unwrap(), "--seed", "1", "--json"]);
+    let b = json(&["match", "--dual", f.to_str().unwrap(), "--seed", "1", "--json"]);
+    let c = json(&["match", "--dual", f.to_str().unwrap(), "--seed", "2", "--json"]);
+    assert_eq!(a["total_weight"], b["total_weight"]);
+    assert_ne!(a["total_weight"], c["total_weight"]);
+}
+
+#[test]
+fn bad_input_exits_2_with_the_place() {
+    let f = tmp("bad.dimacs");
+    std::fs::write(&f, "p edge 3 1\ne 1 4 2\n").unwrap();
+    let (code, out, err) = stripkit(&["match", f.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 2);
+    assert!(out.is_empty());
+    assert!(err.contains("bad.dimacs: line 2: vertex 4 out of range"), "{err}");
+    let f2 = tmp("short.dimacs");
+    std::fs::write(&f2, "p edge 2 2\ne 1 2 2\n").unwrap();
+    let (code, _, err) = stripkit(&["match", f2.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("announces 2 edges but the file has 1"), "{err}");
+    let (code, _, err) = stripkit(&["match", "/nonexistent/g.dimacs"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("/nonexistent/g.dimacs"), "{err}");
+    // Neither a file nor --dual.
+    let (code, _, _) = stripkit(&["match"]);
+    assert_eq!(code, 2);
+    // --help explains the options.
+    let (code, out, _) = stripkit(&["match", "--help"]);
+    assert_eq!(code, 0);
+    for opt in ["--dual", "--weights", "--seed", "--minimize", "--json", "--output", "p edge N M"] {
+        assert!(out.contains(opt), "help lacks {opt}");
+    }
+}

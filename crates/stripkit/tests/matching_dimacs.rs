@@ -1,0 +1,88 @@
+//! The DIMACS-style reader: what it accepts, and the errors it gives.
+
+use std::path::Path;
+use stripkit::matching::{self, Graph, Objective};
+use stripkit::Error;
+
+fn parse(text: &str) -> Result<Graph, Error> {
+    Graph::parse_dimacs(text, Path::new("g.dimacs"))
+}
+
+fn err(text: &str) -> String {
+    match parse(text) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => {
+            assert!(matches!(e, Error::Format { .. } | Error::Invalid(_)), "{e:?}");
+            e.to_string()
+        }
+    }
+}
+
+#[test]
+fn reads_comments_blank_lines_and_edges() {
+    let g = parse("c a square\n\np edge 4 4\ne 1 2 5\n  e 2 3 -1\nc mid\ne 3 4 5\ne 4 1 0\n").unwrap();
+    assert_eq!((g.node_count(), g.edge_count()), (4, 4));
+    assert_eq!(g.edges()[1], [1, 2]);
+    assert_eq!(g.weights(), &[5, -1, 5, 0]);
+    let m = matching::max_weight_perfect_matching(&g).unwrap();
+    assert_eq!(m.total_weight, 10);
+    let m = matching::min_cost_perfect_matching(&g).unwrap();
+    assert_eq!(m.total_weight, -1);
+    // Round trip.
+    assert_eq!(parse(&g.to_dimacs()).unwrap(), g);
+}
+
+#[test]
+fn self_loops_are_ignored_and_parallel_edges_keep_the_best() {
+    let g = parse("p edge 2 4\ne 1 1 100\ne 1 2 3\ne 2 1 9\ne 1 2 -4\n").unwrap();
+    let m = matching::solve(&g, Objective::MaxWeight).unwrap();
+    assert_eq!((m.edges.clone(), m.total_weight), (vec![2], 9));
+    let m = matching::solve(&g, Objective::MinCost).unwrap();
+    assert_eq!((m.edges.clone(), m.total_weight), (vec![3], -4));
+    // Certificates cover every parallel edge.
+    matching::verify(&g, Objective::MinCost, &m.edges, m.certificate.as_ref().unwrap()).unwrap();
+    // A graph of only a self-loop has no perfect matching.
+    let g = parse("p edge 2 1\ne 2 2 1\n").unwrap();
+    assert!(!matching::max_weight_perfect_matching(&g).unwrap().perfect);
+}
+
+#[test]
+fn bad_files_get_clear_errors() {
+    let cases: &[(&str, &str)] = &[
+        ("e 1 2 3\n", "line 1: edge line before the problem line"),
+        ("p edge 2 1\ne 1 2\n", "line 2: expected `e U V W`"),
+        ("p edge 2 1\ne 1 x 2\n", "line 2: vertex `x` is not a positive integer"),
+        ("p edge 2 1\ne 1 2 2.5\n", "line 2: weight `2.5` is not an integer"),
+        ("p edge 2 1\ne 0 2 1\n", "line 2: vertex 0 out of range: vertices are 1..=2"),
+        ("p edge 2 1\ne 1 3 1\n", "line 2: vertex 3 out of range: vertices are 1..=2"),
+        ("p edge 2 2\ne 1 2 1\n", "line 1: problem line announces 2 edges but the file has 1"),
+        ("p edge 2 1\ne 1 2 1\ne 2 1 1\n", "line 3: more edge lines than the 1 announced"),
+        ("c nothing\n", "end of file: no problem line"),
+        ("p edge 2\n", "line 1: expected `p edge N M`"),
+        ("p edge -2 1\n", "line 1: node count `-2` is not a non-negative integer"),
+        ("p edge 2 0\np edge 2 0\n", "line 2: second problem line"),
+        ("p edge 2 1\nx 1 2 1\n", "line 2: unknown line type `x`"),
+        ("p edge 2 1\ne 1 2 99999999999999999999\n", "line 2: weight `99999999999999999999` is not an integer"),
+        ("p edge 2 1\ne 1 2 2000000000000\n", "line 2: weight 2000000000000 beyond the supported range"),
+        // A huge announced count allocates nothing.
+        ("p edge 2 18446744073709551615\ne 1 2 1\n", "announces 18446744073709551615 edges but the file has 1"),
+    ];
+    for (text, want) in cases {
+        let e = err(text);
+        assert!(e.starts_with("g.dimacs: "), "{e}");
+        assert!(e.contains(want), "for {text:?}: got `{e}`, want `{want}`");
+    }
+    // Missing file: an I/O error naming it.
+    let e = Graph::read_dimacs(Path::new("/nonexistent/x.dimacs")).unwrap_err();
+    assert!(matches!(e, Error::Io { .. }) && e.to_string().contains("/nonexistent/x.dimacs"));
+}
+
+#[test]
+fn graph_new_checks_its_input() {
+    assert!(Graph::new(2, vec![[0, 2]], vec![1]).is_err());
+    assert!(Graph::new(2, vec![[0, 1]], vec![]).is_err());
+    assert!(Graph::new(2, vec![[0, 1]], vec![i64::MAX]).is_err());
+    let g = Graph::new(3, vec![[0, 1], [1, 1], [2, 1]], vec![1, 2, 3]).unwrap();
+    assert_eq!(g.adjacency(1), &[0, 1, 2]);
+    assert_eq!(g.adjacency(2), &[2]);
+}

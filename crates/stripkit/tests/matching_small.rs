@@ -1,0 +1,154 @@
+//! The weighted matching engine against exhaustive search on all kinds of small
+//! random graphs; every solve's certificate is checked independently.
+
+use stripkit::matching::{self, Graph, Objective, UNMATCHED};
+
+/// xorshift64*: a tiny deterministic generator for test graphs.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545F4914F6CDD1D)
+    }
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+}
+
+/// Best (cardinality, weight) over all matchings, by recursion on the lowest vertex.
+fn exhaustive(n: usize, edges: &[[u32; 2]], w: &[i64], obj: Objective) -> (usize, i64) {
+    fn rec(v: usize, n: usize, used: &mut Vec<bool>, edges: &[[u32; 2]], w: &[i64], sign: i64) -> (usize, i64) {
+        let mut v = v;
+        while v < n && used[v] {
+            v += 1;
+        }
+        if v == n {
+            return (0, 0);
+        }
+        used[v] = true;
+        // Leave v unmatched.
+        let mut best = rec(v + 1, n, used, edges, w, sign);
+        for (i, e) in edges.iter().enumerate() {
+            let u = if e[0] as usize == v { e[1] } else if e[1] as usize == v { e[0] } else { continue };
+            if u as usize == v || used[u as usize] {
+                continue;
+            }
+            used[u as usize] = true;
+            let (c, s) = rec(v + 1, n, used, edges, w, sign);
+            let cand = (c + 1, s + sign * w[i]);
+            if cand > best {
+                best = cand;
+            }
+            used[u as usize] = false;
+        }
+        used[v] = false;
+        best
+    }
+    let sign = if obj == Objective::MaxWeight { 1 } else { -1 };
+    let (c, s) = rec(0, n, &mut vec![false; n], edges, w, sign);
+    (c, sign * s)
+}
+
+fn random_graph(rng: &mut Rng, n: usize, density: u64, wmin: i64, wmax: i64, loops: bool) -> Graph {
+    let mut edges = Vec::new();
+    let mut ws = Vec::new();
+    for a in 0..n as u32 {
+        for b in a..n as u32 {
+            if a == b && !loops {
+                continue;
+            }
+            if rng.below(100) < density {
+                let (x, y) = if rng.below(2) == 0 { (a, b) } else { (b, a) };
+                edges.push([x, y]);
+                ws.push(wmin + rng.below((wmax - wmin + 1) as u64) as i64);
+                if rng.below(8) == 0 {
+                    // A parallel edge.
+                    edges.push([y, x]);
+                    ws.push(wmin + rng.below((wmax - wmin + 1) as u64) as i64);
+                }
+            }
+        }
+    }
+    Graph::new(n, edges, ws).unwrap()
+}
+
+fn check_against_exhaustive(g: &Graph, obj: Objective) -> matching::Matching {
+    let m = matching::solve(g, obj).unwrap();
+    assert!(m.certified);
+    let (card, best) = exhaustive(g.node_count(), g.edges(), g.weights(), obj);
+    let got_card = m.edges.len();
+    // The matching is a matching of input edges.
+    let mut seen = vec![false; g.node_count()];
+    let mut sum = 0;
+    for &e in &m.edges {
+        let [a, b] = g.edges()[e as usize];
+        assert_ne!(a, b);
+        assert!(!seen[a as usize] && !seen[b as usize]);
+        seen[a as usize] = true;
+        seen[b as usize] = true;
+        assert_eq!(m.mate[a as usize], b);
+        sum += g.weights()[e as usize];
+    }
+    assert_eq!(sum, m.total_weight);
+    assert_eq!(m.perfect, 2 * card == g.node_count(), "{}", g.to_dimacs());
+    assert_eq!(got_card, card, "cardinality\n{}", g.to_dimacs());
+    assert_eq!(m.total_weight, best, "{obj:?} weight\n{}", g.to_dimacs());
+    if m.perfect {
+        let cert = m.certificate.as_ref().unwrap();
+        matching::verify(g, obj, &m.edges, cert).unwrap();
+    } else {
+        assert!(m.mate.iter().any(|&x| x == UNMATCHED));
+    }
+    m
+}
+
+#[test]
+fn all_small_random_graphs_match_exhaustive_search() {
+    let mut rng = Rng(0x9E3779B97F4A7C15);
+    let mut perfect = 0;
+    let mut total = 0;
+    let (mut formed, mut expanded, mut dissolved) = (0, 0, 0);
+    for round in 0..2000 {
+        let n = 1 + (round % 12);
+        let density = [20, 35, 50, 70, 100][round % 5];
+        let (lo, hi) = [(1, 10), (-5, 5), (0, 0), (1, 2), (-1000, 1000), (0, 1)][round % 6];
+        let g = random_graph(&mut rng, n, density, lo, hi, round % 7 == 0);
+        for obj in [Objective::MaxWeight, Objective::MinCost] {
+            let m = check_against_exhaustive(&g, obj);
+            total += 1;
+            perfect += m.perfect as usize;
+            formed += m.stats.blossoms_formed;
+            expanded += m.stats.blossoms_expanded;
+            dissolved += m.stats.blossoms_dissolved;
+        }
+    }
+    // Both kinds of result are exercised.
+    assert!(perfect > total / 5 && perfect < total * 4 / 5, "{perfect} of {total}");
+    // And the blossom machinery is exercised, not just greedy plus simple paths.
+    eprintln!("{perfect} perfect of {total}; blossoms formed {formed}, expanded {expanded}, dissolved {dissolved}");
+    assert!(formed > 1000 && dissolved > 500 && expanded >= 1, "formed {formed}, expanded {expanded}, dissolved {dissolved}");
+}
+
+#[test]
+fn uniform_weights_match_unweighted_cardinality() {
+    let mut rng = Rng(12345);
+    for round in 0..1500 {
+        let n = 1 + (round % 12);
+        let g = random_graph(&mut rng, n, [15, 30, 60][round % 3], 0, 0, round % 5 == 0);
+        let mate = matching::unweighted::maximum_cardinality_matching(&g);
+        let card = mate.iter().filter(|&&m| m != UNMATCHED).count() / 2;
+        for (v, &m) in mate.iter().enumerate() {
+            if m != UNMATCHED {
+                assert_eq!(mate[m as usize], v as u32);
+                assert!(g.adjacency(v).iter().any(|&e| {
+                    let [a, b] = g.edges()[e as usize];
+                    (a as usize == v && b == m) || (b as usize == v && a == m)
+                }));
+            }
+        }
+        let (best, _) = exhaustive(n, g.edges(), g.weights(), Objective::MaxWeight);
+        assert_eq!(card, best, "{}", g.to_dimacs());
+    }
+}
