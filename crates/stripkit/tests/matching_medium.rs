@@ -5,18 +5,8 @@
 
 use stripkit::matching::{self, DualWeights, Graph, Objective, UNMATCHED};
 
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545F4914F6CDD1D)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-}
+mod test_rng;
+use test_rng::Rng;
 
 /// Dense Hungarian algorithm (shortest augmenting paths with potentials), O(n^3):
 /// maximum-weight perfect assignment of `w[i][j]`; `None` entries are missing edges.

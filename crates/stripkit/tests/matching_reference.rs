@@ -6,22 +6,8 @@
 use std::collections::VecDeque;
 use stripkit::matching::{self, Graph, Objective, UNMATCHED};
 
-/// xorshift64*: a tiny deterministic generator for test graphs.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545F4914F6CDD1D)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-    fn range(&mut self, lo: i64, hi: i64) -> i64 {
-        lo + self.below((hi - lo + 1) as u64) as i64
-    }
-}
+mod test_rng;
+use test_rng::Rng;
 
 // ---------------------------------------------------------------------------------
 // Reference: dense O(n^3) maximum-weight matching for general graphs.

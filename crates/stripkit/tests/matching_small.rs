@@ -3,19 +3,8 @@
 
 use stripkit::matching::{self, Graph, Objective, UNMATCHED};
 
-/// xorshift64*: a tiny deterministic generator for test graphs.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545F4914F6CDD1D)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-}
+mod test_rng;
+use test_rng::Rng;
 
 /// Best (cardinality, weight) over all matchings, by recursion on the lowest vertex.
 fn exhaustive(n: usize, edges: &[[u32; 2]], w: &[i64], obj: Objective) -> (usize, i64) {
