@@ -44,6 +44,8 @@ struct Dense {
     flower: Vec<Vec<usize>>,
     flower_from: Vec<usize>, // (2n+1) x (n+1): sub-blossom of b holding vertex x
     q: VecDeque<usize>,
+    formed: usize,
+    expanded: usize,
 }
 
 impl Dense {
@@ -71,6 +73,8 @@ impl Dense {
             flower: vec![Vec::new(); dim],
             flower_from: vec![0; dim * (n + 1)],
             q: VecDeque::new(),
+            formed: 0,
+            expanded: 0,
         };
         let wmax = w.iter().flatten().copied().max().unwrap_or(0);
         for u in 1..=n {
@@ -189,6 +193,7 @@ impl Dense {
             self.nx += 1;
         }
         assert!(b <= 2 * n, "reference ran out of blossom ids");
+        self.formed += 1;
         self.lab[b] = 0;
         self.s[b] = 0;
         self.mate[b] = self.mate[lca];
@@ -239,6 +244,7 @@ impl Dense {
     /// Expands a T-blossom whose dual reached zero: the even path from its entry
     /// sub-blossom to its base stays in the tree, the rest becomes unlabelled.
     fn expand_blossom(&mut self, b: usize) {
+        self.expanded += 1;
         let fl = self.flower[b].clone();
         for &x in &fl {
             self.set_st(x, x);
@@ -384,10 +390,11 @@ impl Dense {
 /// Reference maximum-weight matching of a general graph: returns the mate of every
 /// vertex (`usize::MAX` when unmatched). With `max_card`, a maximum-cardinality matching
 /// of maximum weight among those; otherwise a maximum-weight matching of any size.
-/// Parallel edges: the heaviest counts; self-loops are ignored.
-fn reference(n: usize, edges: &[[u32; 2]], w: &[i64], max_card: bool) -> Vec<usize> {
+/// Parallel edges: the heaviest counts; self-loops are ignored. Also returns how many
+/// blossoms the reference formed and expanded.
+fn reference(n: usize, edges: &[[u32; 2]], w: &[i64], max_card: bool) -> (Vec<usize>, usize, usize) {
     if n == 0 {
-        return Vec::new();
+        return (Vec::new(), 0, 0);
     }
     let (wmin, wmax) = w.iter().fold((0i64, 0i64), |(lo, hi), &x| (lo.min(x), hi.max(x)));
     // Bonus making one more matched edge outweigh any weight difference.
@@ -403,15 +410,28 @@ fn reference(n: usize, edges: &[[u32; 2]], w: &[i64], max_card: bool) -> Vec<usi
     }
     let mut d = Dense::new(n, &mat);
     while d.stage() {}
-    (1..=n).map(|u| if d.mate[u] == 0 { usize::MAX } else { d.mate[u] - 1 }).collect()
+    let mate = (1..=n).map(|u| if d.mate[u] == 0 { usize::MAX } else { d.mate[u] - 1 }).collect();
+    (mate, d.formed, d.expanded)
 }
 
 /// (cardinality, weight) of the reference's matching, after checking it is a matching
 /// of existing edges; `obj` picks maximum weight or minimum cost (by negation).
 fn reference_value(n: usize, edges: &[[u32; 2]], w: &[i64], obj: Objective, max_card: bool) -> (usize, i64) {
+    let (c, s, _) = reference_stats(n, edges, w, obj, max_card);
+    (c, s)
+}
+
+/// [`reference_value`] plus (blossoms formed, blossoms expanded) by the reference.
+fn reference_stats(
+    n: usize,
+    edges: &[[u32; 2]],
+    w: &[i64],
+    obj: Objective,
+    max_card: bool,
+) -> (usize, i64, (usize, usize)) {
     let sign = if obj == Objective::MaxWeight { 1 } else { -1 };
     let ws: Vec<i64> = w.iter().map(|&x| sign * x).collect();
-    let mate = reference(n, edges, &ws, max_card);
+    let (mate, formed, expanded) = reference(n, edges, &ws, max_card);
     let mut best = vec![vec![None::<i64>; n]; n];
     for (e, &x) in edges.iter().zip(&ws) {
         let (a, b) = (e[0] as usize, e[1] as usize);
@@ -433,7 +453,7 @@ fn reference_value(n: usize, edges: &[[u32; 2]], w: &[i64], obj: Objective, max_
             }
         }
     }
-    (card, sign * sum)
+    (card, sign * sum, (formed, expanded))
 }
 
 /// Best (cardinality, weight) over all matchings (or best weight alone when not
@@ -498,6 +518,7 @@ fn tiny_graph(rng: &mut Rng, n: usize, density: u64, lo: i64, hi: i64) -> (Vec<[
 fn reference_matches_brute_force_on_tiny_graphs() {
     let mut rng = Rng(0xD1B54A32D192ED03);
     let mut nontrivial = 0;
+    let (mut formed, mut expanded) = (0, 0);
     for round in 0..1500 {
         let n = 1 + round % 11;
         let density = [25, 40, 60, 85, 100][round % 5];
@@ -505,7 +526,9 @@ fn reference_matches_brute_force_on_tiny_graphs() {
         let (edges, ws) = tiny_graph(&mut rng, n, density, lo, hi);
         for max_card in [false, true] {
             let (bc, bw) = brute(n, &edges, &ws, max_card);
-            let (rc, rw) = reference_value(n, &edges, &ws, Objective::MaxWeight, max_card);
+            let (rc, rw, (f, x)) = reference_stats(n, &edges, &ws, Objective::MaxWeight, max_card);
+            formed += f;
+            expanded += x;
             assert_eq!(rw, bw, "weight, n {n} max_card {max_card} edges {edges:?} w {ws:?}");
             if max_card {
                 assert_eq!(rc, bc, "cardinality, n {n} edges {edges:?} w {ws:?}");
@@ -513,7 +536,10 @@ fn reference_matches_brute_force_on_tiny_graphs() {
             nontrivial += (bc >= 3) as usize;
         }
     }
+    eprintln!("reference: {nontrivial} cases with >= 3 matched edges; blossoms formed {formed}, expanded {expanded}");
     assert!(nontrivial > 500, "{nontrivial}");
+    // The reference's blossom code is exercised by this cross-check, not just paths.
+    assert!(formed > 300 && expanded > 20, "formed {formed}, expanded {expanded}");
 }
 
 /// A random general graph on `n` vertices: a hidden random perfect matching on the
