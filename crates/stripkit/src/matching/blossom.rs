@@ -212,6 +212,24 @@ pub(crate) struct Engine<'g> {
 }
 
 impl<'g> Engine<'g> {
+    /// Points every vertex inside blossom `s` at `s` as its hint, with the sum of the
+    /// dual offsets (`boff`) of the blossoms between them; `dfs` is reused scratch.
+    fn point_vertices_at(&mut self, s: u32, dfs: &mut Vec<(u32, i64)>) {
+        dfs.clear();
+        dfs.push((s, 0));
+        while let Some((x, acc)) = dfs.pop() {
+            for i in 0..self.childs[x as usize - self.n].len() {
+                let c = self.childs[x as usize - self.n][i];
+                if (c as usize) < self.n {
+                    self.hint[c as usize] = s;
+                    self.hsum[c as usize] = acc;
+                } else {
+                    dfs.push((c, acc + self.boff[c as usize]));
+                }
+            }
+        }
+    }
+
     pub fn new(g: &'g SimpleGraph) -> Engine<'g> {
         let n = g.n;
         Engine {
@@ -617,19 +635,7 @@ impl<'g> Engine<'g> {
                     work.push(s);
                     continue;
                 }
-                dfs.clear();
-                dfs.push((s, 0));
-                while let Some((x, acc)) = dfs.pop() {
-                    for i in 0..self.childs[x as usize - self.n].len() {
-                        let c = self.childs[x as usize - self.n][i];
-                        if (c as usize) < self.n {
-                            self.hint[c as usize] = s;
-                            self.hsum[c as usize] = acc;
-                        } else {
-                            dfs.push((c, acc + self.boff[c as usize]));
-                        }
-                    }
-                }
+                self.point_vertices_at(s, &mut dfs);
             }
             let mut cv = childs;
             cv.clear();
@@ -792,19 +798,7 @@ impl<'g> Engine<'g> {
                 continue;
             }
             self.boff[s as usize] += owed;
-            dfs.clear();
-            dfs.push((s, 0));
-            while let Some((x, acc)) = dfs.pop() {
-                for i in 0..self.childs[x as usize - self.n].len() {
-                    let c = self.childs[x as usize - self.n][i];
-                    if (c as usize) < self.n {
-                        self.hint[c as usize] = s;
-                        self.hsum[c as usize] = acc;
-                    } else {
-                        dfs.push((c, acc + self.boff[c as usize]));
-                    }
-                }
-            }
+            self.point_vertices_at(s, &mut dfs);
         }
         let len = childs.len() as i64;
         let at = |j: i64| j.rem_euclid(len) as usize;
