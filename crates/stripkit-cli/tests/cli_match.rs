@@ -4,10 +4,10 @@
 use std::path::PathBuf;
 use std::process::Command;
 
+mod support;
+
 fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stripkit-cli-match-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    support::tmp("match", name)
 }
 
 fn stripkit(args: &[&str]) -> (i32, String, String) {

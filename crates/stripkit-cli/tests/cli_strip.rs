@@ -1,19 +1,13 @@
 //! `stripkit strip` end to end: outputs, figures, errors and exit statuses.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn stripkit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_stripkit"))
-        .args(args)
-        .output()
-        .expect("runs")
-}
+mod support;
+use support::stripkit;
 
 fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stripkit-cli-strip-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    support::tmp("strip", name)
 }
 
 fn spot() -> String {

@@ -1,19 +1,12 @@
 //! `stripkit strip --algo qstrip|auto` on quad meshes written to a temporary OBJ.
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
 
-fn stripkit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_stripkit"))
-        .args(args)
-        .output()
-        .expect("runs")
-}
+mod support;
+use support::stripkit;
 
 fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stripkit-cli-quad-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    support::tmp("quad", name)
 }
 
 /// An `n` x `n` quad grid as OBJ text, plus `extra` triangles fanned off its left side.
