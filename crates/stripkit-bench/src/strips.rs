@@ -84,19 +84,22 @@ pub fn modes() -> Vec<Mode> {
             greedy::stripify(
                 t,
                 n,
-                &GreedyOptions {
-                    heuristic: Heuristic::Strips,
-                },
+                &GreedyOptions::with_heuristic(Heuristic::Strips),
             )
         }),
         ours("stripkit greedy --heuristic indices", |t, n| {
             greedy::stripify(
                 t,
                 n,
-                &GreedyOptions {
-                    heuristic: Heuristic::Indices,
-                },
+                &GreedyOptions::with_heuristic(Heuristic::Indices),
             )
+        }),
+        ours("stripkit greedy --heuristic indices --tunnel 0 (paper)", |t, n| {
+            let options = GreedyOptions {
+                heuristic: Heuristic::Indices,
+                tunnel_cuts: None,
+            };
+            greedy::stripify(t, n, &options)
         }),
         ours("stripkit cache", |t, n| cache::stripify(t, n, &CacheOptions::cache(16))),
         ours("stripkit balanced", |t, n| cache::stripify(t, n, &CacheOptions::balanced(16))),

@@ -169,7 +169,7 @@ fn greedy_after_triangulation(mesh: &stripkit::Mesh) -> usize {
     [Heuristic::Strips, Heuristic::Indices]
         .into_iter()
         .map(|heuristic| {
-            let s = stripify(&tris, mesh.vertex_count(), &GreedyOptions { heuristic });
+            let s = stripify(&tris, mesh.vertex_count(), &GreedyOptions::with_heuristic(heuristic));
             assert!(stripkit::strip::verify(&tris, &s).ok());
             s.indices.len() + s.len().saturating_sub(1)
         })

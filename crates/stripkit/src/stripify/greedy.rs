@@ -22,6 +22,10 @@
 //!   index: on a tie of degree it takes the neighbour that needs no swap, and on a
 //!   further tie the one with more open surface ahead.
 //!
+//! * Then, unless [`GreedyOptions::tunnel_cuts`] is `None`, [`super::tunnel`] relinks
+//!   the strips along short alternating paths where that saves indices (`indices`) or
+//!   strips (`strips`): bunny, `indices`, 83,179 -> 81,755 indices.
+//!
 //! Strips step only between [`DualGraph`] neighbours (manifold, consistently oriented
 //! edges), so every triangle keeps its winding; non-manifold edges, boundaries and
 //! inconsistently oriented regions simply end strips. Degenerate triangles (a repeated
@@ -55,13 +59,38 @@ impl std::str::FromStr for Heuristic {
 }
 
 /// Options of [`stripify`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct GreedyOptions {
     /// What to optimise.
     pub heuristic: Heuristic,
+    /// Tunnelling after the greedy pass ([`super::tunnel`]): the most strip links one
+    /// relinking may cut, or `None` for the plain greedy of the paper. Default 1 (bunny,
+    /// `indices`: 83,179 -> 81,755 indices for about 5 ms more; 2 gives 81,215 for about
+    /// 12 ms more).
+    pub tunnel_cuts: Option<usize>,
+}
+
+impl Default for GreedyOptions {
+    fn default() -> Self {
+        GreedyOptions {
+            heuristic: Heuristic::default(),
+            tunnel_cuts: Some(1),
+        }
+    }
+}
+
+impl GreedyOptions {
+    /// The defaults with heuristic `heuristic`.
+    pub fn with_heuristic(heuristic: Heuristic) -> Self {
+        GreedyOptions {
+            heuristic,
+            ..Self::default()
+        }
+    }
 }
 
 const NONE: u32 = u32::MAX;
+
 /// Ranking of a candidate: smaller is better, compared field by field.
 type Key = (u8, u8, u8, u8, u8);
 /// Slot value meaning "no entry edge".
@@ -257,11 +286,10 @@ pub fn stripify_with_graph(
             .count() as u8;
         g.b.push_front(t as u32, d);
     }
-    let mut out = StripSet::new();
-    out.indices.reserve(n + n / 4);
+    let mut walks = super::tunnel::Walks::new();
+    walks.items.reserve(n);
     let mut path: Vec<u32> = Vec::new();
     let mut back: Vec<u32> = Vec::new();
-    let mut seq: Vec<u32> = Vec::new();
     while let Some(t0) = g.b.lowest() {
         path.clear();
         back.clear();
@@ -281,10 +309,29 @@ pub fn stripify_with_graph(
             };
             g.grow(&mut back, t0, entry, last_pivot);
         }
-        seq.clear();
-        seq.extend(back.iter().rev());
-        seq.extend_from_slice(&path);
-        encode_path(tris, graph, &seq, &mut out);
+        walks.push(back.iter().rev().copied().chain(path.iter().copied()));
+    }
+    let walks = match options.tunnel_cuts {
+        Some(max_cuts) => {
+            // `strips` counts strips only: a swap is free, so any strip saved is worth
+            // it; `indices` weighs a strip as its three indices against one per swap.
+            let strip_cost = match options.heuristic {
+                Heuristic::Strips => 1 << 16,
+                Heuristic::Indices => 3,
+            };
+            let topts = super::tunnel::TunnelOptions {
+                max_cuts,
+                strip_cost,
+                ..Default::default()
+            };
+            super::tunnel::tunnel(tris, graph, &walks, &topts)
+        }
+        None => walks,
+    };
+    let mut out = StripSet::new();
+    out.indices.reserve(n + n / 4);
+    for i in 0..walks.len() {
+        encode_path(tris, graph, walks.get(i), &mut out);
     }
     out
 }

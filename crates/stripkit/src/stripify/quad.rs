@@ -224,9 +224,7 @@ pub fn qstrip_mixed(
 /// mesh. Returns the quad part and the combined strips.
 pub fn qstrip_mesh(mesh: &Mesh, options: &QuadOptions) -> (QuadStrips, StripSet) {
     qstrip_mixed(mesh, options, |tris, vcount| {
-        let greedy = super::greedy::GreedyOptions {
-            heuristic: super::greedy::Heuristic::Indices,
-        };
+        let greedy = super::greedy::GreedyOptions::with_heuristic(super::greedy::Heuristic::Indices);
         super::greedy::stripify(tris, vcount, &greedy)
     })
 }

@@ -1,0 +1,564 @@
+//! Fewer strips after the fact: *tunnelling* (after A. J. Stewart, "Tunneling for
+//! triangle strips in continuous level-of-detail meshes", Graphics Interface 2001),
+//! scored by the index count of METRICS.md.
+//!
+//! A set of strips is a set of disjoint paths in the dual graph: each triangle has at
+//! most two *links* (the dual edges its strip runs through). A strip ends at a triangle
+//! with fewer than two links. A *tunnel* is an alternating path that starts at an end,
+//! crosses a dual edge that is not a link, then runs along a link, then across a
+//! non-link, and so on, and stops at another end. Turning each of its non-links into a
+//! link and each of its links into a non-link keeps every triangle at two links or
+//! fewer and adds one link: one strip fewer, three indices fewer with a restart index,
+//! provided no cycle appears.
+//!
+//! The relinking also moves *pivots* (the vertex shared by a triangle's two link
+//! edges), and two linked inner triangles with the same pivot cost a swap (one repeated
+//! index). Every candidate tunnel is therefore scored exactly on the triangles it
+//! touches (swaps added minus three) and applied only when that is negative; the same
+//! search also accepts a relinking that keeps the strip count but removes swaps (it
+//! stops at an inner triangle and cuts one of its links). Searches are depth-first from
+//! every strip end, bounded in length, so the pass is O(triangles) with a small
+//! constant; the strip ends' start-of-strip swap is settled by the encoder.
+
+use crate::topology::{DualGraph, NO_NEIGHBOR};
+
+const NONE: u32 = u32::MAX;
+
+/// Pivot not computed yet.
+const UNKNOWN: u32 = u32::MAX - 1;
+
+/// Walks in one flat array: walk `i` is `items[offsets[i]..offsets[i + 1]]`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Walks {
+    /// Triangle ids of all walks, one after the other.
+    pub items: Vec<u32>,
+    /// `offsets[i]..offsets[i + 1]` is walk `i`; starts with 0.
+    pub offsets: Vec<u32>,
+}
+
+impl Default for Walks {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Walks {
+    /// No walks.
+    pub fn new() -> Self {
+        Walks {
+            items: Vec::new(),
+            offsets: vec![0],
+        }
+    }
+
+    /// Number of walks.
+    pub fn len(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    /// True when there is no walk.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Walk `i`.
+    pub fn get(&self, i: usize) -> &[u32] {
+        &self.items[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+
+    /// Appends a walk (nothing when it is empty).
+    pub fn push(&mut self, walk: impl IntoIterator<Item = u32>) {
+        self.items.extend(walk);
+        if self.items.len() as u32 != *self.offsets.last().unwrap_or(&0) {
+            self.offsets.push(self.items.len() as u32);
+        }
+    }
+}
+
+/// Options of [`tunnel`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TunnelOptions {
+    /// Most links a tunnel may cut (its length is about twice that).
+    pub max_cuts: usize,
+    /// Passes over all strip ends (each stops early when nothing improved).
+    pub passes: usize,
+    /// Index cost of one strip (3 with a restart index: two start indices and the
+    /// restart); a swap costs 1.
+    pub strip_cost: i32,
+}
+
+impl Default for TunnelOptions {
+    fn default() -> Self {
+        TunnelOptions {
+            max_cuts: 4,
+            passes: 3,
+            strip_cost: 3,
+        }
+    }
+}
+
+struct State<'a> {
+    tris: &'a [[u32; 3]],
+    nbr: &'a [[u32; 3]],
+    links: Vec<[u32; 2]>,
+    /// Pivot of every triangle under `links` (NONE with fewer than two links), computed
+    /// on first use (UNKNOWN until then).
+    pivots: Vec<u32>,
+    /// Triangles the walks cover.
+    member: &'a [bool],
+    /// Undo log of the tentative changes: (triangle, old links, old pivot).
+    log: Vec<(u32, [u32; 2], u32)>,
+    /// Triangles on the current search path.
+    path: Vec<u32>,
+    /// Triangles touched by the candidate (for scoring).
+    touched: Vec<u32>,
+    options: TunnelOptions,
+    /// `stamp[t] == now` marks the triangles touched by the candidate being scored.
+    stamp: Vec<u32>,
+    now: u32,
+    /// Scratch: links and pivots of the touched triangles after the change.
+    redo: Vec<(u32, [u32; 2], u32)>,
+}
+
+impl State<'_> {
+    #[inline]
+    fn deg(&self, t: u32) -> usize {
+        let l = self.links[t as usize];
+        usize::from(l[0] != NONE) + usize::from(l[1] != NONE)
+    }
+
+    #[inline]
+    fn linked(&self, a: u32, b: u32) -> bool {
+        self.links[a as usize].contains(&b)
+    }
+
+    fn set(&mut self, t: u32, l: [u32; 2]) {
+        self.log
+            .push((t, self.links[t as usize], self.pivots[t as usize]));
+        self.links[t as usize] = l;
+        self.pivots[t as usize] = UNKNOWN;
+    }
+
+    /// The pivot of `t` under the current links, cached.
+    #[inline]
+    fn piv(&mut self, t: u32) -> u32 {
+        let p = self.pivots[t as usize];
+        if p != UNKNOWN {
+            return p;
+        }
+        let p = self.pivot_of(t, self.links[t as usize]);
+        self.pivots[t as usize] = p;
+        p
+    }
+
+    fn add_link(&mut self, a: u32, b: u32) {
+        for (x, y) in [(a, b), (b, a)] {
+            let mut l = self.links[x as usize];
+            if l[0] == NONE {
+                l[0] = y;
+            } else {
+                l[1] = y;
+            }
+            self.set(x, l);
+        }
+    }
+
+    fn cut_link(&mut self, a: u32, b: u32) {
+        for (x, y) in [(a, b), (b, a)] {
+            let mut l = self.links[x as usize];
+            if l[0] == y {
+                l[0] = l[1];
+            }
+            l[1] = NONE;
+            self.set(x, l);
+        }
+    }
+
+    fn undo_to(&mut self, mark: usize) {
+        while self.log.len() > mark {
+            let (t, l, p) = self.log.pop().expect("log entry");
+            self.links[t as usize] = l;
+            self.pivots[t as usize] = p;
+        }
+    }
+
+    /// The pivot of `t` with links `l`: the vertex its two link edges share (NONE with
+    /// fewer links).
+    #[inline]
+    fn pivot_of(&self, t: u32, l: [u32; 2]) -> u32 {
+        if l[1] == NONE {
+            return NONE;
+        }
+        let n = &self.nbr[t as usize];
+        let (Some(j0), Some(j1)) = (n.iter().position(|&x| x == l[0]), n.iter().position(|&x| x == l[1])) else {
+            return NONE;
+        };
+        // Edge j runs tri[j] -> tri[j + 1]; two edges of a triangle share one corner.
+        let tri = &self.tris[t as usize];
+        if j1 == (j0 + 1) % 3 {
+            tri[j1]
+        } else if j0 == (j1 + 1) % 3 {
+            tri[j0]
+        } else {
+            NONE
+        }
+    }
+
+    /// Twice the swaps on the links at the touched triangles (linked pairs with equal
+    /// pivots): a pair with both ends touched is seen from both, one with one touched
+    /// end is counted twice from it.
+    fn local_swaps2(&mut self) -> i32 {
+        let mut s = 0;
+        for i in 0..self.touched.len() {
+            let t = self.touched[i];
+            let pt = self.piv(t);
+            if pt == NONE {
+                continue;
+            }
+            for u in self.links[t as usize] {
+                if u != NONE && self.piv(u) == pt {
+                    s += if self.stamp[u as usize] == self.now { 1 } else { 2 };
+                }
+            }
+        }
+        s
+    }
+
+    /// True when the strip through `a` (which has a link to `b`) closes into a cycle.
+    fn on_cycle(&self, a: u32, b: u32) -> bool {
+        let (mut prev, mut cur) = (a, b);
+        let limit = self.links.len();
+        for _ in 0..limit {
+            if cur == a {
+                return true;
+            }
+            let l = self.links[cur as usize];
+            let next = if l[0] == prev { l[1] } else { l[0] };
+            if next == NONE {
+                return false;
+            }
+            prev = cur;
+            cur = next;
+        }
+        true
+    }
+
+    /// Scores the tentative change made since `mark` (links now in place): the index
+    /// change it brings, or None when it closes a cycle.
+    fn score(&mut self, mark: usize, strips_saved: i32, new_links: &[(u32, u32)]) -> Option<i32> {
+        self.touched.clear();
+        self.now = self.now.wrapping_add(1);
+        if self.now == 0 {
+            self.stamp.fill(0);
+            self.now = 1;
+        }
+        for k in mark..self.log.len() {
+            let t = self.log[k].0;
+            if self.stamp[t as usize] != self.now {
+                self.stamp[t as usize] = self.now;
+                self.touched.push(t);
+            }
+        }
+        let after = self.local_swaps2();
+        self.redo.clear();
+        for &t in &self.touched {
+            self.redo
+                .push((t, self.links[t as usize], self.pivots[t as usize]));
+        }
+        // Old state: the first logged value of every touched triangle, so undo the log
+        // backwards.
+        for k in (mark..self.log.len()).rev() {
+            let (t, l, p) = self.log[k];
+            self.links[t as usize] = l;
+            self.pivots[t as usize] = p;
+        }
+        let before = self.local_swaps2();
+        for &(t, l, p) in &self.redo {
+            self.links[t as usize] = l;
+            self.pivots[t as usize] = p;
+        }
+        let delta = after - before - 2 * strips_saved * self.options.strip_cost;
+        if delta >= 0 {
+            return Some(delta);
+        }
+        if new_links.iter().any(|&(a, b)| self.on_cycle(a, b)) {
+            return None;
+        }
+        Some(delta)
+    }
+
+    /// Depth-first search for an improving alternating path from `c`, which has a free
+    /// link slot. Returns true when one was applied (links left changed).
+    fn search(&mut self, c: u32, cuts: usize, new_links: &mut Vec<(u32, u32)>, mark: usize) -> bool {
+        for j in 0..3 {
+            let x = self.nbr[c as usize][j];
+            if x == NO_NEIGHBOR
+                || x == c
+                || !self.member[x as usize]
+                || self.linked(c, x)
+                || self.path.contains(&x)
+            {
+                continue;
+            }
+            if self.deg(x) < 2 {
+                // Close at an end: one strip fewer.
+                let m = self.log.len();
+                self.add_link(c, x);
+                new_links.push((c, x));
+                if let Some(d) = self.score(mark, 1, new_links) {
+                    if d < 0 {
+                        return true;
+                    }
+                }
+                new_links.pop();
+                self.undo_to(m);
+                continue;
+            }
+            if cuts >= self.options.max_cuts {
+                continue;
+            }
+            let lx = self.links[x as usize];
+            for y in lx {
+                if self.path.contains(&y) {
+                    continue;
+                }
+                let m = self.log.len();
+                self.cut_link(x, y);
+                self.add_link(c, x);
+                new_links.push((c, x));
+                self.path.push(x);
+                self.path.push(y);
+                // Stopping here keeps the strip count: accept when swaps fall.
+                if let Some(d) = self.score(mark, 0, new_links) {
+                    if d < 0 {
+                        return true;
+                    }
+                }
+                if self.search(y, cuts + 1, new_links, mark) {
+                    return true;
+                }
+                self.path.pop();
+                self.path.pop();
+                new_links.pop();
+                self.undo_to(m);
+            }
+        }
+        false
+    }
+}
+
+/// Reduces the index count of `walks` (paths through `graph` covering some triangles
+/// of `tris`) by tunnelling; returns the new walks. Every triangle of `walks` appears
+/// exactly once in the result, and every walk is a path through `graph`, so encoding
+/// keeps every triangle's winding.
+pub fn tunnel(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, options: &TunnelOptions) -> Walks {
+    let n = tris.len();
+    let mut links = vec![[NONE; 2]; n];
+    let mut member = vec![false; n];
+    for i in 0..walks.len() {
+        let w = walks.get(i);
+        for (k, &t) in w.iter().enumerate() {
+            member[t as usize] = true;
+            let mut l = [NONE; 2];
+            let mut m = 0;
+            if k > 0 {
+                l[m] = w[k - 1];
+                m += 1;
+            }
+            if k + 1 < w.len() {
+                l[m] = w[k + 1];
+            }
+            links[t as usize] = l;
+        }
+    }
+    let nbr = &graph.neighbors;
+    let mut st = State {
+        tris,
+        nbr,
+        pivots: vec![UNKNOWN; n],
+        member: &member,
+        links,
+        log: Vec::new(),
+        path: Vec::new(),
+        touched: Vec::new(),
+        options: *options,
+        stamp: vec![0; n],
+        now: 0,
+        redo: Vec::new(),
+    };
+    // Every strip end is searched once; a change puts the ends it touched (and the
+    // ends next to them) back on the work list, up to `passes` times each.
+    let mut new_links = Vec::new();
+    let mut queue: std::collections::VecDeque<u32> =
+        (0..n as u32).filter(|&t| member[t as usize] && st.deg(t) < 2).collect();
+    let mut visits = vec![0u8; n];
+    let mut queued = vec![false; n];
+    for &t in &queue {
+        queued[t as usize] = true;
+    }
+    while let Some(t) = queue.pop_front() {
+        queued[t as usize] = false;
+        if st.deg(t) >= 2 || visits[t as usize] as usize >= options.passes {
+            continue;
+        }
+        visits[t as usize] += 1;
+        st.log.clear();
+        st.path.clear();
+        st.path.push(t);
+        new_links.clear();
+        if !st.search(t, 0, &mut new_links, 0) {
+            st.undo_to(0);
+            continue;
+        }
+        #[cfg(test)]
+        {
+            for k in 0..st.log.len() {
+                let x = st.log[k].0;
+                let l = st.links[x as usize];
+                if l[0] != NONE {
+                    assert!(!st.on_cycle(x, l[0]), "cycle after search from {t}: log {:?}", st.log);
+                }
+            }
+        }
+        // Applied: requeue the touched triangles that are ends now, and their
+        // neighbours that are ends.
+        for k in 0..st.log.len() {
+            let x = st.log[k].0;
+            for y in std::iter::once(x).chain(nbr[x as usize].iter().copied()) {
+                if y != NO_NEIGHBOR && member[y as usize] && !queued[y as usize] && st.deg(y) < 2 {
+                    queued[y as usize] = true;
+                    queue.push_back(y);
+                }
+            }
+        }
+    }
+    // Read the paths from their ends, in the order the input walks reach the ends
+    // (keeps most of the producer's locality, e.g. for the vertex cache).
+    let links = st.links;
+    let mut out = Walks::new();
+    out.items.reserve(walks.items.len());
+    let mut done = vec![false; n];
+    for &s0 in &walks.items {
+        if done[s0 as usize] || links[s0 as usize][1] != NONE {
+            continue;
+        }
+        let (mut prev, mut cur) = (NONE, s0);
+        loop {
+            done[cur as usize] = true;
+            out.items.push(cur);
+            let l = links[cur as usize];
+            let next = if l[0] == prev { l[1] } else { l[0] };
+            if next == NONE {
+                break;
+            }
+            prev = cur;
+            cur = next;
+        }
+        out.offsets.push(out.items.len() as u32);
+    }
+    if out.items.len() != walks.items.len() {
+        // A cycle would lose its triangles here; the searches never close one, but
+        // should that ever fail, the input walks are still a correct answer.
+        debug_assert!(false, "tunnelling lost or added triangles");
+        return walks.clone();
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Checks that `out` covers exactly `expect` (as a set) with valid dual walks.
+    fn check_walks(graph: &DualGraph, out: &Walks, expect: &[u32]) {
+        let mut got: Vec<u32> = out.items.clone();
+        got.sort_unstable();
+        let mut want = expect.to_vec();
+        want.sort_unstable();
+        assert_eq!(got, want, "triangles lost or repeated");
+        for i in 0..out.len() {
+            for p in out.get(i).windows(2) {
+                assert!(graph.neighbors[p[0] as usize].contains(&p[1]), "not a walk: {p:?}");
+            }
+        }
+    }
+
+    fn grid_tris(w: u32, h: u32) -> Vec<[u32; 3]> {
+        crate::gen::grid(w, h).triangulate().tris
+    }
+
+    #[test]
+    fn single_triangles_are_tunnelled_into_long_walks() {
+        let tris = grid_tris(8, 6);
+        let graph = DualGraph::from_triangles(&tris, 9 * 7);
+        let mut walks = Walks::new();
+        for t in 0..tris.len() as u32 {
+            walks.push([t]);
+        }
+        let out = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
+        check_walks(&graph, &out, &(0..tris.len() as u32).collect::<Vec<_>>());
+        // 96 single triangles: adjacent ends join directly, so very few walks remain.
+        assert!(out.len() <= 12, "{} walks", out.len());
+    }
+
+    #[test]
+    fn a_closed_ring_is_never_closed_into_a_cycle() {
+        // A band of 2n triangles around a cylinder: one walk covers it, and its two
+        // ends are neighbours. Joining them would make a cycle.
+        let n = 6u32;
+        let mut tris = Vec::new();
+        for i in 0..n {
+            let (a, b) = (i, (i + 1) % n);
+            let (c, d) = (n + i, n + (i + 1) % n);
+            tris.push([a, c, b]);
+            tris.push([b, c, d]);
+        }
+        let graph = DualGraph::from_triangles(&tris, 2 * n as usize);
+        let mut walks = Walks::new();
+        walks.push(0..2 * n);
+        let out = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
+        check_walks(&graph, &out, &(0..2 * n).collect::<Vec<_>>());
+        assert_eq!(out.len(), 1);
+        // Cut into pieces, it comes back to one walk, still not a cycle.
+        let mut walks = Walks::new();
+        walks.push(0..5);
+        walks.push(5..9);
+        walks.push(9..2 * n);
+        let out = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
+        check_walks(&graph, &out, &(0..2 * n).collect::<Vec<_>>());
+        assert_eq!(out.len(), 1);
+    }
+
+    #[test]
+    fn triangles_outside_the_walks_are_left_alone() {
+        let tris = grid_tris(6, 4);
+        let graph = DualGraph::from_triangles(&tris, 7 * 5);
+        let mut walks = Walks::new();
+        let mut covered = Vec::new();
+        for t in (0..tris.len() as u32).filter(|t| t % 5 != 0) {
+            walks.push([t]);
+            covered.push(t);
+        }
+        let out = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
+        check_walks(&graph, &out, &covered);
+        assert!(out.len() < walks.len());
+    }
+
+    #[test]
+    fn empty_input_and_a_second_pass() {
+        let tris = grid_tris(5, 5);
+        let graph = DualGraph::from_triangles(&tris, 36);
+        let out = tunnel(&tris, &graph, &Walks::new(), &TunnelOptions::default());
+        assert!(out.is_empty());
+        let mut walks = Walks::new();
+        for t in 0..tris.len() as u32 {
+            walks.push([t]);
+        }
+        let once = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
+        let twice = tunnel(&tris, &graph, &once, &TunnelOptions::default());
+        let all: Vec<u32> = (0..tris.len() as u32).collect();
+        check_walks(&graph, &once, &all);
+        check_walks(&graph, &twice, &all);
+        assert!(twice.len() <= once.len());
+    }
+}
