@@ -24,80 +24,11 @@ pub mod tunnel;
 use crate::strip::StripSet;
 use crate::topology::{DualGraph, NO_NEIGHBOR};
 
-/// Builds the same [`DualGraph`] as [`DualGraph::from_triangles`] (neighbours across
-/// edges with exactly two triangles running it in opposite directions; degenerate
-/// triangles take no part), about three times faster: each corner is bucketed once by
-/// its edge's lower vertex with the other vertex and direction stored beside it, so
-/// pairing never goes back to the triangle array. Indices at or above `vertex_count`
-/// are tolerated (the count is raised to cover them). O(triangles + vertices).
+/// The dual graph of `tris`: [`DualGraph::from_triangles`], with the vertex count
+/// raised to cover every index (kept for the stripifiers' callers).
+#[inline]
 pub fn dual_graph(tris: &[[u32; 3]], vertex_count: usize) -> DualGraph {
-    let n = tris.len();
-    let degenerate = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-    let max_index = tris
-        .iter()
-        .flatten()
-        .copied()
-        .max()
-        .map_or(0, |m| m as usize + 1);
-    let vcount = vertex_count.max(max_index);
-    let mut start = vec![0u32; vcount + 1];
-    for t in tris.iter().filter(|t| !degenerate(t)) {
-        for j in 0..3 {
-            start[t[j].min(t[(j + 1) % 3]) as usize + 1] += 1;
-        }
-    }
-    for v in 0..vcount {
-        start[v + 1] += start[v];
-    }
-    // Entry: higher vertex in the top 32 bits, below it corner * 2 + 1 when the corner
-    // runs low -> high. Sorting entries sorts a bucket by the higher vertex.
-    if n >= (u32::MAX / 6) as usize {
-        return DualGraph::from_triangles(tris, vcount);
-    }
-    let mut fill = start.clone();
-    let mut entries = vec![0u64; start[vcount] as usize];
-    for (ti, t) in tris.iter().enumerate() {
-        if degenerate(t) {
-            continue;
-        }
-        for j in 0..3 {
-            let (a, b) = (t[j], t[(j + 1) % 3]);
-            let lo = a.min(b) as usize;
-            let corner = (ti * 3 + j) as u64;
-            entries[fill[lo] as usize] =
-                (u64::from(a.max(b)) << 32) | (corner * 2 + u64::from(a < b));
-            fill[lo] += 1;
-        }
-    }
-    drop(fill);
-    let mut neighbors = vec![[NO_NEIGHBOR; 3]; n];
-    for v in 0..vcount {
-        let bucket = &mut entries[start[v] as usize..start[v + 1] as usize];
-        // Tiny buckets (about six entries): insertion sort.
-        for i in 1..bucket.len() {
-            let mut k = i;
-            while k > 0 && bucket[k - 1] > bucket[k] {
-                bucket.swap(k - 1, k);
-                k -= 1;
-            }
-        }
-        let hi = |e: u64| (e >> 32) as u32;
-        let mut i = 0;
-        while i < bucket.len() {
-            let mut k = i + 1;
-            while k < bucket.len() && hi(bucket[k]) == hi(bucket[i]) {
-                k += 1;
-            }
-            if k == i + 2 && (bucket[i] & 1) != (bucket[i + 1] & 1) {
-                let c = (bucket[i] & 0xFFFF_FFFF) >> 1;
-                let d = (bucket[i + 1] & 0xFFFF_FFFF) >> 1;
-                neighbors[(c / 3) as usize][(c % 3) as usize] = (d / 3) as u32;
-                neighbors[(d / 3) as usize][(d % 3) as usize] = (c / 3) as u32;
-            }
-            i = k;
-        }
-    }
-    DualGraph { neighbors }
+    DualGraph::from_triangles(tris, vertex_count)
 }
 
 /// The slot `j` of triangle `t` (edge `(t[j], t[j+1])`) across which `next` lies,

@@ -129,10 +129,93 @@ pub struct DualGraph {
 }
 
 impl DualGraph {
-    /// Builds the dual graph in O(triangles + vertices). Degenerate triangles (a
-    /// repeated index) get no neighbours and take no part in other triangles' edges.
-    /// Every index must be below `vertex_count`.
+    /// Builds the dual graph: neighbours across edges that exactly two triangles run,
+    /// in opposite directions. Degenerate triangles (a repeated index) get no
+    /// neighbours and take no part in other triangles' edges. Indices at or above
+    /// `vertex_count` are tolerated (the count is raised to cover them).
+    ///
+    /// Each corner is bucketed once by its edge's lower vertex, packed with the other
+    /// vertex and its direction, so pairing never goes back to the triangle array; a
+    /// bucket is sorted by the other vertex (insertion sort for the usual handful of
+    /// entries, an O(k log k) sort for high-valence vertices). O(triangles + vertices)
+    /// for bounded valence, O(t log t) at worst.
     pub fn from_triangles(tris: &[[u32; 3]], vertex_count: usize) -> DualGraph {
+        let n = tris.len();
+        let degenerate = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+        let max_index = tris
+            .iter()
+            .flatten()
+            .copied()
+            .max()
+            .map_or(0, |m| m as usize + 1);
+        let vcount = vertex_count.max(max_index);
+        // Entry: higher vertex in the top 32 bits, below it corner * 2 + 1 when the
+        // corner runs low -> high; corner * 2 + 1 must fit in 32 bits.
+        if n >= (u32::MAX / 6) as usize {
+            return Self::from_triangles_simple(tris, vcount);
+        }
+        let mut start = vec![0u32; vcount + 1];
+        for t in tris.iter().filter(|t| !degenerate(t)) {
+            for j in 0..3 {
+                start[t[j].min(t[(j + 1) % 3]) as usize + 1] += 1;
+            }
+        }
+        for v in 0..vcount {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut entries = vec![0u64; start[vcount] as usize];
+        for (ti, t) in tris.iter().enumerate() {
+            if degenerate(t) {
+                continue;
+            }
+            for j in 0..3 {
+                let (a, b) = (t[j], t[(j + 1) % 3]);
+                let lo = a.min(b) as usize;
+                let corner = (ti * 3 + j) as u64;
+                entries[fill[lo] as usize] =
+                    (u64::from(a.max(b)) << 32) | (corner * 2 + u64::from(a < b));
+                fill[lo] += 1;
+            }
+        }
+        drop(fill);
+        let mut neighbors = vec![[NO_NEIGHBOR; 3]; n];
+        let hi = |e: u64| (e >> 32) as u32;
+        for v in 0..vcount {
+            let bucket = &mut entries[start[v] as usize..start[v + 1] as usize];
+            if bucket.len() <= 16 {
+                for i in 1..bucket.len() {
+                    let mut k = i;
+                    while k > 0 && bucket[k - 1] > bucket[k] {
+                        bucket.swap(k - 1, k);
+                        k -= 1;
+                    }
+                }
+            } else {
+                bucket.sort_unstable();
+            }
+            let mut i = 0;
+            while i < bucket.len() {
+                let mut k = i + 1;
+                while k < bucket.len() && hi(bucket[k]) == hi(bucket[i]) {
+                    k += 1;
+                }
+                if k == i + 2 && (bucket[i] & 1) != (bucket[i + 1] & 1) {
+                    let c = (bucket[i] & 0xFFFF_FFFF) >> 1;
+                    let d = (bucket[i + 1] & 0xFFFF_FFFF) >> 1;
+                    neighbors[(c / 3) as usize][(c % 3) as usize] = (d / 3) as u32;
+                    neighbors[(d / 3) as usize][(d % 3) as usize] = (c / 3) as u32;
+                }
+                i = k;
+            }
+        }
+        DualGraph { neighbors }
+    }
+
+    /// The plain version of [`DualGraph::from_triangles`] (corner ids only, the edge
+    /// looked up again for every comparison), for inputs too large for its packed
+    /// entries.
+    fn from_triangles_simple(tris: &[[u32; 3]], vertex_count: usize) -> DualGraph {
         let n = tris.len();
         let degenerate = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
         // Bucket the corners (t, j) of non-degenerate triangles by the lower vertex of
@@ -247,5 +330,34 @@ mod tests {
         let shared = map.edges.iter().position(|&e| e == [2, 3]).unwrap();
         assert_eq!(map.halfedges(shared).len(), 2);
         assert_eq!(map.halfedge_face[map.halfedges(shared)[1] as usize], 1);
+    }
+}
+
+#[cfg(test)]
+mod dual_graph_tests {
+    use super::*;
+
+    #[test]
+    fn packed_and_simple_builders_agree() {
+        // Pseudo-random soups over few vertices (shared, flipped, non-manifold and
+        // degenerate edges) and a high-valence fan.
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = |m: u32| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % u64::from(m)) as u32
+        };
+        for round in 0..300 {
+            let len = next(40) as usize;
+            let v = 3 + round % 9;
+            let tris: Vec<[u32; 3]> = (0..len).map(|_| [next(v), next(v), next(v)]).collect();
+            assert_eq!(
+                DualGraph::from_triangles(&tris, v as usize),
+                DualGraph::from_triangles_simple(&tris, v as usize)
+            );
+        }
+        let fan: Vec<[u32; 3]> = (0..100u32).map(|i| [0, 1 + i, 1 + (i + 1) % 100]).collect();
+        assert_eq!(DualGraph::from_triangles(&fan, 101), DualGraph::from_triangles_simple(&fan, 101));
     }
 }
