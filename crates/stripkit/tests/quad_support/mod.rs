@@ -10,43 +10,12 @@ use stripkit::Mesh;
 
 /// `nx` x `ny` quads in the plane, counter-clockwise seen from +z.
 pub fn grid(nx: usize, ny: usize) -> Mesh {
-    let id = |i: usize, j: usize| (j * (nx + 1) + i) as u32;
-    let mut positions = Vec::new();
-    for j in 0..=ny {
-        for i in 0..=nx {
-            positions.push([i as f32, j as f32, 0.0]);
-        }
-    }
-    let mut faces = Vec::new();
-    for j in 0..ny {
-        for i in 0..nx {
-            faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    Mesh::from_polygons(positions, &faces)
+    stripkit::gen::grid_quads(nx as u32, ny as u32)
 }
 
 /// A closed torus of `nu` x `nv` quads, outward orientation.
 pub fn torus(nu: usize, nv: usize) -> Mesh {
-    let id = |i: usize, j: usize| ((j % nv) * nu + (i % nu)) as u32;
-    let mut positions = Vec::new();
-    for j in 0..nv {
-        for i in 0..nu {
-            let (u, v) = (
-                i as f32 / nu as f32 * std::f32::consts::TAU,
-                j as f32 / nv as f32 * std::f32::consts::TAU,
-            );
-            let r = 2.0 + v.cos();
-            positions.push([r * u.cos(), r * u.sin(), v.sin()]);
-        }
-    }
-    let mut faces = Vec::new();
-    for j in 0..nv {
-        for i in 0..nu {
-            faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    Mesh::from_polygons(positions, &faces)
+    stripkit::gen::torus_quads(nu as u32, nv as u32, 2.0, 1.0)
 }
 
 /// A closed cube with `n` x `n` quads on each side, outward orientation.
@@ -85,42 +54,9 @@ pub fn cube(n: usize) -> Mesh {
     Mesh::from_polygons(positions, &faces)
 }
 
-/// One Catmull-Clark step's connectivity (positions: face points and edge midpoints;
-/// good enough for stripification): a face of k vertices becomes k quads.
+/// One Catmull-Clark step: a face of k vertices becomes k quads.
 pub fn subdivide(mesh: &Mesh) -> Mesh {
-    let mut positions = mesh.positions.clone();
-    let mut edge_point: HashMap<(u32, u32), u32> = HashMap::new();
-    let mut faces = Vec::new();
-    for face in mesh.faces() {
-        let k = face.len();
-        let mut c = [0.0f32; 3];
-        for &v in face {
-            for (ca, pa) in c.iter_mut().zip(mesh.positions[v as usize]) {
-                *ca += pa / k as f32;
-            }
-        }
-        positions.push(c);
-        let center = (positions.len() - 1) as u32;
-        let mut mids = Vec::with_capacity(k);
-        for i in 0..k {
-            let (a, b) = (face[i], face[(i + 1) % k]);
-            let key = (a.min(b), a.max(b));
-            let m = *edge_point.entry(key).or_insert_with(|| {
-                let (pa, pb) = (mesh.positions[a as usize], mesh.positions[b as usize]);
-                positions.push([
-                    (pa[0] + pb[0]) / 2.0,
-                    (pa[1] + pb[1]) / 2.0,
-                    (pa[2] + pb[2]) / 2.0,
-                ]);
-                (positions.len() - 1) as u32
-            });
-            mids.push(m);
-        }
-        for i in 0..k {
-            faces.push(vec![face[i], mids[i], center, mids[(i + k - 1) % k]]);
-        }
-    }
-    Mesh::from_polygons(positions, &faces)
+    stripkit::gen::subdivide_catmull_clark(mesh, 1).expect("a valid polygon mesh")
 }
 
 /// A small deterministic generator (xorshift).
