@@ -1,7 +1,6 @@
 //! `stripkit strip` end to end: outputs, figures, errors and exit statuses.
 
 use std::path::{Path, PathBuf};
-use std::process::Output;
 
 mod support;
 use support::stripkit;
@@ -17,14 +16,7 @@ fn spot() -> String {
         .into_owned()
 }
 
-fn json(out: &Output) -> serde_json::Value {
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("one JSON object")
-}
+use support::json;
 
 #[test]
 fn spot_to_ply_verifies_and_reads_back() {

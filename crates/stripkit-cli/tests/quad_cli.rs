@@ -9,32 +9,16 @@ fn tmp(name: &str) -> PathBuf {
     support::tmp("quad", name)
 }
 
-/// An `n` x `n` quad grid as OBJ text, plus `extra` triangles fanned off its left side.
-fn grid_obj(n: usize, extra_triangles: bool) -> String {
-    let mut s = String::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            s += &format!("v {i} {j} 0\n");
-        }
-    }
-    s += "v -1 0.5 0\n";
-    let id = |i: usize, j: usize| j * (n + 1) + i + 1;
-    for j in 0..n {
-        for i in 0..n {
-            s += &format!(
-                "f {} {} {} {}\n",
-                id(i, j),
-                id(i + 1, j),
-                id(i + 1, j + 1),
-                id(i, j + 1)
-            );
-        }
-    }
+/// An `n` x `n` quad grid written to `path`, plus one vertex left of it and, with
+/// `extra_triangles`, one triangle joining it to the grid's left side.
+fn write_grid(path: &std::path::Path, n: usize, extra_triangles: bool) {
+    let mut mesh = stripkit::gen::grid_quads(n as u32, n as u32);
+    mesh.positions.push([-1.0, 0.5, 0.0]);
     if extra_triangles {
-        let apex = (n + 1) * (n + 1) + 1;
-        s += &format!("f {} {} {}\n", id(0, 1), apex, id(0, 0));
+        let apex = ((n + 1) * (n + 1)) as u32;
+        mesh.push_face(&[(n + 1) as u32, apex, 0]);
     }
-    s
+    support::write_mesh(path, &mesh);
 }
 
 fn run_json(input: &std::path::Path, algo: &str) -> serde_json::Value {
@@ -48,18 +32,13 @@ fn run_json(input: &std::path::Path, algo: &str) -> serde_json::Value {
         algo,
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("one JSON object")
+    support::json(&out)
 }
 
 #[test]
 fn qstrip_reports_quads_and_indices_per_quad() {
     let input = tmp("grid.obj");
-    std::fs::write(&input, grid_obj(12, false)).unwrap();
+    write_grid(&input, 12, false);
     for algo in ["qstrip", "auto"] {
         let v = run_json(&input, algo);
         assert_eq!(v["algo"], "qstrip");
@@ -79,7 +58,7 @@ fn qstrip_reports_quads_and_indices_per_quad() {
 #[test]
 fn mixed_mesh_covers_quads_and_triangles() {
     let input = tmp("mixed.obj");
-    std::fs::write(&input, grid_obj(6, true)).unwrap();
+    write_grid(&input, 6, true);
     let v = run_json(&input, "auto");
     assert_eq!(v["algo"], "qstrip");
     assert_eq!(v["quads"], 36);
@@ -99,45 +78,17 @@ fn auto_picks_greedy_for_triangle_meshes() {
     assert_eq!(v["algo"], "greedy");
 }
 
-/// A closed torus of quads as OBJ text.
-fn torus_obj(nu: usize, nv: usize) -> String {
-    let mut s = String::new();
-    for j in 0..nv {
-        for i in 0..nu {
-            let (u, v) = (
-                i as f32 / nu as f32 * std::f32::consts::TAU,
-                j as f32 / nv as f32 * std::f32::consts::TAU,
-            );
-            let r = 2.0 + v.cos();
-            s += &format!("v {} {} {}\n", r * u.cos(), r * u.sin(), v.sin());
-        }
-    }
-    let id = |i: usize, j: usize| (j % nv) * nu + (i % nu) + 1;
-    for j in 0..nv {
-        for i in 0..nu {
-            s += &format!(
-                "f {} {} {} {}\n",
-                id(i, j),
-                id(i + 1, j),
-                id(i + 1, j + 1),
-                id(i, j + 1)
-            );
-        }
-    }
-    s
-}
-
 #[test]
 fn quad_single_gives_one_strip_on_a_torus_and_refuses_open_meshes() {
     let input = tmp("torus.obj");
-    std::fs::write(&input, torus_obj(20, 12)).unwrap();
+    support::write_mesh(&input, &stripkit::gen::torus_quads(20, 12, 2.0, 1.0));
     let v = run_json(&input, "quad-single");
     assert_eq!(v["algo"], "quad-single");
     assert_eq!(v["strips"], 1);
     assert_eq!(v["quads"], 240);
     assert_eq!(v["verified"], true);
     let open = tmp("open.obj");
-    std::fs::write(&open, grid_obj(3, false)).unwrap();
+    write_grid(&open, 3, false);
     let out_path = tmp("open.ply");
     let out = stripkit(&[
         "strip",

@@ -15,3 +15,16 @@ pub fn tmp(group: &str, name: &str) -> PathBuf {
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)
 }
+
+/// The one JSON object a successful run printed on stdout.
+#[allow(dead_code)] // not every test binary prints JSON
+pub fn json(out: &Output) -> serde_json::Value {
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+/// Writes `mesh` to `path` (format by extension) for a test to read back.
+#[allow(dead_code)]
+pub fn write_mesh(path: &std::path::Path, mesh: &stripkit::Mesh) {
+    stripkit::mesh::io::write(path, mesh, None).expect("writes the test mesh");
+}
