@@ -140,9 +140,10 @@ fn simplify(g: &Graph, obj: Objective) -> (Vec<[u32; 2]>, Vec<i64>, Vec<u32>) {
     (ends, ws, ids)
 }
 
-/// True when every connected component has an even number of vertices (necessary for
-/// a perfect matching).
-fn components_even(n: usize, ends: &[[u32; 2]]) -> bool {
+/// Connected components: the root of each vertex's component, and the roots of the
+/// components with an odd number of vertices (each leaves at least one vertex exposed
+/// in every matching).
+fn components(n: usize, ends: &[[u32; 2]]) -> (Vec<u32>, Vec<u32>) {
     let mut parent: Vec<u32> = (0..n as u32).collect();
     fn find(p: &mut [u32], mut x: u32) -> u32 {
         while p[x as usize] != x {
@@ -160,9 +161,129 @@ fn components_even(n: usize, ends: &[[u32; 2]]) -> bool {
     let mut size = vec![0u32; n];
     for v in 0..n as u32 {
         let r = find(&mut parent, v);
+        parent[v as usize] = r;
         size[r as usize] += 1;
     }
-    size.iter().all(|&s| s % 2 == 0)
+    let odd = (0..n as u32).filter(|&r| parent[r as usize] == r && size[r as usize] % 2 == 1).collect();
+    (parent, odd)
+}
+
+/// Perfect-matching certificate data of an engine run, with the matched edge ids of
+/// the engine's graph.
+fn engine_certificate(sg: &SimpleGraph, engine: &mut Engine) -> (Vec<u32>, Certificate) {
+    let sol = engine.solution();
+    let n = sol.mate_edge.len();
+    let matched: Vec<u32> = (0..n)
+        .filter(|&v| {
+            let [a, b] = sg.ends[sol.mate_edge[v] as usize];
+            v as u32 == a.min(b)
+        })
+        .map(|v| sol.mate_edge[v])
+        .collect();
+    let cert = Certificate {
+        y: sol.y,
+        blossoms: sol.blossoms.iter().map(|&(z, parent)| DualBlossom { z, parent }).collect(),
+        vertex_blossom: sol.vertex_blossom,
+    };
+    (matched, cert)
+}
+
+/// The penalty (internal weight) of a dummy edge in the max-cardinality gadgets: far
+/// below every real weight, so trees reach a dummy only when nothing else is left.
+fn dummy_penalty(ws: &[i64]) -> i64 {
+    let maxabs = ws.iter().map(|w| w.abs()).max().unwrap_or(0);
+    2 * (64 * (maxabs / 2 + 1)).min(1 << 50)
+}
+
+/// The graph plus one dummy vertex per odd component, joined to every vertex of that
+/// component by an edge of internal weight `-penalty`. Its perfect matchings are the
+/// matchings of the graph that leave exactly one vertex of each odd component
+/// exposed: when one exists, those are the maximum-cardinality matchings (no matching
+/// exposes fewer), and with all dummy edges equal the optimum is the best of them.
+fn odd_component_gadget(
+    n: usize,
+    ends: &[[u32; 2]],
+    ws: &[i64],
+    root: &[u32],
+    odd: &[u32],
+    penalty: i64,
+) -> (usize, Vec<[u32; 2]>, Vec<i64>) {
+    let mut dummy_of = vec![NONE; n];
+    for (i, &r) in odd.iter().enumerate() {
+        dummy_of[r as usize] = (n + i) as u32;
+    }
+    let mut dends = ends.to_vec();
+    let mut dws = ws.to_vec();
+    for v in 0..n {
+        let d = dummy_of[root[v] as usize];
+        if d != NONE {
+            dends.push([v as u32, d]);
+            dws.push(-penalty);
+        }
+    }
+    (n + odd.len(), dends, dws)
+}
+
+/// Uniform weights: every maximum-cardinality matching is optimal, so the unweighted
+/// matcher decides, stopped at the odd-component bound; the certificate is `y = w / 2`
+/// on every vertex (every edge tight), extended to the odd-component gadget by
+/// `y_d = -penalty - w / 2`. `None` when the bound is not reached (then the general
+/// path runs).
+fn solve_uniform(g: &Graph, obj: Objective, ends: &[[u32; 2]], ws: &[i64], ids: &[u32], root: &[u32], odd: &[u32]) -> Result<Option<Matching>> {
+    let n = g.node_count();
+    let w = ws[0];
+    let plain = Graph::new(n, ends.to_vec(), vec![0; ends.len()])?;
+    let mate = unweighted::maximum_cardinality_matching_bounded(&plain, odd.len());
+    let exposed = mate.iter().filter(|&&x| x == UNMATCHED).count();
+    if exposed != odd.len() {
+        return Ok(None);
+    }
+    // Matched simple-edge ids (plain has the simplified edges in order).
+    let mut matched_simple: Vec<u32> = Vec::with_capacity(n / 2);
+    for v in 0..n as u32 {
+        let u = mate[v as usize];
+        if u != UNMATCHED && v < u {
+            let e = plain
+                .adjacency(v as usize)
+                .iter()
+                .copied()
+                .find(|&e| {
+                    let [a, b] = ends[e as usize];
+                    (a == v && b == u) || (a == u && b == v)
+                })
+                .expect("matched along an edge");
+            matched_simple.push(e);
+        }
+    }
+    let mut matched: Vec<u32> = matched_simple.iter().map(|&e| ids[e as usize]).collect();
+    matched.sort_unstable();
+    let stats = Stats::default();
+    if odd.is_empty() {
+        let cert = Certificate { y: vec![w / 2; n], blossoms: Vec::new(), vertex_blossom: vec![NONE; n] };
+        verify(g, obj, &matched, &cert)?;
+        return Ok(Some(finish(g, true, matched, Some(cert), true, stats)));
+    }
+    let penalty = dummy_penalty(ws);
+    let (n2, dends, dws) = odd_component_gadget(n, ends, ws, root, odd, penalty);
+    let mut y = vec![w / 2; n2];
+    for yd in &mut y[n..] {
+        *yd = -penalty - w / 2;
+    }
+    // Each exposed vertex takes its component's dummy: the gadget edge after the real
+    // ones, in vertex order.
+    let mut all = matched_simple;
+    let mut gadget_edge = ends.len() as u32;
+    for v in 0..n {
+        if odd.binary_search(&root[v]).is_ok() {
+            if mate[v] == UNMATCHED {
+                all.push(gadget_edge);
+            }
+            gadget_edge += 1;
+        }
+    }
+    let cert = Certificate { y, blossoms: Vec::new(), vertex_blossom: vec![NONE; n2] };
+    certificate::check(n2, &dends, &dws, &all, &cert)?;
+    Ok(Some(finish(g, false, matched, None, true, stats)))
 }
 
 /// Solves the matching problem for `obj`: an optimal perfect matching with its
@@ -173,40 +294,54 @@ fn components_even(n: usize, ends: &[[u32; 2]]) -> bool {
 pub fn solve(g: &Graph, obj: Objective) -> Result<Matching> {
     let n = g.node_count();
     let (ends, ws, ids) = simplify(g, obj);
-    if components_even(n, &ends) {
-        let sg = SimpleGraph::new(n, ends, ws);
+    let (root, odd) = components(n, &ends);
+    // Uniform weights (over every input edge, parallel ones included): cardinality is
+    // all that matters.
+    let uniform = {
+        let mut it = g.edges().iter().zip(g.weights()).filter(|(e, _)| e[0] != e[1]).map(|(_, &w)| w);
+        match it.next() {
+            Some(first) => it.all(|w| w == first),
+            None => false,
+        }
+    };
+    if uniform {
+        if let Some(m) = solve_uniform(g, obj, &ends, &ws, &ids, &root, &odd)? {
+            return Ok(m);
+        }
+    }
+    if odd.is_empty() {
+        let sg = SimpleGraph::new(n, ends.clone(), ws.clone());
         let mut engine = Engine::new(&sg);
         engine.init_greedy();
         let ok = engine.run();
         let stats = engine.stats;
         if ok {
-            let sol = engine.solution();
-            let matched: Vec<u32> = {
-                let mut m: Vec<u32> = (0..n)
-                    .filter(|&v| {
-                        let [a, b] = sg.ends[sol.mate_edge[v] as usize];
-                        v as u32 == a.min(b)
-                    })
-                    .map(|v| ids[sol.mate_edge[v] as usize])
-                    .collect();
-                m.sort_unstable();
-                m
-            };
-            let cert = Certificate {
-                y: sol.y,
-                blossoms: sol
-                    .blossoms
-                    .iter()
-                    .map(|&(z, parent)| DualBlossom { z, parent })
-                    .collect(),
-                vertex_blossom: sol.vertex_blossom,
-            };
+            let (edges, cert) = engine_certificate(&sg, &mut engine);
+            let mut matched: Vec<u32> = edges.iter().map(|&e| ids[e as usize]).collect();
+            matched.sort_unstable();
             verify(g, obj, &matched, &cert)?;
             return Ok(finish(g, true, matched, Some(cert), true, stats));
         }
+    } else {
+        // Try the odd-component bound first: one dummy per odd component. Mesh dual
+        // graphs almost always reach it, and then no unweighted pre-pass is needed.
+        let penalty = dummy_penalty(&ws);
+        let (n2, dends, dws) = odd_component_gadget(n, &ends, &ws, &root, &odd, penalty);
+        let sg = SimpleGraph::new(n2, dends, dws);
+        let mut engine = Engine::new(&sg);
+        engine.init_greedy();
+        if engine.run() {
+            let stats = engine.stats;
+            let (all, cert) = engine_certificate(&sg, &mut engine);
+            certificate::check(n2, &sg.ends, &sg.w, &all, &cert)?;
+            let mut matched: Vec<u32> =
+                all.iter().filter(|&&e| (e as usize) < ends.len()).map(|&e| ids[e as usize]).collect();
+            matched.sort_unstable();
+            return Ok(finish(g, false, matched, None, true, stats));
+        }
     }
-    // No perfect matching: maximum cardinality, then best weight.
-    let (ends, ws, ids) = simplify(g, obj);
+    // No perfect matching, and more exposed vertices than odd components: maximum
+    // cardinality from the unweighted matcher, then best weight.
     let m = ends.len();
     // The deficiency k = n - 2 * (maximum cardinality), from the unweighted matcher.
     let plain = Graph::new(n, ends.clone(), vec![0; m])?;
@@ -219,8 +354,7 @@ pub fn solve(g: &Graph, obj: Objective) -> Result<Matching> {
         // matching, whatever that weight. A strongly negative one keeps the trees from
         // running through the dummies (each would rescan its n edges) until nothing
         // else is left.
-        let maxabs = ws.iter().map(|w| w.abs()).max().unwrap_or(0);
-        let penalty = 2 * (64 * (maxabs / 2 + 1)).min(1 << 50);
+        let penalty = dummy_penalty(&ws);
         let mut dends = ends.clone();
         let mut dws = ws.clone();
         dends.reserve(k * n);

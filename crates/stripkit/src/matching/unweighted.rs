@@ -1,7 +1,8 @@
 //! Maximum-cardinality matching for the uniform-weight case: Edmonds' blossom
 //! algorithm without duals. Karp-Sipser greedy start, then one breadth-first search per exposed
-//! vertex; blossoms are contracted by relabelling bases, but only over the vertices
-//! the search has touched, so a search costs about its tree size per blossom.
+//! vertex; a blossom is contracted by merging the vertex sets of the bases on its
+//! cycle, the smaller set relabelled into the larger, so one search costs
+//! O(m + n log n) however many blossoms it forms.
 //! A search that fails from a vertex can be skipped for good (Edmonds' theorem), so
 //! every vertex starts at most one search.
 
@@ -14,23 +15,45 @@ const NONE: u32 = u32::MAX;
 /// Self-loops are ignored. O(n + m) start; each of the remaining searches is a BFS over
 /// the region it reaches.
 pub fn maximum_cardinality_matching(g: &Graph) -> Vec<u32> {
+    maximum_cardinality_matching_bounded(g, 0)
+}
+
+/// [`maximum_cardinality_matching`] that stops as soon as only `min_exposed` vertices
+/// are left exposed. `min_exposed` must be a lower bound on the exposed vertices of
+/// every matching, such as the number of connected components with an odd number of
+/// vertices (Tutte-Berge with the empty set); then the result is still maximum, and
+/// the last search, which would fail after exploring a whole component, is never run.
+pub fn maximum_cardinality_matching_bounded(g: &Graph, min_exposed: usize) -> Vec<u32> {
     let n = g.node_count();
+    let ids = || (0..n as u32).collect::<Vec<u32>>();
     let mut s = State {
         mate: vec![NONE; n],
         parent: vec![NONE; n],
-        base: (0..n as u32).collect(),
         used: vec![false; n],
         in_blossom: vec![false; n],
         stamp: vec![0; n],
         stamp_now: 0,
         touched: Vec::new(),
         queue: std::collections::VecDeque::new(),
+        set_of: ids(),
+        set_base: ids(),
+        set_size: vec![1; n],
+        set_head: ids(),
+        set_tail: ids(),
+        next_member: vec![NONE; n],
+        bases: Vec::new(),
     };
     karp_sipser(g, &mut s.mate);
+    let mut exposed = s.mate.iter().filter(|&&m| m == NONE).count();
+
     for v in 0..n as u32 {
+        if exposed <= min_exposed {
+            break;
+        }
         if s.mate[v as usize] == NONE {
             if let Some(end) = s.find_path(g, v) {
                 s.augment(end);
+                exposed -= 2;
             }
             s.reset();
         }
@@ -119,13 +142,23 @@ fn other(g: &Graph, e: u32, v: u32) -> u32 {
 struct State {
     mate: Vec<u32>,
     parent: Vec<u32>,
-    base: Vec<u32>,
     used: Vec<bool>,
+    /// Marks the bases on a new blossom's cycle (indexed by base vertex).
     in_blossom: Vec<bool>,
     stamp: Vec<u32>,
     stamp_now: u32,
     touched: Vec<u32>,
     queue: std::collections::VecDeque<u32>,
+    /// Contracted blossoms as disjoint vertex sets: the set of each vertex, the base
+    /// of each set, and each set's members as a linked list with its size.
+    set_of: Vec<u32>,
+    set_base: Vec<u32>,
+    set_size: Vec<u32>,
+    set_head: Vec<u32>,
+    set_tail: Vec<u32>,
+    next_member: Vec<u32>,
+    /// Scratch: the bases on the cycle of the blossom being formed.
+    bases: Vec<u32>,
 }
 
 impl State {
@@ -133,15 +166,42 @@ impl State {
         self.touched.push(v);
     }
 
+    /// The base of the outermost contracted blossom containing `v`.
+    #[inline]
+    fn base(&self, v: u32) -> u32 {
+        self.set_base[self.set_of[v as usize] as usize]
+    }
+
     fn reset(&mut self) {
         for &v in &self.touched {
-            self.parent[v as usize] = NONE;
-            self.base[v as usize] = v;
-            self.used[v as usize] = false;
-            self.in_blossom[v as usize] = false;
+            let i = v as usize;
+            self.parent[i] = NONE;
+            self.used[i] = false;
+            self.in_blossom[i] = false;
+            self.set_of[i] = v;
+            self.set_base[i] = v;
+            self.set_size[i] = 1;
+            self.set_head[i] = v;
+            self.set_tail[i] = v;
+            self.next_member[i] = NONE;
         }
         self.touched.clear();
         self.queue.clear();
+    }
+
+    /// Merges sets `a` and `b` (relabelling the smaller); returns the merged set.
+    fn merge(&mut self, a: u32, b: u32) -> u32 {
+        let (big, small) = if self.set_size[a as usize] >= self.set_size[b as usize] { (a, b) } else { (b, a) };
+        let mut x = self.set_head[small as usize];
+        while x != NONE {
+            self.set_of[x as usize] = big;
+            x = self.next_member[x as usize];
+        }
+        let tail = self.set_tail[big as usize];
+        self.next_member[tail as usize] = self.set_head[small as usize];
+        self.set_tail[big as usize] = self.set_tail[small as usize];
+        self.set_size[big as usize] += self.set_size[small as usize];
+        big
     }
 
     fn lca(&mut self, a: u32, b: u32) -> u32 {
@@ -153,7 +213,7 @@ impl State {
         let st = self.stamp_now;
         let mut a = a;
         loop {
-            a = self.base[a as usize];
+            a = self.base(a);
             self.stamp[a as usize] = st;
             if self.mate[a as usize] == NONE {
                 break;
@@ -162,7 +222,7 @@ impl State {
         }
         let mut b = b;
         loop {
-            b = self.base[b as usize];
+            b = self.base(b);
             if self.stamp[b as usize] == st {
                 return b;
             }
@@ -171,12 +231,14 @@ impl State {
     }
 
     fn mark_path(&mut self, mut v: u32, b: u32, mut child: u32) {
-        while self.base[v as usize] != b {
+        while self.base(v) != b {
             let m = self.mate[v as usize];
-            let bv = self.base[v as usize] as usize;
-            let bm = self.base[m as usize] as usize;
-            self.in_blossom[bv] = true;
-            self.in_blossom[bm] = true;
+            for x in [self.base(v), self.base(m)] {
+                if !self.in_blossom[x as usize] {
+                    self.in_blossom[x as usize] = true;
+                    self.bases.push(x);
+                }
+            }
             self.parent[v as usize] = child;
             child = m;
             v = self.parent[m as usize];
@@ -190,32 +252,33 @@ impl State {
         while let Some(v) = self.queue.pop_front() {
             for &e in g.adjacency(v as usize) {
                 let to = other(g, e, v);
-                if to == v || self.base[v as usize] == self.base[to as usize] || self.mate[v as usize] == to {
+                if to == v || self.set_of[v as usize] == self.set_of[to as usize] || self.mate[v as usize] == to {
                     continue;
                 }
                 let to_mate = self.mate[to as usize];
                 if to == root || (to_mate != NONE && self.parent[to_mate as usize] != NONE) {
                     let cur = self.lca(v, to);
+                    self.bases.clear();
                     self.mark_path(v, cur, to);
                     self.mark_path(to, cur, v);
-                    // Only touched vertices can lie in the blossom.
-                    let mut i = 0;
-                    while i < self.touched.len() {
-                        let x = self.touched[i];
-                        let bx = self.base[x as usize] as usize;
-                        if self.in_blossom[bx] {
-                            self.base[x as usize] = cur;
-                            if !self.used[x as usize] {
-                                self.used[x as usize] = true;
-                                self.queue.push_back(x);
-                            }
+                    // Merge the sets of the cycle's bases into one with base `cur`.
+                    // Every vertex of an earlier blossom is already in the search;
+                    // a single-vertex set (an odd vertex) joins it now.
+                    let mut set = self.set_of[cur as usize];
+                    for i in 0..self.bases.len() {
+                        let x = self.bases[i];
+                        self.in_blossom[x as usize] = false;
+                        let sx = self.set_of[x as usize];
+                        if sx == set {
+                            continue;
                         }
-                        i += 1;
+                        if self.set_size[sx as usize] == 1 && !self.used[x as usize] {
+                            self.used[x as usize] = true;
+                            self.queue.push_back(x);
+                        }
+                        set = self.merge(set, sx);
                     }
-                    for i in 0..self.touched.len() {
-                        let x = self.touched[i] as usize;
-                        self.in_blossom[x] = false;
-                    }
+                    self.set_base[set as usize] = cur;
                 } else if self.parent[to as usize] == NONE {
                     self.parent[to as usize] = v;
                     self.touch(to);
