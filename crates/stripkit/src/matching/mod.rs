@@ -32,6 +32,11 @@ pub use graph::{scale_f64_weights, Graph, MAX_WEIGHT};
 use crate::error::{Error, Result};
 use blossom::{Engine, SimpleGraph, NONE};
 
+/// Graphs up to this many vertices without odd components get an unweighted
+/// cardinality check before the weighted perfect attempt (tens of milliseconds there;
+/// it saves a failing attempt that can take seconds).
+const PRECHECK_NODES: usize = 1 << 19;
+
 /// Marks an unmatched vertex in [`Matching::mate`].
 pub const UNMATCHED: u32 = u32::MAX;
 
@@ -309,7 +314,16 @@ pub fn solve(g: &Graph, obj: Objective) -> Result<Matching> {
             return Ok(m);
         }
     }
-    if odd.is_empty() {
+    // A failing perfect attempt costs far more than a success (the last trees grow
+    // over everything before the engine gives up), so on graphs of moderate size the
+    // fast unweighted matcher decides first whether a perfect matching exists.
+    let mut known_card = None;
+    if odd.is_empty() && n <= PRECHECK_NODES {
+        let plain = Graph::new(n, ends.clone(), vec![0; ends.len()])?;
+        let mate = unweighted::maximum_cardinality_matching(&plain);
+        known_card = Some(mate.iter().filter(|&&x| x != UNMATCHED).count());
+    }
+    if odd.is_empty() && known_card.is_none_or(|c| c == n) {
         let sg = SimpleGraph::new(n, ends.clone(), ws.clone());
         let mut engine = Engine::new(&sg);
         engine.init_greedy();
@@ -344,8 +358,13 @@ pub fn solve(g: &Graph, obj: Objective) -> Result<Matching> {
     // cardinality from the unweighted matcher, then best weight.
     let m = ends.len();
     // The deficiency k = n - 2 * (maximum cardinality), from the unweighted matcher.
-    let plain = Graph::new(n, ends.clone(), vec![0; m])?;
-    let card = unweighted::maximum_cardinality_matching(&plain).iter().filter(|&&x| x != UNMATCHED).count();
+    let card = match known_card {
+        Some(c) => c,
+        None => {
+            let plain = Graph::new(n, ends.clone(), vec![0; m])?;
+            unweighted::maximum_cardinality_matching(&plain).iter().filter(|&&x| x != UNMATCHED).count()
+        }
+    };
     let k = n - card;
     let (n2, dends, dws) = if (k as u64) * (n as u64) <= 4 * (n as u64 + m as u64) {
         // Few vertices stay exposed: add k dummy vertices joined to every vertex. A
