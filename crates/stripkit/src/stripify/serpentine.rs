@@ -1,26 +1,31 @@
-//! Cache-aware short strips laid side by side (the `balanced` mode).
+//! Cache-aware short strips laid side by side, running back and forth (serpentine).
+//!
+//! An experimental alternative to the `balanced` mode of [`super::cache`]: on the
+//! research models it lands on about the same index-count / ACMR16 curve (see
+//! ARCHITECTURE.md for figures), so the CLI does not use it yet.
 //!
 //! Strips are grown one at a time while the exact FIFO of METRICS.md is simulated
 //! (push stamps: a vertex is cached while fewer than `cache_size` misses happened
-//! since it was pushed), so every choice sees the cache the figures will measure.
+//! since it was pushed), and the indices are emitted as the strip grows (a swap
+//! repeats one index), so every choice sees exactly the cache the figures measure.
 //!
 //! * **Start.** A new strip starts at a free triangle around the cached vertices:
 //!   lowest free degree first (corners of the free region, so it is not cut into
-//!   islands), then most cached vertices, then the *oldest* cached vertex. Preferring
-//!   the oldest makes the next strip start beside the beginning of the previous one
-//!   and run the same way along its side (Hoppe's bounded-width strips, SIGGRAPH
-//!   1999): each vertex of the shared side is reused before the FIFO drops it. When
-//!   no cached vertex has a free triangle, a free triangle of lowest degree is taken
-//!   (most recently lowered first, as in the greedy stripifier).
+//!   islands), then most cached vertices, then the *oldest* cached vertex, so the next
+//!   strip starts beside the beginning of the previous one and runs the same way
+//!   along its side (Hoppe's bounded-width bands, SIGGRAPH 1999) while that side is
+//!   still in the FIFO. (Newest-first, a true back-and-forth serpentine, is 0.7% fewer
+//!   indices on bunny at 0.004 less ACMR16 but degenerates on regular meshes: on an
+//!   ordered torus each next strip continues the last one around the ring and ACMR16
+//!   goes to 1.0.) When no cached vertex has a free triangle, a free triangle of
+//!   lowest degree is taken (most recently lowered first, as in the greedy
+//!   stripifier).
 //! * **Growth.** Only across [`DualGraph`] edges (winding kept). The next triangle is
 //!   a dead end first (degree 0, it would be a strip of its own), then one whose new
 //!   vertex is cached, then one without a swap, then the lowest degree.
-//! * **End.** A strip ends after `max_len` triangles, or once it has left the cached
-//!   side of the previous strip (`miss_run` new vertices in a row missed after at
-//!   least one hit), so strip length follows the width of the band beside it.
+//! * **End.** After `max_len` triangles a strip only goes on into a neighbour left with
+//!   at most one free neighbour (which would otherwise become a strip of one or two).
 //!
-//! The indices are emitted while the strip grows (the strip rule of METRICS.md: a
-//! swap repeats one index), so the simulated cache is exactly the one measured.
 //! O(T + V) time and memory, flat arrays, nothing allocated per step.
 
 use crate::strip::{is_degenerate, StripSet};
@@ -31,10 +36,9 @@ use crate::topology::{DualGraph, NO_NEIGHBOR};
 pub struct SerpentineOptions {
     /// Entries of the FIFO vertex cache the order is tuned for (at least 3).
     pub cache_size: u32,
-    /// Longest strip in triangles (at least 1).
+    /// Strip length (triangles) after which a strip only goes on into a neighbour of
+    /// at most one free neighbour (a dead end it would otherwise leave behind).
     pub max_len: u32,
-    /// A strip that has hit the cache ends after this many misses in a row (0: never).
-    pub miss_run: u32,
 }
 
 impl SerpentineOptions {
@@ -43,8 +47,7 @@ impl SerpentineOptions {
         let cache_size = cache_size.max(3);
         SerpentineOptions {
             cache_size,
-            max_len: knob("SK_MAX", cache_size as u64 + 2) as u32,
-            miss_run: knob("SK_RUN", 3) as u32,
+            max_len: cache_size,
         }
     }
 }
@@ -78,9 +81,6 @@ pub fn stripify_with_graph(
 
 const NONE: u32 = u32::MAX;
 
-fn knob(name: &str, d: u64) -> u64 {
-    std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(d)
-}
 
 struct State<'a> {
     tris: &'a [[u32; 3]],
@@ -227,13 +227,8 @@ impl<'a> State<'a> {
                     continue;
                 }
                 let cached = self.tris[t as usize].iter().filter(|&&u| self.cached(u)).count() as u8;
-                // tick rises with age falling: oldest first.
-                let age = if knob("SK_AGE", 0) == 1 { u64::MAX - tick } else { tick };
-                let key = if knob("SK_START", 0) == 1 {
-                    (3 - cached, self.degree[t as usize], age)
-                } else {
-                    (self.degree[t as usize], 3 - cached, age)
-                };
+                // Oldest cached vertex first (see the module docs).
+                let key = (self.degree[t as usize], 3 - cached, tick);
                 if best.map_or(true, |(_, k)| key < k) {
                     best = Some((t, key));
                 }
@@ -255,11 +250,7 @@ impl<'a> State<'a> {
         let d = self.degree[n as usize];
         let swap = u8::from(has_entry && u != q && v != q);
         let miss = u8::from(!self.cached(s));
-        if knob("SK_ORDER", 0) == 1 {
-            Some((u8::from(d != 0), swap, miss, d))
-        } else {
-            Some((u8::from(d != 0), miss, swap, d))
-        }
+        Some((u8::from(d != 0), miss, swap, d))
     }
 
     fn run(&mut self) {
@@ -308,8 +299,6 @@ impl<'a> State<'a> {
         let (mut p, mut q) = (x, y);
         let mut cur = self.nbr[t0 as usize][k];
         let mut len = 1u32;
-        let mut hits = 0u32;
-        let mut miss_run = 0u32;
         loop {
             // Enter `cur` over the edge {p, q}.
             self.take(cur);
@@ -319,22 +308,20 @@ impl<'a> State<'a> {
                 .iter()
                 .find(|&&w| w != p && w != q)
                 .expect("dual neighbours share an edge");
-            if self.cached(r) {
-                hits += 1;
-                miss_run = 0;
-            } else {
-                miss_run += 1;
-            }
-            let stop = len >= self.opt.max_len
-                || (self.opt.miss_run > 0 && hits > 0 && miss_run >= self.opt.miss_run);
+            let stop = len >= self.opt.max_len;
             let mut best: Option<(usize, (u8, u8, u8, u8))> = None;
-            if !stop {
+            {
                 for k in 0..3 {
                     let (u, v) = (ctri[k], ctri[(k + 1) % 3]);
                     if (u == p || u == q) && (v == p || v == q) {
                         continue;
                     }
                     if let Some(key) = self.step_key(cur, k, q, true) {
+                        // Past `max_len`: only into a neighbour that would be left
+                        // with at most one free neighbour.
+                        if stop && key.3 > 1 {
+                            continue;
+                        }
                         if best.map_or(true, |(_, b)| key < b) {
                             best = Some((k, key));
                         }
