@@ -21,8 +21,14 @@ fn check(tris: &[[u32; 3]], vertex_count: usize, o: &SerpentineOptions) -> Figur
 
 fn options() -> Vec<SerpentineOptions> {
     let mut v: Vec<_> = [3, 8, 16, 32].map(SerpentineOptions::balanced).to_vec();
-    v.push(SerpentineOptions { cache_size: 16, max_len: 1 });
-    v.push(SerpentineOptions { cache_size: 0, max_len: 0 });
+    v.push(SerpentineOptions {
+        cache_size: 16,
+        max_len: 1,
+    });
+    v.push(SerpentineOptions {
+        cache_size: 0,
+        max_len: 0,
+    });
     v
 }
 
@@ -43,7 +49,12 @@ fn shuffled(mesh: &stripkit::mesh::Mesh, seed: u64) -> Vec<[u32; 3]> {
 
 #[test]
 fn procedural_meshes_verify() {
-    let meshes = [gen::grid(40, 30), gen::icosphere(4), gen::torus(48, 24, 2.0, 0.5), gen::cube()];
+    let meshes = [
+        gen::grid(40, 30),
+        gen::icosphere(4),
+        gen::torus(48, 24, 2.0, 0.5),
+        gen::cube(),
+    ];
     for m in &meshes {
         let tris = m.triangulate().tris;
         for o in options() {
@@ -52,8 +63,15 @@ fn procedural_meshes_verify() {
     }
     // A regular grid: short strips side by side reuse the cache well.
     let g = gen::grid(60, 60);
-    let f = check(&g.triangulate().tris, g.vertex_count(), &SerpentineOptions::balanced(16));
-    assert!(f.acmr16 < 0.85 && f.indices_per_triangle < 1.45, "grid {f:?}");
+    let f = check(
+        &g.triangulate().tris,
+        g.vertex_count(),
+        &SerpentineOptions::balanced(16),
+    );
+    assert!(
+        f.acmr16 < 0.85 && f.indices_per_triangle < 1.45,
+        "grid {f:?}"
+    );
 }
 
 #[test]
@@ -78,7 +96,11 @@ fn boundaries_and_non_manifold_edges_verify() {
     }
     check(&[], 0, &SerpentineOptions::balanced(16));
     // Indices above vertex_count are tolerated.
-    check(&[[0, 1, 2], [2, 1, 30]], 3, &SerpentineOptions::balanced(16));
+    check(
+        &[[0, 1, 2], [2, 1, 30]],
+        3,
+        &SerpentineOptions::balanced(16),
+    );
 }
 
 /// Issue #4 asks for 1%; this design does not reach it (ties are still broken by the
@@ -93,8 +115,16 @@ fn shuffled_input_is_within_six_percent() {
     for seed in [1, 7] {
         let b = check(&shuffled(&m, seed), m.vertex_count(), &o);
         let rel = |x: f64, y: f64| (x - y).abs() / y;
-        assert!(rel(b.indices_restart as f64, a.indices_restart as f64) <= 0.06, "{a:?}\n{b:?}");
-        assert!(rel(b.acmr16, a.acmr16) <= 0.06, "{} vs {}", b.acmr16, a.acmr16);
+        assert!(
+            rel(b.indices_restart as f64, a.indices_restart as f64) <= 0.06,
+            "{a:?}\n{b:?}"
+        );
+        assert!(
+            rel(b.acmr16, a.acmr16) <= 0.06,
+            "{} vs {}",
+            b.acmr16,
+            a.acmr16
+        );
     }
 }
 
@@ -113,10 +143,20 @@ fn research_models_verify() {
         let f = check(&tris, mesh.vertex_count(), &SerpentineOptions::balanced(16));
         // Measured (bunny: 1.372 indices per triangle at ACMR16 0.808); the bounds leave
         // room for tuning, not for a broken cache simulation.
-        assert!(f.acmr16 < 0.87 && f.indices_per_triangle < 1.56, "{name}: {f:?}");
+        assert!(
+            f.acmr16 < 0.87 && f.indices_per_triangle < 1.56,
+            "{name}: {f:?}"
+        );
         if name == "bunny.obj" {
-            let s = check(&shuffled(&mesh, 3), mesh.vertex_count(), &SerpentineOptions::balanced(16));
-            assert!(s.acmr16 < 0.87 && s.indices_per_triangle < 1.45, "shuffled bunny: {s:?}");
+            let s = check(
+                &shuffled(&mesh, 3),
+                mesh.vertex_count(),
+                &SerpentineOptions::balanced(16),
+            );
+            assert!(
+                s.acmr16 < 0.87 && s.indices_per_triangle < 1.45,
+                "shuffled bunny: {s:?}"
+            );
         }
     }
 }

@@ -81,7 +81,6 @@ pub fn stripify_with_graph(
 
 const NONE: u32 = u32::MAX;
 
-
 struct State<'a> {
     tris: &'a [[u32; 3]],
     nbr: &'a [[u32; 3]],
@@ -103,7 +102,12 @@ struct State<'a> {
 }
 
 impl<'a> State<'a> {
-    fn new(tris: &'a [[u32; 3]], nbr: &'a [[u32; 3]], vcount: usize, opt: &SerpentineOptions) -> Self {
+    fn new(
+        tris: &'a [[u32; 3]],
+        nbr: &'a [[u32; 3]],
+        vcount: usize,
+        opt: &SerpentineOptions,
+    ) -> Self {
         let n = tris.len();
         let mut opt = *opt;
         opt.cache_size = opt.cache_size.max(3);
@@ -221,15 +225,21 @@ impl<'a> State<'a> {
             if v == NONE || self.vfree[v as usize] == 0 {
                 continue;
             }
-            let (a, b) = (self.vstart[v as usize] as usize, self.vstart[v as usize + 1] as usize);
+            let (a, b) = (
+                self.vstart[v as usize] as usize,
+                self.vstart[v as usize + 1] as usize,
+            );
             for &t in &self.vtris[a..b] {
                 if !self.free[t as usize] {
                     continue;
                 }
-                let cached = self.tris[t as usize].iter().filter(|&&u| self.cached(u)).count() as u8;
+                let cached = self.tris[t as usize]
+                    .iter()
+                    .filter(|&&u| self.cached(u))
+                    .count() as u8;
                 // Oldest cached vertex first (see the module docs).
                 let key = (self.degree[t as usize], 3 - cached, tick);
-                if best.map_or(true, |(_, k)| key < k) {
+                if best.is_none_or(|(_, k)| key < k) {
                     best = Some((t, key));
                 }
             }
@@ -283,7 +293,7 @@ impl<'a> State<'a> {
         let mut best: Option<(usize, (u8, u8, u8, u8))> = None;
         for k in 0..3 {
             if let Some(key) = self.step_key(t0, k, NONE, false) {
-                if best.map_or(true, |(_, b)| key < b) {
+                if best.is_none_or(|(_, b)| key < b) {
                     best = Some((k, key));
                 }
             }
@@ -310,21 +320,19 @@ impl<'a> State<'a> {
                 .expect("dual neighbours share an edge");
             let stop = len >= self.opt.max_len;
             let mut best: Option<(usize, (u8, u8, u8, u8))> = None;
-            {
-                for k in 0..3 {
-                    let (u, v) = (ctri[k], ctri[(k + 1) % 3]);
-                    if (u == p || u == q) && (v == p || v == q) {
+            for k in 0..3 {
+                let (u, v) = (ctri[k], ctri[(k + 1) % 3]);
+                if (u == p || u == q) && (v == p || v == q) {
+                    continue;
+                }
+                if let Some(key) = self.step_key(cur, k, q, true) {
+                    // Past `max_len`: only into a neighbour that would be left
+                    // with at most one free neighbour.
+                    if stop && key.3 > 1 {
                         continue;
                     }
-                    if let Some(key) = self.step_key(cur, k, q, true) {
-                        // Past `max_len`: only into a neighbour that would be left
-                        // with at most one free neighbour.
-                        if stop && key.3 > 1 {
-                            continue;
-                        }
-                        if best.map_or(true, |(_, b)| key < b) {
-                            best = Some((k, key));
-                        }
+                    if best.is_none_or(|(_, b)| key < b) {
+                        best = Some((k, key));
                     }
                 }
             }
