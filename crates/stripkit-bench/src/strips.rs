@@ -11,6 +11,7 @@ use stripkit::metrics::{self, CacheModel, Figures};
 use stripkit::strip::{self, StripSet};
 use stripkit::stripify::cache::{self, CacheOptions};
 use stripkit::stripify::greedy::{self, GreedyOptions, Heuristic};
+use stripkit::stripify::serpentine::{self, SerpentineOptions};
 
 /// Arguments of the `strips` comparison.
 #[derive(clap::Args)]
@@ -103,6 +104,9 @@ pub fn modes() -> Vec<Mode> {
         }),
         ours("stripkit cache", |t, n| cache::stripify(t, n, &CacheOptions::cache(16))),
         ours("stripkit balanced", |t, n| cache::stripify(t, n, &CacheOptions::balanced(16))),
+        ours("stripkit serpentine (experimental)", |t, n| {
+            serpentine::stripify(t, n, &SerpentineOptions::balanced(16))
+        }),
         peer("meshopt optimize_vertex_cache + stripify", reorder_cache, meshopt_stripify),
         peer("meshopt optimize_vertex_cache_strip + stripify", reorder_strip, meshopt_stripify),
     ]
