@@ -141,3 +141,22 @@ fn uniform_weights_match_unweighted_cardinality() {
         assert_eq!(card, best, "{}", g.to_dimacs());
     }
 }
+
+/// Equal nonzero weights (positive and negative) on graphs that mostly have no
+/// perfect matching: the uniform shortcut of the fallback must agree with exhaustive
+/// search and certify its result.
+#[test]
+fn uniform_nonzero_weights_fallback_matches_exhaustive_search() {
+    let mut rng = Rng(0xA5A5_1234);
+    let mut fallback = 0;
+    for round in 0..1200 {
+        let n = 1 + (round % 12);
+        let w = [7, -3, 1][round % 3];
+        let g = random_graph(&mut rng, n, [15, 30, 60][round % 3], w, w, round % 5 == 0);
+        for obj in [Objective::MaxWeight, Objective::MinCost] {
+            let m = check_against_exhaustive(&g, obj);
+            fallback += !m.perfect as usize;
+        }
+    }
+    assert!(fallback > 600, "{fallback}");
+}
