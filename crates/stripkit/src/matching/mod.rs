@@ -235,15 +235,18 @@ fn odd_component_gadget(
 /// Uniform weights: every maximum-cardinality matching is optimal, so the unweighted
 /// matcher decides, stopped at the odd-component bound; the certificate is `y = w / 2`
 /// on every vertex (every edge tight), extended to the odd-component gadget by
-/// `y_d = dummy - w / 2`. `None` when the bound is not reached (then the general
-/// path runs).
+/// `y_d = dummy - w / 2`; past the bound, on the k-dummy gadget the same way. `None`
+/// only when that gadget would be too large (then the general path runs).
 fn solve_uniform(g: &Graph, obj: Objective, ends: &[[u32; 2]], ws: &[i64], ids: &[u32], root: &[u32], odd: &[u32]) -> Result<Option<Matching>> {
     let n = g.node_count();
     let w = ws[0];
     let plain = Graph::new(n, ends.to_vec(), vec![0; ends.len()])?;
     let mate = unweighted::maximum_cardinality_matching_bounded(&plain, odd.len());
     let exposed = mate.iter().filter(|&&x| x == UNMATCHED).count();
-    if exposed != odd.len() {
+    let m = ends.len();
+    // Past the odd-component bound the certificate lives on the k-dummy gadget (k
+    // dummies joined to every vertex), which is only built when small.
+    if exposed != odd.len() && (exposed as u64) * (n as u64) > 4 * (n as u64 + m as u64) {
         return Ok(None);
     }
     // Matched simple-edge ids (plain has the simplified edges in order).
@@ -266,12 +269,36 @@ fn solve_uniform(g: &Graph, obj: Objective, ends: &[[u32; 2]], ws: &[i64], ids: 
     let mut matched: Vec<u32> = matched_simple.iter().map(|&e| ids[e as usize]).collect();
     matched.sort_unstable();
     let stats = Stats::default();
-    if odd.is_empty() {
+    if exposed == 0 {
         let cert = Certificate { y: vec![w / 2; n], blossoms: Vec::new(), vertex_blossom: vec![NONE; n] };
         verify(g, obj, &matched, &cert)?;
         return Ok(Some(finish(g, true, matched, Some(cert), true, stats)));
     }
     let dummy = dummy_weight(ws);
+    if exposed != odd.len() {
+        // k = exposed dummies, each joined to every vertex; the i-th exposed vertex
+        // takes dummy i. Every edge is tight under y = w/2, y_d = dummy - w/2.
+        let k = exposed;
+        let mut dends = ends.to_vec();
+        let mut dws = ws.to_vec();
+        for d in 0..k {
+            for v in 0..n as u32 {
+                dends.push([v, (n + d) as u32]);
+                dws.push(dummy);
+            }
+        }
+        let mut all = matched_simple;
+        for (i, v) in (0..n).filter(|&v| mate[v] == UNMATCHED).enumerate() {
+            all.push((m + i * n + v) as u32);
+        }
+        let mut y = vec![w / 2; n + k];
+        for yd in &mut y[n..] {
+            *yd = dummy - w / 2;
+        }
+        let cert = Certificate { y, blossoms: Vec::new(), vertex_blossom: vec![NONE; n + k] };
+        certificate::check(n + k, &dends, &dws, &all, &cert)?;
+        return Ok(Some(finish(g, false, matched, None, true, stats)));
+    }
     let (n2, dends, dws) = odd_component_gadget(n, ends, ws, root, odd, dummy);
     let mut y = vec![w / 2; n2];
     for yd in &mut y[n..] {
