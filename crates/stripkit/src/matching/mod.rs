@@ -453,19 +453,7 @@ pub fn solve(g: &Graph, obj: Objective) -> Result<Matching> {
         return Err(Error::Verification("the auxiliary graph has no perfect matching (bug)".into()));
     }
     let stats = engine.stats;
-    let sol = engine.solution();
-    let cert = Certificate {
-        y: sol.y,
-        blossoms: sol.blossoms.iter().map(|&(z, parent)| DualBlossom { z, parent }).collect(),
-        vertex_blossom: sol.vertex_blossom,
-    };
-    let all: Vec<u32> = (0..n2)
-        .filter(|&v| {
-            let [a, b] = sg.ends[sol.mate_edge[v] as usize];
-            v as u32 == a.min(b)
-        })
-        .map(|v| sol.mate_edge[v])
-        .collect();
+    let (all, cert) = engine_certificate(&sg, &mut engine);
     certificate::check(n2, &sg.ends, &sg.w, &all, &cert)?;
     let mut matched: Vec<u32> = all.iter().filter(|&&e| (e as usize) < m).map(|&e| ids[e as usize]).collect();
     matched.sort_unstable();

@@ -105,27 +105,8 @@ impl QuadHeap {
             return Some(last);
         }
         let top = self.items[0];
-        let n = self.items.len();
-        let mut i = 0;
-        loop {
-            let first = 4 * i + 1;
-            if first >= n {
-                break;
-            }
-            let end = (first + 4).min(n);
-            let mut best = first;
-            for c in first + 1..end {
-                if self.items[c] < self.items[best] {
-                    best = c;
-                }
-            }
-            if self.items[best] >= last {
-                break;
-            }
-            self.items[i] = self.items[best];
-            i = best;
-        }
-        self.items[i] = last;
+        self.items[0] = last;
+        self.sift_down(0);
         Some(top)
     }
 }

@@ -105,14 +105,16 @@ const NO_SLOT: usize = 3;
 /// leaves a stale entry behind, which [`Buckets::lowest`] skips (its degree or freedom no
 /// longer matches). Pushes are sequential writes instead of three random ones per move,
 /// which on a million triangles halves the running time; the strips are the same.
-struct Buckets {
+pub(super) struct Buckets {
     stacks: [Vec<u32>; 4],
-    degree: Vec<u8>,
-    free: Vec<bool>,
+    /// Free dual neighbours of each triangle (valid while it is free).
+    pub(super) degree: Vec<u8>,
+    /// Not yet in a strip.
+    pub(super) free: Vec<bool>,
 }
 
 impl Buckets {
-    fn new(n: usize) -> Self {
+    pub(super) fn new(n: usize) -> Self {
         Buckets {
             stacks: std::array::from_fn(|_| Vec::with_capacity(n)),
             degree: vec![0; n],
@@ -122,13 +124,13 @@ impl Buckets {
 
     /// Puts free triangle `t` at the front of degree `d`.
     #[inline]
-    fn push_front(&mut self, t: u32, d: u8) {
+    pub(super) fn push_front(&mut self, t: u32, d: u8) {
         self.stacks[d as usize].push(t);
         self.degree[t as usize] = d;
     }
 
     /// The first free triangle of the lowest degree, dropping stale entries on the way.
-    fn lowest(&mut self) -> Option<u32> {
+    pub(super) fn lowest(&mut self) -> Option<u32> {
         for d in 0..4 {
             while let Some(&t) = self.stacks[d].last() {
                 if self.free[t as usize] && self.degree[t as usize] as usize == d {

@@ -28,6 +28,7 @@
 //!
 //! O(T + V) time and memory, flat arrays, nothing allocated per step.
 
+use super::greedy::Buckets;
 use crate::strip::{is_degenerate, StripSet};
 use crate::topology::{DualGraph, NO_NEIGHBOR};
 
@@ -85,9 +86,8 @@ struct State<'a> {
     tris: &'a [[u32; 3]],
     nbr: &'a [[u32; 3]],
     opt: SerpentineOptions,
-    free: Vec<bool>,
-    degree: Vec<u8>,
-    stacks: [Vec<u32>; 4],
+    /// Free triangles by degree (the greedy stripifier's buckets).
+    b: Buckets,
     /// Vertex -> incident triangles (CSR).
     vstart: Vec<u32>,
     vtris: Vec<u32>,
@@ -124,10 +124,7 @@ impl<'a> State<'a> {
         let mut fill = vstart.clone();
         let mut vtris = vec![0u32; vstart[vcount] as usize];
         let mut vfree = vec![0u32; vcount];
-        let mut free = vec![false; n];
-        let mut degree = vec![0u8; n];
-        let mut stacks: [Vec<u32>; 4] = std::array::from_fn(|_| Vec::new());
-        stacks[3].reserve(n);
+        let mut b = Buckets::new(n);
         for (i, t) in tris.iter().enumerate().rev() {
             if is_degenerate(t) {
                 continue;
@@ -137,10 +134,9 @@ impl<'a> State<'a> {
                 fill[v as usize] += 1;
                 vfree[v as usize] += 1;
             }
-            free[i] = true;
+            b.free[i] = true;
             let d = nbr[i].iter().filter(|&&x| x != NO_NEIGHBOR).count() as u8;
-            degree[i] = d;
-            stacks[d as usize].push(i as u32);
+            b.push_front(i as u32, d);
         }
         let mut out = StripSet::new();
         if out.offsets.is_empty() {
@@ -151,9 +147,7 @@ impl<'a> State<'a> {
             tris,
             nbr,
             opt,
-            free,
-            degree,
-            stacks,
+            b,
             vstart,
             vtris,
             vfree,
@@ -166,7 +160,7 @@ impl<'a> State<'a> {
 
     #[inline]
     fn is_free(&self, t: u32) -> bool {
-        t != NO_NEIGHBOR && self.free[t as usize]
+        t != NO_NEIGHBOR && self.b.free[t as usize]
     }
 
     #[inline]
@@ -188,31 +182,22 @@ impl<'a> State<'a> {
     }
 
     fn take(&mut self, t: u32) {
-        self.free[t as usize] = false;
+        self.b.free[t as usize] = false;
         for &v in &self.tris[t as usize] {
             self.vfree[v as usize] -= 1;
         }
         for k in 0..3 {
             let m = self.nbr[t as usize][k];
             if self.is_free(m) {
-                let d = self.degree[m as usize] - 1;
-                self.degree[m as usize] = d;
-                self.stacks[d as usize].push(m);
+                let d = self.b.degree[m as usize] - 1;
+                self.b.push_front(m, d);
             }
         }
     }
 
     /// Lowest-degree free triangle, most recently lowered first.
     fn lowest(&mut self) -> Option<u32> {
-        for d in 0..4 {
-            while let Some(&t) = self.stacks[d].last() {
-                if self.free[t as usize] && self.degree[t as usize] as usize == d {
-                    return Some(t);
-                }
-                self.stacks[d].pop();
-            }
-        }
-        None
+        self.b.lowest()
     }
 
     /// A free triangle around the cached vertices (see the module docs).
@@ -230,7 +215,7 @@ impl<'a> State<'a> {
                 self.vstart[v as usize + 1] as usize,
             );
             for &t in &self.vtris[a..b] {
-                if !self.free[t as usize] {
+                if !self.b.free[t as usize] {
                     continue;
                 }
                 let cached = self.tris[t as usize]
@@ -238,7 +223,7 @@ impl<'a> State<'a> {
                     .filter(|&&u| self.cached(u))
                     .count() as u8;
                 // Oldest cached vertex first (see the module docs).
-                let key = (self.degree[t as usize], 3 - cached, tick);
+                let key = (self.b.degree[t as usize], 3 - cached, tick);
                 if best.is_none_or(|(_, k)| key < k) {
                     best = Some((t, key));
                 }
@@ -257,7 +242,7 @@ impl<'a> State<'a> {
         let (u, v) = (tri[k], tri[(k + 1) % 3]);
         let ntri = &self.tris[n as usize];
         let s = *ntri.iter().find(|&&w| w != u && w != v)?;
-        let d = self.degree[n as usize];
+        let d = self.b.degree[n as usize];
         let swap = u8::from(has_entry && u != q && v != q);
         let miss = u8::from(!self.cached(s));
         Some((u8::from(d != 0), miss, swap, d))
