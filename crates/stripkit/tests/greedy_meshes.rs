@@ -307,8 +307,6 @@ mod dual_graph_oracle {
         #[test]
         fn matches_the_definition(tris in prop::collection::vec([0u32..9, 0u32..9, 0u32..9], 0..40)) {
             prop_assert_eq!(DualGraph::from_triangles(&tris, 9), brute(&tris));
-            // The stripifiers' entry point is the same graph.
-            prop_assert_eq!(stripkit::stripify::dual_graph(&tris, 9), brute(&tris));
         }
     }
 

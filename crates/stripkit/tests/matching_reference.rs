@@ -6,6 +6,7 @@
 use std::collections::VecDeque;
 use stripkit::matching::{self, Graph, Objective, UNMATCHED};
 
+mod matching_brute;
 mod test_rng;
 use test_rng::Rng;
 
@@ -183,6 +184,18 @@ impl Dense {
         }
         0
     }
+    /// Appends the tree path from `x` up to (not including) `lca` to `fl`, pairs of
+    /// (outer, its mate's blossom), queueing the mates' blossoms.
+    fn trace_to(&mut self, mut x: usize, lca: usize, fl: &mut Vec<usize>) {
+        while x != lca {
+            fl.push(x);
+            let y = self.st[self.mate[x]];
+            fl.push(y);
+            self.q_push(y);
+            x = self.st[self.pa[y]];
+        }
+    }
+
     fn add_blossom(&mut self, u: usize, lca: usize, v: usize) {
         let n = self.n;
         let mut b = n + 1;
@@ -198,23 +211,9 @@ impl Dense {
         self.s[b] = 0;
         self.mate[b] = self.mate[lca];
         let mut fl = vec![lca];
-        let mut x = u;
-        while x != lca {
-            fl.push(x);
-            let y = self.st[self.mate[x]];
-            fl.push(y);
-            self.q_push(y);
-            x = self.st[self.pa[y]];
-        }
+        self.trace_to(u, lca, &mut fl);
         fl[1..].reverse();
-        let mut x = v;
-        while x != lca {
-            fl.push(x);
-            let y = self.st[self.mate[x]];
-            fl.push(y);
-            self.q_push(y);
-            x = self.st[self.pa[y]];
-        }
+        self.trace_to(v, lca, &mut fl);
         self.flower[b] = fl.clone();
         self.set_st(b, b);
         let dim = self.dim;
@@ -456,46 +455,6 @@ fn reference_stats(
     (card, sign * sum, (formed, expanded))
 }
 
-/// Best (cardinality, weight) over all matchings (or best weight alone when not
-/// `max_card`, cardinality then of one optimal matching is not compared), by recursion
-/// on the lowest unused vertex. Maximising `sign * weight`.
-fn brute(n: usize, edges: &[[u32; 2]], w: &[i64], max_card: bool) -> (usize, i64) {
-    fn rec(v: usize, n: usize, used: &mut [bool], edges: &[[u32; 2]], w: &[i64], mc: bool) -> (usize, i64) {
-        let mut v = v;
-        while v < n && used[v] {
-            v += 1;
-        }
-        if v == n {
-            return (0, 0);
-        }
-        used[v] = true;
-        let mut best = rec(v + 1, n, used, edges, w, mc);
-        for (i, e) in edges.iter().enumerate() {
-            let u = if e[0] as usize == v {
-                e[1] as usize
-            } else if e[1] as usize == v {
-                e[0] as usize
-            } else {
-                continue;
-            };
-            if u == v || used[u] {
-                continue;
-            }
-            used[u] = true;
-            let (c, s) = rec(v + 1, n, used, edges, w, mc);
-            let cand = (c + 1, s + w[i]);
-            let better = if mc { cand > best } else { cand.1 > best.1 };
-            if better {
-                best = cand;
-            }
-            used[u] = false;
-        }
-        used[v] = false;
-        best
-    }
-    rec(0, n, &mut vec![false; n], edges, w, max_card)
-}
-
 fn tiny_graph(rng: &mut Rng, n: usize, density: u64, lo: i64, hi: i64) -> (Vec<[u32; 2]>, Vec<i64>) {
     let mut edges = Vec::new();
     let mut ws = Vec::new();
@@ -525,7 +484,7 @@ fn reference_matches_brute_force_on_tiny_graphs() {
         let (lo, hi) = [(1, 20), (-10, 10), (1, 2), (-1000, 1000), (-5, -1), (0, 0)][round % 6];
         let (edges, ws) = tiny_graph(&mut rng, n, density, lo, hi);
         for max_card in [false, true] {
-            let (bc, bw) = brute(n, &edges, &ws, max_card);
+            let (bc, bw) = matching_brute::brute(n, &edges, &ws, 1, max_card);
             let (rc, rw, (f, x)) = reference_stats(n, &edges, &ws, Objective::MaxWeight, max_card);
             formed += f;
             expanded += x;

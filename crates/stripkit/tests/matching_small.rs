@@ -6,38 +6,12 @@ use stripkit::matching::{self, Graph, Objective, UNMATCHED};
 mod test_rng;
 use test_rng::Rng;
 
-/// Best (cardinality, weight) over all matchings, by recursion on the lowest vertex.
+mod matching_brute;
+
+/// Best (cardinality, weight) over all matchings, cardinality first.
 fn exhaustive(n: usize, edges: &[[u32; 2]], w: &[i64], obj: Objective) -> (usize, i64) {
-    fn rec(v: usize, n: usize, used: &mut Vec<bool>, edges: &[[u32; 2]], w: &[i64], sign: i64) -> (usize, i64) {
-        let mut v = v;
-        while v < n && used[v] {
-            v += 1;
-        }
-        if v == n {
-            return (0, 0);
-        }
-        used[v] = true;
-        // Leave v unmatched.
-        let mut best = rec(v + 1, n, used, edges, w, sign);
-        for (i, e) in edges.iter().enumerate() {
-            let u = if e[0] as usize == v { e[1] } else if e[1] as usize == v { e[0] } else { continue };
-            if u as usize == v || used[u as usize] {
-                continue;
-            }
-            used[u as usize] = true;
-            let (c, s) = rec(v + 1, n, used, edges, w, sign);
-            let cand = (c + 1, s + sign * w[i]);
-            if cand > best {
-                best = cand;
-            }
-            used[u as usize] = false;
-        }
-        used[v] = false;
-        best
-    }
     let sign = if obj == Objective::MaxWeight { 1 } else { -1 };
-    let (c, s) = rec(0, n, &mut vec![false; n], edges, w, sign);
-    (c, sign * s)
+    matching_brute::brute(n, edges, w, sign, true)
 }
 
 fn random_graph(rng: &mut Rng, n: usize, density: u64, wmin: i64, wmax: i64, loops: bool) -> Graph {

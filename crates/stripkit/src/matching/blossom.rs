@@ -971,7 +971,8 @@ impl<'g> Engine<'g> {
                 blossoms.push((self.z[nb], NONE));
             }
         }
-        // Parent of a listed blossom: nearest listed ancestor.
+        // Nearest listed blossom strictly above `x` (a blossom's parent, a vertex's
+        // innermost listed blossom).
         let listed_ancestor = |this: &Self, mut x: u32| -> u32 {
             loop {
                 x = this.parent[x as usize];
@@ -991,21 +992,7 @@ impl<'g> Engine<'g> {
                 blossoms[index[nb] as usize].1 = pa;
             }
         }
-        let vertex_blossom = (0..n as u32)
-            .map(|v| {
-                let mut x = v;
-                loop {
-                    x = self.parent[x as usize];
-                    if x == NONE {
-                        return NONE;
-                    }
-                    let i = index[x as usize - n];
-                    if i != NONE {
-                        return i;
-                    }
-                }
-            })
-            .collect();
+        let vertex_blossom = (0..n as u32).map(|v| listed_ancestor(self, v)).collect();
         let y = (0..n as u32)
             .map(|v| {
                 let t = self.top(v) as usize;

@@ -29,7 +29,7 @@
 //! Cost: O(T + V) time and memory (each step looks at the free triangles around the
 //! `cache_size` cached vertices), flat arrays, nothing allocated per step.
 
-use crate::strip::StripSet;
+use crate::strip::{is_degenerate, StripSet};
 use crate::topology::{DualGraph, NO_NEIGHBOR};
 
 /// Settings of the cache-aware stripifier.
@@ -128,9 +128,6 @@ const NEVER: u32 = u32::MAX;
 /// Valence bonus table length; vertices with more free triangles share the last entry.
 const VALENCE_TABLE: usize = 32;
 
-fn is_degenerate(t: &[u32; 3]) -> bool {
-    t[0] == t[1] || t[1] == t[2] || t[2] == t[0]
-}
 
 /// A triangle's score is `base + tilt * (cached * time - stamps)`: the flat and
 /// valence parts of its vertices, plus the age part of its cached vertices (the sum

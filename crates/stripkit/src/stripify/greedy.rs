@@ -257,11 +257,11 @@ impl Greedy<'_> {
 /// METRICS.md rule, gives every other triangle exactly once with its winding.
 /// O(triangles + vertices) time and memory.
 pub fn stripify(tris: &[[u32; 3]], vertex_count: usize, options: &GreedyOptions) -> StripSet {
-    let graph = super::dual_graph(tris, vertex_count);
+    let graph = DualGraph::from_triangles(tris, vertex_count);
     stripify_with_graph(tris, &graph, options)
 }
 
-/// [`stripify`] with a dual graph already built for `tris` (by [`super::dual_graph`] or
+/// [`stripify`] with a dual graph already built for `tris` (by
 /// [`DualGraph::from_triangles`]); a graph of other triangles is a caller bug and may
 /// panic.
 pub fn stripify_with_graph(
@@ -288,8 +288,9 @@ pub fn stripify_with_graph(
             .count() as u8;
         g.b.push_front(t as u32, d);
     }
-    let mut walks = super::tunnel::Walks::new();
-    walks.items.reserve(n);
+    // The strips as walks (triangle ids) until they are encoded.
+    let mut walks = StripSet::new();
+    walks.indices.reserve(n);
     let mut path: Vec<u32> = Vec::new();
     let mut back: Vec<u32> = Vec::new();
     while let Some(t0) = g.b.lowest() {
@@ -311,7 +312,8 @@ pub fn stripify_with_graph(
             };
             g.grow(&mut back, t0, entry, last_pivot);
         }
-        walks.push(back.iter().rev().copied().chain(path.iter().copied()));
+        walks.indices.extend(back.iter().rev().chain(&path));
+        walks.offsets.push(walks.indices.len() as u32);
     }
     let walks = match options.tunnel_cuts {
         Some(max_cuts) => {
@@ -333,7 +335,7 @@ pub fn stripify_with_graph(
     let mut out = StripSet::new();
     out.indices.reserve(n + n / 4);
     for i in 0..walks.len() {
-        encode_path(tris, graph, walks.get(i), &mut out);
+        encode_path(tris, graph, walks.strip(i), &mut out);
     }
     out
 }

@@ -25,13 +25,6 @@ pub mod tunnel;
 use crate::strip::StripSet;
 use crate::topology::{DualGraph, NO_NEIGHBOR};
 
-/// The dual graph of `tris`: [`DualGraph::from_triangles`], with the vertex count
-/// raised to cover every index (kept for the stripifiers' callers).
-#[inline]
-pub fn dual_graph(tris: &[[u32; 3]], vertex_count: usize) -> DualGraph {
-    DualGraph::from_triangles(tris, vertex_count)
-}
-
 /// The slot `j` of triangle `t` (edge `(t[j], t[j+1])`) across which `next` lies,
 /// other than the edge `{avoid.0, avoid.1}`.
 #[inline]

@@ -57,7 +57,7 @@ impl SerpentineOptions {
 /// be below `vertex_count` (larger ones are tolerated); degenerate triangles are
 /// dropped. The result decodes to every other triangle once with its winding.
 pub fn stripify(tris: &[[u32; 3]], vertex_count: usize, options: &SerpentineOptions) -> StripSet {
-    let graph = super::dual_graph(tris, vertex_count);
+    let graph = DualGraph::from_triangles(tris, vertex_count);
     stripify_with_graph(tris, vertex_count, &graph, options)
 }
 
@@ -139,9 +139,6 @@ impl<'a> State<'a> {
             b.push_front(i as u32, d);
         }
         let mut out = StripSet::new();
-        if out.offsets.is_empty() {
-            out.offsets.push(0);
-        }
         out.indices.reserve(n + n / 3);
         State {
             tris,
@@ -195,11 +192,6 @@ impl<'a> State<'a> {
         }
     }
 
-    /// Lowest-degree free triangle, most recently lowered first.
-    fn lowest(&mut self) -> Option<u32> {
-        self.b.lowest()
-    }
-
     /// A free triangle around the cached vertices (see the module docs).
     fn start_near_cache(&self) -> Option<u32> {
         let c = u64::from(self.opt.cache_size);
@@ -249,23 +241,8 @@ impl<'a> State<'a> {
     }
 
     fn run(&mut self) {
-        let mut strip_started = false;
-        loop {
-            let t0 = match self.start_near_cache() {
-                Some(t) => t,
-                None => match self.lowest() {
-                    Some(t) => t,
-                    None => break,
-                },
-            };
-            if strip_started {
-                let len = self.out.indices.len() as u32;
-                self.out.offsets.push(len);
-            }
-            strip_started = true;
+        while let Some(t0) = self.start_near_cache().or_else(|| self.b.lowest()) {
             self.strip_from(t0);
-        }
-        if strip_started {
             let len = self.out.indices.len() as u32;
             self.out.offsets.push(len);
         }

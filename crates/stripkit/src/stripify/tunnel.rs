@@ -20,6 +20,7 @@
 //! every strip end, bounded in length, so the pass is O(triangles) with a small
 //! constant; the strip ends' start-of-strip swap is settled by the encoder.
 
+use crate::strip::StripSet;
 use crate::topology::{DualGraph, NO_NEIGHBOR};
 
 const NONE: u32 = u32::MAX;
@@ -27,60 +28,13 @@ const NONE: u32 = u32::MAX;
 /// Pivot not computed yet.
 const UNKNOWN: u32 = u32::MAX - 1;
 
-/// Walks in one flat array: walk `i` is `items[offsets[i]..offsets[i + 1]]`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Walks {
-    /// Triangle ids of all walks, one after the other.
-    pub items: Vec<u32>,
-    /// `offsets[i]..offsets[i + 1]` is walk `i`; starts with 0.
-    pub offsets: Vec<u32>,
-}
-
-impl Default for Walks {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-impl Walks {
-    /// No walks.
-    pub fn new() -> Self {
-        Walks {
-            items: Vec::new(),
-            offsets: vec![0],
-        }
-    }
-
-    /// Number of walks.
-    pub fn len(&self) -> usize {
-        self.offsets.len().saturating_sub(1)
-    }
-
-    /// True when there is no walk.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// Walk `i`.
-    pub fn get(&self, i: usize) -> &[u32] {
-        &self.items[self.offsets[i] as usize..self.offsets[i + 1] as usize]
-    }
-
-    /// Appends a walk (nothing when it is empty).
-    pub fn push(&mut self, walk: impl IntoIterator<Item = u32>) {
-        self.items.extend(walk);
-        if self.items.len() as u32 != *self.offsets.last().unwrap_or(&0) {
-            self.offsets.push(self.items.len() as u32);
-        }
-    }
-}
-
 /// Options of [`tunnel`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TunnelOptions {
     /// Most links a tunnel may cut (its length is about twice that).
     pub max_cuts: usize,
-    /// Passes over all strip ends (each stops early when nothing improved).
+    /// Most searches from one strip end: every end is searched once, and again (up to
+    /// this many times) when a change next to it may have opened a new path.
     pub passes: usize,
     /// Index cost of one strip (3 with a restart index: two start indices and the
     /// restart); a swap costs 1.
@@ -347,16 +301,18 @@ impl State<'_> {
     }
 }
 
-/// Reduces the index count of `walks` (paths through `graph` covering some triangles
-/// of `tris`) by tunnelling; returns the new walks. Every triangle of `walks` appears
+/// Reduces the index count of `walks` by tunnelling and returns the new walks. Here a
+/// [`StripSet`] holds walks, not strips: each entry is a sequence of triangle ids of
+/// `tris`, each a `graph` neighbour of the one before (encode them with
+/// [`super::encode_path`]). Every triangle of `walks` appears
 /// exactly once in the result, and every walk is a path through `graph`, so encoding
 /// keeps every triangle's winding.
-pub fn tunnel(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, options: &TunnelOptions) -> Walks {
+pub fn tunnel(tris: &[[u32; 3]], graph: &DualGraph, walks: &StripSet, options: &TunnelOptions) -> StripSet {
     let n = tris.len();
     let mut links = vec![[NONE; 2]; n];
     let mut member = vec![false; n];
     for i in 0..walks.len() {
-        let w = walks.get(i);
+        let w = walks.strip(i);
         for (k, &t) in w.iter().enumerate() {
             member[t as usize] = true;
             let mut l = [NONE; 2];
@@ -410,16 +366,6 @@ pub fn tunnel(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, options: &Tun
             st.undo_to(0);
             continue;
         }
-        #[cfg(test)]
-        {
-            for k in 0..st.log.len() {
-                let x = st.log[k].0;
-                let l = st.links[x as usize];
-                if l[0] != NONE {
-                    assert!(!st.on_cycle(x, l[0]), "cycle after search from {t}: log {:?}", st.log);
-                }
-            }
-        }
         // Applied: requeue the touched triangles that are ends now, and their
         // neighbours that are ends.
         for k in 0..st.log.len() {
@@ -435,17 +381,17 @@ pub fn tunnel(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, options: &Tun
     // Read the paths from their ends, in the order the input walks reach the ends
     // (keeps most of the producer's locality, e.g. for the vertex cache).
     let links = st.links;
-    let mut out = Walks::new();
-    out.items.reserve(walks.items.len());
+    let mut out = StripSet::new();
+    out.indices.reserve(walks.indices.len());
     let mut done = vec![false; n];
-    for &s0 in &walks.items {
+    for &s0 in &walks.indices {
         if done[s0 as usize] || links[s0 as usize][1] != NONE {
             continue;
         }
         let (mut prev, mut cur) = (NONE, s0);
         loop {
             done[cur as usize] = true;
-            out.items.push(cur);
+            out.indices.push(cur);
             let l = links[cur as usize];
             let next = if l[0] == prev { l[1] } else { l[0] };
             if next == NONE {
@@ -454,9 +400,9 @@ pub fn tunnel(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, options: &Tun
             prev = cur;
             cur = next;
         }
-        out.offsets.push(out.items.len() as u32);
+        out.offsets.push(out.indices.len() as u32);
     }
-    if out.items.len() != walks.items.len() {
+    if out.indices.len() != walks.indices.len() {
         // A cycle would lose its triangles here; the searches never close one, but
         // should that ever fail, the input walks are still a correct answer.
         debug_assert!(false, "tunnelling lost or added triangles");
@@ -470,14 +416,14 @@ mod tests {
     use super::*;
 
     /// Checks that `out` covers exactly `expect` (as a set) with valid dual walks.
-    fn check_walks(graph: &DualGraph, out: &Walks, expect: &[u32]) {
-        let mut got: Vec<u32> = out.items.clone();
+    fn check_walks(graph: &DualGraph, out: &StripSet, expect: &[u32]) {
+        let mut got: Vec<u32> = out.indices.clone();
         got.sort_unstable();
         let mut want = expect.to_vec();
         want.sort_unstable();
         assert_eq!(got, want, "triangles lost or repeated");
         for i in 0..out.len() {
-            for p in out.get(i).windows(2) {
+            for p in out.strip(i).windows(2) {
                 assert!(graph.neighbors[p[0] as usize].contains(&p[1]), "not a walk: {p:?}");
             }
         }
@@ -491,9 +437,9 @@ mod tests {
     fn single_triangles_are_tunnelled_into_long_walks() {
         let tris = grid_tris(8, 6);
         let graph = DualGraph::from_triangles(&tris, 9 * 7);
-        let mut walks = Walks::new();
+        let mut walks = StripSet::new();
         for t in 0..tris.len() as u32 {
-            walks.push([t]);
+            walks.push(&[t]);
         }
         let out = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
         check_walks(&graph, &out, &(0..tris.len() as u32).collect::<Vec<_>>());
@@ -514,16 +460,16 @@ mod tests {
             tris.push([b, c, d]);
         }
         let graph = DualGraph::from_triangles(&tris, 2 * n as usize);
-        let mut walks = Walks::new();
-        walks.push(0..2 * n);
+        let mut walks = StripSet::new();
+        walks.push(&(0..2 * n).collect::<Vec<u32>>());
         let out = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
         check_walks(&graph, &out, &(0..2 * n).collect::<Vec<_>>());
         assert_eq!(out.len(), 1);
         // Cut into pieces, it comes back to one walk, still not a cycle.
-        let mut walks = Walks::new();
-        walks.push(0..5);
-        walks.push(5..9);
-        walks.push(9..2 * n);
+        let mut walks = StripSet::new();
+        walks.push(&(0..5).collect::<Vec<u32>>());
+        walks.push(&(5..9).collect::<Vec<u32>>());
+        walks.push(&(9..2 * n).collect::<Vec<u32>>());
         let out = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
         check_walks(&graph, &out, &(0..2 * n).collect::<Vec<_>>());
         assert_eq!(out.len(), 1);
@@ -533,10 +479,10 @@ mod tests {
     fn triangles_outside_the_walks_are_left_alone() {
         let tris = grid_tris(6, 4);
         let graph = DualGraph::from_triangles(&tris, 7 * 5);
-        let mut walks = Walks::new();
+        let mut walks = StripSet::new();
         let mut covered = Vec::new();
         for t in (0..tris.len() as u32).filter(|t| t % 5 != 0) {
-            walks.push([t]);
+            walks.push(&[t]);
             covered.push(t);
         }
         let out = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
@@ -548,11 +494,11 @@ mod tests {
     fn empty_input_and_a_second_pass() {
         let tris = grid_tris(5, 5);
         let graph = DualGraph::from_triangles(&tris, 36);
-        let out = tunnel(&tris, &graph, &Walks::new(), &TunnelOptions::default());
+        let out = tunnel(&tris, &graph, &StripSet::new(), &TunnelOptions::default());
         assert!(out.is_empty());
-        let mut walks = Walks::new();
+        let mut walks = StripSet::new();
         for t in 0..tris.len() as u32 {
-            walks.push([t]);
+            walks.push(&[t]);
         }
         let once = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
         let twice = tunnel(&tris, &graph, &once, &TunnelOptions::default());

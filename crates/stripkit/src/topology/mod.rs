@@ -14,6 +14,7 @@ pub mod facts;
 pub use facts::{validate, MeshFacts};
 
 use crate::mesh::Mesh;
+use crate::strip::is_degenerate;
 
 /// Marks "no neighbour" in [`DualGraph::neighbors`].
 pub const NO_NEIGHBOR: u32 = u32::MAX;
@@ -119,6 +120,21 @@ impl EdgeMap {
     }
 }
 
+/// Prefix sums of the corners (edges) of non-degenerate triangles bucketed by their
+/// edge's lower vertex: bucket `v` is `start[v]..start[v + 1]`.
+fn corner_bucket_starts(tris: &[[u32; 3]], vertex_count: usize) -> Vec<u32> {
+    let mut start = vec![0u32; vertex_count + 1];
+    for t in tris.iter().filter(|t| !is_degenerate(t)) {
+        for j in 0..3 {
+            start[t[j].min(t[(j + 1) % 3]) as usize + 1] += 1;
+        }
+    }
+    for v in 0..vertex_count {
+        start[v + 1] += start[v];
+    }
+    start
+}
+
 /// The dual graph of a triangle list: neighbours across manifold, consistently
 /// oriented edges.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -141,7 +157,6 @@ impl DualGraph {
     /// for bounded valence, O(t log t) at worst.
     pub fn from_triangles(tris: &[[u32; 3]], vertex_count: usize) -> DualGraph {
         let n = tris.len();
-        let degenerate = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
         let max_index = tris
             .iter()
             .flatten()
@@ -154,19 +169,11 @@ impl DualGraph {
         if n >= (u32::MAX / 6) as usize {
             return Self::from_triangles_simple(tris, vcount);
         }
-        let mut start = vec![0u32; vcount + 1];
-        for t in tris.iter().filter(|t| !degenerate(t)) {
-            for j in 0..3 {
-                start[t[j].min(t[(j + 1) % 3]) as usize + 1] += 1;
-            }
-        }
-        for v in 0..vcount {
-            start[v + 1] += start[v];
-        }
+        let start = corner_bucket_starts(tris, vcount);
         let mut fill = start.clone();
         let mut entries = vec![0u64; start[vcount] as usize];
         for (ti, t) in tris.iter().enumerate() {
-            if degenerate(t) {
+            if is_degenerate(t) {
                 continue;
             }
             for j in 0..3 {
@@ -217,22 +224,13 @@ impl DualGraph {
     /// entries.
     fn from_triangles_simple(tris: &[[u32; 3]], vertex_count: usize) -> DualGraph {
         let n = tris.len();
-        let degenerate = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
         // Bucket the corners (t, j) of non-degenerate triangles by the lower vertex of
         // their edge; in a bucket, a corner pairs with the one running the other way.
-        let mut start = vec![0u32; vertex_count + 1];
-        for t in tris.iter().filter(|t| !degenerate(t)) {
-            for j in 0..3 {
-                start[t[j].min(t[(j + 1) % 3]) as usize + 1] += 1;
-            }
-        }
-        for v in 0..vertex_count {
-            start[v + 1] += start[v];
-        }
+        let start = corner_bucket_starts(tris, vertex_count);
         let mut fill = start.clone();
         let mut corners = vec![0u32; start[vertex_count] as usize];
         for (ti, t) in tris.iter().enumerate() {
-            if degenerate(t) {
+            if is_degenerate(t) {
                 continue;
             }
             for j in 0..3 {

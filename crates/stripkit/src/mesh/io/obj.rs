@@ -158,6 +158,31 @@ pub(crate) fn push_u64(out: &mut Vec<u8>, mut v: u64) {
     out.extend_from_slice(&buf[i..]);
 }
 
+/// Appends one text line `x y z` per position (OFF and ASCII PLY bodies).
+pub(crate) fn push_position_lines(out: &mut Vec<u8>, positions: &[[f32; 3]]) {
+    for p in positions {
+        for (k, &c) in p.iter().enumerate() {
+            if k > 0 {
+                out.push(b' ');
+            }
+            push_f32(out, c);
+        }
+        out.push(b'\n');
+    }
+}
+
+/// Appends one text line `k i0 i1 ..` per face (OFF and ASCII PLY bodies).
+pub(crate) fn push_face_lines(out: &mut Vec<u8>, mesh: &Mesh) {
+    for f in mesh.faces() {
+        push_u64(out, f.len() as u64);
+        for &i in f {
+            out.push(b' ');
+            push_u64(out, i as u64);
+        }
+        out.push(b'\n');
+    }
+}
+
 /// Appends the shortest decimal text that reads back as exactly `v`.
 pub(crate) fn push_f32(out: &mut Vec<u8>, v: f32) {
     use std::io::Write;

@@ -8,7 +8,7 @@
 use super::common::{
     capped, close_face, finite, index_message, is_space, line_at, parse_count, parse_f32, show, Src,
 };
-use super::obj::{push_f32, push_u64};
+use super::obj::{push_face_lines, push_position_lines};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use std::path::Path;
@@ -155,23 +155,8 @@ fn parse_keyword(k: &[u8]) -> Option<bool> {
 pub(crate) fn write(mesh: &Mesh) -> Vec<u8> {
     let mut out = Vec::with_capacity(mesh.positions.len() * 32 + mesh.face_indices.len() * 8 + 64);
     out.extend_from_slice(format!("OFF\n{} {} 0\n", mesh.positions.len(), mesh.face_count()).as_bytes());
-    for p in &mesh.positions {
-        for (k, &c) in p.iter().enumerate() {
-            if k > 0 {
-                out.push(b' ');
-            }
-            push_f32(&mut out, c);
-        }
-        out.push(b'\n');
-    }
-    for f in mesh.faces() {
-        push_u64(&mut out, f.len() as u64);
-        for &i in f {
-            out.push(b' ');
-            push_u64(&mut out, i as u64);
-        }
-        out.push(b'\n');
-    }
+    push_position_lines(&mut out, &mesh.positions);
+    push_face_lines(&mut out, mesh);
     out
 }
 

@@ -17,7 +17,7 @@ use super::common::{
     capped, close_face, index_message, is_space, line_at, parse_count, parse_f32, parse_i64,
     push_strip_triangles, show, tokens, Lines, Src,
 };
-use super::obj::{push_f32, push_u64};
+use super::obj::{push_face_lines, push_position_lines, push_u64};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::strip::StripSet;
@@ -569,15 +569,7 @@ pub(crate) fn write(mesh: &Mesh, strips: Option<&StripSet>, ascii: bool) -> Resu
     header.push_str("end_header\n");
     out.extend_from_slice(header.as_bytes());
     if ascii {
-        for p in &mesh.positions {
-            for (k, &c) in p.iter().enumerate() {
-                if k > 0 {
-                    out.push(b' ');
-                }
-                push_f32(&mut out, c);
-            }
-            out.push(b'\n');
-        }
+        push_position_lines(&mut out, &mesh.positions);
         match &strip_list {
             Some(list) => {
                 push_u64(&mut out, list.len() as u64);
@@ -591,16 +583,7 @@ pub(crate) fn write(mesh: &Mesh, strips: Option<&StripSet>, ascii: bool) -> Resu
                 }
                 out.push(b'\n');
             }
-            None => {
-                for f in mesh.faces() {
-                    push_u64(&mut out, f.len() as u64);
-                    for &i in f {
-                        out.push(b' ');
-                        push_u64(&mut out, i as u64);
-                    }
-                    out.push(b'\n');
-                }
-            }
+            None => push_face_lines(&mut out, mesh),
         }
     } else {
         for p in &mesh.positions {
