@@ -212,6 +212,17 @@ pub(crate) struct Engine<'g> {
 }
 
 impl<'g> Engine<'g> {
+    /// Takes blossom `b` out of every tree and returns its id to the free list.
+    fn retire(&mut self, b: u32) {
+        let bi = b as usize;
+        self.label[bi] = FREE;
+        self.labelend[bi] = NONE;
+        self.tree_of[bi] = NONE;
+        self.parent[bi] = NONE;
+        self.alive[bi - self.n] = false;
+        self.free_blossoms.push(b);
+    }
+
     /// Points every vertex inside blossom `s` at `s` as its hint, with the sum of the
     /// dual offsets (`boff`) of the blossoms between them; `dfs` is reused scratch.
     fn point_vertices_at(&mut self, s: u32, dfs: &mut Vec<(u32, i64)>) {
@@ -641,12 +652,7 @@ impl<'g> Engine<'g> {
             cv.clear();
             self.childs[nb] = cv;
             self.endps[nb].clear();
-            self.label[bi] = FREE;
-            self.labelend[bi] = NONE;
-            self.tree_of[bi] = NONE;
-            self.parent[bi] = NONE;
-            self.alive[nb] = false;
-            self.free_blossoms.push(b);
+            self.retire(b);
         }
     }
 
@@ -826,12 +832,7 @@ impl<'g> Engine<'g> {
             jj += jstep;
         }
         // Retire b.
-        self.label[bi] = FREE;
-        self.labelend[bi] = NONE;
-        self.tree_of[bi] = NONE;
-        self.parent[bi] = NONE;
-        self.alive[nb] = false;
-        self.free_blossoms.push(b);
+        self.retire(b);
         let mut cv = childs;
         cv.clear();
         self.childs[nb] = cv;
