@@ -11,7 +11,6 @@ use stripkit::metrics::{self, CacheModel, Figures};
 use stripkit::strip::{self, StripSet};
 use stripkit::stripify::cache::{self, CacheOptions};
 use stripkit::stripify::greedy::{self, GreedyOptions, Heuristic};
-use stripkit::stripify::serpentine::{self, SerpentineOptions};
 
 /// Arguments of the `strips` comparison.
 #[derive(clap::Args)]
@@ -103,9 +102,8 @@ pub fn modes() -> Vec<Mode> {
             greedy::stripify(t, n, &options)
         }),
         ours("stripkit cache", |t, n| cache::stripify(t, n, &CacheOptions::cache(16))),
-        ours("stripkit balanced", |t, n| cache::stripify(t, n, &CacheOptions::balanced(16))),
-        ours("stripkit serpentine (experimental)", |t, n| {
-            serpentine::stripify(t, n, &SerpentineOptions::balanced(16))
+        ours("stripkit balanced (acmr16 <= 0.8)", |t, n| {
+            cache::stripify_within(t, n, &CacheOptions::balanced(16), 0.8).0
         }),
         peer("meshopt optimize_vertex_cache + stripify", reorder_cache, meshopt_stripify),
         peer("meshopt optimize_vertex_cache_strip + stripify", reorder_strip, meshopt_stripify),

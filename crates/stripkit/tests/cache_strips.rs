@@ -26,10 +26,26 @@ fn modes() -> Vec<CacheOptions> {
         v.push(CacheOptions::cache(n));
         v.push(CacheOptions::balanced(n));
     }
-    v.push(CacheOptions { swaps: false, ..CacheOptions::cache(16) });
-    v.push(CacheOptions { start_penalty: 0.0, swap_bonus: -1.0, ..CacheOptions::balanced(16) });
-    v.push(CacheOptions { scan_entries: 1, strip_misses: 0, age_tilt: 0.5, ..CacheOptions::cache(16) });
-    v.push(CacheOptions { continue_bonus: 0.0, swap_bonus: 0.0, valence_weight: 0.0, ..CacheOptions::cache(8) });
+    v.push(CacheOptions {
+        max_swaps: 0,
+        join: false,
+        ..CacheOptions::cache(16)
+    });
+    v.push(CacheOptions {
+        min_cached: 0,
+        start_penalty: 0.0,
+        ..CacheOptions::balanced(16)
+    });
+    v.push(CacheOptions {
+        scan_entries: 1,
+        max_len: 1,
+        ..CacheOptions::cache(16)
+    });
+    v.push(CacheOptions {
+        miss_weight: 0.0,
+        max_len: 200,
+        ..CacheOptions::cache(8)
+    });
     v
 }
 
@@ -81,10 +97,26 @@ fn grid(w: u32, h: u32) -> (Vec<[u32; 3]>, usize) {
 /// An icosphere: the icosahedron with each triangle split in four, `levels` times.
 fn icosphere(levels: u32) -> (Vec<[u32; 3]>, usize) {
     let mut tris: Vec<[u32; 3]> = vec![
-        [0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11],
-        [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
-        [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9],
-        [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1],
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
     ];
     let mut vcount = 12u32;
     for _ in 0..levels {
@@ -173,9 +205,22 @@ fn awkward_topology_is_kept_whole() {
         // Degenerate triangles are dropped; the rest is kept.
         (vec![[0, 1, 1], [0, 1, 2], [2, 2, 2]], 3),
         // Three triangles on one edge, a flipped neighbour, a duplicate.
-        (vec![[0, 1, 2], [1, 0, 3], [1, 0, 4], [1, 2, 5], [0, 1, 2]], 6),
+        (
+            vec![[0, 1, 2], [1, 0, 3], [1, 0, 4], [1, 2, 5], [0, 1, 2]],
+            6,
+        ),
         // Two fans meeting at a pinch vertex.
-        (vec![[0, 1, 2], [0, 2, 3], [0, 3, 1], [0, 4, 5], [0, 5, 6], [0, 6, 4]], 7),
+        (
+            vec![
+                [0, 1, 2],
+                [0, 2, 3],
+                [0, 3, 1],
+                [0, 4, 5],
+                [0, 5, 6],
+                [0, 6, 4],
+            ],
+            7,
+        ),
         // Unreferenced vertices around.
         (vec![[5, 9, 7], [7, 9, 8]], 20),
     ];
@@ -188,17 +233,30 @@ fn awkward_topology_is_kept_whole() {
 
 #[test]
 fn strips_run_side_by_side_on_a_torus() {
-    // A regular torus of 64 x 48 quads: the cache mode keeps close to the 0.5 floor of a
-    // closed mesh and well under the one miss per triangle of long strips; balanced
-    // needs fewer indices than cache and stays under 0.9 misses per triangle.
+    // A regular torus of 64 x 48 quads: strips laid side by side keep both modes close
+    // to the 0.5 floor of a closed mesh with few indices (a strip of 14 triangles with
+    // its restart costs 1.21 per triangle).
     let (tris, vc) = torus(64, 48, None);
     let (_, c) = check(&tris, vc, &CacheOptions::cache(16));
     let (_, b) = check(&tris, vc, &CacheOptions::balanced(16));
     let t = c.triangles as f64;
-    assert!(c.acmr < 0.75, "cache acmr16 {}", c.acmr);
-    assert!(b.acmr < 0.9, "balanced acmr16 {}", b.acmr);
+    eprintln!(
+        "cache {} {}, balanced {} {}",
+        c.indices_restart, c.acmr, b.indices_restart, b.acmr
+    );
+    assert!(c.acmr < 0.62, "cache acmr16 {}", c.acmr);
+    assert!(b.acmr < 0.67, "balanced acmr16 {}", b.acmr);
     assert!(b.indices_restart < c.indices_restart);
-    assert!((b.indices_restart as f64) < 1.45 * t, "balanced {} indices", b.indices_restart);
+    assert!(
+        (c.indices_restart as f64) < 1.40 * t,
+        "cache {} indices",
+        c.indices_restart
+    );
+    assert!(
+        (b.indices_restart as f64) < 1.21 * t,
+        "balanced {} indices",
+        b.indices_restart
+    );
 }
 
 #[test]
@@ -214,7 +272,10 @@ fn shuffled_input_gives_the_figures_of_ordered_input() {
             let mut r = Rng(seed * 7919);
             let (_, b) = check(&shuffled(&tris, vc, &mut r), vc, &o);
             let rel = |x: f64, y: f64| (x - y).abs() / x;
-            eprintln!("{o:?}: ordered {} {} {}, shuffled {} {} {}", a.strips, a.indices_restart, a.acmr, b.strips, b.indices_restart, b.acmr);
+            eprintln!(
+                "{o:?}: ordered {} {} {}, shuffled {} {} {}",
+                a.strips, a.indices_restart, a.acmr, b.strips, b.indices_restart, b.acmr
+            );
             assert!(rel(a.indices_restart as f64, b.indices_restart as f64) < 0.01);
             assert!(rel(a.acmr, b.acmr) < 0.01);
         }
@@ -222,55 +283,165 @@ fn shuffled_input_gives_the_figures_of_ordered_input() {
 }
 
 #[test]
-fn continuation_bonuses_trade_misses_for_indices() {
-    // On an irregular torus: without bonuses the pass is a pure vertex-cache order
-    // (fewest misses, most strips); each larger bonus gives fewer indices for more
-    // misses, and the fading bonus (strip_misses) keeps the cache mode close to the
-    // pure order's misses with far fewer indices.
+fn the_miss_weight_trades_misses_for_indices() {
+    // On an irregular torus: the heavier a miss, the fewer misses and the more
+    // indices; swaps and going on from the last strip both save indices, and the
+    // swaps that keep a strip on the cached side save misses too.
     let mut rng = Rng(5);
     let (tris, vc) = torus(90, 70, Some(&mut rng));
-    let pure = CacheOptions { continue_bonus: 0.0, swap_bonus: 0.0, ..CacheOptions::cache(16) };
-    let (_, p) = check(&tris, vc, &pure);
+    let t = tris.len() as f64;
     let (_, c) = check(&tris, vc, &CacheOptions::cache(16));
     let (_, b) = check(&tris, vc, &CacheOptions::balanced(16));
-    let unbounded = CacheOptions { strip_misses: 0, ..CacheOptions::balanced(16) };
-    let (_, u) = check(&tris, vc, &unbounded);
-    eprintln!("pure {} {}, cache {} {}, balanced {} {}, unbounded {} {}", p.indices_restart, p.acmr, c.indices_restart, c.acmr, b.indices_restart, b.acmr, u.indices_restart, u.acmr);
-    assert!(p.acmr < 0.7, "pure order acmr16 {}", p.acmr);
-    assert!(c.indices_restart * 10 < p.indices_restart * 8, "cache {} vs pure {}", c.indices_restart, p.indices_restart);
-    assert!(c.acmr < p.acmr + 0.05, "cache acmr16 {} vs pure {}", c.acmr, p.acmr);
+    let (_, no_swaps) = check(
+        &tris,
+        vc,
+        &CacheOptions {
+            max_swaps: 0,
+            ..CacheOptions::cache(16)
+        },
+    );
+    let (_, no_join) = check(
+        &tris,
+        vc,
+        &CacheOptions {
+            join: false,
+            ..CacheOptions::cache(16)
+        },
+    );
+    eprintln!(
+        "cache {} {}, balanced {} {}, no swaps {} {}, no join {} {}",
+        c.indices_restart,
+        c.acmr,
+        b.indices_restart,
+        b.acmr,
+        no_swaps.indices_restart,
+        no_swaps.acmr,
+        no_join.indices_restart,
+        no_join.acmr
+    );
+    assert!(c.acmr < 0.7, "cache acmr16 {}", c.acmr);
+    assert!(
+        (c.indices_restart as f64) < 1.47 * t,
+        "cache {} indices",
+        c.indices_restart
+    );
     assert!(b.indices_restart < c.indices_restart && b.acmr > c.acmr);
-    assert!(u.indices_restart < b.indices_restart && u.acmr > b.acmr + 0.03);
+    assert!(no_swaps.indices_restart > c.indices_restart && no_swaps.acmr > c.acmr);
+    assert!(no_join.indices_restart > c.indices_restart);
 }
 
 #[test]
-fn bunny_figures_beat_meshoptimizer_and_the_old_design() {
+fn bunny_figures_beat_meshoptimizer_and_the_old_designs() {
     // meshoptimizer optimize_vertex_cache + stripify on bunny: 120,924 indices at acmr16
-    // 0.711 (METRICS.md); the first cache stripifier: 118,210 at 0.743 (cache) and
-    // 96,315 at 0.853 (balanced).
-    let Some(dir) = stripkit::test_support::models_dir() else { return };
-    let Ok(mesh) = stripkit::mesh::io::read(&dir.join("bunny.obj")) else { return };
+    // 0.711 (METRICS.md); issue #4's cache target: at most 0.711 with at most 100,000
+    // indices. The previous design (Forsyth scores with strip bonuses): 112,354 at
+    // 0.703 (cache) and 95,591 at 0.798 (balanced).
+    let Some(dir) = stripkit::test_support::models_dir() else {
+        eprintln!("skipped: no ../shared/models");
+        return;
+    };
+    let Ok(mesh) = stripkit::mesh::io::read(&dir.join("bunny.obj")) else {
+        eprintln!("skipped: no bunny.obj in {}", dir.display());
+        return;
+    };
     let tris = mesh.triangulate().tris;
     let (_, c) = check(&tris, mesh.vertex_count(), &CacheOptions::cache(16));
-    assert!(c.acmr <= 0.711 && c.indices_restart < 115_000, "cache {} at {}", c.indices_restart, c.acmr);
+    assert!(
+        c.acmr <= 0.66 && c.indices_restart <= 98_000,
+        "cache {} at {}",
+        c.indices_restart,
+        c.acmr
+    );
     let (_, b) = check(&tris, mesh.vertex_count(), &CacheOptions::balanced(16));
-    assert!(b.acmr <= 0.80 && b.indices_restart < 96_315, "balanced {} at {}", b.indices_restart, b.acmr);
+    assert!(
+        b.acmr <= 0.78 && b.indices_restart <= 91_000,
+        "balanced {} at {}",
+        b.indices_restart,
+        b.acmr
+    );
 }
 
 #[test]
 fn research_meshes_are_verified_in_both_modes() {
-    let Some(dir) = stripkit::test_support::models_dir() else { return };
-    for name in ["bunny_res4.ply", "bunny_res3.ply", "cow.obj", "spot_triangulated.obj", "fandisk.obj", "bunny.obj"] {
+    let Some(dir) = stripkit::test_support::models_dir() else {
+        eprintln!("skipped: no ../shared/models");
+        return;
+    };
+    for name in [
+        "bunny_res4.ply",
+        "bunny_res3.ply",
+        "cow.obj",
+        "spot_triangulated.obj",
+        "fandisk.obj",
+        "bunny.obj",
+    ] {
         let mesh = stripkit::mesh::io::read(&dir.join(name)).expect(name);
         let tris = mesh.triangulate().tris;
-        let graph = stripkit::topology::DualGraph::from_triangles(&tris, mesh.vertex_count());
-        for o in [CacheOptions::cache(16), CacheOptions::balanced(16), CacheOptions::cache(32)] {
-            let (strips, f) = check(&tris, mesh.vertex_count(), &o);
-            assert!(f.acmr < 0.9, "{name}: acmr16 {}", f.acmr);
-            // Its own neighbour search gives what the shared dual graph gives.
-            let with_graph = cache::stripify_with_graph(&tris, mesh.vertex_count(), &graph, &o);
+        let vc = mesh.vertex_count();
+        let graph = stripkit::topology::DualGraph::from_triangles(&tris, vc);
+        for o in [
+            CacheOptions::cache(16),
+            CacheOptions::balanced(16),
+            CacheOptions::cache(32),
+        ] {
+            let (strips, f) = check(&tris, vc, &o);
+            let acmr = if o.cache_size == 32 {
+                f.acmr32
+            } else {
+                f.acmr16
+            };
+            assert!(acmr < 0.9, "{name} {o:?}: acmr {acmr}");
+            if o == CacheOptions::cache(16) {
+                assert!(acmr < 0.75, "{name}: cache acmr16 {acmr}");
+            }
+            // Built with or without a ready dual graph: the same strips.
+            let with_graph = cache::stripify_with_graph(&tris, vc, &graph, &o);
             assert_eq!(strips.indices, with_graph.indices, "{name}");
             assert_eq!(strips.offsets, with_graph.offsets, "{name}");
         }
+        // The bounded search keeps its bound, and reports the ACMR it measured.
+        let (strips, weight, acmr) =
+            cache::stripify_within(&tris, vc, &CacheOptions::balanced(16), 0.8);
+        let f = metrics::figures(&tris, &strips, CacheModel::fifo(16));
+        assert!(f.verified, "{name}");
+        assert!(
+            (f.acmr16 - acmr).abs() < 1e-9,
+            "{name}: {} vs {acmr}",
+            f.acmr16
+        );
+        assert!(
+            f.acmr16 <= 0.8,
+            "{name}: balanced acmr16 {} (weight {weight})",
+            f.acmr16
+        );
+        let (_, plain) = check(&tris, vc, &CacheOptions::cache(16));
+        assert!(
+            f.indices_restart <= plain.indices_restart + plain.indices_restart / 50,
+            "{name}"
+        );
     }
+}
+
+#[test]
+fn the_bounded_search_keeps_any_reachable_bound() {
+    let mut rng = Rng(3);
+    let (tris, vc) = torus(50, 40, Some(&mut rng));
+    let mut last = 0;
+    for bound in [0.9, 0.8, 0.7] {
+        let (strips, _, acmr) =
+            cache::stripify_within(&tris, vc, &CacheOptions::balanced(16), bound);
+        let f = metrics::figures(&tris, &strips, CacheModel::fifo(16));
+        assert!(
+            f.verified && f.acmr16 <= bound && (f.acmr16 - acmr).abs() < 1e-9,
+            "{bound}: {}",
+            f.acmr16
+        );
+        // A tighter bound never buys fewer indices.
+        assert!(f.indices_restart >= last, "{bound}");
+        last = f.indices_restart;
+    }
+    // An unreachable bound gives the last try's strips, still verified.
+    let (strips, weight, _) = cache::stripify_within(&tris, vc, &CacheOptions::balanced(16), 0.1);
+    assert!(metrics::figures(&tris, &strips, CacheModel::fifo(16)).verified);
+    assert!(weight > 3.0);
 }

@@ -19,7 +19,6 @@ pub mod greedy;
 pub mod quad;
 pub mod quad_single;
 pub mod quad_verify;
-pub mod serpentine;
 pub mod tunnel;
 
 use crate::strip::StripSet;
