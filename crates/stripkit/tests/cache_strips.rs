@@ -244,11 +244,11 @@ fn strips_run_side_by_side_on_a_torus() {
         "cache {} {}, balanced {} {}",
         c.indices_restart, c.acmr, b.indices_restart, b.acmr
     );
-    assert!(c.acmr < 0.62, "cache acmr16 {}", c.acmr);
+    assert!(c.acmr < 0.64, "cache acmr16 {}", c.acmr);
     assert!(b.acmr < 0.67, "balanced acmr16 {}", b.acmr);
     assert!(b.indices_restart < c.indices_restart);
     assert!(
-        (c.indices_restart as f64) < 1.40 * t,
+        (c.indices_restart as f64) < 1.30 * t,
         "cache {} indices",
         c.indices_restart
     );
@@ -261,11 +261,12 @@ fn strips_run_side_by_side_on_a_torus() {
 
 #[test]
 fn shuffled_input_gives_the_figures_of_ordered_input() {
-    // Mid-size procedural mesh with irregular diagonals: faces shuffled, rotated and
-    // vertices renumbered must give index counts and ACMR within 1% (2% for the small
-    // counts of strips).
+    // A procedural mesh of bunny's size with irregular diagonals: faces shuffled,
+    // rotated and vertices renumbered must give index counts and ACMR within 1%. (The
+    // input order only breaks ties, but one different tie changes every later choice:
+    // over eight shuffles the spread was 0.2-0.3% here, up to 2% on 19k triangles.)
     let mut rng = Rng(99);
-    let (tris, vc) = torus(120, 80, Some(&mut rng));
+    let (tris, vc) = torus(240, 160, Some(&mut rng));
     for o in [CacheOptions::cache(16), CacheOptions::balanced(16)] {
         let (_, a) = check(&tris, vc, &o);
         for seed in [1, 2] {
