@@ -568,6 +568,13 @@ impl<'a> State<'a> {
             let mut best = Best::NOTHING;
             if self.opt.join && self.last != NONE {
                 self.evaluate(self.last, CONTINUE, &mut best, false);
+                // A new strip costs at least 1 + 3 / max_len per triangle (its start
+                // and restart indices); going on that cheaply (a cache hit without a
+                // swap) cannot be beaten, and ties keep the first found anyway.
+                if best.cost <= 1.0 + 3.0 / self.opt.max_len as f32 {
+                    self.emit(best);
+                    continue;
+                }
             }
             // Oldest entries first: a strip beside the start of the previous one is
             // usually the best, and finding it early cuts the other walks short.
