@@ -446,3 +446,39 @@ fn the_bounded_search_keeps_any_reachable_bound() {
     assert!(metrics::figures(&tris, &strips, CacheModel::fifo(16)).verified);
     assert!(weight > 3.0);
 }
+
+mod soups {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Triangle soups over few vertices: shared edges, non-manifold edges, flipped
+    /// neighbours, duplicates and degenerate triangles all come up often.
+    fn soups() -> impl Strategy<Value = (Vec<[u32; 3]>, usize)> {
+        (4usize..40).prop_flat_map(|vc| {
+            let v = 0..vc as u32;
+            (
+                prop::collection::vec([v.clone(), v.clone(), v], 0..120),
+                Just(vc),
+            )
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        #[test]
+        fn every_soup_is_kept_whole((tris, vc) in soups(), n in 3u32..20) {
+            for o in [CacheOptions::cache(n), CacheOptions::balanced(n)] {
+                let strips = cache::stripify(&tris, vc, &o);
+                let v = strip::verify(&tris, &strips);
+                prop_assert!(v.ok(), "{:?}: {}", o, v);
+            }
+            let (strips, _, acmr) = cache::stripify_within(&tris, vc, &CacheOptions::balanced(n), 0.9);
+            let v = strip::verify(&tris, &strips);
+            prop_assert!(v.ok(), "within: {}", v);
+            let decoded = strip::decode(&strips);
+            let measured = metrics::acmr(&decoded, vc, n as usize, CacheKind::Fifo);
+            prop_assert!((measured - acmr).abs() < 1e-9, "simulated {} measured {}", acmr, measured);
+        }
+    }
+}
