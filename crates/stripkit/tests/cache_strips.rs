@@ -82,59 +82,17 @@ fn torus(n: u32, m: u32, mut rng: Option<&mut Rng>) -> (Vec<[u32; 3]>, usize) {
     (tris, (n * m) as usize)
 }
 
-fn grid(w: u32, h: u32) -> (Vec<[u32; 3]>, usize) {
-    let id = |x: u32, y: u32| y * (w + 1) + x;
-    let mut tris = Vec::new();
-    for y in 0..h {
-        for x in 0..w {
-            tris.push([id(x, y), id(x + 1, y), id(x + 1, y + 1)]);
-            tris.push([id(x, y), id(x + 1, y + 1), id(x, y + 1)]);
-        }
-    }
-    (tris, ((w + 1) * (h + 1)) as usize)
+/// Triangles and vertex count of a generated mesh.
+fn tris_of(mesh: stripkit::Mesh) -> (Vec<[u32; 3]>, usize) {
+    (mesh.triangulate().tris, mesh.vertex_count())
 }
 
-/// An icosphere: the icosahedron with each triangle split in four, `levels` times.
+fn grid(w: u32, h: u32) -> (Vec<[u32; 3]>, usize) {
+    tris_of(stripkit::gen::grid(w, h))
+}
+
 fn icosphere(levels: u32) -> (Vec<[u32; 3]>, usize) {
-    let mut tris: Vec<[u32; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    let mut vcount = 12u32;
-    for _ in 0..levels {
-        let mut mid = std::collections::HashMap::new();
-        let mut next = Vec::with_capacity(tris.len() * 4);
-        let mut midpoint = |a: u32, b: u32| {
-            *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                vcount += 1;
-                vcount - 1
-            })
-        };
-        for &[a, b, c] in &tris {
-            let (ab, bc, ca) = (midpoint(a, b), midpoint(b, c), midpoint(c, a));
-            next.extend_from_slice(&[[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
-        }
-        tris = next;
-    }
-    (tris, vcount as usize)
+    tris_of(stripkit::gen::icosphere(levels))
 }
 
 /// Faces shuffled, each rotated, vertices renumbered.
