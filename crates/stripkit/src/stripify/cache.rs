@@ -162,6 +162,20 @@ fn vertex_bound(tris: &[[u32; 3]]) -> usize {
 }
 
 const NONE: u32 = u32::MAX;
+/// `mark` of a triangle already in a strip.
+const TAKEN: u32 = u32::MAX;
+/// The slot after / before each slot of a triangle.
+const NEXT: [usize; 3] = [1, 2, 0];
+const PREV: [usize; 3] = [2, 0, 1];
+
+/// A triangle's [`DualGraph`] neighbours and, for each, the slot of the shared edge in
+/// the neighbour (one 16-byte record: a walk step reads one).
+#[derive(Clone, Copy)]
+struct Adj {
+    nbr: [u32; 3],
+    twin: [u8; 3],
+}
+
 /// `Best::slot` of a walk that goes on from the end of the last strip.
 const CONTINUE: usize = 3;
 
@@ -186,10 +200,8 @@ impl Best {
 
 struct State<'a> {
     tris: &'a [[u32; 3]],
-    /// [`DualGraph`] neighbours of each triangle, and the slot of the shared edge in
-    /// the neighbour.
-    nbr: Vec<[u32; 3]>,
-    twin: Vec<[u8; 3]>,
+    /// Neighbours of each triangle.
+    adj: Vec<Adj>,
     opt: CacheOptions,
     /// Free triangles by free degree (the greedy stripifier's buckets).
     b: Buckets,
@@ -203,8 +215,8 @@ struct State<'a> {
     /// The FIFO: the last `cache_size` pushes by `time % cache_size`, and the pushes.
     ring: Vec<u32>,
     time: u32,
-    /// Triangles in the walk `epoch`.
-    tmark: Vec<u32>,
+    /// TAKEN for triangles in strips, else the epoch of the last walk through them.
+    mark: Vec<u32>,
     epoch: u32,
     /// Candidate triangles already tried for the current strip (round `round`), and
     /// the `min_cached` filter of the round.
@@ -259,17 +271,24 @@ impl<'a> State<'a> {
             Some(g) => g.neighbors.clone(),
             None => DualGraph::from_triangles(tris, vcount).neighbors,
         };
-        let mut twin = vec![[0u8; 3]; n];
+        let mut adj = vec![
+            Adj {
+                nbr: [NO_NEIGHBOR; 3],
+                twin: [0; 3]
+            };
+            n
+        ];
         for t in 0..n {
             let tri = tris[t];
+            adj[t].nbr = nbr[t];
             for k in 0..3 {
                 let m = nbr[t][k];
                 if m != NO_NEIGHBOR {
-                    let (u, v) = (tri[k], tri[(k + 1) % 3]);
+                    let (u, v) = (tri[k], tri[NEXT[k]]);
                     let mt = tris[m as usize];
                     // The neighbour runs the shared edge the other way.
-                    twin[t][k] = (0..3)
-                        .find(|&j| mt[j] == v && mt[(j + 1) % 3] == u)
+                    adj[t].twin[k] = (0..3)
+                        .find(|&j| mt[j] == v && mt[NEXT[j]] == u)
                         .unwrap_or(0) as u8;
                 }
             }
@@ -288,8 +307,7 @@ impl<'a> State<'a> {
         out.indices.reserve(n + n / 2);
         State {
             tris,
-            nbr,
-            twin,
+            adj,
             opt,
             b,
             vstart,
@@ -298,7 +316,10 @@ impl<'a> State<'a> {
             vs: vec![[NONE, 0, 0]; vcount],
             ring: vec![NONE; opt.cache_size as usize],
             time: 0,
-            tmark: vec![0; n],
+            mark: degenerate
+                .iter()
+                .map(|&d| if d { TAKEN } else { 0 })
+                .collect(),
             epoch: 0,
             smark: vec![0; n],
             round: 0,
@@ -311,7 +332,16 @@ impl<'a> State<'a> {
 
     #[inline]
     fn is_free(&self, t: u32) -> bool {
-        t != NO_NEIGHBOR && self.b.free[t as usize]
+        t != NO_NEIGHBOR && self.mark[t as usize] != TAKEN
+    }
+
+    /// Free and not yet in the current walk.
+    #[inline]
+    fn is_open(&self, t: u32) -> bool {
+        t != NO_NEIGHBOR && {
+            let m = self.mark[t as usize];
+            m != TAKEN && m != self.epoch
+        }
     }
 
     #[inline]
@@ -382,23 +412,22 @@ impl<'a> State<'a> {
     #[inline]
     fn choose(
         &self,
-        cur: u32,
+        adj: &Adj,
         nat: usize,
         swp: usize,
         swaps: u32,
         pushes: u32,
     ) -> Option<(usize, bool)> {
-        let c = cur as usize;
-        let n = self.nbr[c][nat];
-        let nat_ok = self.is_free(n) && self.tmark[n as usize] != self.epoch;
+        let n = adj.nbr[nat];
+        let nat_ok = self.is_open(n);
         if swaps >= self.opt.max_swaps {
             return nat_ok.then_some((nat, false));
         }
-        let m = self.nbr[c][swp];
-        let swp_ok = self.is_free(m) && self.tmark[m as usize] != self.epoch;
+        let m = adj.nbr[swp];
+        let swp_ok = self.is_open(m);
         if nat_ok && swp_ok {
-            let y1 = self.tris[n as usize][(self.twin[c][nat] as usize + 2) % 3];
-            let y2 = self.tris[m as usize][(self.twin[c][swp] as usize + 2) % 3];
+            let y1 = self.tris[n as usize][PREV[adj.twin[nat] as usize]];
+            let y2 = self.tris[m as usize][PREV[adj.twin[swp] as usize]];
             if !self.cached_after(y1, pushes) && self.cached_after(y2, pushes) {
                 return Some((swp, true));
             }
@@ -414,50 +443,58 @@ impl<'a> State<'a> {
     /// with `record`, stores the walk in `path`.
     fn evaluate(&mut self, t: u32, slot: usize, best: &mut Best, record: bool) {
         self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            self.tmark.fill(0);
+        if self.epoch == TAKEN {
+            for m in self.mark.iter_mut().filter(|m| **m != TAKEN) {
+                *m = 0;
+            }
             self.vs.iter_mut().for_each(|x| x[1] = 0);
             self.epoch = 1;
         }
         let mut pushes = 0;
-        let mut misses = 0.0;
-        // The walk is at `cur`, whose exits are `nat` (no swap) and `swp`.
-        let (fixed, mut len, mut cur, mut nat, mut swp);
+        let w = self.opt.miss_weight;
+        // The walk is at `cur`, entered across slot `entry`; its exits are the other two
+        // slots, and `fwd` says the natural one (no swap) is NEXT[entry]. `total` is
+        // the cost so far: indices (and the restart), plus weighed misses.
+        let (mut total, mut len, mut cur, mut entry, mut fwd);
         if slot == CONTINUE {
             // No restart index, no start indices. The strip ends (a, b): the natural
             // exit is the edge {a, b}, the swap exit the other edge at b.
             let n = self.out.indices.len();
             let (a, b) = (self.out.indices[n - 2], self.out.indices[n - 1]);
             let tri = self.tris[t as usize];
-            nat = self.slot_of(t, a, b);
-            swp = if tri[(nat + 1) % 3] == b {
-                (nat + 1) % 3
+            let nat = self.slot_of(t, a, b);
+            let swp = if tri[NEXT[nat]] == b {
+                NEXT[nat]
             } else {
-                (nat + 2) % 3
+                PREV[nat]
             };
+            entry = 3 - nat - swp;
+            fwd = nat == NEXT[entry];
             cur = t;
-            fixed = 0.0;
+            total = 0.0;
             len = 0;
         } else {
             let tri = self.tris[t as usize];
-            let (x, u, w) = (tri[(slot + 2) % 3], tri[slot], tri[(slot + 1) % 3]);
-            for v in [x, u, w] {
-                if self.walk_touch(v, &mut pushes) {
-                    misses += 1.0;
+            let (x, u, v) = (tri[PREV[slot]], tri[slot], tri[NEXT[slot]]);
+            // Three indices and the restart.
+            total = 4.0;
+            for y in [x, u, v] {
+                if self.walk_touch(y, &mut pushes) {
+                    total += w;
                 }
             }
-            self.tmark[t as usize] = self.epoch;
+            self.mark[t as usize] = self.epoch;
             let left = self.b.degree[t as usize] as f32
-                - f32::from(self.is_free(self.nbr[t as usize][slot]));
-            fixed = 3.0 + self.opt.start_penalty * left.max(0.0);
+                - f32::from(self.is_free(self.adj[t as usize].nbr[slot]));
+            total += self.opt.start_penalty * left.max(0.0);
             len = 1;
-            // The strip [x, u, w] leaves across (u, w); the swap edge is {x, w}.
-            (cur, nat, swp) = (t, slot, (slot + 1) % 3);
+            // The strip [x, u, v] leaves across (u, v) without a swap, or across {x, v}
+            // with one: as if entered across (x, u).
+            (cur, entry, fwd) = (t, PREV[slot], true);
         }
         let mut swaps = 0u32;
         let limit = self.opt.max_len as f32;
         loop {
-            let total = fixed + (len + swaps) as f32 + self.opt.miss_weight * misses;
             if len > 0 && total < best.cost * len as f32 {
                 *best = Best {
                     t,
@@ -474,48 +511,47 @@ impl<'a> State<'a> {
             if !record && total - len as f32 >= (best.cost - 1.0) * limit {
                 break;
             }
-            let Some((k, swap)) = self.choose(cur, nat, swp, swaps, pushes) else {
+            let adj = self.adj[cur as usize];
+            let (nat, swp) = if fwd {
+                (NEXT[entry], PREV[entry])
+            } else {
+                (PREV[entry], NEXT[entry])
+            };
+            let Some((k, swap)) = self.choose(&adj, nat, swp, swaps, pushes) else {
                 break;
             };
-            let c = cur as usize;
-            // `cur` was entered across its third slot; its newest vertex is shared by
-            // both exits.
-            let entry = 3 - nat - swp;
-            let n = self.nbr[c][k];
-            let j = self.twin[c][k] as usize;
+            let n = adj.nbr[k];
+            let j = adj.twin[k] as usize;
+            total += 1.0;
             if swap {
                 swaps += 1;
+                total += 1.0;
             }
             if record {
-                // The swap vertex: the exit edge's vertex other than the newest.
-                let p = if swap {
-                    let tri = &self.tris[c];
-                    if k == (entry + 1) % 3 {
-                        tri[(entry + 1) % 3]
-                    } else {
-                        tri[entry]
-                    }
-                } else {
+                // The swap vertex: the exit edge's vertex other than the newest (the
+                // newest, opposite the entry, is on both exits).
+                let p = if !swap {
                     NONE
+                } else if k == NEXT[entry] {
+                    self.tris[cur as usize][k]
+                } else {
+                    self.tris[cur as usize][entry]
                 };
                 self.path.push((n, p));
             }
-            self.tmark[n as usize] = self.epoch;
-            let y = self.tris[n as usize][(j + 2) % 3];
+            self.mark[n as usize] = self.epoch;
+            let y = self.tris[n as usize][PREV[j]];
             // The other two vertices belong to the triangle just fed, so (but for a
             // hit evicted by that triangle's own pushes, which the emission counts
             // exactly) only `y` can miss.
             if self.walk_touch(y, &mut pushes) {
-                misses += 1.0;
+                total += w;
             }
             len += 1;
-            // Entered `n` across its slot j: the newest vertex of `cur` is now the
-            // older of the strip's last two, and fixes which exit of `n` is natural.
-            (nat, swp) = if k == (entry + 1) % 3 {
-                ((j + 2) % 3, (j + 1) % 3)
-            } else {
-                ((j + 1) % 3, (j + 2) % 3)
-            };
+            // Leaving across NEXT[entry], the newest vertex of `cur` starts the edge it
+            // shares with `n` (as `n` runs it), and the next natural exit is PREV[j].
+            fwd = k != NEXT[entry];
+            entry = j;
             cur = n;
         }
     }
@@ -542,11 +578,12 @@ impl<'a> State<'a> {
 
     fn take(&mut self, t: u32) {
         self.b.free[t as usize] = false;
+        self.mark[t as usize] = TAKEN;
         for &v in &self.tris[t as usize] {
             self.vfree[v as usize] -= 1;
         }
         for k in 0..3 {
-            let m = self.nbr[t as usize][k];
+            let m = self.adj[t as usize].nbr[k];
             if self.is_free(m) {
                 let d = self.b.degree[m as usize] - 1;
                 self.b.push_front(m, d);
@@ -588,7 +625,7 @@ impl<'a> State<'a> {
                 }
                 for idx in self.vstart[v as usize]..self.vstart[v as usize + 1] {
                     let t = self.vtris[idx as usize];
-                    if self.b.free[t as usize] {
+                    if self.mark[t as usize] != TAKEN {
                         self.consider(t, &mut best);
                     }
                 }
