@@ -357,6 +357,11 @@ fn group(n: usize) -> String {
     out
 }
 
+/// `text` with XML's special characters escaped, for SVG text and titles.
+fn xml(text: &str) -> String {
+    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
 /// Indices per triangle (x) against acmr16 (y), one point per row, one colour per
 /// stripifier; lower-left is better on both figures.
 fn pareto_svg(rows: &[Row]) -> String {
@@ -393,8 +398,8 @@ fn pareto_svg(rows: &[Row]) -> String {
             px(r.figures.indices_per_triangle),
             py(r.figures.acmr16),
             colours[k],
-            r.model,
-            r.mode,
+            xml(&r.model),
+            xml(r.mode),
             r.figures.indices_per_triangle,
             r.figures.acmr16
         ));
@@ -402,11 +407,12 @@ fn pareto_svg(rows: &[Row]) -> String {
     for (k, n) in names.iter().enumerate() {
         let y = m + 14.0 * k as f64;
         s.push_str(&format!(
-            "<circle cx=\"{}\" cy=\"{y}\" r=\"4\" fill=\"{}\"/><text x=\"{}\" y=\"{}\">{n}</text>\n",
+            "<circle cx=\"{}\" cy=\"{y}\" r=\"4\" fill=\"{}\"/><text x=\"{}\" y=\"{}\">{}</text>\n",
             w - 290.0,
             colours[k % colours.len()],
             w - 282.0,
-            y + 4.0
+            y + 4.0,
+            xml(n)
         ));
     }
     s.push_str("</svg>\n");
