@@ -153,21 +153,23 @@ fn mesh_without_triangles_gives_empty_valid_outputs() {
 
 #[test]
 fn bad_arguments_exit_with_2_and_say_why() {
-    let cases: [(&[&str], &str); 4] = [
+    let cases: [(&[&str], &str); 6] = [
         (&["--cache", "0"], "--cache"),
+        (&["--algo", "balanced", "--max-acmr", "0"], "--max-acmr"),
+        (&["--algo", "balanced", "--max-acmr", "NaN"], "--max-acmr"),
         (&["--restart-index", "7"], "vertex id"),
         (&[], "no/such/folder"),
         (&[], "nothing.ply"),
     ];
     for (i, (extra, needle)) in cases.iter().enumerate() {
         let mut args = vec!["strip".to_string()];
-        if i == 3 {
+        if i == 5 {
             args.push("/no/such/nothing.ply".into());
         } else {
             args.push(spot());
         }
         args.push("-o".into());
-        args.push(if i == 2 {
+        args.push(if i == 4 {
             "/no/such/folder/out.ply".into()
         } else {
             tmp("x.ply").to_string_lossy().into_owned()
@@ -194,6 +196,7 @@ fn help_explains_every_option() {
         "--join",
         "--restart-index",
         "--cache",
+        "--max-acmr",
         "--lru",
         "--json",
         "--output",
@@ -220,4 +223,52 @@ fn gltf_outputs_hold_the_stitched_strip() {
         let check = stripkit::strip::verify_triangles(&tris, &back.triangulate().tris);
         assert!(check.ok(), "{name}: {check}");
     }
+}
+
+#[test]
+fn cache_modes_keep_their_promises_on_spot() {
+    // `cache`: fewer misses than a pure long-strip order with few indices; `balanced`:
+    // the misses per triangle stay under --max-acmr, and a looser bound never costs
+    // indices.
+    let run = |extra: &[&str]| {
+        let out_path = tmp("spot_cache.json");
+        let mut args = vec![
+            "strip",
+            spot_str(),
+            "-o",
+            out_path.to_str().unwrap(),
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let out = stripkit(&args);
+        assert_eq!(out.status.code(), Some(0), "{args:?}");
+        json(&out)
+    };
+    let cache = run(&["--algo", "cache"]);
+    assert_eq!(cache["verified"], true);
+    assert!(cache["acmr16"].as_f64().unwrap() < 0.68, "{cache}");
+    assert!(
+        cache["indices_per_triangle"].as_f64().unwrap() < 1.45,
+        "{cache}"
+    );
+    let mut last = u64::MAX;
+    for bound in ["0.7", "0.8", "0.9"] {
+        let b = run(&["--algo", "balanced", "--max-acmr", bound]);
+        assert_eq!(b["verified"], true);
+        assert!(
+            b["acmr16"].as_f64().unwrap() <= bound.parse::<f64>().unwrap(),
+            "{bound}: {b}"
+        );
+        let indices = b["indices_restart"].as_u64().unwrap();
+        assert!(indices <= last, "{bound}: {indices} > {last}");
+        last = indices;
+    }
+    // A 32-entry cache is tuned for and measured with --cache 32.
+    let c32 = run(&["--algo", "cache", "--cache", "32"]);
+    assert!(c32["acmr"].as_f64().unwrap() < 0.62, "{c32}");
+}
+
+fn spot_str() -> &'static str {
+    static SPOT: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    SPOT.get_or_init(spot)
 }
