@@ -202,11 +202,11 @@ fn strips_run_side_by_side_on_a_torus() {
         "cache {} {}, balanced {} {}",
         c.indices_restart, c.acmr, b.indices_restart, b.acmr
     );
-    assert!(c.acmr < 0.64, "cache acmr16 {}", c.acmr);
+    assert!(c.acmr < 0.62, "cache acmr16 {}", c.acmr);
     assert!(b.acmr < 0.67, "balanced acmr16 {}", b.acmr);
     assert!(b.indices_restart < c.indices_restart);
     assert!(
-        (c.indices_restart as f64) < 1.30 * t,
+        (c.indices_restart as f64) < 1.40 * t,
         "cache {} indices",
         c.indices_restart
     );
