@@ -211,7 +211,7 @@ fn strips_run_side_by_side_on_a_torus() {
         c.indices_restart
     );
     assert!(
-        (b.indices_restart as f64) < 1.21 * t,
+        (b.indices_restart as f64) < 1.23 * t,
         "balanced {} indices",
         b.indices_restart
     );
@@ -294,7 +294,8 @@ fn bunny_figures_beat_meshoptimizer_and_the_old_designs() {
     // meshoptimizer optimize_vertex_cache + stripify on bunny: 120,924 indices at acmr16
     // 0.711 (METRICS.md); issue #4's cache target: at most 0.711 with at most 100,000
     // indices. The previous design (Forsyth scores with strip bonuses): 112,354 at
-    // 0.703 (cache) and 95,591 at 0.798 (balanced).
+    // 0.703 (cache) and 95,591 at 0.798 (balanced). Now about 94,400 at 0.646 and
+    // 89,300 at 0.784.
     let Some(dir) = stripkit::test_support::models_dir() else {
         eprintln!("skipped: no ../shared/models");
         return;
@@ -306,14 +307,17 @@ fn bunny_figures_beat_meshoptimizer_and_the_old_designs() {
     let tris = mesh.triangulate().tris;
     let (_, c) = check(&tris, mesh.vertex_count(), &CacheOptions::cache(16));
     assert!(
-        c.acmr <= 0.66 && c.indices_restart <= 98_000,
+        c.acmr <= 0.66 && c.indices_restart <= 95_000,
         "cache {} at {}",
         c.indices_restart,
         c.acmr
     );
-    let (_, b) = check(&tris, mesh.vertex_count(), &CacheOptions::balanced(16));
+    let (strips, _, _) =
+        cache::stripify_within(&tris, mesh.vertex_count(), &CacheOptions::balanced(16), 0.8);
+    let b = metrics::figures(&tris, &strips, CacheModel::fifo(16));
+    assert!(b.verified);
     assert!(
-        b.acmr <= 0.78 && b.indices_restart <= 91_000,
+        b.acmr <= 0.80 && b.indices_restart <= 90_000,
         "balanced {} at {}",
         b.indices_restart,
         b.acmr
@@ -402,7 +406,8 @@ fn the_bounded_search_keeps_any_reachable_bound() {
     // An unreachable bound gives the last try's strips, still verified.
     let (strips, weight, _) = cache::stripify_within(&tris, vc, &CacheOptions::balanced(16), 0.1);
     assert!(metrics::figures(&tris, &strips, CacheModel::fifo(16)).verified);
-    assert!(weight > 3.0);
+    // Seven growths of a quarter from the first weight.
+    assert!((weight - 0.5 * 1.25f32.powi(7)).abs() < 1e-3, "{weight}");
 }
 
 mod soups {
