@@ -211,13 +211,14 @@ struct State<'a> {
     opt: CacheOptions,
     /// Free triangles by free degree (the greedy stripifier's buckets).
     b: Buckets,
-    /// Vertex -> incident triangles (CSR) and the free ones left around each vertex.
+    /// Vertex -> incident triangles (CSR).
     vstart: Vec<u32>,
     vtris: Vec<u32>,
-    vfree: Vec<u32>,
-    /// Per vertex: FIFO push time (NONE: never), the epoch of the walk that pushed it
-    /// in its private copy of the FIFO, and that walk's push count then.
-    vs: Vec<[u32; 3]>,
+    /// Per vertex, in one record: [0] FIFO push time (NONE: never); [1] the epoch of the
+    /// walk that pushed it in its private copy of the FIFO and [2] that walk's push
+    /// count then; [3] the epoch of the walk that counted [4] of its free triangles as
+    /// covered; [5] its free triangles.
+    vs: Vec<[u32; 6]>,
     /// The FIFO: the last `cache_size` pushes by `time % cache_size`, and the pushes.
     ring: Vec<u32>,
     time: u32,
@@ -233,8 +234,6 @@ struct State<'a> {
     path: Vec<(u32, u32)>,
     /// The last triangle of the last strip (NONE before the first).
     last: u32,
-    /// Per vertex: the walk epoch and how many of its free triangles that walk covers.
-    vc: Vec<[u32; 2]>,
     /// `opt.finish_bonus`.
     finish: f32,
 
@@ -322,8 +321,7 @@ impl<'a> State<'a> {
             b,
             vstart,
             vtris,
-            vfree,
-            vs: vec![[NONE, 0, 0]; vcount],
+            vs: vfree.iter().map(|&f| [NONE, 0, 0, 0, 0, f]).collect(),
             ring: vec![NONE; opt.cache_size as usize],
             time: 0,
             mark: degenerate
@@ -336,7 +334,6 @@ impl<'a> State<'a> {
             min_cached: 0,
             path: Vec::with_capacity(64),
             last: NONE,
-            vc: vec![[0, 0]; vcount],
             finish: opt.finish_bonus,
             out,
         }
@@ -366,7 +363,7 @@ impl<'a> State<'a> {
     #[inline]
     fn cached_after(&self, v: u32, pushes: u32) -> bool {
         let c = self.opt.cache_size;
-        let [s, mark, local] = self.vs[v as usize];
+        let [s, mark, local, ..] = self.vs[v as usize];
         if mark == self.epoch {
             return pushes - local <= c;
         }
@@ -459,7 +456,10 @@ impl<'a> State<'a> {
             for m in self.mark.iter_mut().filter(|m| **m != TAKEN) {
                 *m = 0;
             }
-            self.vs.iter_mut().for_each(|x| x[1] = 0);
+            self.vs.iter_mut().for_each(|x| {
+                x[1] = 0;
+                x[3] = 0;
+            });
             self.epoch = 1;
         }
         let mut pushes = 0;
@@ -583,12 +583,18 @@ impl<'a> State<'a> {
     /// was its last one.
     #[inline]
     fn cover(&mut self, v: u32) -> f32 {
-        let e = &mut self.vc[v as usize];
-        if e[0] != self.epoch {
-            *e = [self.epoch, 0];
+        let epoch = self.epoch;
+        let e = &mut self.vs[v as usize];
+        if e[3] != epoch {
+            e[3] = epoch;
+            e[4] = 0;
         }
-        e[1] += 1;
-        if e[1] == self.vfree[v as usize] { 1.0 } else { 0.0 }
+        e[4] += 1;
+        if e[4] == e[5] {
+            1.0
+        } else {
+            0.0
+        }
     }
 
     /// Offers every exit of free triangle `t` (once per round).
@@ -615,7 +621,7 @@ impl<'a> State<'a> {
         self.b.free[t as usize] = false;
         self.mark[t as usize] = TAKEN;
         for &v in &self.tris[t as usize] {
-            self.vfree[v as usize] -= 1;
+            self.vs[v as usize][5] -= 1;
         }
         for k in 0..3 {
             let m = self.adj[t as usize].nbr[k];
@@ -655,7 +661,7 @@ impl<'a> State<'a> {
             let live = c.min(self.time);
             for i in (live.saturating_sub(self.opt.scan_entries)..live).rev() {
                 let v = self.ring[((self.time - 1 - i) % c) as usize];
-                if self.vfree[v as usize] == 0 {
+                if self.vs[v as usize][5] == 0 {
                     continue;
                 }
                 for idx in self.vstart[v as usize]..self.vstart[v as usize + 1] {
