@@ -69,10 +69,13 @@ const CHOICE_MIN: u32 = 3;
 #[derive(Default)]
 struct QuadHeap {
     items: Vec<Entry>,
+    /// Pushes since the last `retain`.
+    pushes: usize,
 }
 
 impl QuadHeap {
     fn push(&mut self, e: Entry) {
+        self.pushes += 1;
         let mut i = self.items.len();
         self.items.push(e);
         while i > 0 {
@@ -164,7 +167,7 @@ struct State {
     /// Weight of the fan distance in the cost.
     fan_weight: f64,
     /// Scratch buffer of `gather_ring`.
-    ring: Vec<[V3; 2]>,
+    ring: Vec<RingTri>,
     tris: Vec<[u32; 3]>,
     tri_alive: Vec<bool>,
     ancestor_normal: Vec<V3>,
@@ -217,12 +220,14 @@ impl State {
     ///
     /// The cost of a placement p is the area-averaged quadric error at p plus
     /// `fan_weight` times the fan distance: the largest squared distance of u's and
-    /// v's current positions to the triangles around p after the collapse. Quadrics
-    /// measure distances to planes, not to triangles: on a thin fin or an ear the
-    /// faces of both sides are nearly parallel, so moving the tip inwards within them
-    /// costs almost nothing, and the surface there is eaten away. The fan distance is
-    /// what the collapse actually leaves behind. Every placement (both ends, the
-    /// midpoint, the minimiser) is costed this way and the cheapest taken.
+    /// v's current positions to the triangles around p after the collapse, and of p
+    /// to the triangles around u and v before it. Quadrics measure distances to
+    /// planes, not to triangles: on a thin fin or an ear the faces of both sides are
+    /// nearly parallel, so moving the tip inwards within them costs almost nothing,
+    /// and the surface there is eaten away; and p can sit on a plane's extension far
+    /// from its face. The fan distance is what the collapse actually does, both ways.
+    /// Every placement (both ends, the midpoint, the minimiser) is costed this way and
+    /// the cheapest taken.
     ///
     /// Without `exact` only the quadric part is computed (no fan distance), a lower
     /// bound of the exact cost; the heap is keyed by such bounds until an entry
@@ -317,20 +322,23 @@ impl State {
         q.eval(p) * self.scale(u, v) + self.fan_weight * fan
     }
 
-    /// The outer edges (a, b) of the triangles around u and v that survive their
-    /// collapse: the new fan is these edges joined to the new position. In
-    /// `self.ring`'s buffer, taken out of it.
-    fn gather_ring(&mut self, u: u32, v: u32) -> Vec<[V3; 2]> {
+    /// The triangles around u and v (the new fan is those the collapse keeps, with u
+    /// and v moved to the new position), in `self.ring`'s buffer, taken out of it.
+    fn gather_ring(&mut self, u: u32, v: u32) -> Vec<RingTri> {
         let mut ring = std::mem::take(&mut self.ring);
         ring.clear();
-        for (w, other) in [(u, v), (v, u)] {
+        for (w, other, centre) in [(u, v, 0u8), (v, u, 1)] {
             for i in self.tris_of(w) {
                 let t = self.refs[i] as usize;
-                if !self.tri_alive[t] || self.tris[t].contains(&other) {
-                    continue; // dead, or removed by the collapse
+                if !self.tri_alive[t] {
+                    continue;
+                }
+                let removed = self.tris[t].contains(&other);
+                if removed && centre == 1 {
+                    continue; // seen from u
                 }
                 let (a, b) = others_of(self.tris[t], w);
-                ring.push([self.pos[a as usize], self.pos[b as usize]]);
+                ring.push(RingTri { a: self.pos[a as usize], b: self.pos[b as usize], centre, removed });
             }
         }
         ring
@@ -588,28 +596,57 @@ fn others_of(tri: [u32; 3], v: u32) -> Vec2 {
     (tri[(j + 1) % 3], tri[(j + 2) % 3])
 }
 
+/// A triangle around a collapsing edge: its corners other than the edge's end
+/// `centre` (0 for u, 1 for v), and whether the collapse removes it.
+#[derive(Clone, Copy)]
+struct RingTri {
+    a: V3,
+    b: V3,
+    centre: u8,
+    removed: bool,
+}
+
 /// The fan distance of moving both ends of an edge (at `ends`) to p: the largest
-/// squared distance of either end to the fan of triangles (p, a, b) over the `ring`
-/// edges (a, b); an end at p counts as 0. Stops early, returning more than `bound`,
-/// once the result is certain to exceed it.
-fn fan_distance2(ring: &[[V3; 2]], ends: [V3; 2], p: V3, bound: f64) -> f64 {
+/// squared distance of either end to the new triangles around p, and of p to the old
+/// triangles around the ends (a local one-sided Hausdorff distance each way). Stops
+/// early, returning more than `bound`, once the result is certain to exceed it.
+fn fan_distance2(ring: &[RingTri], ends: [V3; 2], p: V3, bound: f64) -> f64 {
+    // Each end is likely nearest to the triangles that were its own (u's come first
+    // in `ring`, v's last), and p to the triangles the collapse removes: those are
+    // scanned first, for the early exits.
     let mut worst = 0.0f64;
-    for x in ends {
+    for (end, x) in ends.into_iter().enumerate() {
         if x == p {
             continue;
         }
         let mut d = f64::INFINITY;
-        for &[a, b] in ring {
-            d = d.min(point_triangle_distance2(x, &[p, a, b]));
-            if d <= worst {
-                break;
+        for i in 0..ring.len() {
+            let t = &ring[if end == 0 { i } else { ring.len() - 1 - i }];
+            if !t.removed {
+                d = d.min(point_triangle_distance2(x, &[p, t.a, t.b]));
+                if d <= worst {
+                    break;
+                }
             }
         }
         if d.is_finite() {
             worst = worst.max(d);
         }
         if worst > bound {
-            break;
+            return worst;
+        }
+    }
+    if p != ends[0] && p != ends[1] {
+        let mut d = f64::INFINITY;
+        let removed_first = ring.iter().filter(|t| t.removed).chain(ring.iter().filter(|t| !t.removed));
+        for t in removed_first {
+            d = d.min(point_triangle_distance2(p, &[ends[t.centre as usize], t.a, t.b]));
+            if d <= worst {
+                break;
+            }
+        }
+        if d.is_finite() {
+            worst = worst.max(d);
         }
     }
     worst
@@ -872,14 +909,17 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
         // Most popped entries would be stale (every collapse outdates the entries of
         // both vertices' edges); dropping them in bulk with a linear pass is much
         // cheaper than popping each one through the cache-missing sift-down. Only
-        // entries that a pop would skip anyway go, so the result is unchanged.
-        if st.heap.items.len() > 3 * live + 4096 {
+        // entries that a pop would skip anyway go, so the result is unchanged. (Only
+        // once a quarter of the heap was pushed since the last pass: linear time
+        // overall even where most entries stay valid, as with many pairs.)
+        if st.heap.items.len() > 2 * live + 4096 && 4 * st.heap.pushes >= st.heap.items.len() {
             let State { heap, alive, version, .. } = &mut st;
             heap.retain(|e| {
                 alive[e.removed as usize]
                     && alive[e.kept as usize]
                     && tag(version[e.removed as usize], version[e.kept as usize], (e.tag & 3) as u8) == e.tag & !CHOICE_MASK
             });
+            st.heap.pushes = 0;
         }
         if st.refs.len() > 4 * initial_refs.max(1024) {
             st.compact();
