@@ -114,8 +114,8 @@ fn thin_fin_keeps_its_outline() {
     // A closed disc 0.06 thick with a wavy outline of radius 0.7 to 1.3: its two sides'
     // planes are nearly parallel, so plane quadrics alone barely notice the rim being
     // eaten away (before the fan distance and crease planes: Hausdorff 0.021 / 0.0053
-    // at 3% and 0.040 / 0.059 at 1%, endpoint / optimal; now 0.0031 / 0.0015 and
-    // 0.016 / 0.013).
+    // at 3% and 0.040 / 0.059 at 1%, endpoint / optimal; now 0.0031 / 0.0018 and
+    // 0.016 / 0.0084).
     let mesh = sphere(5, |d| {
         let rim = 1.0 + 0.3 * (3.0 * d[1].atan2(d[0])).cos();
         1.0 / ((d[0] * d[0] + d[1] * d[1]) / (rim * rim) + (d[2] / 0.03).powi(2)).sqrt()

@@ -31,7 +31,8 @@ pub struct Args {
     pub triangles: Option<usize>,
     /// Collapse while the cheapest collapse costs at most this much: a squared distance
     /// (the mean squared distance to the original planes under the merged vertices,
-    /// plus 0.1 to 0.2 times the squared distance the collapse moves the surface).
+    /// plus 0.1 to 0.2 times the largest squared distance the collapse moves the
+    /// surface locally).
     #[arg(long)]
     pub error: Option<f64>,
     /// Survivor placement: `endpoint` keeps input positions (and ids), `optimal`

@@ -8,10 +8,10 @@
 //! * A collapse costs its quadric error divided by the face area in its quadric (an
 //!   area-averaged squared distance, so small features are not cheap to remove) plus
 //!   a weighted *fan distance*: the largest squared distance of the edge's two current
-//!   positions to the triangles around the new position. Quadrics measure distances
-//!   to planes, not triangles, and miss a tip that retreats within the nearly
-//!   parallel planes of a thin part; the fan distance is what the collapse leaves
-//!   behind.
+//!   positions to the triangles around the new position, and of the new position to
+//!   the triangles around the two old ones. Quadrics measure distances to planes, not
+//!   triangles, and miss a tip that retreats within the nearly parallel planes of a
+//!   thin part; the fan distance is what the collapse does to the surface, both ways.
 //! * Candidates sit in a 4-ary min-heap with lazy invalidation (a vertex version stamp
 //!   per endpoint), keyed by the quadric part (a lower bound) until they reach the top,
 //!   where the fan distance is added and they are queued again if no longer the
