@@ -29,8 +29,10 @@ pub struct Args {
     /// Keep at most this many triangles.
     #[arg(long)]
     pub triangles: Option<usize>,
-    /// Collapse while the cheapest collapse costs at most this quadric error (sum of
-    /// squared distances to the original planes, weighted by their area).
+    /// Collapse while the cheapest collapse costs at most this much: a squared distance
+    /// (the mean squared distance to the original planes under the merged vertices,
+    /// plus 0.1 to 0.2 times the largest squared distance the collapse moves the
+    /// surface locally).
     #[arg(long)]
     pub error: Option<f64>,
     /// Survivor placement: `endpoint` keeps input positions (and ids), `optimal`

@@ -2,16 +2,27 @@
 //! collapse sequence, the input of the multiresolution strip models in [`crate::lod`].
 //!
 //! * Per-vertex quadrics from area-weighted face planes; boundary edges add penalty
-//!   planes perpendicular to their face, so borders keep their shape.
-//! * Candidates sit in a 4-ary min-heap keyed by error with lazy invalidation (a vertex
-//!   version stamp per endpoint), O(n log n) overall.
+//!   planes perpendicular to their face, so borders keep their shape, and so do
+//!   crease edges (faces folded by more than about 107 degrees: fin rims, ear edges)
+//!   through each of their faces.
+//! * A collapse costs its quadric error divided by the face area in its quadric (an
+//!   area-averaged squared distance, so small features are not cheap to remove) plus
+//!   a weighted *fan distance*: the largest squared distance of the edge's two current
+//!   positions to the triangles around the new position, and of the new position to
+//!   the triangles around the two old ones. Quadrics measure distances to planes, not
+//!   triangles, and miss a tip that retreats within the nearly parallel planes of a
+//!   thin part; the fan distance is what the collapse does to the surface, both ways.
+//! * Candidates sit in a 4-ary min-heap with lazy invalidation (a vertex version stamp
+//!   per endpoint), keyed by the quadric part (a lower bound) until they reach the top,
+//!   where the fan distance is added and they are queued again if no longer the
+//!   cheapest; O(n log n) overall.
 //! * A collapse is refused when it would flip a triangle (against its current normal or
 //!   its ancestor's in the input), make it degenerate, break the link condition
 //!   (non-manifold result), pinch a boundary or duplicate a triangle.
 //! * [`Placement::Endpoint`] is a half-edge collapse: the removed vertex moves onto the
 //!   kept one, no new positions (what LoD strips need). [`Placement::Optimal`] puts the
-//!   survivor at the quadric's minimiser, or at the best of both ends and the midpoint
-//!   when that system is singular.
+//!   survivor at the cheapest (by the cost above) of the quadric's minimiser, both
+//!   ends and the midpoint.
 //!
 //! Every collapse is recorded in a [`CollapseSequence`]; [`CollapseSequence::replay`]
 //! of its first `k` records rebuilds exactly the simplifier's mesh after `k` collapses.
@@ -34,8 +45,8 @@ pub enum Placement {
     /// id and position.
     #[default]
     Endpoint,
-    /// The point minimising the summed quadric (fallback: best of the two ends and
-    /// their midpoint).
+    /// The cheapest of the point minimising the summed quadric, the two ends and
+    /// their midpoint.
     Optimal,
 }
 
@@ -46,7 +57,9 @@ pub enum Target {
     Ratio(f64),
     /// Keep at most this many triangles.
     Triangles(usize),
-    /// Collapse while the cheapest collapse costs at most this quadric error.
+    /// Collapse while the cheapest collapse costs at most this much (a squared
+    /// distance: the area-averaged quadric error plus the weighted fan distance, see
+    /// the module documentation).
     Error(f64),
 }
 

@@ -16,7 +16,8 @@ pub struct Collapse {
     /// The surviving vertex's position after the collapse (its own position for the
     /// `endpoint` placement).
     pub position: [f32; 3],
-    /// The quadric error of the collapse (sum of area-weighted squared distances).
+    /// The cost of the collapse, a squared distance (area-averaged quadric error plus
+    /// the weighted fan distance; see [`crate::simplify`]).
     pub error: f64,
 }
 
