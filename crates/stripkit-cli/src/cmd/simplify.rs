@@ -13,7 +13,8 @@ pub enum PlacementArg {
     /// Half-edge collapse: the removed vertex moves onto the kept one; no new
     /// positions (what level-of-detail strips need).
     Endpoint,
-    /// The quadric's minimiser (best of both ends and the midpoint when singular).
+    /// The cheapest of the quadric's minimiser, both ends and their midpoint (new
+    /// positions; the surface stays closer to the input).
     Optimal,
 }
 
@@ -36,7 +37,8 @@ pub struct Args {
     #[arg(long)]
     pub error: Option<f64>,
     /// Survivor placement: `endpoint` keeps input positions (and ids), `optimal`
-    /// moves the survivor to the quadric's minimiser.
+    /// moves the survivor to the cheapest of the quadric's minimiser, the two ends and
+    /// their midpoint.
     #[arg(long, value_enum, default_value = "endpoint")]
     pub placement: PlacementArg,
     /// Weight of the boundary penalty planes (0 lets borders move freely).
