@@ -296,8 +296,8 @@ fn bunny_figures_beat_meshoptimizer_and_the_old_designs() {
     // indices. The previous design (Forsyth scores with strip bonuses): 112,354 at
     // 0.703 (cache) and 95,591 at 0.798 (balanced). Now about 94,400 at 0.646 and
     // 89,300 at 0.784.
+    // models_dir prints why it skips.
     let Some(dir) = stripkit::test_support::models_dir() else {
-        eprintln!("skipped: no ../shared/models");
         return;
     };
     let Ok(mesh) = stripkit::mesh::io::read(&dir.join("bunny.obj")) else {
@@ -326,8 +326,8 @@ fn bunny_figures_beat_meshoptimizer_and_the_old_designs() {
 
 #[test]
 fn research_meshes_are_verified_in_both_modes() {
+    // models_dir prints why it skips.
     let Some(dir) = stripkit::test_support::models_dir() else {
-        eprintln!("skipped: no ../shared/models");
         return;
     };
     for name in [

@@ -139,12 +139,13 @@ pub fn stripify_within(
     options: &CacheOptions,
     max_acmr: f64,
 ) -> (StripSet, f32, f64) {
-    let graph = DualGraph::from_triangles(tris, vertex_count.max(vertex_bound(tris)));
+    // The dual graph raises the vertex count itself for larger indices.
+    let graph = DualGraph::from_triangles(tris, vertex_count);
+    let triangles = tris.iter().filter(|t| !is_degenerate(t)).count();
     let mut o = *options;
     for attempt in 0..8 {
         let mut s = State::new(tris, Some(&graph), vertex_count, &o);
         s.run();
-        let triangles = tris.iter().filter(|t| !is_degenerate(t)).count();
         // The simulated FIFO is the measured one: its pushes are the misses.
         let acmr = if triangles == 0 {
             0.0
@@ -225,17 +226,14 @@ struct State<'a> {
     /// TAKEN for triangles in strips, else the epoch of the last walk through them.
     mark: Vec<u32>,
     epoch: u32,
-    /// Candidate triangles already tried for the current strip (round `round`), and
-    /// the `min_cached` filter of the round.
+    /// Candidate triangles already tried for the current strip (round `round`).
     smark: Vec<u32>,
     round: u32,
-    min_cached: u32,
-    /// The chosen walk after its first triangle: (triangle, swap vertex or NONE).
-    path: Vec<(u32, u32)>,
+    /// The chosen walk after its first triangle: (triangle, swap vertex or NONE, the
+    /// triangle's new vertex).
+    path: Vec<(u32, u32, u32)>,
     /// The last triangle of the last strip (NONE before the first).
     last: u32,
-    /// `opt.finish_bonus`.
-    finish: f32,
 
     out: StripSet,
 }
@@ -331,10 +329,8 @@ impl<'a> State<'a> {
             epoch: 0,
             smark: vec![0; n],
             round: 0,
-            min_cached: 0,
             path: Vec::with_capacity(64),
             last: NONE,
-            finish: opt.finish_bonus,
             out,
         }
     }
@@ -394,24 +390,24 @@ impl<'a> State<'a> {
         self.time = self.time.wrapping_add(1);
     }
 
+    /// The first triangle of a strip that leaves `t` across `slot`, rotated so that
+    /// the strip's last two indices are that edge.
+    #[inline]
+    fn start(&self, t: u32, slot: usize) -> [u32; 3] {
+        let tri = self.tris[t as usize];
+        [tri[PREV[slot]], tri[slot], tri[NEXT[slot]]]
+    }
+
     /// The slot of `t` whose edge is `{a, b}`.
     #[inline]
     fn slot_of(&self, t: u32, a: u32, b: u32) -> usize {
         let tri = &self.tris[t as usize];
         (0..3)
             .find(|&k| {
-                let (x, y) = (tri[k], tri[(k + 1) % 3]);
+                let (x, y) = (tri[k], tri[NEXT[k]]);
                 (x == a && y == b) || (x == b && y == a)
             })
             .unwrap_or(0)
-    }
-
-    #[inline]
-    fn third(&self, t: u32, a: u32, b: u32) -> u32 {
-        let tri = self.tris[t as usize];
-        tri.into_iter()
-            .find(|&v| v != a && v != b)
-            .unwrap_or(tri[0])
     }
 
     /// The exit a walk at `cur` takes, given its natural exit `nat` (no swap) and its
@@ -487,7 +483,7 @@ impl<'a> State<'a> {
             len = 0;
         } else {
             let tri = self.tris[t as usize];
-            let (x, u, v) = (tri[PREV[slot]], tri[slot], tri[NEXT[slot]]);
+            let [x, u, v] = self.start(t, slot);
             // Three indices and the restart.
             total = 4.0;
             for y in [x, u, v] {
@@ -496,9 +492,9 @@ impl<'a> State<'a> {
                 }
             }
             self.mark[t as usize] = self.epoch;
-            if self.finish != 0.0 {
+            if self.opt.finish_bonus != 0.0 {
                 for v in tri {
-                    total -= self.finish * self.cover(v);
+                    total -= self.opt.finish_bonus * self.cover(v);
                 }
             }
             let left = self.b.degree[t as usize] as f32
@@ -544,6 +540,8 @@ impl<'a> State<'a> {
                 swaps += 1;
                 total += 1.0;
             }
+            self.mark[n as usize] = self.epoch;
+            let y = self.tris[n as usize][PREV[j]];
             if record {
                 // The swap vertex: the exit edge's vertex other than the newest (the
                 // newest, opposite the entry, is on both exits).
@@ -554,20 +552,18 @@ impl<'a> State<'a> {
                 } else {
                     self.tris[cur as usize][entry]
                 };
-                self.path.push((n, p));
+                self.path.push((n, p, y));
             }
-            self.mark[n as usize] = self.epoch;
-            let y = self.tris[n as usize][PREV[j]];
             // The other two vertices belong to the triangle just fed, so (but for a
             // hit evicted by that triangle's own pushes, which the emission counts
             // exactly) only `y` can miss.
             if self.walk_touch(y, &mut pushes) {
                 total += w;
             }
-            if self.finish != 0.0 {
+            if self.opt.finish_bonus != 0.0 {
                 let tri = self.tris[n as usize];
                 for v in tri {
-                    total -= self.finish * self.cover(v);
+                    total -= self.opt.finish_bonus * self.cover(v);
                 }
             }
             len += 1;
@@ -597,18 +593,19 @@ impl<'a> State<'a> {
         }
     }
 
-    /// Offers every exit of free triangle `t` (once per round).
-    fn consider(&mut self, t: u32, best: &mut Best) {
+    /// Offers every exit of free triangle `t` (once per round) when at least
+    /// `min_cached` of its vertices are cached.
+    fn consider(&mut self, t: u32, min_cached: u32, best: &mut Best) {
         if self.smark[t as usize] == self.round {
             return;
         }
         self.smark[t as usize] = self.round;
-        if self.min_cached > 0 {
+        if min_cached > 0 {
             let cached = self.tris[t as usize]
                 .iter()
                 .filter(|&&v| self.cached_now(v))
                 .count() as u32;
-            if cached < self.min_cached {
+            if cached < min_cached {
                 return;
             }
         }
@@ -656,7 +653,6 @@ impl<'a> State<'a> {
             }
             // Oldest entries first: a strip beside the start of the previous one is
             // usually the best, and finding it early cuts the other walks short.
-            self.min_cached = self.opt.min_cached;
             let c = self.opt.cache_size;
             let live = c.min(self.time);
             for i in (live.saturating_sub(self.opt.scan_entries)..live).rev() {
@@ -667,16 +663,15 @@ impl<'a> State<'a> {
                 for idx in self.vstart[v as usize]..self.vstart[v as usize + 1] {
                     let t = self.vtris[idx as usize];
                     if self.mark[t as usize] != TAKEN {
-                        self.consider(t, &mut best);
+                        self.consider(t, self.opt.min_cached, &mut best);
                     }
                 }
             }
-            self.min_cached = 0;
             if best.t == NONE {
                 match self.b.lowest() {
                     Some(t) => {
                         self.next_round();
-                        self.consider(t, &mut best);
+                        self.consider(t, 0, &mut best);
                     }
                     None => break,
                 }
@@ -703,8 +698,7 @@ impl<'a> State<'a> {
             let n = self.out.indices.len();
             (a, b) = (self.out.indices[n - 2], self.out.indices[n - 1]);
         } else {
-            let tri = self.tris[t as usize];
-            let (x, u, w) = (tri[(slot + 2) % 3], tri[slot], tri[(slot + 1) % 3]);
+            let [x, u, w] = self.start(t, slot);
             self.take(t);
             self.out.indices.extend_from_slice(&[x, u, w]);
             self.touch(x);
@@ -714,16 +708,13 @@ impl<'a> State<'a> {
         }
         self.last = t;
         for i in 0..self.path.len() {
-            let (n, p) = self.path[i];
-            let y = if p != NONE {
+            let (n, p, y) = self.path[i];
+            if p != NONE {
                 // [.., a, b] -> [.., a, p, b]: the last triangle decodes the same and
                 // the strip now ends on its edge {p, b}.
                 self.out.indices.pop();
                 self.out.indices.extend_from_slice(&[p, b]);
-                self.third(n, p, b)
-            } else {
-                self.third(n, a, b)
-            };
+            }
             self.take(n);
             self.out.indices.push(y);
             // The decoded order of the new triangle (the two old vertices are hits
@@ -755,16 +746,8 @@ mod tests {
     use crate::strip::{decode, verify};
 
     fn grid(w: u32, h: u32) -> (Vec<[u32; 3]>, usize) {
-        let mut tris = Vec::new();
-        for y in 0..h {
-            for x in 0..w {
-                let a = y * (w + 1) + x;
-                let (b, c) = (a + 1, a + w + 1);
-                tris.push([a, b, c + 1]);
-                tris.push([a, c + 1, c]);
-            }
-        }
-        (tris, ((w + 1) * (h + 1)) as usize)
+        let mesh = crate::gen::grid(w, h);
+        (mesh.triangulate().tris, mesh.vertex_count())
     }
 
     #[test]
