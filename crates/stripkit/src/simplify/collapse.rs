@@ -252,16 +252,10 @@ impl State {
             add((cv, u, v, pv));
         }
         if self.placement == Placement::Optimal {
-            let edge = norm(sub(pu, pv));
-            let mid = round([(pu[0] + pv[0]) * 0.5, (pu[1] + pv[1]) * 0.5, (pu[2] + pv[2]) * 0.5]);
+            let mid = midpoint(pu, pv);
             add((q.eval(mid) * scale, u, v, mid));
-            if let Some(p) = q.minimizer() {
-                // A nearly singular system can put the minimiser far away; keep it
-                // near the edge.
-                if norm(sub(p, mid)) <= MAX_OPTIMAL_OFFSET * edge.max(f64::MIN_POSITIVE) {
-                    let p = round(p);
-                    add((q.eval(p) * scale, u, v, p));
-                }
+            if let Some(p) = minimizer_near(&q, pu, pv) {
+                add((q.eval(p) * scale, u, v, p));
             }
         }
         let cands = &mut cands[..nc];
@@ -300,16 +294,10 @@ impl State {
     fn position_of(&self, r: u32, k: u32, choice: u32) -> Option<V3> {
         let (u, v) = (r.min(k), r.max(k));
         let (pu, pv) = (self.pos[u as usize], self.pos[v as usize]);
-        let mid = round([(pu[0] + pv[0]) * 0.5, (pu[1] + pv[1]) * 0.5, (pu[2] + pv[2]) * 0.5]);
         match choice {
             CHOICE_END => Some(self.pos[k as usize]),
-            CHOICE_MID => Some(mid),
-            _ => {
-                let q = self.quadric[u as usize].sum(&self.quadric[v as usize]);
-                let p = q.minimizer()?;
-                let edge = norm(sub(pu, pv));
-                (norm(sub(p, mid)) <= MAX_OPTIMAL_OFFSET * edge.max(f64::MIN_POSITIVE)).then(|| round(p))
-            }
+            CHOICE_MID => Some(midpoint(pu, pv)),
+            _ => minimizer_near(&self.quadric[u as usize].sum(&self.quadric[v as usize]), pu, pv),
         }
     }
 
@@ -650,6 +638,20 @@ fn fan_distance2(ring: &[RingTri], ends: [V3; 2], p: V3, bound: f64) -> f64 {
         }
     }
     worst
+}
+
+/// The midpoint of an edge, rounded to f32 like every stored position.
+fn midpoint(pu: V3, pv: V3) -> V3 {
+    round([(pu[0] + pv[0]) * 0.5, (pu[1] + pv[1]) * 0.5, (pu[2] + pv[2]) * 0.5])
+}
+
+/// The minimiser of `q` for the edge (pu, pv), rounded to f32; none when the system
+/// is singular, or nearly so and the point lies more than `MAX_OPTIMAL_OFFSET` edge
+/// lengths from the edge's midpoint.
+fn minimizer_near(q: &Quadric, pu: V3, pv: V3) -> Option<V3> {
+    let p = q.minimizer()?;
+    let edge = norm(sub(pu, pv));
+    (norm(sub(p, midpoint(pu, pv))) <= MAX_OPTIMAL_OFFSET * edge.max(f64::MIN_POSITIVE)).then(|| round(p))
 }
 
 fn round(p: V3) -> V3 {
