@@ -264,10 +264,12 @@ mod dual_graph_oracle {
     use stripkit::topology::{DualGraph, NO_NEIGHBOR};
 
     /// The definition, by brute force: `t` and `u` are neighbours across `t`'s edge
-    /// `j` when exactly two non-degenerate triangle edges lie on that undirected edge
-    /// and the other one is `u`'s, running the opposite way.
+    /// `j` when `u` runs that edge the opposite way and the two have the same rank
+    /// (by triangle id) among the non-degenerate triangles running the edge their
+    /// own way (a manifold edge: both rank 0; a non-manifold edge pairs up in order).
     fn brute(tris: &[[u32; 3]]) -> DualGraph {
         let deg = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+        let runs = |u: &[u32; 3], a: u32, b: u32| (0..3).any(|k| (u[k], u[(k + 1) % 3]) == (a, b));
         let mut neighbors = vec![[NO_NEIGHBOR; 3]; tris.len()];
         for (ti, t) in tris.iter().enumerate() {
             if deg(t) {
@@ -275,26 +277,11 @@ mod dual_graph_oracle {
             }
             for j in 0..3 {
                 let (a, b) = (t[j], t[(j + 1) % 3]);
-                let mut on_edge = 0;
-                let mut opposite = None;
-                for (ui, u) in tris.iter().enumerate() {
-                    if deg(u) {
-                        continue;
-                    }
-                    for k in 0..3 {
-                        let (x, y) = (u[k], u[(k + 1) % 3]);
-                        if (x, y) == (a, b) || (x, y) == (b, a) {
-                            on_edge += 1;
-                            if (x, y) == (b, a) {
-                                opposite = Some(ui as u32);
-                            }
-                        }
-                    }
-                }
-                if on_edge == 2 {
-                    if let Some(u) = opposite {
-                        neighbors[ti][j] = u;
-                    }
+                let same: Vec<usize> = (0..tris.len()).filter(|&u| !deg(&tris[u]) && runs(&tris[u], a, b)).collect();
+                let other: Vec<usize> = (0..tris.len()).filter(|&u| !deg(&tris[u]) && runs(&tris[u], b, a)).collect();
+                let rank = same.iter().position(|&u| u == ti).expect("t runs its own edge");
+                if let Some(&u) = other.get(rank) {
+                    neighbors[ti][j] = u as u32;
                 }
             }
         }

@@ -145,8 +145,12 @@ pub struct DualGraph {
 }
 
 impl DualGraph {
-    /// Builds the dual graph: neighbours across edges that exactly two triangles run,
-    /// in opposite directions. Degenerate triangles (a repeated index) get no
+    /// Builds the dual graph: neighbours across edges that two triangles run in
+    /// opposite directions. On a non-manifold edge (three or more triangles) the
+    /// triangles running it one way are paired, in input order, with those running it
+    /// the other way, as far as they go: a strip may cross such an edge between the
+    /// two triangles of a pair, and every pair still meets the strip rule's winding.
+    /// Degenerate triangles (a repeated index) get no
     /// neighbours and take no part in other triangles' edges. Indices at or above
     /// `vertex_count` are tolerated (the count is raised to cover them).
     ///
@@ -207,9 +211,14 @@ impl DualGraph {
                 while k < bucket.len() && hi(bucket[k]) == hi(bucket[i]) {
                     k += 1;
                 }
-                if k == i + 2 && (bucket[i] & 1) != (bucket[i + 1] & 1) {
-                    let c = (bucket[i] & 0xFFFF_FFFF) >> 1;
-                    let d = (bucket[i + 1] & 0xFFFF_FFFF) >> 1;
+                // The j-th corner running the edge one way (by corner id) pairs with
+                // the j-th running it the other way.
+                let group = &bucket[i..k];
+                let mut up = group.iter().filter(|&&e| e & 1 == 1);
+                let mut down = group.iter().filter(|&&e| e & 1 == 0);
+                while let (Some(&eu), Some(&ed)) = (up.next(), down.next()) {
+                    let c = (eu & 0xFFFF_FFFF) >> 1;
+                    let d = (ed & 0xFFFF_FFFF) >> 1;
                     neighbors[(c / 3) as usize][(c % 3) as usize] = (d / 3) as u32;
                     neighbors[(d / 3) as usize][(d % 3) as usize] = (c / 3) as u32;
                 }
@@ -249,24 +258,23 @@ impl DualGraph {
             let bucket = &corners[start[v] as usize..start[v + 1] as usize];
             for &c in bucket {
                 let (a, b) = edge(c);
-                let other = a.max(b);
-                // Count the corners on the same undirected edge; link only a pair of
-                // opposite directions with nothing else on the edge.
-                let mut count = 0;
-                let mut partner = None;
-                for &d in bucket {
-                    let (x, y) = edge(d);
-                    if x.max(y) == other {
-                        count += 1;
-                        if x == b && y == a {
-                            partner = Some(d);
-                        }
-                    }
-                }
-                if count == 2 {
-                    if let Some(d) = partner {
-                        neighbors[(c / 3) as usize][(c % 3) as usize] = d / 3;
-                    }
+                // The rank of `c` among the corners running its edge its way (by
+                // corner id); its partner is the corner of that rank running the other
+                // way, as in the packed version.
+                let rank = bucket
+                    .iter()
+                    .filter(|&&d| d < c && edge(d) == (a, b))
+                    .count();
+                let partner = bucket.iter().copied().find(|&d| {
+                    edge(d) == (b, a)
+                        && bucket
+                            .iter()
+                            .filter(|&&e| e < d && edge(e) == (b, a))
+                            .count()
+                            == rank
+                });
+                if let Some(d) = partner {
+                    neighbors[(c / 3) as usize][(c % 3) as usize] = d / 3;
                 }
             }
         }
@@ -308,12 +316,24 @@ mod tests {
     }
 
     #[test]
-    fn flipped_neighbour_and_nonmanifold_edge_are_not_linked() {
+    fn flipped_neighbours_are_not_linked_and_nonmanifold_edges_pair_up() {
         // Same direction on 1-2: inconsistent orientation.
         let g = DualGraph::from_triangles(&[[0, 1, 2], [1, 2, 3]], 4);
         assert_eq!(g.edge_count(), 0);
-        // Three triangles on edge 0-1.
+        // Three triangles on edge 0-1: the one running 0 -> 1 pairs with the first
+        // running 1 -> 0; the third stays unlinked there.
         let g = DualGraph::from_triangles(&[[0, 1, 2], [1, 0, 3], [1, 0, 4]], 5);
+        assert_eq!(g.edge_count(), 1);
+        assert_eq!(g.neighbors[0][0], 1);
+        assert_eq!(g.neighbors[1][0], 0);
+        assert_eq!(g.neighbors[2], [NO_NEIGHBOR; 3]);
+        // Four on one edge, two each way: two pairs.
+        let g = DualGraph::from_triangles(&[[0, 1, 2], [1, 0, 3], [0, 1, 4], [1, 0, 5]], 6);
+        assert_eq!(g.edge_count(), 2);
+        assert_eq!((g.neighbors[0][0], g.neighbors[2][0]), (1, 3));
+        // A duplicated face shares its edges with the first copy in the same
+        // direction: the copies never link to each other.
+        let g = DualGraph::from_triangles(&[[0, 1, 2], [0, 1, 2]], 3);
         assert_eq!(g.edge_count(), 0);
         // Degenerate triangle takes no part.
         let g = DualGraph::from_triangles(&[[0, 1, 2], [2, 1, 1]], 3);
