@@ -26,10 +26,11 @@
 //!   the strips along short alternating paths where that saves indices (`indices`) or
 //!   strips (`strips`): bunny, `indices`, 83,179 -> 81,755 indices.
 //!
-//! Strips step only between [`DualGraph`] neighbours (manifold, consistently oriented
-//! edges), so every triangle keeps its winding; non-manifold edges, boundaries and
-//! inconsistently oriented regions simply end strips. Degenerate triangles (a repeated
-//! index) are dropped. Runs in O(triangles + vertices).
+//! Strips step only between [`DualGraph`] neighbours (two triangles running an edge in
+//! opposite directions; on a non-manifold edge, the pairs the graph makes), so every
+//! triangle keeps its winding; boundaries and inconsistently oriented regions simply
+//! end strips. Degenerate triangles (a repeated index) are dropped. Runs in
+//! O(triangles + vertices).
 
 use super::encode_path;
 use crate::strip::{is_degenerate, StripSet};
@@ -269,6 +270,19 @@ pub fn stripify_with_graph(
     graph: &DualGraph,
     options: &GreedyOptions,
 ) -> StripSet {
+    let walks = walks_with_graph(tris, graph, options);
+    let mut out = StripSet::new();
+    out.indices.reserve(tris.len() + tris.len() / 4);
+    for i in 0..walks.len() {
+        encode_path(tris, graph, walks.strip(i), &mut out);
+    }
+    out
+}
+
+/// The strips of [`stripify_with_graph`] as walks before they are encoded: each entry
+/// of the returned [`StripSet`] is a sequence of triangle ids, each a `graph`
+/// neighbour of the one before (see [`encode_path`]).
+pub fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOptions) -> StripSet {
     let n = tris.len();
     let mut g = Greedy {
         tris,
@@ -315,7 +329,7 @@ pub fn stripify_with_graph(
         walks.indices.extend(back.iter().rev().chain(&path));
         walks.offsets.push(walks.indices.len() as u32);
     }
-    let walks = match options.tunnel_cuts {
+    match options.tunnel_cuts {
         Some(max_cuts) => {
             // `strips` counts strips only: a swap is free, so any strip saved is worth
             // it; `indices` weighs a strip as its three indices against one per swap.
@@ -331,11 +345,5 @@ pub fn stripify_with_graph(
             super::tunnel::tunnel(tris, graph, &walks, &topts)
         }
         None => walks,
-    };
-    let mut out = StripSet::new();
-    out.indices.reserve(n + n / 4);
-    for i in 0..walks.len() {
-        encode_path(tris, graph, walks.strip(i), &mut out);
     }
-    out
 }
