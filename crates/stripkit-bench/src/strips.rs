@@ -284,6 +284,8 @@ fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>)
     for r in rows.iter_mut().filter(|r| r.model == name) {
         r.quads = Some(q.quad_count());
     }
+    let quads = Some(q.quad_count());
+    let qstrip_tris = strip::decode(&strips);
     rows.push(Row {
         model: name.to_string(),
         mode: "stripkit qstrip (other faces: greedy)",
@@ -291,7 +293,78 @@ fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>)
         ms: median(times),
         reorder_ms: None,
         ours: true,
-        quads: Some(q.quad_count()),
+        quads,
+    });
+    // The cache-aware modes may split quads along QSTRIP's diagonals too
+    // (`--diagonals auto`: both splits tried, the cheaper kept).
+    let modes: [(&'static str, CacheOptions, Option<f64>); 2] = [
+        (
+            "stripkit cache --diagonals auto",
+            CacheOptions::cache(16),
+            None,
+        ),
+        (
+            "stripkit balanced --diagonals auto (acmr16 <= 0.8)",
+            CacheOptions::balanced(16),
+            Some(0.8),
+        ),
+    ];
+    for (mode, options, bound) in modes {
+        let mut times = Vec::new();
+        let mut result = None;
+        for _ in 0..runs {
+            let t = Instant::now();
+            result = Some(cache::stripify_mesh(
+                mesh,
+                &options,
+                bound,
+                cache::Diagonals::Auto,
+            ));
+            times.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+        let Some(m) = result else { return };
+        let mut figures = metrics::figures(&m.triangles, &m.strips, CacheModel::default());
+        if m.qstrip_diagonals {
+            if let Err(e) = quad_verify::verify_quads(mesh, &m.strips) {
+                eprintln!("{name}: {mode}: {e}");
+                figures.verified = false;
+            }
+        }
+        rows.push(Row {
+            model: name.to_string(),
+            mode,
+            figures,
+            ms: median(times),
+            reorder_ms: None,
+            ours: true,
+            quads,
+        });
+    }
+    // The peer on the same split, so that the diagonals' own gain shows.
+    let n = mesh.vertex_count();
+    let mut times = Vec::new();
+    let mut input = Vec::new();
+    for _ in 0..runs {
+        let t = Instant::now();
+        input = reorder_cache(&qstrip_tris, n);
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    let reorder_ms = Some(median(times));
+    let mut times = Vec::new();
+    let mut out = StripSet::new();
+    for _ in 0..runs {
+        let t = Instant::now();
+        out = meshopt_stripify(&input, n);
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    rows.push(Row {
+        model: name.to_string(),
+        mode: "meshopt optimize_vertex_cache + stripify on QSTRIP's diagonals",
+        figures: metrics::figures(&qstrip_tris, &out, CacheModel::default()),
+        ms: median(times),
+        reorder_ms,
+        ours: false,
+        quads,
     });
 }
 
@@ -305,7 +378,9 @@ fn render(rows: &[Row], runs: usize) -> String {
          `ok`: decoded triangles equal the input's (nothing lost, nothing added, no winding flipped). \
          Lower is better everywhere; `idx/tri` = indices_restart / triangles; `idx/quad` = \
          indices_restart / quads on quad-dominant meshes, where QSTRIP works on the quads themselves \
-         (either diagonal, checked at quad level) and the other rows on the fan triangulation.\n\n"
+         (either diagonal, checked at quad level) and the other rows on the fan triangulation, but \
+         for the `--diagonals auto` rows (the fan or QSTRIP's split of the quads, whichever gives the \
+         cheaper strips; checked at quad level) and meshoptimizer on QSTRIP's split.\n\n"
     ));
     s.push_str("| model | triangles | stripifier | strips | swaps | indices_restart | idx/tri | idx/quad | indices_degenerate | acmr16 | acmr32 | ms | reorder ms | ok |\n");
     s.push_str("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");

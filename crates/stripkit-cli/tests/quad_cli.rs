@@ -105,3 +105,46 @@ fn quad_single_gives_one_strip_on_a_torus_and_refuses_open_meshes() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+#[test]
+fn cache_modes_split_shuffled_quads_along_qstrip_diagonals() {
+    // Faces shuffled and rotated: the fan splits the quads along random diagonals.
+    let input = tmp("shuffled-torus.obj");
+    let mesh = stripkit::gen::shuffle_faces(&stripkit::gen::torus_quads(40, 24, 3.0, 1.0), 3);
+    support::write_mesh(&input, &mesh);
+    for algo in ["cache", "balanced"] {
+        let run = |diagonals: &str| {
+            let out_path = tmp(&format!("out-{algo}-{diagonals}.ply"));
+            support::json(&stripkit(&[
+                "strip",
+                input.to_str().unwrap(),
+                "-o",
+                out_path.to_str().unwrap(),
+                "--algo",
+                algo,
+                "--diagonals",
+                diagonals,
+                "--json",
+            ]))
+        };
+        let fan = run("fan");
+        let auto = run("auto");
+        let forced = run("qstrip");
+        assert_eq!(fan["diagonals"], "fan");
+        assert_eq!(auto["diagonals"], "qstrip", "{algo}");
+        assert_eq!(forced["indices_restart"], auto["indices_restart"]);
+        for v in [&fan, &auto] {
+            assert_eq!(v["verified"], true);
+            assert_eq!(v["triangles"], 1920);
+        }
+        let idx = |v: &serde_json::Value| v["indices_restart"].as_f64().unwrap();
+        let acmr = |v: &serde_json::Value| v["acmr16"].as_f64().unwrap();
+        assert!(
+            idx(&auto) < 0.97 * idx(&fan),
+            "{algo}: {} vs {}",
+            idx(&auto),
+            idx(&fan)
+        );
+        assert!(acmr(&auto) < acmr(&fan), "{algo}");
+    }
+}

@@ -445,3 +445,39 @@ mod soups {
         }
     }
 }
+
+#[test]
+fn quads_split_along_qstrip_diagonals_beat_a_random_fan() {
+    // A quad torus, shuffled with every face rotated: its fan splits the quads along
+    // random diagonals, so lines break everywhere. `Diagonals::Auto` must take QSTRIP's
+    // split, pass the quad-level check, and beat the fan clearly on both figures.
+    use stripkit::stripify::cache::{stripify_mesh, Diagonals};
+    use stripkit::stripify::quad_verify::verify_quads;
+    let mesh = stripkit::gen::shuffle_faces(&stripkit::gen::torus_quads(96, 48, 3.0, 1.0), 5);
+    for (o, bound) in [
+        (CacheOptions::cache(16), None),
+        (CacheOptions::balanced(16), Some(0.8)),
+    ] {
+        let fan = stripify_mesh(&mesh, &o, bound, Diagonals::Fan);
+        let auto = stripify_mesh(&mesh, &o, bound, Diagonals::Auto);
+        assert!(!fan.qstrip_diagonals);
+        assert!(auto.qstrip_diagonals, "{o:?}");
+        verify_quads(&mesh, &auto.strips).expect("quad-level check");
+        let f = check(&fan.triangles, mesh.vertex_count(), &o).1;
+        let (strips, a) = check(&auto.triangles, mesh.vertex_count(), &o);
+        // Same stripifier on the same triangles: the same strips.
+        assert_eq!(strips, auto.strips);
+        eprintln!(
+            "{o:?}: fan {} @ {:.3}, qstrip diagonals {} @ {:.3}",
+            f.indices_restart, f.acmr, a.indices_restart, a.acmr
+        );
+        assert!((a.indices_restart as f64) < 0.95 * f.indices_restart as f64);
+        assert!(a.acmr < f.acmr - 0.02);
+        assert!((auto.acmr - a.acmr).abs() < 1e-9);
+    }
+    // A mesh without quads: Auto is the fan.
+    let tris = stripkit::gen::icosphere(3);
+    let m = stripify_mesh(&tris, &CacheOptions::cache(16), None, Diagonals::Auto);
+    assert!(!m.qstrip_diagonals);
+    assert_eq!(m.triangles, tris.triangulate().tris);
+}

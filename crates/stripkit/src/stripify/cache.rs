@@ -160,6 +160,106 @@ pub fn stripify_within(
     unreachable!("the last attempt returns")
 }
 
+/// How [`stripify_mesh`] splits a mesh's quads into triangles.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Diagonals {
+    /// Every face fanned from its first corner ([`crate::Mesh::triangulate`]).
+    Fan,
+    /// Quads along the diagonals QSTRIP picks for its quad sequences (a straight run
+    /// of quads then needs no swap, and the rows beside it share its split), other
+    /// faces fanned (on a mesh without quads: the fan).
+    Qstrip,
+    /// On a quad-dominant mesh (at least half the faces quads) both of the above,
+    /// keeping the cheaper strips; the fan on other meshes.
+    #[default]
+    Auto,
+}
+
+/// What [`stripify_mesh`] returns.
+#[derive(Clone, Debug)]
+pub struct MeshStrips {
+    /// The strips.
+    pub strips: StripSet,
+    /// The triangles the strips cover, each with its face's winding: the fan of the
+    /// mesh, or its quads split along QSTRIP's diagonals.
+    pub triangles: Vec<[u32; 3]>,
+    /// True when `triangles` split the quads along QSTRIP's diagonals rather than
+    /// fanning them (check such strips against the mesh with
+    /// [`verify_quads`](super::quad_verify::verify_quads)).
+    pub qstrip_diagonals: bool,
+    /// The miss weight used (see [`stripify_within`]).
+    pub miss_weight: f32,
+    /// Cache misses per triangle of the strips in the FIFO they were tuned for.
+    pub acmr: f64,
+}
+
+/// Cache-aware strips for a mesh that may hold quads. With `max_acmr`, the strips of
+/// [`stripify_within`] (the `balanced` mode); without, those of [`stripify`].
+///
+/// A quad may be split along either diagonal, and the split decides which rows of
+/// quads become swap-free lines. [`Diagonals::Auto`] tries, on quad-dominant meshes,
+/// both the fan and QSTRIP's diagonals and keeps the cheaper result: without a bound
+/// the lower `indices_restart + miss_weight * misses`; with one, the fewer indices
+/// among the results within the bound, else the lower ACMR. Runs the stripifier
+/// twice on such meshes, once on others.
+pub fn stripify_mesh(
+    mesh: &crate::Mesh,
+    options: &CacheOptions,
+    max_acmr: Option<f64>,
+    diagonals: Diagonals,
+) -> MeshStrips {
+    let fraction = super::quad::quad_fraction(mesh);
+    let (fan, qstrip) = match diagonals {
+        // Without quads there is nothing to split: the fan it is.
+        Diagonals::Qstrip if fraction > 0.0 => (false, true),
+        Diagonals::Auto if fraction >= 0.5 => (true, true),
+        _ => (true, false),
+    };
+    let vc = mesh.vertex_count();
+    let run = |tris: Vec<[u32; 3]>, qstrip_diagonals: bool| {
+        let (strips, miss_weight, acmr) =
+            stripify_within(&tris, vc, options, max_acmr.unwrap_or(f64::INFINITY));
+        MeshStrips {
+            strips,
+            triangles: tris,
+            qstrip_diagonals,
+            miss_weight,
+            acmr,
+        }
+    };
+    let a = fan.then(|| run(mesh.triangulate().tris, false));
+    let b = qstrip.then(|| {
+        let (_, strips) = super::quad::qstrip_mesh(mesh, &super::quad::QuadOptions::default());
+        run(crate::strip::decode(&strips), true)
+    });
+    match (a, b) {
+        (Some(a), Some(b)) => {
+            let indices = |m: &MeshStrips| (m.strips.index_count() + m.strips.len()) as f64;
+            let better_b = match max_acmr {
+                None => {
+                    let cost = |m: &MeshStrips| {
+                        indices(m)
+                            + f64::from(options.miss_weight) * m.acmr * m.triangles.len() as f64
+                    };
+                    cost(&b) < cost(&a)
+                }
+                Some(bound) => match (a.acmr <= bound, b.acmr <= bound) {
+                    (true, true) => indices(&b) < indices(&a),
+                    (ok_a, ok_b) if ok_a != ok_b => ok_b,
+                    _ => b.acmr < a.acmr,
+                },
+            };
+            if better_b {
+                b
+            } else {
+                a
+            }
+        }
+        (Some(m), None) | (None, Some(m)) => m,
+        (None, None) => unreachable!("at least one triangulation is tried"),
+    }
+}
+
 fn vertex_bound(tris: &[[u32; 3]]) -> usize {
     tris.iter()
         .flatten()
