@@ -450,7 +450,8 @@ mod soups {
 fn quads_split_along_qstrip_diagonals_beat_a_random_fan() {
     // A quad torus, shuffled with every face rotated: its fan splits the quads along
     // random diagonals, so lines break everywhere. `Diagonals::Auto` must take QSTRIP's
-    // split, pass the quad-level check, and beat the fan clearly on both figures.
+    // split, pass the quad-level check, and beat the fan clearly (cache: 8% fewer
+    // indices and 0.09 fewer misses per triangle; balanced: 14% fewer indices).
     use stripkit::stripify::cache::{stripify_mesh, Diagonals};
     use stripkit::stripify::quad_verify::verify_quads;
     let mesh = stripkit::gen::shuffle_faces(&stripkit::gen::torus_quads(96, 48, 3.0, 1.0), 5);
@@ -463,16 +464,22 @@ fn quads_split_along_qstrip_diagonals_beat_a_random_fan() {
         assert!(!fan.qstrip_diagonals);
         assert!(auto.qstrip_diagonals, "{o:?}");
         verify_quads(&mesh, &auto.strips).expect("quad-level check");
-        let f = check(&fan.triangles, mesh.vertex_count(), &o).1;
-        let (strips, a) = check(&auto.triangles, mesh.vertex_count(), &o);
-        // Same stripifier on the same triangles: the same strips.
+        let at = |w: f32| CacheOptions { miss_weight: w, ..o };
+        let f = check(&fan.triangles, mesh.vertex_count(), &at(fan.miss_weight)).1;
+        let (strips, a) = check(&auto.triangles, mesh.vertex_count(), &at(auto.miss_weight));
+        // Same stripifier and weight on the same triangles: the same strips.
         assert_eq!(strips, auto.strips);
         eprintln!(
             "{o:?}: fan {} @ {:.3}, qstrip diagonals {} @ {:.3}",
             f.indices_restart, f.acmr, a.indices_restart, a.acmr
         );
         assert!((a.indices_restart as f64) < 0.95 * f.indices_restart as f64);
-        assert!(a.acmr < f.acmr - 0.02);
+        match bound {
+            // cache: fewer misses too.
+            None => assert!(a.acmr < f.acmr - 0.02),
+            // balanced spends its slack on indices: both within the bound.
+            Some(b) => assert!(a.acmr <= b && f.acmr <= b),
+        }
         assert!((auto.acmr - a.acmr).abs() < 1e-9);
     }
     // A mesh without quads: Auto is the fan.

@@ -90,12 +90,14 @@ impl CacheOptions {
     }
 
     /// The `balanced` mode's first try: a miss weighs half an index and finishing a
-    /// vertex a quarter (fewer indices, more misses). With [`stripify_within`] and a
-    /// bound of 0.8 misses per triangle: bunny 1.29 indices per triangle at 0.78.
+    /// vertex a quarter (fewer indices, more misses), and strips may start at
+    /// triangles with one cached vertex. With [`stripify_within`] and a bound of 0.8
+    /// misses per triangle: bunny 1.28 indices per triangle at 0.79.
     pub fn balanced(cache_size: u32) -> Self {
         CacheOptions {
             miss_weight: 0.5,
             finish_bonus: 0.25,
+            min_cached: 1,
             ..CacheOptions::cache(cache_size)
         }
     }
@@ -129,10 +131,14 @@ pub fn stripify_with_graph(
 }
 
 /// Strips as [`stripify`] makes them, with the fewest indices its miss weights give
-/// while the ACMR (for a FIFO of `options.cache_size`) stays at most `max_acmr`: the
-/// weight starts at `options.miss_weight` and grows by a quarter per try (at most
-/// eight tries; the last try's strips when none keeps the bound). Returns the strips,
-/// the weight used and their ACMR.
+/// while the ACMR (for a FIFO of `options.cache_size`) stays at most `max_acmr`.
+///
+/// The weight starts at `options.miss_weight`. Within the bound there, up to two
+/// lower weights (a tenth less each) are tried while they stay within it; outside,
+/// the weight grows by a quarter per try until the bound holds (at most eight tries;
+/// the last try's strips when none keeps it), and the geometric mean of the last
+/// two weights is tried once more. Of the tries within the bound, the one with the
+/// fewest indices is returned: the strips, the weight used and their ACMR.
 pub fn stripify_within(
     tris: &[[u32; 3]],
     vertex_count: usize,
@@ -142,8 +148,11 @@ pub fn stripify_within(
     // The dual graph raises the vertex count itself for larger indices.
     let graph = DualGraph::from_triangles(tris, vertex_count);
     let triangles = tris.iter().filter(|t| !is_degenerate(t)).count();
-    let mut o = *options;
-    for attempt in 0..8 {
+    let run = |miss_weight: f32| {
+        let o = CacheOptions {
+            miss_weight,
+            ..*options
+        };
         let mut s = State::new(tris, Some(&graph), vertex_count, &o);
         s.run();
         // The simulated FIFO is the measured one: its pushes are the misses.
@@ -152,12 +161,38 @@ pub fn stripify_within(
         } else {
             s.time as f64 / triangles as f64
         };
-        if acmr <= max_acmr || attempt == 7 {
-            return (s.out, o.miss_weight, acmr);
+        (s.out, miss_weight, acmr)
+    };
+    let indices = |s: &StripSet| s.index_count() + s.len();
+    let keep = |best: &mut (StripSet, f32, f64), next: (StripSet, f32, f64)| {
+        if next.2 <= max_acmr && indices(&next.0) < indices(&best.0) {
+            *best = next;
         }
-        o.miss_weight *= 1.25;
+    };
+    let mut w = options.miss_weight;
+    let mut best = run(w);
+    if best.2 <= max_acmr {
+        for _ in 0..2 {
+            w *= 0.9;
+            let next = run(w);
+            if next.2 > max_acmr {
+                break;
+            }
+            keep(&mut best, next);
+        }
+        return best;
     }
-    unreachable!("the last attempt returns")
+    for _ in 1..8 {
+        let failed = w;
+        w *= 1.25;
+        best = run(w);
+        if best.2 <= max_acmr {
+            let mid = run((failed * w).sqrt());
+            keep(&mut best, mid);
+            return best;
+        }
+    }
+    best
 }
 
 /// How [`stripify_mesh`] splits a mesh's quads into triangles.
@@ -217,8 +252,16 @@ pub fn stripify_mesh(
     };
     let vc = mesh.vertex_count();
     let run = |tris: Vec<[u32; 3]>, qstrip_diagonals: bool| {
-        let (strips, miss_weight, acmr) =
-            stripify_within(&tris, vc, options, max_acmr.unwrap_or(f64::INFINITY));
+        let (strips, miss_weight, acmr) = match max_acmr {
+            Some(bound) => stripify_within(&tris, vc, options, bound),
+            None => {
+                let mut s = State::new(&tris, None, vc, options);
+                s.run();
+                let t = tris.iter().filter(|t| !is_degenerate(t)).count().max(1);
+                let acmr = s.time as f64 / t as f64;
+                (s.out, options.miss_weight, acmr)
+            }
+        };
         MeshStrips {
             strips,
             triangles: tris,
