@@ -359,7 +359,7 @@ fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>)
     }
     rows.push(Row {
         model: name.to_string(),
-        mode: "meshopt optimize_vertex_cache + stripify on QSTRIP's diagonals",
+        mode: "meshopt optimize_vertex_cache + stripify, QSTRIP split",
         figures: metrics::figures(&qstrip_tris, &out, CacheModel::default()),
         ms: median(times),
         reorder_ms,
@@ -440,11 +440,11 @@ fn xml(text: &str) -> String {
 /// Indices per triangle (x) against acmr16 (y), one point per row, one colour per
 /// stripifier; lower-left is better on both figures.
 fn pareto_svg(rows: &[Row]) -> String {
-    let (w, h, m) = (640.0, 420.0, 50.0);
+    let (w, h, m) = (760.0, 420.0, 50.0);
     let (x0, x1, y0, y1) = (1.0f64, 2.2f64, 0.5f64, 1.2f64);
     let px = |x: f64| m + (x.clamp(x0, x1) - x0) / (x1 - x0) * (w - 2.0 * m);
     let py = |y: f64| h - m - (y.clamp(y0, y1) - y0) / (y1 - y0) * (h - 2.0 * m);
-    let colours = ["#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f"];
+    let colours = ["#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#000000"];
     let mut names: Vec<&str> = Vec::new();
     for r in rows {
         if !names.contains(&r.mode) {
@@ -483,9 +483,9 @@ fn pareto_svg(rows: &[Row]) -> String {
         let y = m + 14.0 * k as f64;
         s.push_str(&format!(
             "<circle cx=\"{}\" cy=\"{y}\" r=\"4\" fill=\"{}\"/><text x=\"{}\" y=\"{}\">{}</text>\n",
-            w - 290.0,
+            w - 350.0,
             colours[k % colours.len()],
-            w - 282.0,
+            w - 342.0,
             y + 4.0,
             xml(n)
         ));
