@@ -135,8 +135,8 @@ fn corner_bucket_starts(tris: &[[u32; 3]], vertex_count: usize) -> Vec<u32> {
     start
 }
 
-/// The dual graph of a triangle list: neighbours across manifold, consistently
-/// oriented edges.
+/// The dual graph of a triangle list: neighbours across edges that two triangles run
+/// in opposite directions (see [`DualGraph::from_triangles`] for non-manifold edges).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct DualGraph {
     /// `neighbors[t][j]` is the triangle across edge `(t[j], t[(j + 1) % 3])`, or
@@ -150,8 +150,8 @@ impl DualGraph {
     /// triangles running it one way are paired, in input order, with those running it
     /// the other way, as far as they go: a strip may cross such an edge between the
     /// two triangles of a pair, and every pair still meets the strip rule's winding.
-    /// Degenerate triangles (a repeated index) get no
-    /// neighbours and take no part in other triangles' edges. Indices at or above
+    /// Degenerate triangles (a repeated index) get no neighbours and take no part in
+    /// other triangles' edges. Indices at or above
     /// `vertex_count` are tolerated (the count is raised to cover them).
     ///
     /// Each corner is bucketed once by its edge's lower vertex, packed with the other
