@@ -36,7 +36,7 @@ fn link_slot(tri: &[u32; 3], nbr: &[u32; 3], next: u32, avoid: (u32, u32)) -> Op
 
 /// Walks a path in the order `at(0), at(1), ..`, emitting the strip's indices; returns
 /// the number of swaps. Panics when two consecutive triangles are not dual neighbours.
-fn walk(
+pub(crate) fn walk(
     tris: &[[u32; 3]],
     graph: &DualGraph,
     len: usize,
