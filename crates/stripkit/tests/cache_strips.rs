@@ -295,7 +295,8 @@ fn bunny_figures_beat_meshoptimizer_and_the_old_designs() {
     // 0.711 (METRICS.md); issue #4's cache target: at most 0.711 with at most 100,000
     // indices. The previous design (Forsyth scores with strip bonuses): 112,354 at
     // 0.703 (cache) and 95,591 at 0.798 (balanced). Now about 94,400 at 0.646 and
-    // (balanced: the weight search 88,807 at 0.790, refined) 86,528 at 0.800.
+    // (balanced: the weight search 88,807 at 0.790, refined) 85,540 at 0.800, 1.232
+    // per triangle (86,528 before the refinement's tunnels).
     // models_dir prints why it skips.
     let Some(dir) = stripkit::test_support::models_dir() else {
         return;
@@ -317,7 +318,7 @@ fn bunny_figures_beat_meshoptimizer_and_the_old_designs() {
     let b = metrics::figures(&tris, &strips, CacheModel::fifo(16));
     assert!(b.verified);
     assert!(
-        b.acmr <= 0.80 && b.indices_restart <= 87_000,
+        b.acmr <= 0.80 && b.indices_restart <= 86_000,
         "balanced {} at {}",
         b.indices_restart,
         b.acmr
@@ -428,6 +429,36 @@ fn the_bounded_search_refines_its_strips() {
             f.indices_restart,
             plain.indices_restart
         );
+    }
+}
+
+#[test]
+fn tunnels_in_the_refinement_relink_strips_within_the_bound() {
+    // The refinement's tunnels (alternating paths through up to three strips, each
+    // cut next to the triangle the path enters, ending at a strip end or after a cut)
+    // are scored by the exact FIFO like its other moves. Measured without them:
+    // fandisk 15,856 @ 0.800, cow 7,610 @ 0.782, bunny_small 9,308 @ 0.799; with them
+    // 15,707 @ 0.795, 7,492 @ 0.791, 9,197 @ 0.799. models_dir prints why it skips.
+    let Some(dir) = stripkit::test_support::models_dir() else {
+        return;
+    };
+    for (name, most) in [
+        ("fandisk.obj", 15_750),
+        ("cow.obj", 7_530),
+        ("bunny_small.off", 9_240),
+    ] {
+        let Ok(mesh) = stripkit::mesh::io::read(&dir.join(name)) else {
+            eprintln!("skipped: no {name} in {}", dir.display());
+            continue;
+        };
+        let tris = mesh.triangulate().tris;
+        let vc = mesh.vertex_count();
+        let (strips, _, acmr) = cache::stripify_within(&tris, vc, &CacheOptions::balanced(16), 0.8);
+        let f = metrics::figures(&tris, &strips, CacheModel::fifo(16));
+        eprintln!("{name}: {} @ {:.4}", f.indices_restart, f.acmr16);
+        assert!(f.verified && f.winding_preserved, "{name}");
+        assert!(f.acmr16 <= 0.8 && (f.acmr16 - acmr).abs() < 1e-9, "{name}");
+        assert!(f.indices_restart <= most, "{name}: {}", f.indices_restart);
     }
 }
 

@@ -32,7 +32,8 @@
 //!
 //! [`stripify_within`] then refines its strips with a local search scored by the exact
 //! FIFO: it joins strips end to end (or one into another's inside, the part cut off
-//! joining a third) and reads strips backwards where that lowers
+//! joining a third), relinks them along tunnels (alternating paths through up to three
+//! strips, after Stewart) and reads strips backwards where that lowers
 //! `indices + 0.3 * misses` within the bound. Each move is replayed from a snapshot of
 //! the FIFO before the first strip it changes until the FIFO matches the old run again.
 //!
@@ -147,12 +148,13 @@ pub fn stripify_with_graph(
 /// the last try's strips when none keeps it), and the geometric mean of the last
 /// two weights is tried once more. The try with the fewest indices within the bound
 /// is then refined: strips are joined end to end (or one into another's inside, the
-/// part cut off joining a third) and read backwards wherever that lowers
+/// part cut off joining a third), relinked along tunnels through up to three strips,
+/// and read backwards wherever that lowers
 /// `indices + 0.3 * misses` on the exact FIFO while the misses stay within the bound
 /// (or, when no try kept it, do not grow); the refined strips are kept when they have
 /// fewer indices. Returns the strips, the weight of the try refined and their ACMR.
-/// Bunny: 88,807 indices at 0.790 before the refinement, 86,528 at 0.800 after; it
-/// about doubles the time (0.1 to 0.18 s).
+/// Bunny: 88,807 indices at 0.790 before the refinement, 85,540 at 0.800 after (1.232
+/// per triangle); the whole call takes 0.25 s (0.1 s without the refinement).
 pub fn stripify_within(
     tris: &[[u32; 3]],
     vertex_count: usize,
@@ -945,18 +947,25 @@ impl<'a> State<'a> {
 /// miss weight would. 0.25 to 0.4 give within 0.3% of each other on the models.
 const REFINE_LAMBDA: f64 = 0.3;
 /// Passes over the strips; the second and third look only at strips next to those
-/// the pass before changed.
+/// the pass before changed (five: 55 fewer indices on bunny for 15% more time).
 const REFINE_PASSES: u32 = 3;
 /// Triangles simulated past a change: a move whose FIFO has not come back to the old
 /// contents by then is not taken (so that every taken move is measured exactly).
 const REFINE_WINDOW: usize = 1024;
 
-/// A move of [`refine`]: up to three strips (slots in the output order) get new walks,
-/// ranges `(slot, start, len)` of a pool (len 0 empties the slot), sorted by slot.
+/// Most links a tunnel of [`refine`] cuts (bunny: 85,637 indices with 2, 85,540 with
+/// 3, 85,499 with 4 for a third more time).
+const REFINE_CUTS: usize = 3;
+/// Most strips one move of [`refine`] changes: a tunnel of [`REFINE_CUTS`] cuts.
+const MOVE_SLOTS: usize = REFINE_CUTS + 2;
+
+/// A move of [`refine`]: up to [`MOVE_SLOTS`] strips (slots in the output order) get
+/// new walks, ranges `(slot, start, len)` of a pool (len 0 empties the slot), sorted by
+/// slot.
 #[derive(Clone, Copy, Default)]
 struct Move {
     n: u8,
-    ch: [(u32, u32, u32); 3],
+    ch: [(u32, u32, u32); MOVE_SLOTS],
 }
 
 impl Move {
@@ -981,8 +990,11 @@ struct Refiner<'a> {
     /// Walk and encoded strip per slot (empty: the slot lost its strip).
     walks: Vec<Vec<u32>>,
     enc: Vec<Vec<u32>>,
-    /// Triangle -> slot.
+    /// Triangle -> slot, position in the slot's walk, and the swaps its walk needs
+    /// at inner triangles up to it (see [`Refiner::index_walk`]).
     slot_of: Vec<u32>,
+    pos: Vec<u32>,
+    pre: Vec<u32>,
     /// FIFO contents (oldest first, NONE for empty entries) before each slot, and
     /// after the last one: `snap[k * c..(k + 1) * c]`.
     snap: Vec<u32>,
@@ -999,10 +1011,28 @@ struct Refiner<'a> {
     clock: u32,
     ring: Vec<u32>,
     /// The encoded new strips of the move being evaluated.
-    nbuf: [Vec<u32>; 3],
+    nbuf: [Vec<u32>; MOVE_SLOTS],
 }
 
 impl Refiner<'_> {
+    /// Fills `pos` and `pre` for the walk of slot `k`: `pre[w[j]]` counts the swaps at
+    /// `w[2..=j]`. A swap at an inner triangle depends only on it, the triangle after
+    /// it and the two before (see the module docs of `stripify`): the swaps of a
+    /// 4-window less those of its first three triangles.
+    fn index_walk(&mut self, k: usize) {
+        let w = &self.walks[k];
+        let mut acc = 0;
+        for (j, &t) in w.iter().enumerate() {
+            self.pos[t as usize] = j as u32;
+            if j >= 2 && j + 1 < w.len() {
+                let win = &w[j - 2..j + 2];
+                acc +=
+                    wswaps(self.tris, self.graph, win) - wswaps(self.tris, self.graph, &win[..3]);
+            }
+            self.pre[t as usize] = acc;
+        }
+    }
+
     /// Starts a replay from the FIFO before slot `k`.
     fn load(&mut self, k: usize) {
         self.epoch = self.epoch.wrapping_add(1);
@@ -1168,6 +1198,9 @@ impl Refiner<'_> {
                 self.enc[k].clear();
                 self.enc[k].extend_from_slice(&self.nbuf[i]);
             }
+            for i in 0..n {
+                self.index_walk(mv.ch[i].0 as usize);
+            }
         }
         Some((di, dm))
     }
@@ -1207,6 +1240,324 @@ fn attach(
     }
 }
 
+/// Swaps of the walk `w` as [`super::walk`] encodes it.
+fn wswaps(tris: &[[u32; 3]], graph: &DualGraph, w: &[u32]) -> u32 {
+    super::walk(tris, graph, w.len(), |j| w[j], |_| {}) as u32
+}
+
+/// A part of a walk in a tunnel of [`refine`]: `walks[slot][lo..hi]`, read backwards
+/// when `rev`.
+#[derive(Clone, Copy)]
+struct Piece {
+    slot: u32,
+    lo: u32,
+    hi: u32,
+    rev: bool,
+}
+
+impl Piece {
+    fn len(&self) -> usize {
+        (self.hi - self.lo) as usize
+    }
+
+    fn reversed(self) -> Piece {
+        Piece {
+            rev: !self.rev,
+            ..self
+        }
+    }
+
+    /// The walk `self` then `b` as a new strip reads it: in the direction of its longer
+    /// part's old strip (the pair, read backwards and swapped where that is against).
+    fn join(self, b: Piece) -> (Piece, Piece) {
+        let flip = if self.len() >= b.len() {
+            self.rev
+        } else {
+            b.rev
+        };
+        if flip {
+            (b.reversed(), self.reversed())
+        } else {
+            (self, b)
+        }
+    }
+
+    /// A part cut off and left alone, in its old strip's direction.
+    fn alone(self) -> Piece {
+        Piece { rev: false, ..self }
+    }
+
+    /// Triangle `j` in the piece's direction.
+    #[inline]
+    fn at(&self, walks: &[Vec<u32>], j: usize) -> u32 {
+        let w = &walks[self.slot as usize];
+        if self.rev {
+            w[self.hi as usize - 1 - j]
+        } else {
+            w[self.lo as usize + j]
+        }
+    }
+
+    /// Appends the piece to `pool` in its direction.
+    fn extend(&self, walks: &[Vec<u32>], pool: &mut Vec<u32>) {
+        let w = &walks[self.slot as usize][self.lo as usize..self.hi as usize];
+        if self.rev {
+            pool.extend(w.iter().rev());
+        } else {
+            pool.extend_from_slice(w);
+        }
+    }
+}
+
+/// Generates the tunnels of [`refine`] from one strip: alternating paths in the dual
+/// graph that start at an end of the strip, cross to a triangle `n` of another strip
+/// S = A n B, cut S on one side of `n` (the part with `n` joins the path so far), and
+/// go on from the new end of the part cut off, through up to [`REFINE_CUTS`] strips.
+/// A path stops at an end of a further strip (joined: one strip fewer) or after any
+/// cut (the part cut off stays alone: as many strips, fewer swaps where the cut lies
+/// at a swap). The index change of a path is counted in O(1) per strip on it (the
+/// swaps inside each part from `pre`, the swaps around each join and at each new
+/// start from windows of at most six triangles: a swap depends on four consecutive
+/// triangles only, so this is the encoder's count but around non-manifold edges);
+/// only paths with fewer indices become moves, one per placement of the new walks in
+/// the slots of the strips they came from, and [`Refiner::eval`] then counts their
+/// indices and misses exactly. Strips on a path are distinct, so no walk closes a
+/// cycle.
+struct Tunnels<'a> {
+    tris: &'a [[u32; 3]],
+    graph: &'a DualGraph,
+    walks: &'a [Vec<u32>],
+    enc: &'a [Vec<u32>],
+    slot_of: &'a [u32],
+    pos: &'a [u32],
+    pre: &'a [u32],
+    pool: &'a mut Vec<u32>,
+    moves: &'a mut Vec<Move>,
+    /// Slots of the strips on the path, and the walks joined so far (the part cut off
+    /// from the strip before, the part of the next strip with its crossing triangle).
+    used: &'a mut Vec<u32>,
+    joins: &'a mut Vec<(Piece, Piece)>,
+}
+
+impl Tunnels<'_> {
+    /// Swaps inside the stored walk of `p` at `w[a..=b]` (none when `b < a`).
+    fn inner(&self, p: Piece, a: u32, b: u32) -> u32 {
+        if b < a {
+            return 0;
+        }
+        let w = &self.walks[p.slot as usize];
+        self.pre[w[b as usize] as usize] - self.pre[w[a as usize - 1] as usize]
+    }
+
+    /// Swaps of the walk `a` then `b` (`b` may be empty), each in its direction.
+    /// Windows that lie inside one part are the stored walk's (a swap does not depend
+    /// on the direction of reading, only the first triangles' does); the others are
+    /// walked: the first three triangles and the six around the join.
+    fn swaps(&self, a: Piece, b: Option<Piece>) -> u32 {
+        let la = a.len();
+        let lb = b.map_or(0, |b| b.len());
+        let n = la + lb;
+        if n < 3 {
+            return 0;
+        }
+        if lb == 0 {
+            let head = [
+                a.at(self.walks, 0),
+                a.at(self.walks, 1),
+                a.at(self.walks, 2),
+            ];
+            return wswaps(self.tris, self.graph, &head)
+                + self.inner(a, a.lo + 2, a.hi.saturating_sub(2));
+        }
+        let at = |i: usize| {
+            if i < la {
+                a.at(self.walks, i)
+            } else {
+                b.unwrap().at(self.walks, i - la)
+            }
+        };
+        let lo = la.saturating_sub(3);
+        let hi = n.min(la + 3);
+        let mut win = [0u32; 6];
+        for i in lo..hi {
+            win[i - lo] = at(i);
+        }
+        let mut s = wswaps(self.tris, self.graph, &win[..hi - lo]);
+        if lo > 0 {
+            let head = [at(0), at(1), at(2)];
+            s = s + wswaps(self.tris, self.graph, &head) - wswaps(self.tris, self.graph, &win[..3]);
+        }
+        // Pair windows inside a part: stored positions lo + 2 ..= hi - 2.
+        s += self.inner(a, a.lo + 2, a.hi.saturating_sub(2));
+        if let Some(b) = b {
+            s += self.inner(b, b.lo + 2, b.hi.saturating_sub(2));
+        }
+        s
+    }
+
+    /// Indices (with the restart) of the walk `a` then `b`.
+    fn cost(&self, a: Piece, b: Option<Piece>) -> i64 {
+        let len = a.len() + b.map_or(0, |b| b.len());
+        (len + 3) as i64 + i64::from(self.swaps(a, b))
+    }
+
+    /// Indices (with the restart) of the strip in slot `s`.
+    fn old(&self, s: u32) -> i64 {
+        self.enc[s as usize].len() as i64 + 1
+    }
+
+    /// Tunnels from strip `x` (every end, every path).
+    fn search(&mut self, x: u32) {
+        let w = &self.walks[x as usize];
+        let lx = w.len() as u32;
+        let nx = if lx >= 2 { 2 } else { lx };
+        for j in 0..nx {
+            let open = Piece {
+                slot: x,
+                lo: 0,
+                hi: lx,
+                rev: j == 0 && nx == 2,
+            };
+            self.used.clear();
+            self.joins.clear();
+            self.used.push(x);
+            let acc = -self.old(x);
+            self.grow(open, 0, acc);
+        }
+    }
+
+    /// Extends the path whose open walk `open` ends at its new end, after `cuts` cuts;
+    /// `acc`: the indices of the joins so far less those of the strips on the path.
+    fn grow(&mut self, open: Piece, cuts: usize, acc: i64) {
+        let walks = self.walks;
+        let p = open.at(walks, open.len() - 1);
+        for n in self.graph.neighbors[p as usize] {
+            if n == NO_NEIGHBOR {
+                continue;
+            }
+            let s = self.slot_of[n as usize];
+            if s == NONE || self.used.contains(&s) {
+                continue;
+            }
+            let l = walks[s as usize].len() as u32;
+            let i = self.pos[n as usize];
+            let acc = acc - self.old(s);
+            if i == 0 || i + 1 == l {
+                // An end of S: joined (a single cut is the chain move of `refine`).
+                if cuts >= 2 {
+                    let q = Piece {
+                        slot: s,
+                        lo: 0,
+                        hi: l,
+                        rev: i != 0,
+                    };
+                    let (a, b) = open.join(q);
+                    let di = acc + self.cost(a, Some(b));
+                    if di < 0 {
+                        self.joins.push((a, b));
+                        self.used.push(s);
+                        self.emit(None);
+                        self.used.pop();
+                        self.joins.pop();
+                    }
+                }
+                continue;
+            }
+            let sides = [
+                (
+                    Piece {
+                        slot: s,
+                        lo: 0,
+                        hi: i + 1,
+                        rev: true,
+                    },
+                    Piece {
+                        slot: s,
+                        lo: i + 1,
+                        hi: l,
+                        rev: true,
+                    },
+                ),
+                (
+                    Piece {
+                        slot: s,
+                        lo: i,
+                        hi: l,
+                        rev: false,
+                    },
+                    Piece {
+                        slot: s,
+                        lo: 0,
+                        hi: i,
+                        rev: false,
+                    },
+                ),
+            ];
+            for (kept, cut) in sides {
+                let (a, b) = open.join(kept);
+                let acc = acc + self.cost(a, Some(b));
+                self.joins.push((a, b));
+                self.used.push(s);
+                let di = acc + self.cost(cut.alone(), None);
+                if di < 0 {
+                    self.emit(Some(cut.alone()));
+                }
+                if cuts + 1 < REFINE_CUTS {
+                    self.grow(cut, cuts + 1, acc);
+                }
+                self.used.pop();
+                self.joins.pop();
+            }
+        }
+    }
+
+    /// Writes the new walks of the path (the joins, and `alone`, the part cut off last
+    /// when the path stops after a cut) to the pool and makes one move per placement.
+    fn emit(&mut self, alone: Option<Piece>) {
+        let mut ranges = [(0u32, 0u32); MOVE_SLOTS];
+        let mut m = 0;
+        for &(a, b) in self.joins.iter() {
+            let start = self.pool.len();
+            a.extend(self.walks, self.pool);
+            b.extend(self.walks, self.pool);
+            ranges[m] = (start as u32, (self.pool.len() - start) as u32);
+            m += 1;
+        }
+        if let Some(c) = alone {
+            let start = self.pool.len();
+            c.extend(self.walks, self.pool);
+            ranges[m] = (start as u32, (self.pool.len() - start) as u32);
+            m += 1;
+        }
+        let u = &self.used[..];
+        let mut list = [(0u32, 0u32, 0u32); MOVE_SLOTS];
+        if alone.is_none() {
+            // m walks in m + 1 slots: walk j comes from slots j and j + 1; the slot
+            // left empty is any of them.
+            for g in 0..=m {
+                for j in 0..m {
+                    let k = if j < g { u[j] } else { u[j + 1] };
+                    list[j] = (k, ranges[j].0, ranges[j].1);
+                }
+                list[m] = (u[g], 0, 0);
+                self.moves.push(Move::new(&list[..=m]));
+            }
+        } else {
+            // m walks in m slots: each joined walk in its first slot (the part cut off
+            // in the last), or each in its second (the part cut off in the first).
+            for j in 0..m {
+                list[j] = (u[j], ranges[j].0, ranges[j].1);
+            }
+            self.moves.push(Move::new(&list[..m]));
+            for j in 0..m - 1 {
+                list[j] = (u[j + 1], ranges[j].0, ranges[j].1);
+            }
+            list[m - 1] = (u[0], ranges[m - 1].0, ranges[m - 1].1);
+            self.moves.push(Move::new(&list[..m]));
+        }
+    }
+}
+
 /// The end triangles of a walk (one for a single triangle).
 fn ends(w: &[u32]) -> ([u32; 2], usize) {
     match w.len() {
@@ -1225,12 +1576,17 @@ fn ends(w: &[u32]) -> ([u32; 2], usize) {
 /// prepended, reversed as needed), the joined walk taking the place of S or of X; and,
 /// where the neighbour `n` lies inside S = A n B, X joined to `A n` (or `n B`) while
 /// the part cut off joins a third strip Z at one of its ends, the two new walks taking
-/// the places of two of X, S and Z. The best move that lowers the cost is taken.
-/// Every walk is encoded with [`super::walk`], so every triangle keeps its winding.
+/// the places of two of X, S and Z; and the tunnels of [`Tunnels`] from X's ends
+/// (paths through two or three strips that end at a strip end, or through one to
+/// three that end after a cut), the new walks taking the places of the strips on the
+/// path in their order, shifted by one or not. The best move that lowers the cost is
+/// taken. Every walk is encoded with [`super::walk`], so every triangle keeps its
+/// winding.
 ///
 /// A move is evaluated by replaying the FIFO from the snapshot before the first strip
 /// it changes until the FIFO matches the old one again (see [`Refiner::eval`]): on
-/// bunny about 200 triangles per move, 90,000 moves in three passes.
+/// bunny about 200 triangles per move, 113,000 moves in three passes (23,000 of them
+/// tunnels, out of about 300,000 paths whose index change is counted in O(1)).
 fn refine(
     tris: &[[u32; 3]],
     graph: &DualGraph,
@@ -1263,6 +1619,8 @@ fn refine(
         walks,
         enc,
         slot_of,
+        pos: vec![0; tris.len()],
+        pre: vec![0; tris.len()],
         snap: vec![NONE; (slots + 1) * c],
         miss: vec![0; slots],
         touched: vec![0; slots],
@@ -1272,11 +1630,16 @@ fn refine(
         epoch: 0,
         clock: 0,
         ring: vec![NONE; c],
-        nbuf: [Vec::new(), Vec::new(), Vec::new()],
+        nbuf: Default::default(),
     };
+    for k in 0..slots {
+        r.index_walk(k);
+    }
     let mut total = r.replay_all();
     let mut pool: Vec<u32> = Vec::new();
     let mut moves: Vec<Move> = Vec::new();
+    let mut used: Vec<u32> = Vec::new();
+    let mut joins: Vec<(Piece, Piece)> = Vec::new();
     for pass in 1..=REFINE_PASSES {
         r.pass = pass;
         let mut changed = false;
@@ -1365,6 +1728,20 @@ fn refine(
                     }
                 }
             }
+            let mut tun = Tunnels {
+                tris,
+                graph,
+                walks: &r.walks,
+                enc: &r.enc,
+                slot_of: &r.slot_of,
+                pos: &r.pos,
+                pre: &r.pre,
+                pool: &mut pool,
+                moves: &mut moves,
+                used: &mut used,
+                joins: &mut joins,
+            };
+            tun.search(xs);
             let mut best: Option<(f64, usize, i64)> = None;
             for (i, mv) in moves.iter().enumerate() {
                 let Some((di, dm)) = r.eval(mv, &pool, false) else {
