@@ -211,16 +211,27 @@ impl DualGraph {
                 while k < bucket.len() && hi(bucket[k]) == hi(bucket[i]) {
                     k += 1;
                 }
-                // The j-th corner running the edge one way (by corner id) pairs with
-                // the j-th running it the other way.
-                let group = &bucket[i..k];
-                let mut up = group.iter().filter(|&&e| e & 1 == 1);
-                let mut down = group.iter().filter(|&&e| e & 1 == 0);
-                while let (Some(&eu), Some(&ed)) = (up.next(), down.next()) {
+                let mut link = |eu: u64, ed: u64| {
                     let c = (eu & 0xFFFF_FFFF) >> 1;
                     let d = (ed & 0xFFFF_FFFF) >> 1;
                     neighbors[(c / 3) as usize][(c % 3) as usize] = (d / 3) as u32;
                     neighbors[(d / 3) as usize][(d % 3) as usize] = (c / 3) as u32;
+                };
+                if k == i + 2 {
+                    // The usual manifold edge: two corners, linked when they run it
+                    // in opposite directions.
+                    if (bucket[i] & 1) != (bucket[i + 1] & 1) {
+                        link(bucket[i], bucket[i + 1]);
+                    }
+                } else if k > i + 2 {
+                    // The j-th corner running the edge one way (by corner id) pairs
+                    // with the j-th running it the other way.
+                    let group = &bucket[i..k];
+                    let mut up = group.iter().filter(|&&e| e & 1 == 1);
+                    let mut down = group.iter().filter(|&&e| e & 1 == 0);
+                    while let (Some(&eu), Some(&ed)) = (up.next(), down.next()) {
+                        link(eu, ed);
+                    }
                 }
                 i = k;
             }
