@@ -470,32 +470,39 @@ impl<'a> State<'a> {
                 vfree[v as usize] += 1;
             }
         }
-        let nbr = match graph {
-            Some(g) => g.neighbors.clone(),
-            None => DualGraph::from_triangles(tris, vcount).neighbors,
-        };
-        let mut adj = vec![
-            Adj {
-                nbr: [NO_NEIGHBOR; 3],
-                twin: [0; 3]
-            };
-            n
-        ];
-        for t in 0..n {
-            let tri = tris[t];
-            adj[t].nbr = nbr[t];
-            for k in 0..3 {
-                let m = nbr[t][k];
-                if m != NO_NEIGHBOR {
-                    let (u, v) = (tri[k], tri[NEXT[k]]);
-                    let mt = tris[m as usize];
-                    // The neighbour runs the shared edge the other way.
-                    adj[t].twin[k] = (0..3)
-                        .find(|&j| mt[j] == v && mt[NEXT[j]] == u)
-                        .unwrap_or(0) as u8;
-                }
+        let adj: Vec<Adj> = match graph {
+            Some(g) => {
+                let nbr = &g.neighbors;
+                (0..n)
+                    .map(|t| {
+                        let tri = tris[t];
+                        let mut twin = [0u8; 3];
+                        for k in 0..3 {
+                            let m = nbr[t][k];
+                            if m != NO_NEIGHBOR {
+                                let (u, v) = (tri[k], tri[NEXT[k]]);
+                                let mt = tris[m as usize];
+                                // The neighbour runs the shared edge the other way.
+                                twin[k] = (0..3)
+                                    .find(|&j| mt[j] == v && mt[NEXT[j]] == u)
+                                    .unwrap_or(0) as u8;
+                            }
+                        }
+                        Adj { nbr: nbr[t], twin }
+                    })
+                    .collect()
             }
-        }
+            None => {
+                // The builder knows both corners of every link: the twins are free.
+                let (g, twins) = DualGraph::from_triangles_with_twins(tris, vcount);
+                g.neighbors
+                    .iter()
+                    .zip(&twins)
+                    .map(|(&nbr, &twin)| Adj { nbr, twin })
+                    .collect()
+            }
+        };
+        let nbr = |t: usize| adj[t].nbr;
         let mut b = Buckets::new(n);
         // Inserted in reverse so that each bucket starts in input order.
         for i in (0..n).rev() {
@@ -503,7 +510,7 @@ impl<'a> State<'a> {
                 continue;
             }
             b.free[i] = true;
-            let d = nbr[i].iter().filter(|&&x| x != NO_NEIGHBOR).count() as u8;
+            let d = nbr(i).iter().filter(|&&x| x != NO_NEIGHBOR).count() as u8;
             b.push_front(i as u32, d);
         }
         let mut out = StripSet::new();

@@ -160,6 +160,27 @@ impl DualGraph {
     /// entries, an O(k log k) sort for high-valence vertices). O(triangles + vertices)
     /// for bounded valence, O(t log t) at worst.
     pub fn from_triangles(tris: &[[u32; 3]], vertex_count: usize) -> DualGraph {
+        Self::build(tris, vertex_count, None)
+    }
+
+    /// [`DualGraph::from_triangles`], and for every link the slot of the shared edge in
+    /// the neighbour: `twins[t][j]` is the slot `k` with `neighbors[neighbors[t][j]][k]
+    /// == t` across the same edge (0 where there is no neighbour). Free on top of the
+    /// graph (the pairing knows both corners).
+    pub(crate) fn from_triangles_with_twins(
+        tris: &[[u32; 3]],
+        vertex_count: usize,
+    ) -> (DualGraph, Vec<[u8; 3]>) {
+        let mut twins = vec![[0u8; 3]; tris.len()];
+        let g = Self::build(tris, vertex_count, Some(&mut twins));
+        (g, twins)
+    }
+
+    fn build(
+        tris: &[[u32; 3]],
+        vertex_count: usize,
+        mut twins: Option<&mut Vec<[u8; 3]>>,
+    ) -> DualGraph {
         let n = tris.len();
         let max_index = tris
             .iter()
@@ -171,7 +192,21 @@ impl DualGraph {
         // Entry: higher vertex in the top 32 bits, below it corner * 2 + 1 when the
         // corner runs low -> high; corner * 2 + 1 must fit in 32 bits.
         if n >= (u32::MAX / 6) as usize {
-            return Self::from_triangles_simple(tris, vcount);
+            let g = Self::from_triangles_simple(tris, vcount);
+            if let Some(twins) = twins {
+                for (t, nbr) in g.neighbors.iter().enumerate() {
+                    for k in 0..3 {
+                        let m = nbr[k];
+                        if m != NO_NEIGHBOR {
+                            let (u, v) = (tris[t][k], tris[t][(k + 1) % 3]);
+                            let mt = &tris[m as usize];
+                            twins[t][k] =
+                                (0..3).find(|&j| mt[j] == v && mt[(j + 1) % 3] == u).unwrap_or(0) as u8;
+                        }
+                    }
+                }
+            }
+            return g;
         }
         let start = corner_bucket_starts(tris, vcount);
         let mut fill = start.clone();
@@ -212,10 +247,14 @@ impl DualGraph {
                     k += 1;
                 }
                 let mut link = |eu: u64, ed: u64| {
-                    let c = (eu & 0xFFFF_FFFF) >> 1;
-                    let d = (ed & 0xFFFF_FFFF) >> 1;
-                    neighbors[(c / 3) as usize][(c % 3) as usize] = (d / 3) as u32;
-                    neighbors[(d / 3) as usize][(d % 3) as usize] = (c / 3) as u32;
+                    let c = ((eu & 0xFFFF_FFFF) >> 1) as usize;
+                    let d = ((ed & 0xFFFF_FFFF) >> 1) as usize;
+                    neighbors[c / 3][c % 3] = (d / 3) as u32;
+                    neighbors[d / 3][d % 3] = (c / 3) as u32;
+                    if let Some(tw) = twins.as_deref_mut() {
+                        tw[c / 3][c % 3] = (d % 3) as u8;
+                        tw[d / 3][d % 3] = (c % 3) as u8;
+                    }
                 };
                 if k == i + 2 {
                     // The usual manifold edge: two corners, linked when they run it
@@ -388,5 +427,39 @@ mod dual_graph_tests {
         }
         let fan: Vec<[u32; 3]> = (0..100u32).map(|i| [0, 1 + i, 1 + (i + 1) % 100]).collect();
         assert_eq!(DualGraph::from_triangles(&fan, 101), DualGraph::from_triangles_simple(&fan, 101));
+    }
+
+    #[test]
+    fn twins_name_the_shared_edge_in_the_neighbour() {
+        // Soups with shared, flipped, non-manifold and pillow edges.
+        let mut x = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = |m: u32| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % u64::from(m)) as u32
+        };
+        let mut links = 0;
+        for round in 0..300 {
+            let v = 3 + round % 7;
+            let tris: Vec<[u32; 3]> = (0..next(40)).map(|_| [next(v), next(v), next(v)]).collect();
+            let (g, twins) = DualGraph::from_triangles_with_twins(&tris, v as usize);
+            assert_eq!(g, DualGraph::from_triangles(&tris, v as usize));
+            for (t, nbr) in g.neighbors.iter().enumerate() {
+                for k in 0..3 {
+                    let m = nbr[k];
+                    if m == NO_NEIGHBOR {
+                        continue;
+                    }
+                    links += 1;
+                    let j = twins[t][k] as usize;
+                    assert_eq!(g.neighbors[m as usize][j], t as u32);
+                    let (a, b) = (tris[t][k], tris[t][(k + 1) % 3]);
+                    let mt = tris[m as usize];
+                    assert_eq!((mt[j], mt[(j + 1) % 3]), (b, a));
+                }
+            }
+        }
+        assert!(links > 100, "{links}");
     }
 }
