@@ -42,6 +42,9 @@
 //!
 //! Cost: O(T * c * L) for c candidates per strip (the free triangles around the
 //! cache) and walks of at most L triangles; flat arrays, nothing allocated per step.
+//! A step reads one neighbour record (neighbours, their new vertices, the twin slots)
+//! and the records of four vertices; the walk that found the chosen strip is kept, not
+//! walked again.
 
 use super::greedy::Buckets;
 use crate::strip::{is_degenerate, StripSet};
@@ -368,12 +371,78 @@ const TAKEN: u32 = u32::MAX;
 const NEXT: [usize; 3] = [1, 2, 0];
 const PREV: [usize; 3] = [2, 0, 1];
 
-/// A triangle's [`DualGraph`] neighbours and, for each, the slot of the shared edge in
-/// the neighbour (one 16-byte record: a walk step reads one).
+/// A triangle's [`DualGraph`] neighbours (a missing one is the sentinel triangle
+/// `tris.len()`, always TAKEN) and, for each, the neighbour's vertex opposite the shared
+/// edge and the slot of that edge in the neighbour (one 32-byte record: a walk step
+/// reads one and nothing of `tris`).
 #[derive(Clone, Copy)]
+#[repr(C, align(32))]
 struct Adj {
     nbr: [u32; 3],
+    opp: [u32; 3],
     twin: [u8; 3],
+}
+
+/// What a walk reads and writes, in locals: the per-vertex records, the triangle
+/// marks, the walk's epoch, the FIFO's clock and size, and the walk's pushes so far.
+struct Walk<'s> {
+    vs: &'s mut [[u32; 6]],
+    mark: &'s mut [u32],
+    epoch: u32,
+    time: u32,
+    c: u32,
+    pushes: u32,
+}
+
+impl Walk<'_> {
+    /// Free and not yet in the walk (a triangle or the sentinel of `Adj::nbr`).
+    #[inline(always)]
+    fn is_open(&self, t: u32) -> bool {
+        let m = self.mark[t as usize];
+        m != TAKEN && m != self.epoch
+    }
+
+    /// Whether `v` is in the FIFO after the walk's pushes so far.
+    #[inline(always)]
+    fn cached_after(&self, v: u32) -> bool {
+        let [s, mark, local, ..] = self.vs[v as usize];
+        if mark == self.epoch {
+            return self.pushes - local <= self.c;
+        }
+        s != NONE && self.time.wrapping_sub(s).wrapping_add(self.pushes) <= self.c
+    }
+
+    /// Feeds `v` to the walk's private copy of the FIFO; true on a miss.
+    #[inline(always)]
+    fn touch(&mut self, v: u32) -> bool {
+        if self.cached_after(v) {
+            return false;
+        }
+        let e = &mut self.vs[v as usize];
+        e[1] = self.epoch;
+        e[2] = self.pushes;
+        self.pushes += 1;
+        true
+    }
+
+    /// Starts the count of `v`'s triangles covered by the walk, unless started.
+    #[inline(always)]
+    fn uncover(&mut self, v: u32) {
+        let e = &mut self.vs[v as usize];
+        if e[3] != self.epoch {
+            e[3] = self.epoch;
+            e[4] = 0;
+        }
+    }
+
+    /// Counts one more of `v`'s free triangles as covered by the walk (its count
+    /// started); true when that was its last one.
+    #[inline(always)]
+    fn cover(&mut self, v: u32) -> bool {
+        let e = &mut self.vs[v as usize];
+        e[4] += 1;
+        e[4] == e[5]
+    }
 }
 
 /// `Best::slot` of a walk that goes on from the end of the last strip.
@@ -422,9 +491,11 @@ struct State<'a> {
     /// Candidate triangles already tried for the current strip (round `round`).
     smark: Vec<u32>,
     round: u32,
-    /// The chosen walk after its first triangle: (triangle, swap vertex or NONE, the
-    /// triangle's new vertex).
-    path: Vec<(u32, u32, u32)>,
+    /// The current walk after its first triangle: (triangle, swap vertex or NONE, the
+    /// triangle's new vertex); `bpath`: that of the walk that set the best prefix last
+    /// (swapped in when a walk ends having improved it), which `emit` emits.
+    wpath: Vec<(u32, u32, u32)>,
+    bpath: Vec<(u32, u32, u32)>,
     /// The last triangle of the last strip (NONE before the first).
     last: u32,
 
@@ -470,7 +541,23 @@ impl<'a> State<'a> {
                 vfree[v as usize] += 1;
             }
         }
-        let adj: Vec<Adj> = match graph {
+        // The record of a triangle: a missing neighbour becomes the sentinel `n`.
+        let record = |nbr: [u32; 3], twin: [u8; 3]| {
+            let mut a = Adj {
+                nbr: [n as u32; 3],
+                opp: [0; 3],
+                twin,
+            };
+            for k in 0..3 {
+                let m = nbr[k];
+                if m != NO_NEIGHBOR {
+                    a.nbr[k] = m;
+                    a.opp[k] = tris[m as usize][PREV[twin[k] as usize]];
+                }
+            }
+            a
+        };
+        let mut adj: Vec<Adj> = match graph {
             Some(g) => {
                 let nbr = &g.neighbors;
                 (0..n)
@@ -488,7 +575,7 @@ impl<'a> State<'a> {
                                     .unwrap_or(0) as u8;
                             }
                         }
-                        Adj { nbr: nbr[t], twin }
+                        record(nbr[t], twin)
                     })
                     .collect()
             }
@@ -498,11 +585,16 @@ impl<'a> State<'a> {
                 g.neighbors
                     .iter()
                     .zip(&twins)
-                    .map(|(&nbr, &twin)| Adj { nbr, twin })
+                    .map(|(&nbr, &twin)| record(nbr, twin))
                     .collect()
             }
         };
-        let nbr = |t: usize| adj[t].nbr;
+        // The sentinel (its own neighbours: never read, a walk never enters it).
+        adj.push(Adj {
+            nbr: [n as u32; 3],
+            opp: [0; 3],
+            twin: [0; 3],
+        });
         let mut b = Buckets::new(n);
         // Inserted in reverse so that each bucket starts in input order.
         for i in (0..n).rev() {
@@ -510,7 +602,7 @@ impl<'a> State<'a> {
                 continue;
             }
             b.free[i] = true;
-            let d = nbr(i).iter().filter(|&&x| x != NO_NEIGHBOR).count() as u8;
+            let d = adj[i].nbr.iter().filter(|&&x| x != n as u32).count() as u8;
             b.push_front(i as u32, d);
         }
         let mut out = StripSet::new();
@@ -525,14 +617,17 @@ impl<'a> State<'a> {
             vs: vfree.iter().map(|&f| [NONE, 0, 0, 0, 0, f]).collect(),
             ring: vec![NONE; opt.cache_size as usize],
             time: 0,
+            // The sentinel triangle `n` is TAKEN.
             mark: degenerate
                 .iter()
                 .map(|&d| if d { TAKEN } else { 0 })
+                .chain([TAKEN])
                 .collect(),
             epoch: 0,
             smark: vec![0; n],
             round: 0,
-            path: Vec::with_capacity(64),
+            wpath: vec![(0, 0, 0); opt.max_len as usize],
+            bpath: vec![(0, 0, 0); opt.max_len as usize],
             last: NONE,
             out,
             wtris: Vec::with_capacity(n),
@@ -540,47 +635,16 @@ impl<'a> State<'a> {
         }
     }
 
+    /// Free (a triangle or the sentinel of `Adj::nbr`).
     #[inline]
     fn is_free(&self, t: u32) -> bool {
-        t != NO_NEIGHBOR && self.mark[t as usize] != TAKEN
-    }
-
-    /// Free and not yet in the current walk.
-    #[inline]
-    fn is_open(&self, t: u32) -> bool {
-        t != NO_NEIGHBOR && {
-            let m = self.mark[t as usize];
-            m != TAKEN && m != self.epoch
-        }
+        self.mark[t as usize] != TAKEN
     }
 
     #[inline]
     fn cached_now(&self, v: u32) -> bool {
         let s = self.vs[v as usize][0];
         s != NONE && self.time.wrapping_sub(s) <= self.opt.cache_size
-    }
-
-    /// Whether `v` is in the FIFO after `pushes` more misses of the current walk.
-    #[inline]
-    fn cached_after(&self, v: u32, pushes: u32) -> bool {
-        let c = self.opt.cache_size;
-        let [s, mark, local, ..] = self.vs[v as usize];
-        if mark == self.epoch {
-            return pushes - local <= c;
-        }
-        s != NONE && self.time.wrapping_sub(s).wrapping_add(pushes) <= c
-    }
-
-    /// Feeds `v` to the walk's private copy of the FIFO; true on a miss.
-    #[inline]
-    fn walk_touch(&mut self, v: u32, pushes: &mut u32) -> bool {
-        if self.cached_after(v, *pushes) {
-            return false;
-        }
-        self.vs[v as usize][1] = self.epoch;
-        self.vs[v as usize][2] = *pushes;
-        *pushes += 1;
-        true
     }
 
     /// Feeds `v` to the FIFO for real.
@@ -603,55 +667,10 @@ impl<'a> State<'a> {
         [tri[PREV[slot]], tri[slot], tri[NEXT[slot]]]
     }
 
-    /// The slot of `t` whose edge is `{a, b}`.
-    #[inline]
-    fn slot_of(&self, t: u32, a: u32, b: u32) -> usize {
-        let tri = &self.tris[t as usize];
-        (0..3)
-            .find(|&k| {
-                let (x, y) = (tri[k], tri[NEXT[k]]);
-                (x == a && y == b) || (x == b && y == a)
-            })
-            .unwrap_or(0)
-    }
-
-    /// The exit a walk at `cur` takes, given its natural exit `nat` (no swap) and its
-    /// swap exit `swp`: `nat` when free, or `swp` (one swap) where `nat` is blocked or
-    /// where its new vertex would miss and the swap's would hit. Returns the exit slot
-    /// and whether it swaps.
-    #[inline]
-    fn choose(
-        &self,
-        adj: &Adj,
-        nat: usize,
-        swp: usize,
-        swaps: u32,
-        pushes: u32,
-    ) -> Option<(usize, bool)> {
-        let n = adj.nbr[nat];
-        let nat_ok = self.is_open(n);
-        if swaps >= self.opt.max_swaps {
-            return nat_ok.then_some((nat, false));
-        }
-        let m = adj.nbr[swp];
-        let swp_ok = self.is_open(m);
-        if nat_ok && swp_ok {
-            let y1 = self.tris[n as usize][PREV[adj.twin[nat] as usize]];
-            let y2 = self.tris[m as usize][PREV[adj.twin[swp] as usize]];
-            if !self.cached_after(y1, pushes) && self.cached_after(y2, pushes) {
-                return Some((swp, true));
-            }
-        }
-        if nat_ok {
-            return Some((nat, false));
-        }
-        swp_ok.then_some((swp, true))
-    }
-
     /// Walks from `t` leaving across `slot` (or, with CONTINUE, from the end of the
-    /// last strip, `t` being its last triangle) and offers each prefix to `best`;
-    /// with `record`, stores the walk in `path`.
-    fn evaluate(&mut self, t: u32, slot: usize, best: &mut Best, record: bool) {
+    /// last strip, `t` being its last triangle) and offers each prefix to `best`; the
+    /// walk is kept in `bpath` when it improved `best`.
+    fn evaluate(&mut self, t: u32, slot: usize, best: &mut Best) {
         self.epoch = self.epoch.wrapping_add(1);
         if self.epoch == TAKEN {
             for m in self.mark.iter_mut().filter(|m| **m != TAKEN) {
@@ -663,19 +682,35 @@ impl<'a> State<'a> {
             });
             self.epoch = 1;
         }
-        let mut pushes = 0;
         let w = self.opt.miss_weight;
+        let fb = self.opt.finish_bonus;
+        let mut k = Walk {
+            vs: &mut self.vs,
+            mark: &mut self.mark,
+            epoch: self.epoch,
+            time: self.time,
+            c: self.opt.cache_size,
+            pushes: 0,
+        };
         // The walk is at `cur`, entered across slot `entry`; its exits are the other two
-        // slots, and `fwd` says the natural one (no swap) is NEXT[entry]. `total` is
-        // the cost so far: indices (and the restart), plus weighed misses.
-        let (mut total, mut len, mut cur, mut entry, mut fwd);
+        // slots, and `fwd` says the natural one (no swap) is NEXT[entry]. `r` holds the
+        // vertices of `cur` from the entry's slot on: `r[0], r[1]` run the entry edge.
+        // `total` is the cost so far: indices (and the restart), plus weighed misses.
+        // The vertices of `cur` count as covered (with none of their triangles when
+        // `cur` is the last strip's end), so a step covers only its new vertex afresh.
+        let (mut total, mut len, mut cur, mut entry, mut fwd, mut r);
         if slot == CONTINUE {
             // No restart index, no start indices. The strip ends (a, b): the natural
             // exit is the edge {a, b}, the swap exit the other edge at b.
             let n = self.out.indices.len();
             let (a, b) = (self.out.indices[n - 2], self.out.indices[n - 1]);
             let tri = self.tris[t as usize];
-            let nat = self.slot_of(t, a, b);
+            let nat = (0..3)
+                .find(|&k| {
+                    let (x, y) = (tri[k], tri[NEXT[k]]);
+                    (x == a && y == b) || (x == b && y == a)
+                })
+                .unwrap_or(0);
             let swp = if tri[NEXT[nat]] == b {
                 NEXT[nat]
             } else {
@@ -683,35 +718,51 @@ impl<'a> State<'a> {
             };
             entry = 3 - nat - swp;
             fwd = nat == NEXT[entry];
+            r = [tri[entry], tri[NEXT[entry]], tri[PREV[entry]]];
+            if fb != 0.0 {
+                for v in tri {
+                    k.uncover(v);
+                }
+            }
             cur = t;
             total = 0.0;
             len = 0;
         } else {
             let tri = self.tris[t as usize];
-            let [x, u, v] = self.start(t, slot);
+            let [x, u, v] = [tri[PREV[slot]], tri[slot], tri[NEXT[slot]]];
             // Three indices and the restart.
             total = 4.0;
             for y in [x, u, v] {
-                if self.walk_touch(y, &mut pushes) {
+                if k.touch(y) {
                     total += w;
                 }
             }
-            self.mark[t as usize] = self.epoch;
-            if self.opt.finish_bonus != 0.0 {
+            k.mark[t as usize] = k.epoch;
+            if fb != 0.0 {
                 for v in tri {
-                    total -= self.opt.finish_bonus * self.cover(v);
+                    k.uncover(v);
+                    if k.cover(v) {
+                        total -= fb;
+                    }
                 }
             }
-            let left = self.b.degree[t as usize] as f32
-                - f32::from(self.is_free(self.adj[t as usize].nbr[slot]));
+            let nb = self.adj[t as usize].nbr[slot];
+            let left = self.b.degree[t as usize] as f32 - f32::from(k.mark[nb as usize] != TAKEN);
             total += self.opt.start_penalty * left.max(0.0);
             len = 1;
             // The strip [x, u, v] leaves across (u, v) without a swap, or across {x, v}
             // with one: as if entered across (x, u).
-            (cur, entry, fwd) = (t, PREV[slot], true);
+            (cur, entry, fwd, r) = (t, PREV[slot], true, [x, u, v]);
         }
+        let adjs = &self.adj[..];
+        let wpath = &mut self.wpath[..];
+        let first = len;
+        let mut improved = false;
         let mut swaps = 0u32;
-        let limit = self.opt.max_len as f32;
+        let max_len = self.opt.max_len;
+        let max_swaps = self.opt.max_swaps;
+        let limit = max_len as f32;
+        let mut bound = (best.cost - 1.0) * limit;
         loop {
             if len > 0 && total < best.cost * len as f32 {
                 *best = Best {
@@ -720,81 +771,101 @@ impl<'a> State<'a> {
                     len,
                     cost: total / len as f32,
                 };
+                bound = (best.cost - 1.0) * limit;
+                improved = true;
             }
-            if len >= self.opt.max_len {
+            if len >= max_len {
                 break;
             }
             // No longer prefix can beat `best`: it covers at most `max_len` triangles,
             // and the indices, swaps and misses only grow.
-            if !record && total - len as f32 >= (best.cost - 1.0) * limit {
+            if total - len as f32 >= bound {
                 break;
             }
-            let adj = self.adj[cur as usize];
+            let adj = &adjs[cur as usize];
             let (nat, swp) = if fwd {
                 (NEXT[entry], PREV[entry])
             } else {
                 (PREV[entry], NEXT[entry])
             };
-            let Some((k, swap)) = self.choose(&adj, nat, swp, swaps, pushes) else {
-                break;
+            // The exit: `nat` when open, or `swp` (one swap) where `nat` is blocked or
+            // where its new vertex would miss and the swap's would hit.
+            let nat_ok = k.is_open(adj.nbr[nat]);
+            let (e, swap) = if swaps >= max_swaps {
+                if !nat_ok {
+                    break;
+                }
+                (nat, false)
+            } else {
+                let swp_ok = k.is_open(adj.nbr[swp]);
+                if nat_ok && swp_ok {
+                    if !k.cached_after(adj.opp[nat]) && k.cached_after(adj.opp[swp]) {
+                        (swp, true)
+                    } else {
+                        (nat, false)
+                    }
+                } else if nat_ok {
+                    (nat, false)
+                } else if swp_ok {
+                    (swp, true)
+                } else {
+                    break;
+                }
             };
-            let n = adj.nbr[k];
-            let j = adj.twin[k] as usize;
+            let n = adj.nbr[e];
+            let j = adj.twin[e] as usize;
+            // The new vertex of `n`, opposite the edge it shares with `cur`.
+            let y = adj.opp[e];
             total += 1.0;
             if swap {
                 swaps += 1;
                 total += 1.0;
             }
-            self.mark[n as usize] = self.epoch;
-            let y = self.tris[n as usize][PREV[j]];
-            if record {
-                // The swap vertex: the exit edge's vertex other than the newest (the
-                // newest, opposite the entry, is on both exits).
-                let p = if !swap {
-                    NONE
-                } else if k == NEXT[entry] {
-                    self.tris[cur as usize][k]
-                } else {
-                    self.tris[cur as usize][entry]
-                };
-                self.path.push((n, p, y));
-            }
+            k.mark[n as usize] = k.epoch;
+            // Leaving across NEXT[entry] the exit edge is (r[1], r[2]), across
+            // PREV[entry] it is (r[2], r[0]); `n` runs it the other way from slot j.
+            let via_next = e == NEXT[entry];
+            // The swap vertex: the exit edge's vertex other than the newest (the
+            // newest, r[2], is on both exits).
+            let p = match (swap, via_next) {
+                (false, _) => NONE,
+                (true, true) => r[1],
+                (true, false) => r[0],
+            };
+            wpath[(len - first) as usize] = (n, p, y);
+            r = if via_next {
+                [r[2], r[1], y]
+            } else {
+                [r[0], r[2], y]
+            };
             // The other two vertices belong to the triangle just fed, so (but for a
             // hit evicted by that triangle's own pushes, which the emission counts
             // exactly) only `y` can miss.
-            if self.walk_touch(y, &mut pushes) {
+            if k.touch(y) {
                 total += w;
             }
-            if self.opt.finish_bonus != 0.0 {
-                let tri = self.tris[n as usize];
-                for v in tri {
-                    total -= self.opt.finish_bonus * self.cover(v);
+            if fb != 0.0 {
+                // r[0] and r[1] were vertices of `cur`: already seen by this walk.
+                if k.cover(r[0]) {
+                    total -= fb;
+                }
+                if k.cover(r[1]) {
+                    total -= fb;
+                }
+                k.uncover(y);
+                if k.cover(y) {
+                    total -= fb;
                 }
             }
             len += 1;
             // Leaving across NEXT[entry], the newest vertex of `cur` starts the edge it
             // shares with `n` (as `n` runs it), and the next natural exit is PREV[j].
-            fwd = k != NEXT[entry];
+            fwd = !via_next;
             entry = j;
             cur = n;
         }
-    }
-
-    /// Counts one more of `v`'s free triangles as covered by the walk; 1 when that
-    /// was its last one.
-    #[inline]
-    fn cover(&mut self, v: u32) -> f32 {
-        let epoch = self.epoch;
-        let e = &mut self.vs[v as usize];
-        if e[3] != epoch {
-            e[3] = epoch;
-            e[4] = 0;
-        }
-        e[4] += 1;
-        if e[4] == e[5] {
-            1.0
-        } else {
-            0.0
+        if improved {
+            std::mem::swap(&mut self.wpath, &mut self.bpath);
         }
     }
 
@@ -815,7 +886,7 @@ impl<'a> State<'a> {
             }
         }
         for slot in 0..3 {
-            self.evaluate(t, slot, best, false);
+            self.evaluate(t, slot, best);
         }
     }
 
@@ -847,7 +918,7 @@ impl<'a> State<'a> {
             self.next_round();
             let mut best = Best::NOTHING;
             if self.opt.join && self.last != NONE {
-                self.evaluate(self.last, CONTINUE, &mut best, false);
+                self.evaluate(self.last, CONTINUE, &mut best);
                 // A new strip costs at least 1 + 3 / max_len per triangle (its start
                 // and restart indices); going on that cheaply (a cache hit without a
                 // swap) cannot be beaten, and ties keep the first found anyway.
@@ -890,13 +961,9 @@ impl<'a> State<'a> {
     fn emit(&mut self, best: Best) {
         let t = best.t;
         let slot = best.slot as usize;
-        // Walk the chosen candidate again, recording it (same FIFO, same steps).
-        self.path.clear();
-        let max_len = self.opt.max_len;
-        self.opt.max_len = best.len;
-        let mut scratch = Best::NOTHING;
-        self.evaluate(t, slot, &mut scratch, true);
-        self.opt.max_len = max_len;
+        // The walk that found `best` is in `bpath`: its triangles after the first
+        // (all of them going on from the last strip).
+        let steps = best.len as usize - usize::from(slot != CONTINUE);
         let (mut a, mut b);
         if slot == CONTINUE {
             self.woff.pop();
@@ -914,8 +981,8 @@ impl<'a> State<'a> {
             (a, b) = (u, w);
         }
         self.last = t;
-        for i in 0..self.path.len() {
-            let (n, p, y) = self.path[i];
+        for i in 0..steps {
+            let (n, p, y) = self.bpath[i];
             if p != NONE {
                 // [.., a, b] -> [.., a, p, b]: the last triangle decodes the same and
                 // the strip now ends on its edge {p, b}.
