@@ -142,6 +142,18 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// Runs `f` `runs` times (at least once): its last result and the median time in ms.
+fn timed<T>(runs: usize, mut f: impl FnMut() -> T) -> (T, f64) {
+    let mut times = Vec::with_capacity(runs.max(1));
+    let mut out = None;
+    for _ in 0..runs.max(1) {
+        let t = Instant::now();
+        out = Some(f());
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    (out.expect("at least one run"), median(times))
+}
+
 struct Row {
     model: String,
     mode: &'static str,
@@ -211,31 +223,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         for mode in &modes {
             let (input, reorder_ms) = match mode.reorder {
                 Some(r) => {
-                    let mut times = Vec::new();
-                    let mut out = Vec::new();
-                    for _ in 0..runs {
-                        let t = Instant::now();
-                        out = r(&tris, n);
-                        times.push(t.elapsed().as_secs_f64() * 1e3);
-                    }
-                    (out, Some(median(times)))
+                    let (out, ms) = timed(runs, || r(&tris, n));
+                    (out, Some(ms))
                 }
                 None => (tris.clone(), None),
             };
-            let mut times = Vec::new();
-            let mut strips = StripSet::new();
-            for _ in 0..runs {
-                let t = Instant::now();
-                strips = (mode.stripify)(&input, n);
-                times.push(t.elapsed().as_secs_f64() * 1e3);
-            }
+            let (strips, ms) = timed(runs, || (mode.stripify)(&input, n));
             // Figures against the original triangles: the reorder must not lose any.
             let figures = metrics::figures(&tris, &strips, CacheModel::default());
             rows.push(Row {
                 model: name.clone(),
                 mode: mode.name,
                 figures,
-                ms: median(times),
+                ms,
                 reorder_ms,
                 ours: mode.ours,
                 quads: None,
@@ -267,14 +267,8 @@ fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>)
     if quad::quad_fraction(mesh) < 0.5 {
         return;
     }
-    let mut times = Vec::new();
-    let mut result = None;
-    for _ in 0..runs {
-        let t = Instant::now();
-        result = Some(quad::qstrip_mesh(mesh, &quad::QuadOptions::default()));
-        times.push(t.elapsed().as_secs_f64() * 1e3);
-    }
-    let Some((q, strips)) = result else { return };
+    let ((q, strips), qstrip_ms) =
+        timed(runs, || quad::qstrip_mesh(mesh, &quad::QuadOptions::default()));
     let check = quad_verify::verify_quads(mesh, &strips);
     let mut figures = metrics::figures(&strip::decode(&strips), &strips, CacheModel::default());
     if let Err(e) = &check {
@@ -290,7 +284,7 @@ fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>)
         model: name.to_string(),
         mode: "stripkit qstrip (other faces: greedy)",
         figures,
-        ms: median(times),
+        ms: qstrip_ms,
         reorder_ms: None,
         ours: true,
         quads,
@@ -310,19 +304,9 @@ fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>)
         ),
     ];
     for (mode, options, bound) in modes {
-        let mut times = Vec::new();
-        let mut result = None;
-        for _ in 0..runs {
-            let t = Instant::now();
-            result = Some(cache::stripify_mesh(
-                mesh,
-                &options,
-                bound,
-                cache::Diagonals::Auto,
-            ));
-            times.push(t.elapsed().as_secs_f64() * 1e3);
-        }
-        let Some(m) = result else { return };
+        let (m, ms) = timed(runs, || {
+            cache::stripify_mesh(mesh, &options, bound, cache::Diagonals::Auto)
+        });
         let mut figures = metrics::figures(&m.triangles, &m.strips, CacheModel::default());
         if m.qstrip_diagonals {
             if let Err(e) = quad_verify::verify_quads(mesh, &m.strips) {
@@ -334,7 +318,7 @@ fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>)
             model: name.to_string(),
             mode,
             figures,
-            ms: median(times),
+            ms,
             reorder_ms: None,
             ours: true,
             quads,
@@ -342,27 +326,14 @@ fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>)
     }
     // The peer on the same split, so that the diagonals' own gain shows.
     let n = mesh.vertex_count();
-    let mut times = Vec::new();
-    let mut input = Vec::new();
-    for _ in 0..runs {
-        let t = Instant::now();
-        input = reorder_cache(&qstrip_tris, n);
-        times.push(t.elapsed().as_secs_f64() * 1e3);
-    }
-    let reorder_ms = Some(median(times));
-    let mut times = Vec::new();
-    let mut out = StripSet::new();
-    for _ in 0..runs {
-        let t = Instant::now();
-        out = meshopt_stripify(&input, n);
-        times.push(t.elapsed().as_secs_f64() * 1e3);
-    }
+    let (input, reorder_ms) = timed(runs, || reorder_cache(&qstrip_tris, n));
+    let (out, ms) = timed(runs, || meshopt_stripify(&input, n));
     rows.push(Row {
         model: name.to_string(),
         mode: "meshopt optimize_vertex_cache + stripify, QSTRIP split",
         figures: metrics::figures(&qstrip_tris, &out, CacheModel::default()),
-        ms: median(times),
-        reorder_ms,
+        ms,
+        reorder_ms: Some(reorder_ms),
         ours: false,
         quads,
     });

@@ -22,8 +22,13 @@ fn write_grid(path: &std::path::Path, n: usize, extra_triangles: bool) {
 }
 
 fn run_json(input: &std::path::Path, algo: &str) -> serde_json::Value {
-    let out_path = tmp(&format!("out-{algo}.ply"));
-    let out = stripkit(&[
+    run_json_with(input, algo, &[])
+}
+
+/// `stripkit strip INPUT -o OUT --algo ALGO --json` plus `extra`; the printed figures.
+fn run_json_with(input: &std::path::Path, algo: &str, extra: &[&str]) -> serde_json::Value {
+    let out_path = tmp(&format!("out-{algo}-{}.ply", extra.join("-")));
+    let mut args = vec![
         "strip",
         input.to_str().unwrap(),
         "-o",
@@ -31,8 +36,9 @@ fn run_json(input: &std::path::Path, algo: &str) -> serde_json::Value {
         "--algo",
         algo,
         "--json",
-    ]);
-    support::json(&out)
+    ];
+    args.extend_from_slice(extra);
+    support::json(&stripkit(&args))
 }
 
 #[test]
@@ -113,20 +119,7 @@ fn cache_modes_split_shuffled_quads_along_qstrip_diagonals() {
     let mesh = stripkit::gen::shuffle_faces(&stripkit::gen::torus_quads(40, 24, 3.0, 1.0), 3);
     support::write_mesh(&input, &mesh);
     for algo in ["cache", "balanced"] {
-        let run = |diagonals: &str| {
-            let out_path = tmp(&format!("out-{algo}-{diagonals}.ply"));
-            support::json(&stripkit(&[
-                "strip",
-                input.to_str().unwrap(),
-                "-o",
-                out_path.to_str().unwrap(),
-                "--algo",
-                algo,
-                "--diagonals",
-                diagonals,
-                "--json",
-            ]))
-        };
+        let run = |diagonals: &str| run_json_with(&input, algo, &["--diagonals", diagonals]);
         let fan = run("fan");
         let auto = run("auto");
         let forced = run("qstrip");
