@@ -101,10 +101,6 @@ pub fn modes() -> Vec<Mode> {
             };
             greedy::stripify(t, n, &options)
         }),
-        ours("stripkit cache", |t, n| cache::stripify(t, n, &CacheOptions::cache(16))),
-        ours("stripkit balanced (acmr16 <= 0.8)", |t, n| {
-            cache::stripify_within(t, n, &CacheOptions::balanced(16), 0.8).0
-        }),
         peer("meshopt optimize_vertex_cache + stripify", reorder_cache, meshopt_stripify),
         peer("meshopt optimize_vertex_cache_strip + stripify", reorder_strip, meshopt_stripify),
     ]
@@ -241,6 +237,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 quads: None,
             });
         }
+        cache_rows(&mesh, &name, &tris, runs, &mut rows);
         quad_row(&mesh, &name, runs, &mut rows);
     }
     let table = render(&rows, runs);
@@ -257,6 +254,42 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         anyhow::bail!("verification failed: {}", failed.join(", "));
     }
     Ok(())
+}
+
+/// The cache-aware modes as the CLI runs them (`cache::stripify_mesh`: a canonical
+/// vertex order, and on quad-dominant meshes the cheaper of the fan and QSTRIP's split,
+/// `--diagonals auto`); on quad-dominant meshes also on the fan alone. Strips on
+/// QSTRIP's split are checked at quad level, the others against the input's fan.
+fn cache_rows(mesh: &stripkit::Mesh, name: &str, tris: &[[u32; 3]], runs: usize, rows: &mut Vec<Row>) {
+    use stripkit::stripify::{quad, quad_verify};
+    let quad_dominant = quad::quad_fraction(mesh) >= 0.5;
+    let mut modes: Vec<(&'static str, CacheOptions, Option<f64>, cache::Diagonals)> = vec![
+        ("stripkit cache", CacheOptions::cache(16), None, cache::Diagonals::Auto),
+        ("stripkit balanced (acmr16 <= 0.8)", CacheOptions::balanced(16), Some(0.8), cache::Diagonals::Auto),
+    ];
+    if quad_dominant {
+        modes.push(("stripkit cache --diagonals fan", CacheOptions::cache(16), None, cache::Diagonals::Fan));
+        modes.push((
+            "stripkit balanced --diagonals fan (acmr16 <= 0.8)",
+            CacheOptions::balanced(16),
+            Some(0.8),
+            cache::Diagonals::Fan,
+        ));
+    }
+    for (mode, options, bound, diagonals) in modes {
+        let (m, ms) = timed(runs, || cache::stripify_mesh(mesh, &options, bound, diagonals));
+        let figures = if m.qstrip_diagonals {
+            let mut f = metrics::figures(&m.triangles, &m.strips, CacheModel::default());
+            if let Err(e) = quad_verify::verify_quads(mesh, &m.strips) {
+                eprintln!("{name}: {mode}: {e}");
+                f.verified = false;
+            }
+            f
+        } else {
+            metrics::figures(tris, &m.strips, CacheModel::default())
+        };
+        rows.push(Row { model: name.to_string(), mode, figures, ms, reorder_ms: None, ours: true, quads: None });
+    }
 }
 
 /// QSTRIP on quad-dominant meshes (at least half the faces quads): quads through
@@ -289,41 +322,6 @@ fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>)
         ours: true,
         quads,
     });
-    // The cache-aware modes may split quads along QSTRIP's diagonals too
-    // (`--diagonals auto`: both splits tried, the cheaper kept).
-    let modes: [(&'static str, CacheOptions, Option<f64>); 2] = [
-        (
-            "stripkit cache --diagonals auto",
-            CacheOptions::cache(16),
-            None,
-        ),
-        (
-            "stripkit balanced --diagonals auto (acmr16 <= 0.8)",
-            CacheOptions::balanced(16),
-            Some(0.8),
-        ),
-    ];
-    for (mode, options, bound) in modes {
-        let (m, ms) = timed(runs, || {
-            cache::stripify_mesh(mesh, &options, bound, cache::Diagonals::Auto)
-        });
-        let mut figures = metrics::figures(&m.triangles, &m.strips, CacheModel::default());
-        if m.qstrip_diagonals {
-            if let Err(e) = quad_verify::verify_quads(mesh, &m.strips) {
-                eprintln!("{name}: {mode}: {e}");
-                figures.verified = false;
-            }
-        }
-        rows.push(Row {
-            model: name.to_string(),
-            mode,
-            figures,
-            ms,
-            reorder_ms: None,
-            ours: true,
-            quads,
-        });
-    }
     // The peer on the same split, so that the diagonals' own gain shows.
     let n = mesh.vertex_count();
     let (input, reorder_ms) = timed(runs, || reorder_cache(&qstrip_tris, n));

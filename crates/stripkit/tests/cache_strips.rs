@@ -574,5 +574,91 @@ fn quads_split_along_qstrip_diagonals_beat_a_random_fan() {
     let tris = stripkit::gen::icosphere(3);
     let m = stripify_mesh(&tris, &CacheOptions::cache(16), None, Diagonals::Auto);
     assert!(!m.qstrip_diagonals);
-    assert_eq!(m.triangles, tris.triangulate().tris);
+    // The same triangles (in a canonical order, each possibly rotated).
+    let sorted = |t: &[[u32; 3]]| {
+        let mut v: Vec<[u32; 3]> = t.iter().map(|&x| strip::canonical(x)).collect();
+        v.sort_unstable();
+        v
+    };
+    assert_eq!(sorted(&m.triangles), sorted(&tris.triangulate().tris));
+    assert!(strip::verify(&tris.triangulate().tris, &m.strips).ok());
+}
+
+/// `mesh` with its vertices renumbered by a pseudo-random permutation (positions moved
+/// along), and the permutation (new id of every old vertex).
+fn renumbered(mesh: &stripkit::Mesh, seed: u64) -> (stripkit::Mesh, Vec<u32>) {
+    let n = mesh.vertex_count();
+    let mut rng = Rng(seed);
+    let mut perm: Vec<u32> = (0..n as u32).collect();
+    for i in (1..n).rev() {
+        perm.swap(i, rng.below(i + 1));
+    }
+    let mut positions = vec![[0f32; 3]; n];
+    for v in 0..n {
+        positions[perm[v] as usize] = mesh.positions[v];
+    }
+    let faces: Vec<Vec<u32>> = mesh.faces().map(|f| f.iter().map(|&v| perm[v as usize]).collect()).collect();
+    (stripkit::Mesh::from_polygons(positions, &faces), perm)
+}
+
+#[test]
+fn stripify_mesh_gives_the_same_strips_for_any_face_order_and_vertex_ids() {
+    // An irregular triangle mesh (a torus with random diagonals), its faces shuffled
+    // and rotated and its vertices renumbered: the canonical order makes the strips
+    // the same, vertex for vertex through the renumbering, in both modes.
+    use stripkit::stripify::cache::{stripify_mesh, Diagonals};
+    let mut rng = Rng(17);
+    let (tris, _) = torus(60, 40, Some(&mut rng));
+    let positions: Vec<[f32; 3]> = stripkit::gen::torus(60, 40, 3.0, 1.0).positions;
+    let mesh = stripkit::Mesh::from_triangles(positions, &tris);
+    for (o, bound) in [(CacheOptions::cache(16), None), (CacheOptions::balanced(16), Some(0.8))] {
+        let a = stripify_mesh(&mesh, &o, bound, Diagonals::Auto);
+        assert!(strip::verify(&tris, &a.strips).ok());
+        for seed in [1, 2, 3] {
+            let (other, perm) = renumbered(&stripkit::gen::shuffle_faces(&mesh, seed), seed + 100);
+            let b = stripify_mesh(&other, &o, bound, Diagonals::Auto);
+            assert!(strip::verify(&other.triangulate().tris, &b.strips).ok());
+            let mapped: Vec<u32> = a.strips.indices.iter().map(|&v| perm[v as usize]).collect();
+            assert_eq!(mapped, b.strips.indices, "{o:?} seed {seed}");
+            assert_eq!(a.strips.offsets, b.strips.offsets);
+            assert_eq!(a.acmr, b.acmr);
+        }
+    }
+}
+
+#[test]
+fn polygons_keep_their_fans_in_every_split() {
+    // Quads, a hexagon (two quads merged) and triangles, shuffled: QSTRIP's split may
+    // change the quads' diagonals but never a larger polygon's fan, the fan split
+    // changes nothing; every result checked at quad level or against the fan.
+    use stripkit::stripify::cache::{stripify_mesh, Diagonals};
+    use stripkit::stripify::quad_verify::verify_quads;
+    let grid = stripkit::gen::grid_quads(12, 10);
+    let row = 13u32;
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    for (f, face) in grid.faces().enumerate() {
+        match f {
+            // Quads 0 and 1 (bottom row) become one hexagon.
+            0 => faces.push(vec![0, 1, 2, 2 + row, 1 + row, row]),
+            1 => {}
+            // Quad 30 becomes two triangles, its fan.
+            30 => {
+                faces.push(vec![face[0], face[1], face[2]]);
+                faces.push(vec![face[0], face[2], face[3]]);
+            }
+            _ => faces.push(face.to_vec()),
+        }
+    }
+    let mesh = stripkit::Mesh::from_polygons(grid.positions.clone(), &faces);
+    let mesh = stripkit::gen::shuffle_faces(&mesh, 9);
+    for (o, bound) in [(CacheOptions::cache(16), None), (CacheOptions::balanced(16), Some(0.8))] {
+        for d in [Diagonals::Auto, Diagonals::Fan, Diagonals::Qstrip] {
+            let m = stripify_mesh(&mesh, &o, bound, d);
+            verify_quads(&mesh, &m.strips).expect("quad-level check");
+            assert!(strip::verify(&m.triangles, &m.strips).ok(), "{d:?}");
+            if !m.qstrip_diagonals {
+                assert!(strip::verify(&mesh.triangulate().tris, &m.strips).ok(), "{d:?}");
+            }
+        }
+    }
 }
