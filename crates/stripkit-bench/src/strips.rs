@@ -265,6 +265,12 @@ fn cache_rows(mesh: &stripkit::Mesh, name: &str, tris: &[[u32; 3]], runs: usize,
     let quad_dominant = quad::quad_fraction(mesh) >= 0.5;
     let mut modes: Vec<(&'static str, CacheOptions, Option<f64>, cache::Diagonals)> = vec![
         ("stripkit cache", CacheOptions::cache(16), None, cache::Diagonals::Auto),
+        (
+            "stripkit cache --refine",
+            CacheOptions { refine: true, ..CacheOptions::cache(16) },
+            None,
+            cache::Diagonals::Auto,
+        ),
         ("stripkit balanced (acmr16 <= 0.8)", CacheOptions::balanced(16), Some(0.8), cache::Diagonals::Auto),
     ];
     if quad_dominant {

@@ -145,3 +145,19 @@ fn cache_modes_split_shuffled_quads_along_qstrip_diagonals() {
         }
     }
 }
+
+#[test]
+fn cache_refine_keeps_misses_and_saves_indices() {
+    let input = tmp("refine-torus.obj");
+    let mesh = stripkit::gen::shuffle_faces(&stripkit::gen::torus(48, 32, 3.0, 1.0), 4);
+    support::write_mesh(&input, &mesh);
+    let plain = run_json_with(&input, "cache", &[]);
+    let refined = run_json_with(&input, "cache", &["--refine"]);
+    for v in [&plain, &refined] {
+        assert_eq!(v["verified"], true);
+    }
+    let idx = |v: &serde_json::Value| v["indices_restart"].as_u64().unwrap();
+    let acmr = |v: &serde_json::Value| v["acmr16"].as_f64().unwrap();
+    assert!(idx(&refined) < idx(&plain), "{} vs {}", idx(&refined), idx(&plain));
+    assert!(acmr(&refined) <= acmr(&plain) + 1e-12);
+}

@@ -508,7 +508,8 @@ mod soups {
 
         #[test]
         fn every_soup_is_kept_whole((tris, vc) in soups(), n in 3u32..20) {
-            for o in [CacheOptions::cache(n), CacheOptions::balanced(n)] {
+            let refined = CacheOptions { refine: true, ..CacheOptions::cache(n) };
+            for o in [CacheOptions::cache(n), CacheOptions::balanced(n), refined] {
                 let strips = cache::stripify(&tris, vc, &o);
                 let v = strip::verify(&tris, &strips);
                 prop_assert!(v.ok(), "{:?}: {}", o, v);
@@ -661,4 +662,20 @@ fn polygons_keep_their_fans_in_every_split() {
             }
         }
     }
+}
+
+#[test]
+fn refining_the_cache_strips_lowers_indices_without_adding_misses() {
+    // An irregular torus: the refined cache strips have fewer indices and no more
+    // misses than the plain ones (measured: about 3% fewer indices, fewer misses).
+    let mut rng = Rng(23);
+    let (tris, vc) = torus(120, 80, Some(&mut rng));
+    let plain = check(&tris, vc, &CacheOptions::cache(16)).1;
+    let refined = check(&tris, vc, &CacheOptions { refine: true, ..CacheOptions::cache(16) }).1;
+    eprintln!(
+        "plain {} @ {:.4}, refined {} @ {:.4}",
+        plain.indices_restart, plain.acmr, refined.indices_restart, refined.acmr
+    );
+    assert!((refined.indices_restart as f64) < 0.99 * plain.indices_restart as f64);
+    assert!(refined.acmr <= plain.acmr);
 }

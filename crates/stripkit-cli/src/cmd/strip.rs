@@ -134,6 +134,12 @@ pub struct Args {
     /// covered by two triangles along one of its diagonals, winding kept).
     #[arg(long, value_enum, default_value = "auto")]
     pub diagonals: DiagonalsArg,
+    /// `--algo cache`: then refine the strips with balanced's local search (joins and
+    /// relinks scored by the exact FIFO, a miss costing 1.1 indices, no move adding a
+    /// miss): bunny 94,560 indices at 0.645 misses per triangle -> 91,970 at 0.637, in
+    /// about 0.22 s instead of 14 ms. `balanced` always refines.
+    #[arg(long)]
+    pub refine: bool,
     /// Simulate an LRU cache for the `acmr` figure instead of FIFO.
     #[arg(long)]
     pub lru: bool,
@@ -298,7 +304,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else if matches!(algo, Algo::Cache | Algo::Balanced) {
         let size = args.cache.min(u32::MAX as usize) as u32;
         let (options, bound) = if algo == Algo::Cache {
-            (CacheOptions::cache(size), None)
+            let options = CacheOptions {
+                refine: args.refine,
+                ..CacheOptions::cache(size)
+            };
+            (options, None)
         } else {
             (CacheOptions::balanced(size), Some(args.max_acmr))
         };

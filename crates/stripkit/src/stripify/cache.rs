@@ -79,6 +79,13 @@ pub struct CacheOptions {
     /// covers: a finished vertex never misses again, one left with a triangle or two
     /// will likely miss again once evicted.
     pub finish_bonus: f32,
+    /// Then refine the strips with the local search of [`stripify_within`] (joins,
+    /// chains, reversals and tunnels scored by the exact FIFO), a miss costing
+    /// `miss_weight` indices and no move adding misses: fewer indices and fewer misses
+    /// for about 15x the time (bunny: 94,560 @ 0.645 -> 91,970 @ 0.637 in 0.22 s).
+    /// Used by [`stripify`], [`stripify_with_graph`] and [`stripify_mesh`] without a
+    /// bound; [`stripify_within`] always refines.
+    pub refine: bool,
 }
 
 impl CacheOptions {
@@ -98,6 +105,7 @@ impl CacheOptions {
             scan_entries: cache_size * 5 / 8,
             join: true,
             finish_bonus: 1.0,
+            refine: false,
         }
     }
 
@@ -126,9 +134,7 @@ impl Default for CacheOptions {
 /// ordered for a FIFO vertex cache (see the module docs). Degenerate triangles are
 /// dropped; every other triangle appears exactly once with its winding.
 pub fn stripify(tris: &[[u32; 3]], vertex_count: usize, options: &CacheOptions) -> StripSet {
-    let mut s = State::new(tris, None, vertex_count, options);
-    s.run();
-    s.out
+    run_once(tris, None, vertex_count, options).0
 }
 
 /// As [`stripify`], with the dual graph of `tris` already built.
@@ -138,9 +144,47 @@ pub fn stripify_with_graph(
     graph: &DualGraph,
     options: &CacheOptions,
 ) -> StripSet {
+    run_once(tris, Some(graph), vertex_count, options).0
+}
+
+/// One run of the stripifier, refined when `options.refine`: the strips and their
+/// misses in the FIFO of `options.cache_size`.
+fn run_once(
+    tris: &[[u32; 3]],
+    graph: Option<&DualGraph>,
+    vertex_count: usize,
+    options: &CacheOptions,
+) -> (StripSet, u64) {
+    if !options.refine {
+        let mut s = State::new(tris, graph, vertex_count, options);
+        s.run();
+        return (s.out, u64::from(s.time));
+    }
+    let own;
+    let graph = match graph {
+        Some(g) => g,
+        None => {
+            own = DualGraph::from_triangles(tris, vertex_count);
+            &own
+        }
+    };
     let mut s = State::new(tris, Some(graph), vertex_count, options);
     s.run();
-    s.out
+    let misses = u64::from(s.time);
+    let walks = s
+        .woff
+        .windows(2)
+        .map(|r| s.wtris[r[0] as usize..r[1] as usize].to_vec())
+        .collect();
+    let cache_size = options.cache_size.max(3) as usize;
+    let lambda = f64::from(options.miss_weight);
+    let (strips, refined) = refine(tris, graph, walks, cache_size, lambda, misses);
+    let indices = |s: &StripSet| s.index_count() + s.len();
+    if refined <= misses && indices(&strips) <= indices(&s.out) {
+        (strips, refined)
+    } else {
+        (s.out, misses)
+    }
 }
 
 /// Strips as [`stripify`] makes them, with the fewest indices its miss weights give
@@ -322,11 +366,9 @@ pub fn stripify_mesh(
         let (strips, miss_weight, acmr) = match max_acmr {
             Some(bound) => stripify_within(&tris, vc, options, bound),
             None => {
-                let mut s = State::new(&tris, None, vc, options);
-                s.run();
+                let (strips, misses) = run_once(&tris, None, vc, options);
                 let t = tris.iter().filter(|t| !is_degenerate(t)).count().max(1);
-                let acmr = s.time as f64 / t as f64;
-                (s.out, options.miss_weight, acmr)
+                (strips, options.miss_weight, misses as f64 / t as f64)
             }
         };
         MeshStrips {
