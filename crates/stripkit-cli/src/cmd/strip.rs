@@ -6,7 +6,7 @@
 //! triangles must equal the input's (nothing lost, nothing added, no winding flipped).
 //! A failed check writes nothing and exits with status 1.
 //!
-//! Adding a stripifier: a variant of [`Algo`] and one arm in [`stripify`].
+//! Adding a stripifier: a variant of [`Algo`] and its branch where [`run`] picks the strips.
 
 use anyhow::Context;
 use clap::ValueEnum;
@@ -172,41 +172,23 @@ struct Report<'a> {
     indices_per_quad: Option<f64>,
 }
 
-/// Runs the chosen triangle stripifier on triangles. QSTRIP needs the quads themselves
-/// (see [`run`]); given triangles only, the quad algorithms fall back to greedy.
-/// `cache_size` is the FIFO the `cache` and `balanced` modes are tuned for, `max_acmr`
-/// the bound of `balanced`. `tunnel` is the `--tunnel` option (0: none).
-pub fn stripify(
-    algo: Algo,
+/// The greedy stripifier on triangles (`--algo greedy`, and `auto` on meshes that are
+/// not quad-dominant): `heuristic` and the `--tunnel` cuts (0: none).
+fn greedy_strips(
     heuristic: HeuristicArg,
     tunnel: usize,
-    (cache_size, max_acmr): (u32, f64),
     tris: &[[u32; 3]],
     vertex_count: usize,
 ) -> StripSet {
-    match algo {
-        Algo::Greedy | Algo::Auto | Algo::Qstrip | Algo::QuadSingle => {
-            let heuristic = match heuristic {
-                HeuristicArg::Strips => greedy::Heuristic::Strips,
-                HeuristicArg::Indices => greedy::Heuristic::Indices,
-            };
-            let options = GreedyOptions {
-                heuristic,
-                tunnel_cuts: (tunnel > 0).then_some(tunnel),
-            };
-            greedy::stripify(tris, vertex_count, &options)
-        }
-        Algo::Cache => cache::stripify(tris, vertex_count, &CacheOptions::cache(cache_size)),
-        Algo::Balanced => {
-            cache::stripify_within(
-                tris,
-                vertex_count,
-                &CacheOptions::balanced(cache_size),
-                max_acmr,
-            )
-            .0
-        }
-    }
+    let heuristic = match heuristic {
+        HeuristicArg::Strips => greedy::Heuristic::Strips,
+        HeuristicArg::Indices => greedy::Heuristic::Indices,
+    };
+    let options = GreedyOptions {
+        heuristic,
+        tunnel_cuts: (tunnel > 0).then_some(tunnel),
+    };
+    greedy::stripify(tris, vertex_count, &options)
 }
 
 enum OutKind {
@@ -318,20 +300,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             DiagonalsArg::Qstrip => cache::Diagonals::Qstrip,
         };
         let m = cache::stripify_mesh(&mesh, &options, bound, diagonals);
+        // On the fan the strips are checked against the input's own fan (`tris`), not
+        // against the triangles the stripifier reports; on QSTRIP's split at quad level.
         quad_split = m.qstrip_diagonals;
         split = Some(if m.qstrip_diagonals { "qstrip" } else { "fan" });
-        tris = m.triangles;
         m.strips
     } else {
-        let cache = (args.cache.min(u32::MAX as usize) as u32, args.max_acmr);
-        stripify(
-            algo,
-            args.heuristic,
-            args.tunnel,
-            cache,
-            &tris,
-            vertex_count,
-        )
+        greedy_strips(args.heuristic, args.tunnel, &tris, vertex_count)
     };
     let ms = start.elapsed().as_secs_f64() * 1e3;
     if quad_split {
