@@ -183,7 +183,7 @@ pub fn figures(input: &[[u32; 3]], strips: &StripSet, cache: CacheModel) -> Figu
     let vertex_count = strips.vertex_bound();
     let n_strips = strips.len();
     let indices_separate = strips.index_count();
-    let indices_restart = (indices_separate + n_strips).saturating_sub(1);
+    let indices_restart = strips.restart_len();
     Figures {
         triangles: v.expected,
         dropped_degenerate: v.dropped_degenerate,

@@ -100,6 +100,12 @@ impl StripSet {
         self.indices.len()
     }
 
+    /// Length of the single buffer with a restart index between strips
+    /// (`indices_restart` of METRICS.md): all indices plus one per strip boundary.
+    pub fn restart_len(&self) -> usize {
+        (self.index_count() + self.len()).saturating_sub(1)
+    }
+
     /// Number of triangle windows (degenerate ones included) over all strips.
     pub fn window_count(&self) -> usize {
         self.iter().map(|s| s.len().saturating_sub(2)).sum()

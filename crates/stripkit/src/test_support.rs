@@ -18,6 +18,19 @@ pub fn models_dir() -> Option<PathBuf> {
     }
 }
 
+/// The research mesh `name` from [`models_dir`]; `None` (after printing why) when the
+/// folder or the file is absent or unreadable, so that a test can skip it.
+pub fn model(name: &str) -> Option<crate::Mesh> {
+    let dir = models_dir()?;
+    match crate::mesh::io::read(&dir.join(name)) {
+        Ok(mesh) => Some(mesh),
+        Err(e) => {
+            eprintln!("skipped: {name} in {}: {e}", dir.display());
+            None
+        }
+    }
+}
+
 /// The bundled public-domain meshes (`assets/` at the workspace root).
 pub fn assets_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets")

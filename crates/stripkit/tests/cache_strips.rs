@@ -297,12 +297,8 @@ fn bunny_figures_beat_meshoptimizer_and_the_old_designs() {
     // 0.703 (cache) and 95,591 at 0.798 (balanced). Now about 94,400 at 0.646 and
     // (balanced: the weight search 88,807 at 0.790, refined) 85,540 at 0.800, 1.232
     // per triangle (86,528 before the refinement's tunnels).
-    // models_dir prints why it skips.
-    let Some(dir) = stripkit::test_support::models_dir() else {
-        return;
-    };
-    let Ok(mesh) = stripkit::mesh::io::read(&dir.join("bunny.obj")) else {
-        eprintln!("skipped: no bunny.obj in {}", dir.display());
+    // `model` prints why it skips.
+    let Some(mesh) = stripkit::test_support::model("bunny.obj") else {
         return;
     };
     let tris = mesh.triangulate().tris;
@@ -438,17 +434,13 @@ fn tunnels_in_the_refinement_relink_strips_within_the_bound() {
     // cut next to the triangle the path enters, ending at a strip end or after a cut)
     // are scored by the exact FIFO like its other moves. Measured without them:
     // fandisk 15,856 @ 0.800, cow 7,610 @ 0.782, bunny_small 9,308 @ 0.799; with them
-    // 15,707 @ 0.795, 7,492 @ 0.791, 9,197 @ 0.799. models_dir prints why it skips.
-    let Some(dir) = stripkit::test_support::models_dir() else {
-        return;
-    };
+    // 15,707 @ 0.795, 7,492 @ 0.791, 9,197 @ 0.799. `model` prints why it skips.
     for (name, most) in [
         ("fandisk.obj", 15_750),
         ("cow.obj", 7_530),
         ("bunny_small.off", 9_240),
     ] {
-        let Ok(mesh) = stripkit::mesh::io::read(&dir.join(name)) else {
-            eprintln!("skipped: no {name} in {}", dir.display());
+        let Some(mesh) = stripkit::test_support::model(name) else {
             continue;
         };
         let tris = mesh.triangulate().tris;

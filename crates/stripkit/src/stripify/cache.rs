@@ -134,7 +134,8 @@ impl Default for CacheOptions {
 /// ordered for a FIFO vertex cache (see the module docs). Degenerate triangles are
 /// dropped; every other triangle appears exactly once with its winding.
 pub fn stripify(tris: &[[u32; 3]], vertex_count: usize, options: &CacheOptions) -> StripSet {
-    run_once(tris, None, vertex_count, options).0
+    let (graph, twins) = DualGraph::from_triangles_with_twins(tris, vertex_count);
+    run_once(tris, (&graph, &twins), vertex_count, options).0
 }
 
 /// As [`stripify`], with the dual graph of `tris` already built.
@@ -144,43 +145,31 @@ pub fn stripify_with_graph(
     graph: &DualGraph,
     options: &CacheOptions,
 ) -> StripSet {
-    run_once(tris, Some(graph), vertex_count, options).0
+    run_once(tris, (graph, &graph.twins(tris)), vertex_count, options).0
 }
+
+/// The dual graph of the triangles and, for every link, the slot of the shared edge
+/// in the neighbour (see [`DualGraph::from_triangles_with_twins`]).
+type Links<'g> = (&'g DualGraph, &'g [[u8; 3]]);
 
 /// One run of the stripifier, refined when `options.refine`: the strips and their
 /// misses in the FIFO of `options.cache_size`.
 fn run_once(
     tris: &[[u32; 3]],
-    graph: Option<&DualGraph>,
+    links: Links,
     vertex_count: usize,
     options: &CacheOptions,
 ) -> (StripSet, u64) {
-    if !options.refine {
-        let mut s = State::new(tris, graph, vertex_count, options);
-        s.run();
-        return (s.out, u64::from(s.time));
-    }
-    let own;
-    let graph = match graph {
-        Some(g) => g,
-        None => {
-            own = DualGraph::from_triangles(tris, vertex_count);
-            &own
-        }
-    };
-    let mut s = State::new(tris, Some(graph), vertex_count, options);
+    let mut s = State::new(tris, links, vertex_count, options);
     s.run();
     let misses = u64::from(s.time);
-    let walks = s
-        .woff
-        .windows(2)
-        .map(|r| s.wtris[r[0] as usize..r[1] as usize].to_vec())
-        .collect();
+    if !options.refine {
+        return (s.out, misses);
+    }
     let cache_size = options.cache_size.max(3) as usize;
     let lambda = f64::from(options.miss_weight);
-    let (strips, refined) = refine(tris, graph, walks, cache_size, lambda, misses);
-    let indices = |s: &StripSet| s.index_count() + s.len();
-    if refined <= misses && indices(&strips) <= indices(&s.out) {
+    let (strips, refined) = refine(tris, links.0, (&s.wtris, &s.woff), cache_size, lambda, misses);
+    if refined <= misses && strips.restart_len() <= s.out.restart_len() {
         (strips, refined)
     } else {
         (s.out, misses)
@@ -211,14 +200,14 @@ pub fn stripify_within(
     max_acmr: f64,
 ) -> (StripSet, f32, f64) {
     // The dual graph raises the vertex count itself for larger indices.
-    let graph = DualGraph::from_triangles(tris, vertex_count);
+    let (graph, twins) = DualGraph::from_triangles_with_twins(tris, vertex_count);
     let triangles = tris.iter().filter(|t| !is_degenerate(t)).count();
     let run = |miss_weight: f32| {
         let o = CacheOptions {
             miss_weight,
             ..*options
         };
-        let mut s = State::new(tris, Some(&graph), vertex_count, &o);
+        let mut s = State::new(tris, (&graph, &twins), vertex_count, &o);
         s.run();
         // The simulated FIFO is the measured one: its pushes are the misses.
         Try {
@@ -237,9 +226,8 @@ pub fn stripify_within(
         }
     };
     let within = |t: &Try| acmr(t.misses) <= max_acmr;
-    let indices = |s: &StripSet| s.index_count() + s.len();
     let keep = |best: &mut Try, next: Try| {
-        if within(&next) && indices(&next.strips) < indices(&best.strips) {
+        if within(&next) && next.strips.restart_len() < best.strips.restart_len() {
             *best = next;
         }
     };
@@ -270,15 +258,11 @@ pub fn stripify_within(
     }
     // The largest miss count within the bound (or, beyond it, the one reached).
     let budget = ((max_acmr * triangles as f64).floor() as u64).max(best.misses);
-    let walks = best
-        .walk_offsets
-        .windows(2)
-        .map(|r| best.walks[r[0] as usize..r[1] as usize].to_vec())
-        .collect();
     let cache_size = options.cache_size.max(3) as usize;
+    let walks = (&best.walks[..], &best.walk_offsets[..]);
     let (strips, misses) = refine(tris, &graph, walks, cache_size, REFINE_LAMBDA, budget);
     let kept = misses <= best.misses || acmr(misses) <= max_acmr;
-    if misses <= budget && kept && indices(&strips) < indices(&best.strips) {
+    if misses <= budget && kept && strips.restart_len() < best.strips.restart_len() {
         return (strips, best.miss_weight, acmr(misses));
     }
     (best.strips, best.miss_weight, acmr(best.misses))
@@ -366,7 +350,8 @@ pub fn stripify_mesh(
         let (strips, miss_weight, acmr) = match max_acmr {
             Some(bound) => stripify_within(&tris, vc, options, bound),
             None => {
-                let (strips, misses) = run_once(&tris, None, vc, options);
+                let (graph, twins) = DualGraph::from_triangles_with_twins(&tris, vc);
+                let (strips, misses) = run_once(&tris, (&graph, &twins), vc, options);
                 let t = tris.iter().filter(|t| !is_degenerate(t)).count().max(1);
                 (strips, options.miss_weight, misses as f64 / t as f64)
             }
@@ -387,7 +372,7 @@ pub fn stripify_mesh(
     });
     match (a, b) {
         (Some(a), Some(b)) => {
-            let indices = |m: &MeshStrips| (m.strips.index_count() + m.strips.len()) as f64;
+            let indices = |m: &MeshStrips| m.strips.restart_len() as f64;
             let better_b = match max_acmr {
                 None => {
                     let cost = |m: &MeshStrips| {
@@ -480,8 +465,8 @@ impl Canonical {
             t.rotate_left(r);
         }
         // Sorted: bucketed by the first (lowest) id, each bucket (about two triangles)
-        // sorted by insertion (a large one by pdqsort). O(triangles + vertices) for
-        // bounded valence, O(t log t) at worst.
+        // sorted on its own. O(triangles + vertices) for bounded valence, O(t log t)
+        // at worst.
         let n = self.old.len();
         let mut start = vec![0u32; n + 1];
         for t in &tris {
@@ -498,19 +483,7 @@ impl Canonical {
             *slot += 1;
         }
         for v in 0..n {
-            let bucket = &mut out[start[v] as usize..start[v + 1] as usize];
-            if bucket.len() > 16 {
-                // A high-valence vertex: no quadratic insertion sort.
-                bucket.sort_unstable();
-                continue;
-            }
-            for i in 1..bucket.len() {
-                let mut k = i;
-                while k > 0 && bucket[k - 1] > bucket[k] {
-                    bucket.swap(k - 1, k);
-                    k -= 1;
-                }
-            }
+            crate::topology::sort_bucket(&mut out[start[v] as usize..start[v + 1] as usize]);
         }
         out
     }
@@ -656,6 +629,13 @@ impl Walk<'_> {
     }
 }
 
+/// The first triangle of a strip that leaves `tri` across `slot`, rotated so that the
+/// strip's last two indices are that edge.
+#[inline]
+fn start_of(tri: [u32; 3], slot: usize) -> [u32; 3] {
+    [tri[PREV[slot]], tri[slot], tri[NEXT[slot]]]
+}
+
 /// `Best::slot` of a walk that goes on from the end of the last strip.
 const CONTINUE: usize = 3;
 
@@ -717,12 +697,7 @@ struct State<'a> {
 }
 
 impl<'a> State<'a> {
-    fn new(
-        tris: &'a [[u32; 3]],
-        graph: Option<&DualGraph>,
-        vertex_count: usize,
-        opt: &CacheOptions,
-    ) -> Self {
+    fn new(tris: &'a [[u32; 3]], (graph, twins): Links, vertex_count: usize, opt: &CacheOptions) -> Self {
         let n = tris.len();
         let vcount = vertex_bound(tris).max(vertex_count);
         let mut opt = *opt;
@@ -768,38 +743,12 @@ impl<'a> State<'a> {
             }
             a
         };
-        let mut adj: Vec<Adj> = match graph {
-            Some(g) => {
-                let nbr = &g.neighbors;
-                (0..n)
-                    .map(|t| {
-                        let tri = tris[t];
-                        let mut twin = [0u8; 3];
-                        for k in 0..3 {
-                            let m = nbr[t][k];
-                            if m != NO_NEIGHBOR {
-                                let (u, v) = (tri[k], tri[NEXT[k]]);
-                                let mt = tris[m as usize];
-                                // The neighbour runs the shared edge the other way.
-                                twin[k] = (0..3)
-                                    .find(|&j| mt[j] == v && mt[NEXT[j]] == u)
-                                    .unwrap_or(0) as u8;
-                            }
-                        }
-                        record(nbr[t], twin)
-                    })
-                    .collect()
-            }
-            None => {
-                // The builder knows both corners of every link: the twins are free.
-                let (g, twins) = DualGraph::from_triangles_with_twins(tris, vcount);
-                g.neighbors
-                    .iter()
-                    .zip(&twins)
-                    .map(|(&nbr, &twin)| record(nbr, twin))
-                    .collect()
-            }
-        };
+        let mut adj: Vec<Adj> = graph
+            .neighbors
+            .iter()
+            .zip(twins)
+            .map(|(&nbr, &twin)| record(nbr, twin))
+            .collect();
         // The sentinel (its own neighbours: never read, a walk never enters it).
         adj.push(Adj {
             nbr: [n as u32; 3],
@@ -870,13 +819,6 @@ impl<'a> State<'a> {
         self.time = self.time.wrapping_add(1);
     }
 
-    /// The first triangle of a strip that leaves `t` across `slot`, rotated so that
-    /// the strip's last two indices are that edge.
-    #[inline]
-    fn start(&self, t: u32, slot: usize) -> [u32; 3] {
-        let tri = self.tris[t as usize];
-        [tri[PREV[slot]], tri[slot], tri[NEXT[slot]]]
-    }
 
     /// Walks from `t` leaving across `slot` (or, with CONTINUE, from the end of the
     /// last strip, `t` being its last triangle) and offers each prefix to `best`; the
@@ -940,7 +882,7 @@ impl<'a> State<'a> {
             len = 0;
         } else {
             let tri = self.tris[t as usize];
-            let [x, u, v] = [tri[PREV[slot]], tri[slot], tri[NEXT[slot]]];
+            let [x, u, v] = start_of(tri, slot);
             // Three indices and the restart.
             total = 4.0;
             for y in [x, u, v] {
@@ -1182,7 +1124,7 @@ impl<'a> State<'a> {
             let n = self.out.indices.len();
             (a, b) = (self.out.indices[n - 2], self.out.indices[n - 1]);
         } else {
-            let [x, u, w] = self.start(t, slot);
+            let [x, u, w] = start_of(self.tris[t as usize], slot);
             self.wtris.push(t);
             self.take(t);
             self.out.indices.extend_from_slice(&[x, u, w]);
@@ -1852,7 +1794,8 @@ fn ends(w: &[u32]) -> ([u32; 2], usize) {
     }
 }
 
-/// Local search over `walks` (the strips in output order, as triangle ids), scored by
+/// Local search over the walks (the strips in output order, as triangle ids: walk `i`
+/// is `flat[offsets[i]..offsets[i + 1]]`, as the stripifier records them), scored by
 /// `indices_restart + lambda * misses` on the exact FIFO of `cache_size` entries,
 /// with the total misses kept at most `budget`. Returns the strips and their misses.
 ///
@@ -1875,11 +1818,15 @@ fn ends(w: &[u32]) -> ([u32; 2], usize) {
 fn refine(
     tris: &[[u32; 3]],
     graph: &DualGraph,
-    walks: Vec<Vec<u32>>,
+    (flat, offsets): (&[u32], &[u32]),
     cache_size: usize,
     lambda: f64,
     budget: u64,
 ) -> (StripSet, u64) {
+    let walks: Vec<Vec<u32>> = offsets
+        .windows(2)
+        .map(|r| flat[r[0] as usize..r[1] as usize].to_vec())
+        .collect();
     let c = cache_size;
     let slots = walks.len();
     let mut slot_of = vec![NONE; tris.len()];
@@ -2099,7 +2046,8 @@ mod tests {
             CacheOptions::balanced(16),
             CacheOptions::cache(5),
         ] {
-            let mut s = State::new(&tris, None, vc, &o);
+            let (graph, twins) = DualGraph::from_triangles_with_twins(&tris, vc);
+            let mut s = State::new(&tris, (&graph, &twins), vc, &o);
             s.run();
             let decoded = decode(&s.out);
             let measured = cache_misses(&decoded, vc, o.cache_size as usize, CacheKind::Fifo);

@@ -282,7 +282,7 @@ pub fn stripify_with_graph(
 /// The strips of [`stripify_with_graph`] as walks before they are encoded: each entry
 /// of the returned [`StripSet`] is a sequence of triangle ids, each a `graph`
 /// neighbour of the one before (see [`encode_path`]).
-pub fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOptions) -> StripSet {
+fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOptions) -> StripSet {
     let n = tris.len();
     let mut g = Greedy {
         tris,

@@ -122,6 +122,22 @@ impl EdgeMap {
 
 /// Prefix sums of the corners (edges) of non-degenerate triangles bucketed by their
 /// edge's lower vertex: bucket `v` is `start[v]..start[v + 1]`.
+/// Sorts one bucket of a counting sort: insertion sort for the usual handful of
+/// entries, pdqsort for a large one (a high-valence vertex), so never quadratic.
+pub(crate) fn sort_bucket<T: Ord>(bucket: &mut [T]) {
+    if bucket.len() > 16 {
+        bucket.sort_unstable();
+        return;
+    }
+    for i in 1..bucket.len() {
+        let mut k = i;
+        while k > 0 && bucket[k - 1] > bucket[k] {
+            bucket.swap(k - 1, k);
+            k -= 1;
+        }
+    }
+}
+
 fn corner_bucket_starts(tris: &[[u32; 3]], vertex_count: usize) -> Vec<u32> {
     let mut start = vec![0u32; vertex_count + 1];
     for t in tris.iter().filter(|t| !is_degenerate(t)) {
@@ -176,6 +192,28 @@ impl DualGraph {
         (g, twins)
     }
 
+    /// For every link, the slot of the shared edge in the neighbour (as
+    /// [`DualGraph::from_triangles_with_twins`] gives them), looked up for a graph
+    /// already built for `tris`: the neighbour's slot that runs the edge the other way.
+    pub(crate) fn twins(&self, tris: &[[u32; 3]]) -> Vec<[u8; 3]> {
+        self.neighbors
+            .iter()
+            .enumerate()
+            .map(|(t, nbr)| {
+                let mut tw = [0u8; 3];
+                for k in 0..3 {
+                    let m = nbr[k];
+                    if m != NO_NEIGHBOR {
+                        let (u, v) = (tris[t][k], tris[t][(k + 1) % 3]);
+                        let mt = &tris[m as usize];
+                        tw[k] = (0..3).find(|&j| mt[j] == v && mt[(j + 1) % 3] == u).unwrap_or(0) as u8;
+                    }
+                }
+                tw
+            })
+            .collect()
+    }
+
     fn build(
         tris: &[[u32; 3]],
         vertex_count: usize,
@@ -194,17 +232,7 @@ impl DualGraph {
         if n >= (u32::MAX / 6) as usize {
             let g = Self::from_triangles_simple(tris, vcount);
             if let Some(twins) = twins {
-                for (t, nbr) in g.neighbors.iter().enumerate() {
-                    for k in 0..3 {
-                        let m = nbr[k];
-                        if m != NO_NEIGHBOR {
-                            let (u, v) = (tris[t][k], tris[t][(k + 1) % 3]);
-                            let mt = &tris[m as usize];
-                            twins[t][k] =
-                                (0..3).find(|&j| mt[j] == v && mt[(j + 1) % 3] == u).unwrap_or(0) as u8;
-                        }
-                    }
-                }
+                *twins = g.twins(tris);
             }
             return g;
         }
@@ -229,17 +257,7 @@ impl DualGraph {
         let hi = |e: u64| (e >> 32) as u32;
         for v in 0..vcount {
             let bucket = &mut entries[start[v] as usize..start[v + 1] as usize];
-            if bucket.len() <= 16 {
-                for i in 1..bucket.len() {
-                    let mut k = i;
-                    while k > 0 && bucket[k - 1] > bucket[k] {
-                        bucket.swap(k - 1, k);
-                        k -= 1;
-                    }
-                }
-            } else {
-                bucket.sort_unstable();
-            }
+            sort_bucket(bucket);
             let mut i = 0;
             while i < bucket.len() {
                 let mut k = i + 1;
@@ -445,6 +463,7 @@ mod dual_graph_tests {
             let tris: Vec<[u32; 3]> = (0..next(40)).map(|_| [next(v), next(v), next(v)]).collect();
             let (g, twins) = DualGraph::from_triangles_with_twins(&tris, v as usize);
             assert_eq!(g, DualGraph::from_triangles(&tris, v as usize));
+            assert_eq!(twins, g.twins(&tris));
             for (t, nbr) in g.neighbors.iter().enumerate() {
                 for k in 0..3 {
                     let m = nbr[k];
