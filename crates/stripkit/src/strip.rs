@@ -117,6 +117,43 @@ impl StripSet {
     }
 }
 
+/// Joins each strip to the one before it where the earlier ends on the vertex the
+/// later starts with and the later would start at an even position of the joined
+/// strip: `[.., x, y] + [y, u, v, ..]` becomes `[.., x, y, y, u, v, ..]`. The two
+/// windows at the join, `(x, y, y)` and `(y, y, u)`, are degenerate, so the joined strip
+/// decodes to the same triangles in the same order with the same winding, and it saves
+/// the restart index between the two (one index per join; a vertex cache sees the
+/// same triangles in the same order). Strips of fewer than 3 indices are kept as they
+/// are. Returns the number of joins. O(total length), in place.
+pub fn join_shared_ends(strips: &mut StripSet) -> usize {
+    let n = strips.len();
+    let mut joins = 0;
+    // No index moves: a join only drops the offset between the two strips.
+    let mut offsets: Vec<u32> = Vec::with_capacity(n + 1);
+    offsets.push(0);
+    // Start of the (joined) strip that ends where strip `s` starts.
+    let mut start = 0usize;
+    for s in 0..n {
+        let (a, b) = (strips.offsets[s] as usize, strips.offsets[s + 1] as usize);
+        let joinable = s > 0
+            && b - a >= 3
+            && a - start >= 3
+            && (a - start) % 2 == 0
+            && strips.indices[a - 1] == strips.indices[a];
+        if joinable {
+            if let Some(end) = offsets.last_mut() {
+                *end = b as u32;
+            }
+            joins += 1;
+        } else {
+            offsets.push(b as u32);
+            start = a;
+        }
+    }
+    strips.offsets = offsets;
+    joins
+}
+
 /// All strips in one buffer, separated by `restart` (no restart before the first or
 /// after the last strip). Length `indices_separate + strips - 1`. The caller makes sure
 /// no strip uses `restart` as a vertex index (see [`decode_restart`]).
@@ -397,6 +434,38 @@ mod tests {
         assert_eq!(set.len(), 2);
         // 0:(0,1,2) 1:(2,1,3) 2:(2,3,3)x 3:(3,3,4)x
         assert_eq!(decode(&set), vec![[0, 1, 2], [2, 1, 3]]);
+    }
+
+    #[test]
+    fn shared_ends_join_only_at_even_positions() {
+        // [0 1 2 3] ends on 3 with an even length: [3 4 5] joins it (one index saved,
+        // the restart). [3 4 5] has an odd length, so [5 6 7] after it stays apart:
+        // joined, its first triangle would land on an odd position and flip.
+        let mut set = StripSet::from_strips(&[
+            vec![0, 1, 2, 3],
+            vec![3, 4, 5],
+            vec![5, 6, 7],
+            vec![7, 8],
+            vec![8, 9, 10, 11],
+        ]);
+        let before = decode(&set);
+        let len = set.restart_len();
+        assert_eq!(join_shared_ends(&mut set), 1);
+        assert_eq!(set.len(), 4);
+        assert_eq!(set.strip(0), &[0, 1, 2, 3, 3, 4, 5]);
+        assert_eq!(set.restart_len(), len - 1);
+        // Same triangles, same order, same winding.
+        assert_eq!(decode(&set), before);
+        // A chain: each joined strip starts at an even position of the joined one.
+        let mut set = StripSet::from_strips(&[vec![0, 1, 2, 3], vec![3, 4, 5, 6], vec![6, 7, 8]]);
+        let before = decode(&set);
+        assert_eq!(join_shared_ends(&mut set), 2);
+        assert_eq!(set.strip(0), &[0, 1, 2, 3, 3, 4, 5, 6, 6, 7, 8]);
+        assert_eq!(decode(&set), before);
+        // A strip of fewer than 3 indices joins nothing and is joined to nothing.
+        let mut set = StripSet::from_strips(&[vec![0, 1], vec![1, 2, 3], vec![9]]);
+        assert_eq!(join_shared_ends(&mut set), 0);
+        assert_eq!(set.len(), 3);
     }
 
     #[test]

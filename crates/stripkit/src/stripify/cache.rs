@@ -37,6 +37,11 @@
 //! `indices + 0.3 * misses` within the bound. Each move is replayed from a snapshot of
 //! the FIFO before the first strip it changes until the FIFO matches the old run again.
 //!
+//! Last, a strip is joined to the one before it where that one ends, at an even
+//! length, on the vertex it starts with (`[.., x, y] + [y, u, ..]` is one strip
+//! `[.., x, y, y, u, ..]`, see [`join_shared_ends`]): the same triangles in the same
+//! order, one restart index fewer (bunny, `cache`: 188 joins).
+//!
 //! The input order only breaks ties, so shuffled inputs give about the same figures
 //! from [`stripify`]; [`stripify_mesh`] first puts the mesh in an order that depends
 //! only on its geometry, so there a shuffled input gives the same strips.
@@ -49,7 +54,7 @@
 //! walked again.
 
 use super::greedy::Buckets;
-use crate::strip::{is_degenerate, StripSet};
+use crate::strip::{is_degenerate, join_shared_ends, StripSet};
 use crate::topology::{DualGraph, NO_NEIGHBOR};
 
 /// Settings of the cache-aware stripifier.
@@ -164,15 +169,20 @@ fn run_once(
     s.run();
     let misses = u64::from(s.time);
     if !options.refine {
-        return (s.out, misses);
+        let mut out = s.out;
+        join_shared_ends(&mut out);
+        return (out, misses);
     }
     let cache_size = options.cache_size.max(3) as usize;
     let lambda = f64::from(options.miss_weight);
     let (strips, refined) = refine(tris, links.0, (&s.wtris, &s.woff), cache_size, lambda, misses);
-    if refined <= misses && strips.restart_len() <= s.out.restart_len() {
+    let (mut strips, mut out) = (strips, s.out);
+    join_shared_ends(&mut strips);
+    join_shared_ends(&mut out);
+    if refined <= misses && strips.restart_len() <= out.restart_len() {
         (strips, refined)
     } else {
-        (s.out, misses)
+        (out, misses)
     }
 }
 
@@ -262,10 +272,14 @@ pub fn stripify_within(
     let walks = (&best.walks[..], &best.walk_offsets[..]);
     let (strips, misses) = refine(tris, &graph, walks, cache_size, REFINE_LAMBDA, budget);
     let kept = misses <= best.misses || acmr(misses) <= max_acmr;
-    if misses <= budget && kept && strips.restart_len() < best.strips.restart_len() {
+    let mut strips = strips;
+    let mut bs = best.strips;
+    join_shared_ends(&mut strips);
+    join_shared_ends(&mut bs);
+    if misses <= budget && kept && strips.restart_len() < bs.restart_len() {
         return (strips, best.miss_weight, acmr(misses));
     }
-    (best.strips, best.miss_weight, acmr(best.misses))
+    (bs, best.miss_weight, acmr(best.misses))
 }
 
 /// One run of the stripifier in [`stripify_within`]: its strips, their misses, and
