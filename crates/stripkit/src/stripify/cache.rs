@@ -40,7 +40,10 @@
 //! Last, a strip is joined to the one before it where that one ends, at an even
 //! length, on the vertex it starts with (`[.., x, y] + [y, u, ..]` is one strip
 //! `[.., x, y, y, u, ..]`, see [`join_shared_ends`]): the same triangles in the same
-//! order, one restart index fewer (bunny, `cache`: 188 joins).
+//! order, one restart index fewer (bunny, `cache`: 188 joins). The local search
+//! counts these joins in the indices of every move (a move changes only the
+//! boundaries next to the strips it changes), so the index count it works with is
+//! that of the joined output.
 //!
 //! The input order only breaks ties, so shuffled inputs give about the same figures
 //! from [`stripify`]; [`stripify_mesh`] first puts the mesh in an order that depends
@@ -1274,6 +1277,92 @@ impl Refiner<'_> {
         }
     }
 
+    /// The strip in slot `k` after the move being evaluated: its new strip (in
+    /// `nbuf`) when `mv` changes the slot, else the slot's own.
+    fn strip_after<'s>(&'s self, mv: &Move, k: u32) -> &'s [u32] {
+        match mv.ch[..mv.n as usize].iter().position(|c| c.0 == k) {
+            Some(i) => &self.nbuf[i],
+            None => &self.enc[k as usize],
+        }
+    }
+
+    /// Joins at a vertex ([`joins_at_vertex`]) that `mv` makes less those it breaks,
+    /// the new strips being in `nbuf`. Only the boundaries next to a changed slot
+    /// change: those between a changed slot and the nearest non-empty slot before and
+    /// after it (empty slots are skipped), before and after the move; where a move
+    /// empties slots, the non-empty slots around them become neighbours.
+    fn join_change(&self, mv: &Move) -> i64 {
+        let n = mv.n as usize;
+        // The changed slots and their non-empty neighbours before the move, sorted.
+        let mut u = [0u32; 3 * MOVE_SLOTS];
+        let mut m = 0;
+        for &(k, _, _) in &mv.ch[..n] {
+            u[m] = k;
+            m += 1;
+            let k = k as usize;
+            if let Some(p) = (0..k).rev().find(|&p| !self.enc[p].is_empty()) {
+                u[m] = p as u32;
+                m += 1;
+            }
+            if let Some(q) = (k + 1..self.enc.len()).find(|&q| !self.enc[q].is_empty()) {
+                u[m] = q as u32;
+                m += 1;
+            }
+        }
+        let u = &mut u[..m];
+        u.sort_unstable();
+        self.boundary_joins(mv, u, true) - self.boundary_joins(mv, u, false)
+    }
+
+    /// Joins at a vertex on the boundaries between the slots `u` (sorted, possibly
+    /// repeated) that touch a slot `mv` changes, or that have changed slots, empty,
+    /// between their two strips: after the move (`after`) or before it.
+    fn boundary_joins(&self, mv: &Move, u: &[u32], after: bool) -> i64 {
+        let changed = |k: u32| mv.ch[..mv.n as usize].iter().any(|c| c.0 == k);
+        let strip = |k: u32| {
+            if after {
+                self.strip_after(mv, k)
+            } else {
+                &self.enc[k as usize][..]
+            }
+        };
+        let mut joins = 0i64;
+        let mut prev: Option<u32> = None;
+        let mut gap = false;
+        for (i, &k) in u.iter().enumerate() {
+            if i > 0 && u[i - 1] == k {
+                continue;
+            }
+            let s = strip(k);
+            if s.is_empty() {
+                gap |= changed(k);
+                continue;
+            }
+            if let Some(p) = prev {
+                if (gap || changed(p) || changed(k)) && joins_at_vertex(strip(p), s) {
+                    joins += 1;
+                }
+            }
+            prev = Some(k);
+            gap = false;
+        }
+        joins
+    }
+
+    /// Joins at a vertex between consecutive non-empty slots: the strips of
+    /// [`refine`] save that many restart indices once [`join_shared_ends`] has run.
+    fn vertex_joins(&self) -> u64 {
+        let mut joins = 0;
+        let mut prev: Option<&[u32]> = None;
+        for s in self.enc.iter().filter(|s| !s.is_empty()) {
+            if prev.is_some_and(|p| joins_at_vertex(p, s)) {
+                joins += 1;
+            }
+            prev = Some(s);
+        }
+        joins
+    }
+
     /// Starts a replay from the FIFO before slot `k`.
     fn load(&mut self, k: usize) {
         self.epoch = self.epoch.wrapping_add(1);
@@ -1379,6 +1468,7 @@ impl Refiner<'_> {
                 di -= old.len() as i64 + 1;
             }
         }
+        di -= self.join_change(mv);
         let mut ci = 0;
         let mut k = mv.ch[0].0 as usize;
         self.load(k);
@@ -1445,6 +1535,15 @@ impl Refiner<'_> {
         }
         Some((di, dm))
     }
+}
+
+/// Whether strip `b`, right after strip `a` in the output, joins it at a vertex in
+/// [`join_shared_ends`]: `a` ends, at an even length, on the vertex `b` starts with
+/// (one restart index fewer). Every strip joined onto another starts at an even
+/// position, so `a`'s own length decides.
+#[inline]
+fn joins_at_vertex(a: &[u32], b: &[u32]) -> bool {
+    a.len() >= 3 && b.len() >= 3 && a.len() % 2 == 0 && a[a.len() - 1] == b[0]
 }
 
 /// Appends to `pool` each walk that joins `sw` at its end `n` to `xw` at its end `e`
@@ -1811,7 +1910,10 @@ fn ends(w: &[u32]) -> ([u32; 2], usize) {
 /// Local search over the walks (the strips in output order, as triangle ids: walk `i`
 /// is `flat[offsets[i]..offsets[i + 1]]`, as the stripifier records them), scored by
 /// `indices_restart + lambda * misses` on the exact FIFO of `cache_size` entries,
-/// with the total misses kept at most `budget`. Returns the strips and their misses.
+/// with the total misses kept at most `budget`. `indices_restart` is that of the
+/// strips after [`join_shared_ends`]: a boundary where a strip of even length ends on
+/// the vertex the next non-empty slot's strip starts with costs no restart index.
+/// Returns the strips (not yet joined) and their misses.
 ///
 /// For each strip X in turn, the moves tried are: X read backwards; X joined to a
 /// strip S whose end triangle is a dual neighbour of an end of X (X appended or
@@ -1882,6 +1984,11 @@ fn refine(
         r.index_walk(k);
     }
     let mut total = r.replay_all();
+    // The index count of the strips once joined at their shared ends, kept up to date
+    // by the moves taken (checked against the output in debug builds).
+    let mut indices = r.enc.iter().map(|s| s.len() as i64 + 1).sum::<i64>()
+        - 1
+        - r.vertex_joins() as i64;
     let mut pool: Vec<u32> = Vec::new();
     let mut moves: Vec<Move> = Vec::new();
     let mut used: Vec<u32> = Vec::new();
@@ -2003,7 +2110,9 @@ fn refine(
             }
             if let Some((_, i, dm)) = best {
                 let mv = moves[i];
-                r.eval(&mv, &pool, true);
+                if let Some((di, _)) = r.eval(&mv, &pool, true) {
+                    indices += di;
+                }
                 total = (total as i64 + dm) as u64;
                 changed = true;
             }
@@ -2015,6 +2124,11 @@ fn refine(
     let mut out = StripSet::new();
     for strip in r.enc.iter().filter(|s| !s.is_empty()) {
         out.push(strip);
+    }
+    if cfg!(debug_assertions) {
+        let mut joined = out.clone();
+        join_shared_ends(&mut joined);
+        debug_assert_eq!(joined.restart_len() as i64, indices.max(0));
     }
     (out, total)
 }
