@@ -187,7 +187,15 @@ fn run_once(
     }
     let cache_size = options.cache_size.max(3) as usize;
     let lambda = f64::from(options.miss_weight);
-    let (strips, refined) = refine(tris, links.0, (&s.wtris, &s.woff), cache_size, lambda, misses);
+    let (strips, refined) = refine(
+        tris,
+        links.0,
+        (&s.wtris, &s.woff),
+        cache_size,
+        lambda,
+        misses,
+        CACHE_EFFORT,
+    );
     let (mut strips, mut out) = (strips, s.out);
     join_shared_ends(&mut strips);
     join_shared_ends(&mut out);
@@ -283,7 +291,15 @@ pub fn stripify_within(
     let budget = ((max_acmr * triangles as f64).floor() as u64).max(best.misses);
     let cache_size = options.cache_size.max(3) as usize;
     let walks = (&best.walks[..], &best.walk_offsets[..]);
-    let (strips, misses) = refine(tris, &graph, walks, cache_size, REFINE_LAMBDA, budget);
+    let (strips, misses) = refine(
+        tris,
+        &graph,
+        walks,
+        cache_size,
+        REFINE_LAMBDA,
+        budget,
+        BALANCED_EFFORT,
+    );
     let kept = misses <= best.misses || acmr(misses) <= max_acmr;
     let mut strips = strips;
     let mut bs = best.strips;
@@ -1226,9 +1242,6 @@ impl<'a> State<'a> {
 /// (16 models: 428,136 indices at 0.3, 427,093 at 0.25, 427,179 at 0.28, 427,289
 /// at 0.2).
 const REFINE_LAMBDA: f64 = 0.25;
-/// Passes over the strips; the second and third look only at strips next to those
-/// the pass before changed (five: 55 fewer indices on bunny for 15% more time).
-const REFINE_PASSES: u32 = 3;
 /// Triangles simulated past a change: a move whose FIFO has not come back to the old
 /// contents by then is not taken (so that every taken move is measured exactly).
 const REFINE_WINDOW: usize = 1024;
@@ -1948,10 +1961,38 @@ impl Tunnels<'_> {
     }
 }
 
-/// Most links one flip of [`refine`] drops: cycles of up to `2 * FLIP_LINKS` dual
-/// edges, paths of up to `2 * FLIP_LINKS + 1` (16 models, balanced: 423,152 indices
-/// with 3, 422,400 with 4 for 1.6x the time of 3).
-const FLIP_LINKS: usize = 3;
+/// Most links one flip of [`refine`] can drop (the size of its fixed arrays); each
+/// call sets its own limit, [`Effort::flip_links`]: cycles of up to twice that many
+/// dual edges, paths of one more.
+const FLIP_LINKS: usize = 4;
+
+/// How hard [`refine`] searches.
+#[derive(Clone, Copy)]
+struct Effort {
+    /// Passes over the strips; the later ones look only at strips next to those the
+    /// pass before changed.
+    passes: u32,
+    /// Most links one flip drops (at most [`FLIP_LINKS`]).
+    flip_links: usize,
+}
+
+/// The search of `balanced`, where the index count is the point: five passes, flips
+/// of up to four links (16 models: 423,184 indices with three passes and three links,
+/// 422,400 with four links, 421,867 with four passes too, 421,677 with five; horse
+/// 120,576 -> 120,394 -> 120,214 -> 120,167, spot_control_mesh 463 -> 468 -> 465 ->
+/// 461; 1.8x the time of three and three: bunny about 0.65 s).
+const BALANCED_EFFORT: Effort = Effort {
+    passes: 5,
+    flip_links: 4,
+};
+
+/// The search of `cache --refine`: three passes, flips of up to three links (four
+/// links and five passes: 451,741 -> 451,079 indices over the 16 models, 0.15%, for
+/// 1.8x the time).
+const CACHE_EFFORT: Effort = Effort {
+    passes: 3,
+    flip_links: 3,
+};
 
 /// Generates the flips of [`refine`]: alternating cycles and paths in the dual graph,
 /// whose edges alternate between links of the walks (used) and dual edges no walk
@@ -1992,6 +2033,8 @@ struct Flips<'a> {
     /// The cycle being grown: `cyc[2i]`, `cyc[2i + 1]` is a used link, `cyc[2i + 1]`,
     /// `cyc[2i + 2]` (cyclically) an unused dual edge.
     cyc: [u32; 2 * FLIP_LINKS + 2],
+    /// Most links a flip drops ([`Effort::flip_links`], at most [`FLIP_LINKS`]).
+    links: usize,
     /// The cycles found from the current strip, as sorted triangle lists (each cycle
     /// is found once per link of it that takes part in a swap; each path only once).
     seen: &'a mut Vec<[u32; 2 * FLIP_LINKS + 2]>,
@@ -2128,7 +2171,7 @@ impl Flips<'_> {
                 }
                 continue;
             }
-            if len / 2 >= FLIP_LINKS || self.cyc[..len].contains(&u) {
+            if len / 2 >= self.links || self.cyc[..len].contains(&u) {
                 continue;
             }
             let w = &self.walks[self.slot_of[u as usize] as usize];
@@ -2220,7 +2263,7 @@ impl Flips<'_> {
             if (p == 0 || p + 1 == w.len()) && len >= 3 && self.repeats(len + 1, true) {
                 self.path(len + 1);
             }
-            if len / 2 >= FLIP_LINKS {
+            if len / 2 >= self.links {
                 continue;
             }
             for q in [p.wrapping_sub(1), p + 1] {
@@ -2544,6 +2587,7 @@ fn refine(
     cache_size: usize,
     lambda: f64,
     budget: u64,
+    effort: Effort,
 ) -> (StripSet, u64) {
     let walks: Vec<Vec<u32>> = offsets
         .windows(2)
@@ -2600,7 +2644,7 @@ fn refine(
     let mut used: Vec<u32> = Vec::new();
     let mut joins: Vec<(Piece, Piece)> = Vec::new();
     let mut seen: Vec<[u32; 2 * FLIP_LINKS + 2]> = Vec::new();
-    for pass in 1..=REFINE_PASSES {
+    for pass in 1..=effort.passes {
         r.pass = pass;
         let mut changed = false;
         for x in 0..slots {
@@ -2712,6 +2756,7 @@ fn refine(
                 pool: &mut pool,
                 moves: &mut moves,
                 cyc: [NONE; 2 * FLIP_LINKS + 2],
+                links: effort.flip_links.min(FLIP_LINKS),
                 seen: &mut seen,
             };
             flips.search(xs);
