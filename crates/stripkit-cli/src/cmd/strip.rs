@@ -136,8 +136,8 @@ pub struct Args {
     pub diagonals: DiagonalsArg,
     /// `--algo cache`: then refine the strips with balanced's local search (joins and
     /// relinks scored by the exact FIFO, a miss costing 1.1 indices, no move adding a
-    /// miss): bunny 94,283 indices at 0.645 misses per triangle -> 91,941 at 0.631, in
-    /// about 0.3 s instead of 15 ms. `balanced` always refines.
+    /// miss): bunny 94,283 indices at 0.645 misses per triangle -> 91,564 at 0.630, in
+    /// about 0.46 s instead of 17 ms. `balanced` always refines.
     #[arg(long)]
     pub refine: bool,
     /// Simulate an LRU cache for the `acmr` figure instead of FIFO.
