@@ -2830,6 +2830,55 @@ mod tests {
         assert!(verify(&[], &stripify(&[], 0, &CacheOptions::cache(16))).ok());
     }
 
+    /// A grid of quads, each split along a diagonal picked by a small LCG: irregular
+    /// valences (3 to 9), so strips need swaps.
+    fn random_diagonals(w: u32, h: u32, mut seed: u64) -> (Vec<[u32; 3]>, usize) {
+        let id = |x: u32, y: u32| y * (w + 1) + x;
+        let mut tris = Vec::new();
+        for y in 0..h {
+            for x in 0..w {
+                seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                let (a, b, c, d) = (id(x, y), id(x + 1, y), id(x + 1, y + 1), id(x, y + 1));
+                if seed >> 63 == 0 {
+                    tris.extend([[a, b, c], [a, c, d]]);
+                } else {
+                    tris.extend([[a, b, d], [b, c, d]]);
+                }
+            }
+        }
+        (tris, ((w + 1) * (h + 1)) as usize)
+    }
+
+    #[test]
+    fn flips_reroute_strips_to_fewer_indices() {
+        // The refinement with and without flips, from the same strips and budget: the
+        // flips (cycles through swaps, Posa rotations) take indices off where only
+        // rerouting the inside of strips can, every output verified, the misses within
+        // the budget, and the index count the search keeps that of the joined output.
+        let (tris, vc) = random_diagonals(40, 30, 7);
+        let (graph, twins) = DualGraph::from_triangles_with_twins(&tris, vc);
+        let mut s = State::new(&tris, (&graph, &twins), vc, &CacheOptions::balanced(16));
+        s.run();
+        let budget = ((0.8 * tris.len() as f64) as u64).max(u64::from(s.time));
+        let walks = (&s.wtris[..], &s.woff[..]);
+        let mut counts = Vec::new();
+        for flip_links in [0, 3] {
+            let effort = Effort {
+                passes: 3,
+                flip_links,
+            };
+            let (mut strips, misses) = refine(&tris, &graph, walks, 16, REFINE_LAMBDA, budget, effort);
+            join_shared_ends(&mut strips);
+            assert!(verify(&tris, &strips).ok(), "{flip_links}");
+            assert!(misses <= budget, "{flip_links}: {misses} > {budget}");
+            let measured = cache_misses(&decode(&strips), vc, 16, CacheKind::Fifo);
+            assert_eq!(misses as usize, measured, "{flip_links}");
+            counts.push(strips.restart_len());
+        }
+        eprintln!("flips: {counts:?} for {} triangles", tris.len());
+        assert!(counts[1] < counts[0], "with flips {} against {}", counts[1], counts[0]);
+    }
+
     #[test]
     fn the_simulated_fifo_is_the_measured_one() {
         // Every decision sees the FIFO the figures measure: after the run, the
