@@ -131,27 +131,27 @@ pub fn join_shared_ends(strips: &mut StripSet) -> usize {
     // No index moves: a join only drops the offset between the two strips.
     let mut offsets: Vec<u32> = Vec::with_capacity(n + 1);
     offsets.push(0);
-    // Start of the (joined) strip that ends where strip `s` starts.
-    let mut start = 0usize;
     for s in 0..n {
-        let (a, b) = (strips.offsets[s] as usize, strips.offsets[s + 1] as usize);
-        let joinable = s > 0
-            && b - a >= 3
-            && a - start >= 3
-            && (a - start) % 2 == 0
-            && strips.indices[a - 1] == strips.indices[a];
-        if joinable {
+        if s > 0 && joins_at_vertex(strips.strip(s - 1), strips.strip(s)) {
             if let Some(end) = offsets.last_mut() {
-                *end = b as u32;
+                *end = strips.offsets[s + 1];
             }
             joins += 1;
         } else {
-            offsets.push(b as u32);
-            start = a;
+            offsets.push(strips.offsets[s + 1]);
         }
     }
     strips.offsets = offsets;
     joins
+}
+
+/// Whether strip `b`, right after strip `a`, is joined to it by [`join_shared_ends`]:
+/// both draw something, `a` has an even length and ends on the vertex `b` starts
+/// with. Every strip joined onto another starts at an even position of the joined
+/// strip, so `a`'s own length decides where `b` lands.
+#[inline]
+pub fn joins_at_vertex(a: &[u32], b: &[u32]) -> bool {
+    a.len() >= 3 && b.len() >= 3 && a.len() % 2 == 0 && a[a.len() - 1] == b[0]
 }
 
 /// All strips in one buffer, separated by `restart` (no restart before the first or

@@ -66,7 +66,7 @@
 //! walked again.
 
 use super::greedy::Buckets;
-use crate::strip::{is_degenerate, join_shared_ends, StripSet};
+use crate::strip::{is_degenerate, join_shared_ends, joins_at_vertex, StripSet};
 use crate::topology::{DualGraph, NO_NEIGHBOR};
 
 /// Settings of the cache-aware stripifier.
@@ -180,9 +180,9 @@ fn run_once(
     let mut s = State::new(tris, links, vertex_count, options);
     s.run();
     let misses = u64::from(s.time);
+    let mut out = s.out;
+    join_shared_ends(&mut out);
     if !options.refine {
-        let mut out = s.out;
-        join_shared_ends(&mut out);
         return (out, misses);
     }
     let cache_size = options.cache_size.max(3) as usize;
@@ -196,9 +196,6 @@ fn run_once(
         misses,
         CACHE_EFFORT,
     );
-    let (mut strips, mut out) = (strips, s.out);
-    join_shared_ends(&mut strips);
-    join_shared_ends(&mut out);
     if refined <= misses && strips.restart_len() <= out.restart_len() {
         (strips, refined)
     } else {
@@ -301,14 +298,12 @@ pub fn stripify_within(
         BALANCED_EFFORT,
     );
     let kept = misses <= best.misses || acmr(misses) <= max_acmr;
-    let mut strips = strips;
-    let mut bs = best.strips;
-    join_shared_ends(&mut strips);
-    join_shared_ends(&mut bs);
-    if misses <= budget && kept && strips.restart_len() < bs.restart_len() {
+    let mut unrefined = best.strips;
+    join_shared_ends(&mut unrefined);
+    if misses <= budget && kept && strips.restart_len() < unrefined.restart_len() {
         return (strips, best.miss_weight, acmr(misses));
     }
-    (bs, best.miss_weight, acmr(best.misses))
+    (unrefined, best.miss_weight, acmr(best.misses))
 }
 
 /// One run of the stripifier in [`stripify_within`]: its strips, their misses, and
@@ -1591,15 +1586,6 @@ impl Refiner<'_> {
     }
 }
 
-/// Whether strip `b`, right after strip `a` in the output, joins it at a vertex in
-/// [`join_shared_ends`]: `a` ends, at an even length, on the vertex `b` starts with
-/// (one restart index fewer). Every strip joined onto another starts at an even
-/// position, so `a`'s own length decides.
-#[inline]
-fn joins_at_vertex(a: &[u32], b: &[u32]) -> bool {
-    a.len() >= 3 && b.len() >= 3 && a.len() % 2 == 0 && a[a.len() - 1] == b[0]
-}
-
 /// Appends to `pool` each walk that joins `sw` at its end `n` to `xw` at its end `e`
 /// (a dual neighbour of `n`), in `sw`'s direction, and calls `found` with its range.
 fn attach(
@@ -2560,7 +2546,7 @@ fn ends(w: &[u32]) -> ([u32; 2], usize) {
 /// with the total misses kept at most `budget`. `indices_restart` is that of the
 /// strips after [`join_shared_ends`]: a boundary where a strip of even length ends on
 /// the vertex the next non-empty slot's strip starts with costs no restart index.
-/// Returns the strips (not yet joined) and their misses.
+/// Returns the strips, so joined, and their misses.
 ///
 /// For each strip X in turn, the moves tried are: X read backwards; X joined to a
 /// strip S whose end triangle is a dual neighbour of an end of X (X appended or
@@ -2791,11 +2777,8 @@ fn refine(
     for strip in r.enc.iter().filter(|s| !s.is_empty()) {
         out.push(strip);
     }
-    if cfg!(debug_assertions) {
-        let mut joined = out.clone();
-        join_shared_ends(&mut joined);
-        debug_assert_eq!(joined.restart_len() as i64, indices.max(0));
-    }
+    join_shared_ends(&mut out);
+    debug_assert_eq!(out.restart_len() as i64, indices.max(0));
     (out, total)
 }
 
@@ -2867,8 +2850,7 @@ mod tests {
                 passes: 3,
                 flip_links,
             };
-            let (mut strips, misses) = refine(&tris, &graph, walks, 16, REFINE_LAMBDA, budget, effort);
-            join_shared_ends(&mut strips);
+            let (strips, misses) = refine(&tris, &graph, walks, 16, REFINE_LAMBDA, budget, effort);
             assert!(verify(&tris, &strips).ok(), "{flip_links}");
             assert!(misses <= budget, "{flip_links}: {misses} > {budget}");
             let measured = cache_misses(&decode(&strips), vc, 16, CacheKind::Fifo);
