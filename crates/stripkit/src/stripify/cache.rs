@@ -1318,9 +1318,7 @@ impl Refiner<'_> {
         for (j, &t) in w.iter().enumerate() {
             self.pos[t as usize] = j as u32;
             if j >= 2 && j + 1 < w.len() {
-                let win = &w[j - 2..j + 2];
-                acc +=
-                    wswaps(self.tris, self.graph, win) - wswaps(self.tris, self.graph, &win[..3]);
+                acc += inner_swap(self.tris, self.graph, &w[j - 2..j + 2]);
             }
             self.pre[t as usize] = acc;
         }
@@ -1623,6 +1621,13 @@ fn attach(
 /// Swaps of the walk `w` as [`super::walk`] encodes it.
 fn wswaps(tris: &[[u32; 3]], graph: &DualGraph, w: &[u32]) -> u32 {
     super::walk(tris, graph, w.len(), |j| w[j], |_| {}) as u32
+}
+
+/// The swaps a walk needs at `w[2]` of four consecutive triangles `w` (a swap at an
+/// inner triangle depends only on it, the one after it and the two before): those of
+/// the four less those of the first three.
+fn inner_swap(tris: &[[u32; 3]], graph: &DualGraph, w: &[u32]) -> u32 {
+    wswaps(tris, graph, w) - wswaps(tris, graph, &w[..3])
 }
 
 /// A part of a walk in a tunnel of [`refine`]: `walks[slot][lo..hi]`, read backwards
@@ -2039,26 +2044,15 @@ impl Flips<'_> {
             && self.pos[a as usize].abs_diff(self.pos[b as usize]) == 1
     }
 
-    /// The edge that `t` shares with its dual neighbour `u` (as `t` runs it).
-    #[inline]
-    fn shared(&self, t: u32, u: u32) -> (u32, u32) {
-        let tri = &self.tris[t as usize];
-        let j = self.graph.neighbors[t as usize]
-            .iter()
-            .position(|&n| n == u)
-            .expect("dual neighbours");
-        (tri[j], tri[(j + 1) % 3])
-    }
-
-    /// Whether the walk needs a swap at `w[2]` of four consecutive triangles `w`: its
-    /// three links share a vertex (the walk turns around it three times in a row).
-    #[inline]
-    fn swap_in(&self, w: [u32; 4]) -> bool {
-        let (a, b) = self.shared(w[0], w[1]);
-        let e2 = self.shared(w[1], w[2]);
-        let e3 = self.shared(w[2], w[3]);
-        let on = |v: u32, e: (u32, u32)| v == e.0 || v == e.1;
-        (on(a, e2) && on(a, e3)) || (on(b, e2) && on(b, e3))
+    /// The triangles before and after `u` in its walk that are not in `cyc[..len]`
+    /// (the links a flip may drop at `u`), NONE where there is none.
+    fn walk_neighbours(&self, u: u32, len: usize) -> [u32; 2] {
+        let w = &self.walks[self.slot_of[u as usize] as usize];
+        let p = self.pos[u as usize] as usize;
+        [p.wrapping_sub(1), p + 1].map(|q| match w.get(q) {
+            Some(&v) if !self.cyc[..len].contains(&v) => v,
+            _ => NONE,
+        })
     }
 
     /// Swaps of the walk in slot `s` (its reading direction).
@@ -2109,7 +2103,7 @@ impl Flips<'_> {
                         break;
                     }
                     let win = [at(st), at(st + 1), at(st + 2), at(st + 3)];
-                    s += i64::from(self.swap_in(win));
+                    s += i64::from(inner_swap(self.tris, self.graph, &win));
                 }
                 prev_j = j;
             }
@@ -2160,16 +2154,7 @@ impl Flips<'_> {
             if len / 2 >= self.links || self.cyc[..len].contains(&u) {
                 continue;
             }
-            let w = &self.walks[self.slot_of[u as usize] as usize];
-            let p = self.pos[u as usize] as usize;
-            for q in [p.wrapping_sub(1), p + 1] {
-                if q >= w.len() {
-                    continue;
-                }
-                let v = w[q];
-                if self.cyc[..len].contains(&v) {
-                    continue;
-                }
+            for v in self.walk_neighbours(u, len).into_iter().filter(|&v| v != NONE) {
                 self.cyc[len] = u;
                 self.cyc[len + 1] = v;
                 self.grow(len + 2);
@@ -2252,14 +2237,7 @@ impl Flips<'_> {
             if len / 2 >= self.links {
                 continue;
             }
-            for q in [p.wrapping_sub(1), p + 1] {
-                if q >= w.len() {
-                    continue;
-                }
-                let v = w[q];
-                if self.cyc[..len].contains(&v) {
-                    continue;
-                }
+            for v in self.walk_neighbours(u, len).into_iter().filter(|&v| v != NONE) {
                 self.cyc[len + 1] = v;
                 if self.repeats(len + 2, false) {
                     self.path(len + 2);
