@@ -35,3 +35,14 @@ pub fn model(name: &str) -> Option<crate::Mesh> {
 pub fn assets_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets")
 }
+
+/// A xorshift64 generator for tests: each call returns the next state modulo `m`
+/// (`m` > 0), so that random inputs are the same on every run.
+pub fn xorshift(mut x: u64) -> impl FnMut(u32) -> u32 {
+    move |m: u32| {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x % u64::from(m)) as u32
+    }
+}

@@ -427,13 +427,7 @@ mod dual_graph_tests {
     fn packed_and_simple_builders_agree() {
         // Pseudo-random soups over few vertices (shared, flipped, non-manifold and
         // degenerate edges) and a high-valence fan.
-        let mut x = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = |m: u32| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x % u64::from(m)) as u32
-        };
+        let mut next = crate::test_support::xorshift(0x9E37_79B9_7F4A_7C15u64);
         for round in 0..300 {
             let len = next(40) as usize;
             let v = 3 + round % 9;
@@ -450,13 +444,7 @@ mod dual_graph_tests {
     #[test]
     fn twins_name_the_shared_edge_in_the_neighbour() {
         // Soups with shared, flipped, non-manifold and pillow edges.
-        let mut x = 0x2545_F491_4F6C_DD1Du64;
-        let mut next = |m: u32| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x % u64::from(m)) as u32
-        };
+        let mut next = crate::test_support::xorshift(0x2545_F491_4F6C_DD1Du64);
         let mut links = 0;
         for round in 0..300 {
             let v = 3 + round % 7;
