@@ -13,12 +13,19 @@
 //! * [`encode_separate`]: one list per strip.
 
 /// A set of triangle strips, stored flat.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct StripSet {
     /// Indices of all strips, concatenated.
     pub indices: Vec<u32>,
     /// `indices[offsets[s]..offsets[s + 1]]` is strip `s`. Always holds the leading 0.
     pub offsets: Vec<u32>,
+}
+
+impl Default for StripSet {
+    /// The same as [`StripSet::new`]: the offsets hold their leading `0`.
+    fn default() -> Self {
+        StripSet::new()
+    }
 }
 
 impl StripSet {

@@ -12,7 +12,7 @@
 pub mod io;
 
 /// A polygon mesh: positions and faces of three or more vertices.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Mesh {
     /// Vertex positions, indexed by `u32` vertex ids.
     pub positions: Vec<[f32; 3]>,
@@ -30,6 +30,13 @@ pub struct Triangles {
     pub tris: Vec<[u32; 3]>,
     /// `face_of[t]` is the index of the mesh face triangle `t` came from.
     pub face_of: Vec<u32>,
+}
+
+impl Default for Mesh {
+    /// The same as [`Mesh::new`]: the face offsets hold their leading `0`.
+    fn default() -> Self {
+        Mesh::new()
+    }
 }
 
 impl Mesh {
@@ -92,13 +99,14 @@ impl Mesh {
     }
 
     /// Number of triangles a fan triangulation gives (a quad counts as two).
+    /// Faces of fewer than three corners give none.
     pub fn triangle_count(&self) -> usize {
-        self.face_indices.len() - 2 * self.face_count()
+        self.faces().map(|f| f.len().saturating_sub(2)).sum()
     }
 
     /// True when every face is a triangle.
     pub fn is_triangle_mesh(&self) -> bool {
-        self.face_indices.len() == 3 * self.face_count()
+        self.faces().all(|f| f.len() == 3)
     }
 
     /// True when every face is a quad (and there is at least one face).
@@ -112,7 +120,7 @@ impl Mesh {
         let n = self.triangle_count();
         let mut out = Triangles { tris: Vec::with_capacity(n), face_of: Vec::with_capacity(n) };
         for (f, face) in self.faces().enumerate() {
-            for i in 1..face.len() - 1 {
+            for i in 1..face.len().saturating_sub(1) {
                 out.tris.push([face[0], face[i], face[i + 1]]);
                 out.face_of.push(f as u32);
             }
