@@ -12,6 +12,7 @@
 #![warn(missing_docs)]
 
 pub mod error;
+mod pipeline;
 pub mod mesh;
 pub mod topology;
 pub mod strip;
@@ -28,3 +29,7 @@ pub mod test_support;
 pub use error::{Error, Result};
 pub use mesh::{Mesh, Triangles};
 pub use strip::StripSet;
+pub use pipeline::{
+    is_quad_dominant, stripify, stripify_bound, stripify_indices, unstripify, Algorithm, Join, Split,
+    StripOptions, Stripifier, Strips, QUAD_DOMINANT,
+};

@@ -60,7 +60,7 @@ pub const SWAP_WORTH: i64 = 4;
 const RUN_CAP: u32 = 32;
 
 /// Options of [`qstrip`].
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct QuadOptions {
     /// After a sequence's forward end is stuck, extend it backwards from its first
     /// quad too (default `true`; the paper extends forwards only).

@@ -151,15 +151,23 @@ pub fn write_with(
     strips: Option<&StripSet>,
     options: &WriteOptions,
 ) -> Result<()> {
-    let (format, gz) = Format::from_path(path).ok_or_else(|| unknown(path))?;
+    let (format, _) = Format::from_path(path).ok_or_else(|| unknown(path))?;
     let bytes = write_bytes(format, mesh, strips, options)?;
-    let bytes = if gz {
+    write_encoded(path, &bytes)
+}
+
+/// Writes bytes already encoded in the format `path` names (e.g. by
+/// [`write_bytes`] or [`crate::Strips::to_file_bytes`]), gzip-compressed when the name
+/// ends in `.gz`.
+pub fn write_encoded(path: &Path, bytes: &[u8]) -> Result<()> {
+    let gz = Format::from_path(path).is_some_and(|(_, gz)| gz);
+    if gz {
         let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
-        enc.write_all(&bytes).and_then(|_| enc.finish()).map_err(|e| io_error(path, e))?
+        let packed = enc.write_all(bytes).and_then(|_| enc.finish()).map_err(|e| io_error(path, e))?;
+        std::fs::write(path, packed).map_err(|e| io_error(path, e))
     } else {
-        bytes
-    };
-    std::fs::write(path, bytes).map_err(|e| io_error(path, e))
+        std::fs::write(path, bytes).map_err(|e| io_error(path, e))
+    }
 }
 
 /// Encodes a mesh (or its strips) in `format` into memory. glTF output is

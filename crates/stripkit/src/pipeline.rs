@@ -1,0 +1,663 @@
+//! The front door: [`stripify`] chooses a stripifier, runs it, verifies what it made
+//! and returns the strips with their figures; [`stripify_indices`] and
+//! [`unstripify`] do the same for plain index buffers.
+//!
+//! Every result has passed an independent check before it is returned:
+//! * triangle level: the strips decode (METRICS.md rule) to exactly the mesh's fan
+//!   triangles, as multisets of oriented triangles (nothing lost, added or flipped);
+//! * quad level, where the algorithm split quads along diagonals of its choosing
+//!   (QSTRIP, quad-single, cache or balanced on QSTRIP's split): every quad is covered
+//!   by two triangles forming it along one diagonal, with its winding, other faces by
+//!   their fan; the triangles the strips chose are then the reference;
+//! * the joined form ([`Join`]) is encoded, decoded again and checked once more.
+//!
+//! A failed check is [`Error::Verification`], never a silent result.
+
+use crate::error::{Error, Result};
+use crate::mesh::io::{self, Format, WriteOptions};
+use crate::mesh::Mesh;
+use crate::metrics::{self, CacheModel, Figures};
+use crate::strip::{self, StripSet};
+use crate::stripify::cache::{self, CacheOptions, Diagonals};
+use crate::stripify::greedy::{self, GreedyOptions};
+use crate::stripify::{quad, quad_single, quad_verify};
+use std::time::{Duration, Instant};
+
+/// Faces that must be quads for [`Algorithm::Auto`] to take QSTRIP (and for
+/// [`Split::Auto`] to try QSTRIP's diagonals): half, where QSTRIP's strips beat
+/// greedy's on the fan on every quad-dominant shared model.
+pub const QUAD_DOMINANT: f64 = 0.5;
+
+/// True when at least [`QUAD_DOMINANT`] of the mesh's faces are quads.
+pub fn is_quad_dominant(mesh: &Mesh) -> bool {
+    quad::quad_fraction(mesh) >= QUAD_DOMINANT
+}
+
+/// Which stripifier runs, with the settings that belong to it alone.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Algorithm {
+    /// QSTRIP on quad-dominant meshes (see [`QUAD_DOMINANT`]), greedy otherwise; the
+    /// result names the one that ran.
+    Auto,
+    /// Greedy lowest-degree strips with one-level look-ahead (van Kaick et al.), then
+    /// tunnelling; on the mesh's fan triangulation.
+    Greedy(GreedyOptions),
+    /// QSTRIP: quad sequences made into strips, each quad split along the diagonal
+    /// that needs the fewest swaps; other faces by greedy.
+    Qstrip(quad::QuadOptions),
+    /// One generalized strip per connected component of a closed pure-quad mesh.
+    QuadSingle,
+    /// Cache-aware short strips side by side under a simulated FIFO of
+    /// [`StripOptions::cache`] entries. `refine`: then the local search of
+    /// `balanced` with no move adding a miss (fewer indices and misses, about 30x
+    /// the time).
+    Cache {
+        /// Refine the strips with the local search.
+        refine: bool,
+    },
+    /// The fewest indices the cache-aware stripifier and its local search find while
+    /// the cache misses per triangle stay at most `max_acmr`.
+    Balanced {
+        /// The most FIFO misses per triangle to accept (positive, finite).
+        max_acmr: f64,
+    },
+}
+
+impl Default for Algorithm {
+    fn default() -> Self {
+        Algorithm::Auto
+    }
+}
+
+impl Algorithm {
+    /// Greedy with its default settings (fewest indices, tunnelling of one cut).
+    pub fn greedy() -> Self {
+        Algorithm::Greedy(GreedyOptions::default())
+    }
+    /// QSTRIP with its default settings.
+    pub fn qstrip() -> Self {
+        Algorithm::Qstrip(quad::QuadOptions::default())
+    }
+    /// The cache-aware stripifier without refinement.
+    pub fn cache() -> Self {
+        Algorithm::Cache { refine: false }
+    }
+    /// Balanced at the given bound on misses per triangle (0.8 in the CLI).
+    pub fn balanced(max_acmr: f64) -> Self {
+        Algorithm::Balanced { max_acmr }
+    }
+    /// The lowercase name the CLI uses for this algorithm.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Algorithm::Auto => "auto",
+            Algorithm::Greedy(_) => "greedy",
+            Algorithm::Qstrip(_) => "qstrip",
+            Algorithm::QuadSingle => "quad-single",
+            Algorithm::Cache { .. } => "cache",
+            Algorithm::Balanced { .. } => "balanced",
+        }
+    }
+}
+
+/// How faces of more than three corners become triangles before stripping.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+#[non_exhaustive]
+pub enum Split {
+    /// The algorithm's own choice: the fan for greedy; QSTRIP's diagonals for QSTRIP
+    /// and quad-single; for cache and balanced, on quad-dominant meshes both the fan
+    /// and QSTRIP's diagonals, keeping the cheaper strips, else the fan.
+    #[default]
+    Auto,
+    /// Every face fanned from its first corner (the triangles other tools get).
+    Fan,
+    /// Quads along QSTRIP's diagonals (rows of quads run without swaps), other faces
+    /// fanned. Quad-level verification.
+    Qstrip,
+}
+
+impl Split {
+    /// The lowercase name the CLI uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            Split::Auto => "auto",
+            Split::Fan => "fan",
+            Split::Qstrip => "qstrip",
+        }
+    }
+}
+
+/// How strips are joined into what is written or drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+#[non_exhaustive]
+pub enum Join {
+    /// One index buffer, strips separated by the primitive-restart index.
+    #[default]
+    Restart,
+    /// One strip, strips stitched by degenerate triangles (winding kept).
+    Degenerate,
+    /// Each strip on its own.
+    Separate,
+}
+
+impl Join {
+    /// The lowercase name the CLI uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            Join::Restart => "restart",
+            Join::Degenerate => "degenerate",
+            Join::Separate => "separate",
+        }
+    }
+}
+
+/// Everything [`stripify`] needs to know. Build it from [`StripOptions::default`]
+/// with the builder methods; fields that do not apply to the chosen algorithm are
+/// rejected by [`stripify`] with [`Error::Invalid`].
+///
+/// ```
+/// use stripkit::{Algorithm, Join, StripOptions};
+/// let options = StripOptions::default()
+///     .algorithm(Algorithm::balanced(0.8))
+///     .cache_size(32)
+///     .join(Join::Degenerate);
+/// assert_eq!(options.cache.size, 32);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct StripOptions {
+    /// Which stripifier runs. Default [`Algorithm::Auto`].
+    pub algorithm: Algorithm,
+    /// The vertex cache: `cache` and `balanced` tune for a FIFO of `cache.size`
+    /// entries, and [`Figures::acmr`] is measured with it (acmr16 and acmr32 are
+    /// always measured too). Default FIFO of 16.
+    pub cache: CacheModel,
+    /// How quads are split. Default [`Split::Auto`].
+    pub split: Split,
+    /// How the strips are joined in [`Strips::joined`]. Default [`Join::Restart`].
+    pub join: Join,
+    /// The primitive-restart index of [`Join::Restart`]: never a vertex id of the
+    /// mesh. Default `u32::MAX` (what `GL_PRIMITIVE_RESTART_FIXED_INDEX` uses).
+    pub restart_index: u32,
+}
+
+impl Default for StripOptions {
+    fn default() -> Self {
+        StripOptions {
+            algorithm: Algorithm::Auto,
+            cache: CacheModel::fifo(16),
+            split: Split::Auto,
+            join: Join::Restart,
+            restart_index: strip::DEFAULT_RESTART,
+        }
+    }
+}
+
+impl StripOptions {
+    /// Sets the algorithm.
+    pub fn algorithm(mut self, algorithm: Algorithm) -> Self {
+        self.algorithm = algorithm;
+        self
+    }
+    /// Sets the size of the FIFO the strips are tuned for and measured with.
+    pub fn cache_size(mut self, entries: usize) -> Self {
+        self.cache.size = entries;
+        self
+    }
+    /// Sets the cache model of [`Figures::acmr`] (kind and size).
+    pub fn cache_model(mut self, cache: CacheModel) -> Self {
+        self.cache = cache;
+        self
+    }
+    /// Sets how quads are split.
+    pub fn split(mut self, split: Split) -> Self {
+        self.split = split;
+        self
+    }
+    /// Sets how strips are joined.
+    pub fn join(mut self, join: Join) -> Self {
+        self.join = join;
+        self
+    }
+    /// Sets the primitive-restart index.
+    pub fn restart_index(mut self, index: u32) -> Self {
+        self.restart_index = index;
+        self
+    }
+
+    /// Checks the options on their own (not against a mesh).
+    fn check(&self) -> Result<()> {
+        let bad = |m: String| Err(Error::Invalid(m));
+        if self.cache.size == 0 {
+            return bad("the cache size must be at least 1 (a cache of 0 entries misses every vertex)".into());
+        }
+        if self.cache.size > u32::MAX as usize {
+            return bad(format!("a cache of {} entries does not fit 32 bits", self.cache.size));
+        }
+        match &self.algorithm {
+            Algorithm::Balanced { max_acmr } if !(max_acmr.is_finite() && *max_acmr > 0.0) => {
+                bad(format!("balanced needs a positive number of misses per triangle as its bound (got {max_acmr})"))
+            }
+            Algorithm::Greedy(_) if self.split == Split::Qstrip => bad(
+                "greedy strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced".into(),
+            ),
+            Algorithm::Qstrip(_) | Algorithm::QuadSingle if self.split == Split::Fan => bad(format!(
+                "{} chooses each quad's diagonal itself; split fan applies to greedy, cache and balanced",
+                self.algorithm.name()
+            )),
+            Algorithm::Qstrip(q) if q.policies.is_empty() => {
+                bad("qstrip needs at least one walk policy".into())
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Verified strips and what they were verified against.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct Strips {
+    /// The strips as the stripifier made them.
+    pub strips: StripSet,
+    /// The triangles the strips draw, each with its face's winding: the mesh's fan, or
+    /// (quad-level verification) the split the strips chose. Degenerate triangles of the
+    /// input are left in and counted in [`Figures::dropped_degenerate`].
+    pub triangles: Vec<[u32; 3]>,
+    /// The algorithm that ran, with its settings ([`Algorithm::Auto`] resolved).
+    pub algorithm: Algorithm,
+    /// How quads were split: [`Split::Fan`] or [`Split::Qstrip`] (quad-level check).
+    pub split: Split,
+    /// QSTRIP and quad-single: quads stripped as quads.
+    pub quads: Option<usize>,
+    /// Every figure of METRICS.md, measured against [`Strips::triangles`].
+    pub figures: Figures,
+    /// The strips as [`StripOptions::join`] joins them (checked too).
+    pub joined: StripSet,
+    /// The join used.
+    pub join: Join,
+    /// The restart index of [`Join::Restart`].
+    pub restart_index: u32,
+    /// Time of the stripifier alone (no verification, no figures).
+    pub stripify_time: Duration,
+}
+
+impl Strips {
+    /// One buffer with [`Strips::restart_index`] between strips.
+    pub fn restart_buffer(&self) -> Vec<u32> {
+        strip::encode_restart(&self.strips, self.restart_index)
+    }
+    /// One strip, strips stitched by degenerate triangles.
+    pub fn stitched(&self) -> Vec<u32> {
+        strip::encode_stitched(&self.strips)
+    }
+    /// `indices_restart / quads` of METRICS.md, for QSTRIP and quad-single.
+    pub fn indices_per_quad(&self) -> Option<f64> {
+        self.quads.filter(|&q| q > 0).map(|q| self.figures.indices_restart as f64 / q as f64)
+    }
+
+    /// The strips a file of `format` holds: PLY's `tristrips` ends each strip with -1
+    /// (its own restart), or holds the one stitched strip of [`Join::Degenerate`]; core
+    /// glTF has no restart index, so it gets the one stitched strip as a
+    /// `TRIANGLE_STRIP` primitive, or one primitive per strip with [`Join::Separate`].
+    /// `None` for formats that cannot hold strips (OBJ, OFF, STL).
+    pub fn for_format(&self, format: Format) -> Option<StripSet> {
+        match (format, self.join) {
+            (Format::Ply, Join::Degenerate) | (Format::Gltf | Format::Glb, Join::Separate) => {
+                Some(self.joined.clone())
+            }
+            (Format::Ply, _) => Some(self.strips.clone()),
+            (Format::Gltf | Format::Glb, _) => Some(joined(&self.strips, Join::Degenerate, self.restart_index)),
+            _ => None,
+        }
+    }
+
+    /// The bytes of a `format` file holding `mesh`'s vertices and these strips (see
+    /// [`Strips::for_format`]), read back with the library's own reader and checked
+    /// against [`Strips::triangles`] before they are returned.
+    pub fn to_file_bytes(&self, mesh: &Mesh, format: Format) -> Result<Vec<u8>> {
+        let Some(to_write) = self.for_format(format) else {
+            return Err(Error::Invalid(format!(
+                "{format:?} files cannot hold strips; write PLY, glTF or GLB (or JSON)"
+            )));
+        };
+        let bytes = io::write_bytes(format, mesh, Some(&to_write), &WriteOptions::default())?;
+        let name = format!("the {format:?} bytes to be written");
+        let back = io::read_bytes(std::path::Path::new(&name), format, &bytes)?;
+        let v = strip::verify_triangles(&self.triangles, &back.triangulate().tris);
+        if !v.ok() {
+            return Err(fail(&format!("{name}, read back"), &v));
+        }
+        Ok(bytes)
+    }
+
+    /// The strips as JSON: `{"join", "strips": [[..], ..]}` (the joined strips), plus
+    /// `"restart_index"` and `"indices"` (the restart buffer) with [`Join::Restart`].
+    pub fn to_json(&self) -> serde_json::Map<String, serde_json::Value> {
+        let mut obj = serde_json::Map::new();
+        obj.insert("join".into(), self.join.name().into());
+        let strips: Vec<serde_json::Value> =
+            self.joined.iter().map(|s| s.iter().map(|&i| serde_json::Value::from(i)).collect()).collect();
+        obj.insert("strips".into(), strips.into());
+        if self.join == Join::Restart {
+            obj.insert("restart_index".into(), self.restart_index.into());
+            obj.insert("indices".into(), self.restart_buffer().into());
+        }
+        obj
+    }
+}
+
+/// A stripifier with its options checked once, for many meshes.
+///
+/// ```
+/// use stripkit::{gen, Algorithm, StripOptions, Stripifier};
+/// let mut s = Stripifier::new(StripOptions::default().algorithm(Algorithm::cache()))?;
+/// for n in [4u32, 8] {
+///     let strips = s.stripify(&gen::grid(n, n))?;
+///     assert_eq!(strips.figures.triangles, (2 * n * n) as usize);
+/// }
+/// # Ok::<(), stripkit::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Stripifier {
+    options: StripOptions,
+}
+
+impl Stripifier {
+    /// Checks `options` (see [`StripOptions`]) and keeps them.
+    pub fn new(options: StripOptions) -> Result<Self> {
+        options.check()?;
+        Ok(Stripifier { options })
+    }
+
+    /// The options in use.
+    pub fn options(&self) -> &StripOptions {
+        &self.options
+    }
+
+    /// [`stripify`] with these options.
+    pub fn stripify(&mut self, mesh: &Mesh) -> Result<Strips> {
+        run(mesh, &self.options)
+    }
+}
+
+/// Strips for `mesh`, verified: chooses the algorithm ([`Algorithm::Auto`]), runs it,
+/// checks the strips (triangle level, or quad level where the algorithm chose the
+/// quads' diagonals) and their joined form, and measures them.
+///
+/// A mesh without faces gives no strips (verified, all figures 0).
+///
+/// Errors: [`Error::Invalid`] for options that do not apply (see [`StripOptions`]), a
+/// face of fewer than three corners, an index past the
+/// vertices, a restart index that is a vertex id, or a mesh quad-single cannot take;
+/// [`Error::Verification`] if a check fails (a bug, reported rather than returned).
+///
+/// Cost: the algorithm's (greedy, QSTRIP and cache O(n) to O(n log n); `balanced` and
+/// `cache` with refinement about 30x `cache`), plus an O(n log n) check.
+///
+/// ```
+/// use stripkit::{gen, stripify, StripOptions};
+/// let mesh = gen::icosphere(2);
+/// let strips = stripify(&mesh, &StripOptions::default())?;
+/// assert!(strips.figures.verified);
+/// assert_eq!(strips.figures.triangles, mesh.triangle_count());
+/// assert_eq!(strips.algorithm.name(), "greedy");
+/// # Ok::<(), stripkit::Error>(())
+/// ```
+pub fn stripify(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
+    options.check()?;
+    run(mesh, options)
+}
+
+/// Checks that the mesh can be stripped at all: faces well formed and in range.
+fn check_mesh(mesh: &Mesh) -> Result<()> {
+    let n = mesh.vertex_count();
+    if n > u32::MAX as usize {
+        return Err(Error::Invalid(format!("{n} vertices do not fit 32-bit indices")));
+    }
+    let offsets = &mesh.face_offsets;
+    if offsets.first().is_some_and(|&o| o != 0)
+        || offsets.last().is_some_and(|&o| o as usize != mesh.face_indices.len())
+        || offsets.windows(2).any(|w| w[1] < w[0])
+    {
+        return Err(Error::Invalid("the mesh's face offsets are malformed".into()));
+    }
+    for (f, face) in mesh.faces().enumerate() {
+        if face.len() < 3 {
+            return Err(Error::Invalid(format!("face {f} has {} corners; a face needs at least 3", face.len())));
+        }
+        if let Some(&v) = face.iter().find(|&&v| v as usize >= n) {
+            return Err(Error::Invalid(format!(
+                "face {f} refers to vertex {v} but the mesh has {n} vertices"
+            )));
+        }
+    }
+    Ok(())
+}
+
+fn fail(what: &str, v: &strip::Verification) -> Error {
+    Error::Verification(format!("{what}: {v}"))
+}
+
+/// The door's body, with the options already checked.
+fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
+    check_mesh(mesh)?;
+    let vertex_count = mesh.vertex_count();
+    if options.join == Join::Restart && (options.restart_index as usize) < vertex_count {
+        return Err(Error::Invalid(format!(
+            "restart index {} is a vertex id of the mesh ({vertex_count} vertices); choose one of at least {vertex_count}",
+            options.restart_index
+        )));
+    }
+    let algorithm = match &options.algorithm {
+        Algorithm::Auto if is_quad_dominant(mesh) => Algorithm::qstrip(),
+        Algorithm::Auto => Algorithm::greedy(),
+        other => other.clone(),
+    };
+    // The fan is the greedy stripifier's input, made outside its timing.
+    let fan = matches!(algorithm, Algorithm::Greedy(_)).then(|| mesh.triangulate().tris);
+    let start = Instant::now();
+    let (strips, split, quads, fan) = match &algorithm {
+        Algorithm::Greedy(g) => {
+            let tris = fan.unwrap_or_default();
+            let strips = greedy::stripify(&tris, vertex_count, g);
+            (strips, Split::Fan, None, Some(tris))
+        }
+        Algorithm::Qstrip(q) => {
+            let (qs, strips) = quad::qstrip_mesh(mesh, q);
+            (strips, Split::Qstrip, Some(qs.quad_count()), None)
+        }
+        Algorithm::QuadSingle => {
+            let single = quad_single::quad_single(mesh)?;
+            (single.strips, Split::Qstrip, Some(single.quads), None)
+        }
+        Algorithm::Cache { .. } | Algorithm::Balanced { .. } => {
+            let size = options.cache.size as u32;
+            let (cache_options, bound) = match algorithm {
+                Algorithm::Balanced { max_acmr } => (CacheOptions::balanced(size), Some(max_acmr)),
+                Algorithm::Cache { refine } => (CacheOptions { refine, ..CacheOptions::cache(size) }, None),
+                _ => unreachable!("matched above"),
+            };
+            let diagonals = match options.split {
+                Split::Auto => Diagonals::Auto,
+                Split::Fan => Diagonals::Fan,
+                Split::Qstrip => Diagonals::Qstrip,
+            };
+            let m = cache::stripify_mesh(mesh, &cache_options, bound, diagonals);
+            if m.qstrip_diagonals {
+                (m.strips, Split::Qstrip, None, None)
+            } else {
+                // Checked against the input's own fan, not the triangles the
+                // stripifier reports: the check stays independent of it.
+                (m.strips, Split::Fan, None, Some(mesh.triangulate().tris))
+            }
+        }
+        Algorithm::Auto => unreachable!("resolved above"),
+    };
+    let stripify_time = start.elapsed();
+    let triangles = match fan {
+        Some(tris) => tris,
+        None => {
+            // Either diagonal of a quad is right: check at quad level, then the
+            // triangles the strips chose are the reference (the check proved them a
+            // triangulation of the mesh with its winding).
+            quad_verify::verify_quads(mesh, &strips)?;
+            strip::decode(&strips)
+        }
+    };
+    let figures = metrics::figures(&triangles, &strips, options.cache);
+    if !figures.verified {
+        return Err(fail("the strips", &strip::verify(&triangles, &strips)));
+    }
+    let joined = joined(&strips, options.join, options.restart_index);
+    let v = strip::verify(&triangles, &joined);
+    if !v.ok() {
+        return Err(fail(&format!("the strips joined by {}", options.join.name()), &v));
+    }
+    Ok(Strips {
+        strips,
+        triangles,
+        algorithm,
+        split,
+        quads,
+        figures,
+        joined,
+        join: options.join,
+        restart_index: options.restart_index,
+        stripify_time,
+    })
+}
+
+/// The strips as `join` joins them, read back from the encoded form.
+fn joined(strips: &StripSet, join: Join, restart: u32) -> StripSet {
+    match join {
+        Join::Restart => strip::decode_restart(&strip::encode_restart(strips, restart), restart),
+        Join::Degenerate => {
+            let one = strip::encode_stitched(strips);
+            if one.is_empty() {
+                StripSet::new()
+            } else {
+                StripSet::from_strips(&[one])
+            }
+        }
+        Join::Separate => StripSet::from_strips(&strip::encode_separate(strips)),
+    }
+}
+
+/// The most indices [`stripify_indices`] returns for `index_count` input indices, for
+/// any options: 7 per input triangle (a lone triangle stitched at an odd position
+/// takes 3 indices and 3 to join; a strip's swaps never outnumber its triangles).
+/// Checked on every output.
+pub fn stripify_bound(index_count: usize) -> usize {
+    (index_count / 3).saturating_mul(7)
+}
+
+/// Strips for a plain triangle list, meshoptimizer-style: `indices` holds three
+/// vertex ids per triangle, all below `vertex_count`. Returns one buffer: strips
+/// separated by `restart_index` ([`Join::Restart`], which then must not be below
+/// `vertex_count`) or one stitched strip ([`Join::Degenerate`]; `restart_index`
+/// unused). At most [`stripify_bound`]`(indices.len())` indices, verified like
+/// [`stripify`]'s, which it calls (positions are not needed: vertices are given
+/// coincident positions, and orders that would use them fall back to vertex ids).
+///
+/// Errors: an empty list, a length that is not a multiple of 3, an index at or past
+/// `vertex_count`, a restart index below `vertex_count`, [`Join::Separate`] (a flat
+/// buffer cannot hold it), and everything [`stripify`] refuses.
+///
+/// ```
+/// use stripkit::{stripify_indices, unstripify, StripOptions};
+/// // A 2 x 1 quad grid: 4 triangles.
+/// let tris = [0, 3, 1, 1, 3, 4, 1, 4, 2, 2, 4, 5];
+/// let buf = stripify_indices(&tris, 6, u32::MAX, &StripOptions::default())?;
+/// assert_eq!(buf.len(), 6); // one strip, no restart
+/// let mut back = unstripify(&buf, u32::MAX);
+/// assert_eq!(back.len(), tris.len());
+/// # Ok::<(), stripkit::Error>(())
+/// ```
+pub fn stripify_indices(
+    indices: &[u32],
+    vertex_count: usize,
+    restart_index: u32,
+    options: &StripOptions,
+) -> Result<Vec<u32>> {
+    if indices.is_empty() {
+        return Err(Error::Invalid("the index list is empty: nothing to strip".into()));
+    }
+    if indices.len() % 3 != 0 {
+        return Err(Error::Invalid(format!(
+            "{} indices is not a whole number of triangles (a multiple of 3)",
+            indices.len()
+        )));
+    }
+    if vertex_count > u32::MAX as usize {
+        return Err(Error::Invalid(format!("{vertex_count} vertices do not fit 32-bit indices")));
+    }
+    if let Some(i) = indices.iter().position(|&v| v as usize >= vertex_count) {
+        return Err(Error::Invalid(format!(
+            "index {i} (triangle {}) is vertex {} but there are {vertex_count} vertices",
+            i / 3,
+            indices[i]
+        )));
+    }
+    if options.join == Join::Separate {
+        return Err(Error::Invalid(
+            "a flat buffer holds restart-separated or stitched strips, not separate ones (join restart or degenerate)".into(),
+        ));
+    }
+    // Against the caller's vertex count, not only the vertices used.
+    if options.join == Join::Restart && (restart_index as usize) < vertex_count {
+        return Err(Error::Invalid(format!(
+            "restart index {restart_index} is a vertex id ({vertex_count} vertices); choose one of at least {vertex_count}"
+        )));
+    }
+    let options = StripOptions { restart_index, ..options.clone() };
+    options.check()?;
+    // Vertices past the largest index are unreferenced: leaving them out changes no
+    // strip and keeps the allocation to the input's size.
+    let used = indices.iter().map(|&v| v as usize + 1).max().unwrap_or(0);
+    let tris: Vec<[u32; 3]> = indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let mesh = Mesh::from_triangles(vec![[0.0; 3]; used], &tris);
+    let strips = run(&mesh, &options)?;
+    let out = match options.join {
+        Join::Degenerate => strips.joined.indices,
+        _ => strips.restart_buffer(),
+    };
+    if out.len() > stripify_bound(indices.len()) {
+        return Err(Error::Verification(format!(
+            "{} indices exceed the bound of {} for {} input indices",
+            out.len(),
+            stripify_bound(indices.len()),
+            indices.len()
+        )));
+    }
+    Ok(out)
+}
+
+/// The triangle list a strip buffer draws (METRICS.md rule), three indices per
+/// triangle, in order; `restart_index` separates strips, degenerate triangles are
+/// dropped. For a stitched strip pass any index it does not use (e.g. `u32::MAX`).
+/// O(n).
+pub fn unstripify(strip_indices: &[u32], restart_index: u32) -> Vec<u32> {
+    let mut out = Vec::with_capacity(strip_indices.len().saturating_sub(2) * 3);
+    for s in strip_indices.split(|&i| i == restart_index) {
+        strip::for_each_triangle(s, |t| out.extend_from_slice(&t));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bound_covers_lone_triangles_stitched() {
+        // Three triangles sharing no edge: each its own strip.
+        let tris = [0, 1, 2, 3, 4, 5, 6, 7, 8];
+        let options = StripOptions::default().join(Join::Degenerate);
+        let out = stripify_indices(&tris, 9, 0, &options).unwrap();
+        assert!(out.len() <= stripify_bound(tris.len()));
+        let restart = stripify_indices(&tris, 9, 9, &StripOptions::default()).unwrap();
+        assert_eq!(restart.len(), 11);
+    }
+}
