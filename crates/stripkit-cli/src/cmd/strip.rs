@@ -6,21 +6,19 @@
 //! triangles must equal the input's (nothing lost, nothing added, no winding flipped).
 //! A failed check writes nothing and exits with status 1.
 //!
-//! Adding a stripifier: a variant of [`Algo`] and its branch where [`run`] picks the strips.
+//! The work is the library's front door ([`stripkit::stripify`]): this module maps
+//! flags to [`StripOptions`], writes what the door returns and prints its figures.
+//! Adding a stripifier: a variant of [`Algo`] and its line in [`options`].
 
-use anyhow::Context;
 use clap::ValueEnum;
 use serde::Serialize;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
-use stripkit::mesh::io::{self, Format, WriteOptions};
-use stripkit::metrics::{self, CacheKind, CacheModel, Figures};
-use stripkit::strip::{self, StripSet};
-use stripkit::stripify::cache::{self, CacheOptions};
-use stripkit::stripify::greedy::{self, GreedyOptions};
-use stripkit::stripify::{quad, quad_single, quad_verify};
-use stripkit::{Error, Mesh};
+use stripkit::mesh::io::{self, Format};
+use stripkit::metrics::{CacheKind, CacheModel, Figures};
+use stripkit::strip;
+use stripkit::stripify::greedy::{GreedyOptions, Heuristic};
+use stripkit::{Algorithm, Error, Split, StripOptions, Stripifier};
 
 /// The stripifying algorithm.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize)]
@@ -81,6 +79,16 @@ pub enum Join {
     Degenerate,
     /// Each strip on its own.
     Separate,
+}
+
+impl From<Join> for stripkit::Join {
+    fn from(j: Join) -> Self {
+        match j {
+            Join::Restart => stripkit::Join::Restart,
+            Join::Degenerate => stripkit::Join::Degenerate,
+            Join::Separate => stripkit::Join::Separate,
+        }
+    }
 }
 
 /// Arguments of `stripkit strip`.
@@ -153,7 +161,7 @@ pub struct Args {
 struct Report<'a> {
     input: &'a Path,
     output: &'a Path,
-    algo: Algo,
+    algo: &'static str,
     heuristic: HeuristicArg,
     join: Join,
     vertices: usize,
@@ -170,25 +178,6 @@ struct Report<'a> {
     /// QSTRIP only: `indices_restart / quads` (METRICS.md).
     #[serde(skip_serializing_if = "Option::is_none")]
     indices_per_quad: Option<f64>,
-}
-
-/// The greedy stripifier on triangles (`--algo greedy`, and `auto` on meshes that are
-/// not quad-dominant): `heuristic` and the `--tunnel` cuts (0: none).
-fn greedy_strips(
-    heuristic: HeuristicArg,
-    tunnel: usize,
-    tris: &[[u32; 3]],
-    vertex_count: usize,
-) -> StripSet {
-    let heuristic = match heuristic {
-        HeuristicArg::Strips => greedy::Heuristic::Strips,
-        HeuristicArg::Indices => greedy::Heuristic::Indices,
-    };
-    let options = GreedyOptions {
-        heuristic,
-        tunnel_cuts: (tunnel > 0).then_some(tunnel),
-    };
-    greedy::stripify(tris, vertex_count, &options)
 }
 
 enum OutKind {
@@ -215,25 +204,40 @@ fn output_kind(path: &Path) -> anyhow::Result<OutKind> {
     }
 }
 
-fn fail_verification(what: &str, v: &strip::Verification) -> anyhow::Error {
-    Error::Verification(format!("{what}: {v}; nothing was written")).into()
+/// The library's options for these arguments.
+fn options(args: &Args) -> StripOptions {
+    let algorithm = match args.algo {
+        Algo::Auto => Algorithm::Auto,
+        Algo::Greedy => Algorithm::Greedy(GreedyOptions {
+            heuristic: match args.heuristic {
+                HeuristicArg::Strips => Heuristic::Strips,
+                HeuristicArg::Indices => Heuristic::Indices,
+            },
+            tunnel_cuts: (args.tunnel > 0).then_some(args.tunnel),
+        }),
+        Algo::Qstrip => Algorithm::qstrip(),
+        Algo::QuadSingle => Algorithm::QuadSingle,
+        Algo::Cache => Algorithm::Cache { refine: args.refine },
+        Algo::Balanced => Algorithm::balanced(args.max_acmr),
+    };
+    let split = match (args.algo, args.diagonals) {
+        // `--diagonals` is documented for cache and balanced only; elsewhere the
+        // algorithm splits quads its own way.
+        (Algo::Cache | Algo::Balanced, DiagonalsArg::Fan) => Split::Fan,
+        (Algo::Cache | Algo::Balanced, DiagonalsArg::Qstrip) => Split::Qstrip,
+        _ => Split::Auto,
+    };
+    let cache = if args.lru { CacheModel::lru(args.cache) } else { CacheModel::fifo(args.cache) };
+    StripOptions::default()
+        .algorithm(algorithm)
+        .cache_model(cache)
+        .split(split)
+        .join(args.join.into())
+        .restart_index(args.restart_index)
 }
 
-/// Runs the command.
+/// Runs the command: read -> door -> encode -> write.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    if !(args.max_acmr > 0.0 && args.max_acmr.is_finite()) {
-        return Err(Error::Invalid(format!(
-            "--max-acmr must be a positive number of misses per triangle (got {})",
-            args.max_acmr
-        ))
-        .into());
-    }
-    if args.cache == 0 {
-        return Err(Error::Invalid(
-            "--cache must be at least 1 (a vertex cache of 0 entries misses everything)".into(),
-        )
-        .into());
-    }
     let kind = output_kind(&args.output)?;
     // Fail before the work when the output cannot be written at all.
     if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty()) {
@@ -246,136 +250,43 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .into());
         }
     }
+    let mut stripifier = Stripifier::new(options(&args)).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
     let progress = indicatif::ProgressBar::new_spinner();
     progress.set_message(format!("reading {}", args.input.display()));
-
     let mesh = io::read(&args.input)?;
-    let mut tris = mesh.triangulate().tris;
-    let algo = match args.algo {
-        Algo::Auto if quad::quad_fraction(&mesh) >= 0.5 => Algo::Qstrip,
-        Algo::Auto => Algo::Greedy,
-        other => other,
-    };
-    let vertex_count = mesh.vertex_count();
-    if args.join == Join::Restart && (args.restart_index as usize) < vertex_count {
-        return Err(Error::Invalid(format!(
-            "--restart-index {} is a vertex id of {} ({} vertices); choose one of at least {}",
-            args.restart_index,
-            args.input.display(),
-            vertex_count,
-            vertex_count
-        ))
-        .into());
-    }
 
-    progress.set_message(format!("stripifying {} triangles", tris.len()));
-    let start = Instant::now();
-    let mut quads = None;
-    // True when quads were split along diagonals of the algorithm's choosing.
-    let mut quad_split = matches!(algo, Algo::Qstrip | Algo::QuadSingle);
-    let mut split = None;
-    let strips = if algo == Algo::Qstrip {
-        let (q, all) = quad::qstrip_mesh(&mesh, &quad::QuadOptions::default());
-        quads = Some(q.quad_count());
-        all
-    } else if algo == Algo::QuadSingle {
-        let single = quad_single::quad_single(&mesh)
-            .map_err(|e| anyhow::anyhow!(e).context(format!("{}", args.input.display())))?;
-        quads = Some(single.quads);
-        single.strips
-    } else if matches!(algo, Algo::Cache | Algo::Balanced) {
-        let size = args.cache.min(u32::MAX as usize) as u32;
-        let (options, bound) = if algo == Algo::Cache {
-            let options = CacheOptions {
-                refine: args.refine,
-                ..CacheOptions::cache(size)
-            };
-            (options, None)
-        } else {
-            (CacheOptions::balanced(size), Some(args.max_acmr))
-        };
-        let diagonals = match args.diagonals {
-            DiagonalsArg::Auto => cache::Diagonals::Auto,
-            DiagonalsArg::Fan => cache::Diagonals::Fan,
-            DiagonalsArg::Qstrip => cache::Diagonals::Qstrip,
-        };
-        let m = cache::stripify_mesh(&mesh, &options, bound, diagonals);
-        // On the fan the strips are checked against the input's own fan (`tris`), not
-        // against the triangles the stripifier reports; on QSTRIP's split at quad level.
-        quad_split = m.qstrip_diagonals;
-        split = Some(if m.qstrip_diagonals { "qstrip" } else { "fan" });
-        m.strips
-    } else {
-        greedy_strips(args.heuristic, args.tunnel, &tris, vertex_count)
-    };
-    let ms = start.elapsed().as_secs_f64() * 1e3;
-    if quad_split {
-        // A quad may be split along either diagonal: check at quad level, then take
-        // the triangles the strips chose as the reference for the figures and for
-        // every later check (the quad check proved them a triangulation of the mesh).
-        progress.set_message("verifying quads");
-        quad_verify::verify_quads(&mesh, &strips)
-            .map_err(|e| anyhow::anyhow!(e).context("the strips"))?;
-        tris = strip::decode(&strips);
-    }
-
-    progress.set_message("verifying");
-    let cache = CacheModel {
-        kind: if args.lru {
-            CacheKind::Lru
-        } else {
-            CacheKind::Fifo
-        },
-        size: args.cache,
-    };
-    let figures = metrics::figures(&tris, &strips, cache);
-    let v = strip::verify(&tris, &strips);
-    if !v.ok() {
-        return Err(fail_verification("the strips", &v));
-    }
-    // The strips as the output will hold them, checked again after the join.
-    let joined = match args.join {
-        Join::Restart => strip::decode_restart(
-            &strip::encode_restart(&strips, args.restart_index),
-            args.restart_index,
-        ),
-        Join::Degenerate => single_stitched(&strips),
-        Join::Separate => StripSet::from_strips(&strip::encode_separate(&strips)),
-    };
-    let v = strip::verify(&tris, &joined);
-    if !v.ok() {
-        return Err(fail_verification("the joined buffer", &v));
-    }
+    progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
+    let strips = stripifier
+        .stripify(&mesh)
+        .map_err(|e| anyhow::anyhow!(flag_names(e)).context(format!("{}", args.input.display())))?;
 
     progress.set_message(format!("writing {}", args.output.display()));
+    let figures = &strips.figures;
     let report = Report {
         input: &args.input,
         output: &args.output,
-        algo,
+        algo: strips.algorithm.name(),
         heuristic: args.heuristic,
         join: args.join,
-        vertices: vertex_count,
-        figures: &figures,
-        ms,
-        diagonals: split,
-        quads,
-        indices_per_quad: quads
-            .filter(|&q| q > 0)
-            .map(|q| figures.indices_restart as f64 / q as f64),
+        vertices: mesh.vertex_count(),
+        figures,
+        ms: strips.stripify_time.as_secs_f64() * 1e3,
+        diagonals: matches!(strips.algorithm, Algorithm::Cache { .. } | Algorithm::Balanced { .. })
+            .then(|| strips.split.name()),
+        quads: strips.quads,
+        indices_per_quad: strips.indices_per_quad(),
     };
-    match kind {
+    let bytes = match kind {
         OutKind::Json => {
-            let bytes = json_output(&args, &joined, &strips, &report)?;
-            std::fs::write(&args.output, bytes).map_err(|source| Error::Io {
-                path: args.output.clone(),
-                source,
-            })?;
+            let mut obj = strips.to_json();
+            obj.insert("figures".into(), serde_json::to_value(&report)?);
+            let mut bytes = serde_json::to_vec(&serde_json::Value::Object(obj))?;
+            bytes.push(b'\n');
+            bytes
         }
-        OutKind::Mesh(format) => {
-            let to_write = mesh_output(&args, format, &mesh, &strips, &joined, &tris)?;
-            io::write(&args.output, &mesh, Some(&to_write))?;
-        }
-    }
+        OutKind::Mesh(format) => strips.to_file_bytes(&mesh, format)?,
+    };
+    io::write_encoded(&args.output, &bytes)?;
     progress.finish_and_clear();
 
     let mut stdout = std::io::stdout().lock();
@@ -391,73 +302,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
 }
 
-fn single_stitched(strips: &StripSet) -> StripSet {
-    let one = strip::encode_stitched(strips);
-    if one.is_empty() {
-        StripSet::new()
-    } else {
-        StripSet::from_strips(&[one])
+/// The library names its settings; the user typed flags: say which.
+fn flag_names(e: Error) -> Error {
+    match e {
+        Error::Invalid(m) => Error::Invalid(
+            m.replace("the cache size", "--cache")
+                .replace("restart index", "--restart-index")
+                .replace("balanced needs a positive number of misses per triangle as its bound", "--max-acmr must be a positive number of misses per triangle")
+                .replace("split qstrip", "--diagonals qstrip")
+                .replace("split fan", "--diagonals fan"),
+        ),
+        other => other,
     }
-}
-
-fn json_output(
-    args: &Args,
-    joined: &StripSet,
-    strips: &StripSet,
-    report: &Report,
-) -> anyhow::Result<Vec<u8>> {
-    let mut obj = serde_json::Map::new();
-    obj.insert("join".into(), serde_json::to_value(args.join)?);
-    obj.insert(
-        "strips".into(),
-        serde_json::to_value(strip::encode_separate(joined))?,
-    );
-    if args.join == Join::Restart {
-        obj.insert("restart_index".into(), args.restart_index.into());
-        obj.insert(
-            "indices".into(),
-            serde_json::to_value(strip::encode_restart(strips, args.restart_index))?,
-        );
-    }
-    obj.insert("figures".into(), serde_json::to_value(report)?);
-    let mut bytes = serde_json::to_vec(&serde_json::Value::Object(obj))?;
-    bytes.push(b'\n');
-    Ok(bytes)
-}
-
-fn mesh_output(
-    args: &Args,
-    format: Format,
-    mesh: &Mesh,
-    strips: &StripSet,
-    joined: &StripSet,
-    tris: &[[u32; 3]],
-) -> anyhow::Result<StripSet> {
-    // PLY `tristrips` ends strips with -1 (its own restart); glTF has no restart, so
-    // it gets the stitched strip unless strips are asked for separately.
-    let to_write = match (format, args.join) {
-        (Format::Ply, Join::Degenerate) | (Format::Gltf | Format::Glb, Join::Separate) => {
-            joined.clone()
-        }
-        (Format::Ply, _) => strips.clone(),
-        _ => single_stitched(strips),
-    };
-    let bytes = io::write_bytes(format, mesh, Some(&to_write), &WriteOptions::default())?;
-    // Read the bytes back with the library's reader and check them once more.
-    let back = io::read_bytes(&args.output, format, &bytes).with_context(|| {
-        format!(
-            "reading back the {} bytes about to be written",
-            args.output.display()
-        )
-    })?;
-    let v = strip::verify_triangles(tris, &back.triangulate().tris);
-    if !v.ok() {
-        return Err(fail_verification(
-            &format!("{} read back", args.output.display()),
-            &v,
-        ));
-    }
-    Ok(to_write)
 }
 
 fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
@@ -468,7 +324,7 @@ fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
         "{} -> {} ({}, heuristic {}, join {})",
         r.input.display(),
         r.output.display(),
-        name(&r.algo),
+        r.algo,
         name(&r.heuristic),
         name(&r.join)
     )?;
