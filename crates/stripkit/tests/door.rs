@@ -1,0 +1,212 @@
+//! The front door: every algorithm through `stripify` and `stripify_indices`, the
+//! output decoded again by `unstripify` and compared with the input as multisets of
+//! oriented triangles; the bound; the errors a user can cause.
+
+use proptest::prelude::*;
+use stripkit::mesh::io;
+use stripkit::strip::{decode, verify_triangles};
+use stripkit::stripify::greedy::{GreedyOptions, Heuristic};
+use stripkit::{gen, stripify, stripify_bound, stripify_indices, unstripify, Algorithm, Error, Join, Mesh, Split, StripOptions};
+
+/// Every algorithm setting the door offers for triangle input.
+fn algorithms() -> Vec<Algorithm> {
+    vec![
+        Algorithm::Auto,
+        Algorithm::greedy(),
+        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Strips, tunnel_cuts: Some(2) }),
+        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: None }),
+        Algorithm::qstrip(),
+        Algorithm::cache(),
+        Algorithm::Cache { refine: true },
+        Algorithm::balanced(0.8),
+    ]
+}
+
+/// Oriented triangles up to rotation, degenerate ones dropped, sorted.
+fn oriented(flat: &[u32]) -> Vec<[u32; 3]> {
+    let mut out: Vec<[u32; 3]> = flat
+        .chunks_exact(3)
+        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .map(|t| {
+            let r = (0..3).min_by_key(|&i| t[i]).unwrap();
+            [t[r], t[(r + 1) % 3], t[(r + 2) % 3]]
+        })
+        .collect();
+    out.sort_unstable();
+    out
+}
+
+/// A grid of `w x h` quads, each split along a random diagonal, vertices renumbered by
+/// a random permutation and triangles shuffled and rotated: a mesh no stripifier saw
+/// in this order.
+fn scrambled_grid(w: u32, h: u32, seed: u64) -> (Vec<u32>, usize) {
+    let mut state = seed | 1;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let n = ((w + 1) * (h + 1)) as usize;
+    let mut perm: Vec<u32> = (0..n as u32).collect();
+    for i in (1..n).rev() {
+        perm.swap(i, (next() % (i as u64 + 1)) as usize);
+    }
+    let id = |x: u32, y: u32| perm[(y * (w + 1) + x) as usize];
+    let mut tris = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            let (a, b, c, d) = (id(x, y), id(x + 1, y), id(x + 1, y + 1), id(x, y + 1));
+            if next() % 2 == 0 {
+                tris.push([a, b, c]);
+                tris.push([a, c, d]);
+            } else {
+                tris.push([a, b, d]);
+                tris.push([b, c, d]);
+            }
+        }
+    }
+    for i in (1..tris.len()).rev() {
+        tris.swap(i, (next() % (i as u64 + 1)) as usize);
+    }
+    let flat = tris
+        .iter()
+        .flat_map(|t| {
+            let r = (next() % 3) as usize;
+            [t[r], t[(r + 1) % 3], t[(r + 2) % 3]]
+        })
+        .collect();
+    (flat, n)
+}
+
+fn round_trip(indices: &[u32], vertex_count: usize) {
+    let want = oriented(indices);
+    for algorithm in algorithms() {
+        for join in [Join::Restart, Join::Degenerate] {
+            let options = StripOptions::default().algorithm(algorithm.clone()).join(join);
+            let restart = vertex_count as u32;
+            let buf = stripify_indices(indices, vertex_count, restart, &options)
+                .unwrap_or_else(|e| panic!("{} {join:?}: {e}", algorithm.name()));
+            assert!(buf.len() <= stripify_bound(indices.len()), "{} {join:?}: over the bound", algorithm.name());
+            let back = unstripify(&buf, if join == Join::Restart { restart } else { u32::MAX });
+            assert_eq!(oriented(&back), want, "{} {join:?}: triangles differ", algorithm.name());
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    #[test]
+    fn scrambled_grids_round_trip_through_every_algorithm(w in 1u32..9, h in 1u32..9, seed in any::<u64>()) {
+        let (indices, n) = scrambled_grid(w, h, seed);
+        round_trip(&indices, n);
+    }
+
+    /// Triangles drawn at random from a handful of vertices: non-manifold edges,
+    /// duplicates, degenerate triangles and isolated pieces.
+    #[test]
+    fn random_soups_round_trip(tris in prop::collection::vec((0u32..7, 0u32..7, 0u32..7), 1..40)) {
+        let indices: Vec<u32> = tris.iter().flat_map(|&(a, b, c)| [a, b, c]).collect();
+        round_trip(&indices, 7);
+    }
+}
+
+#[test]
+fn shuffled_meshes_give_verified_strips_for_every_algorithm() {
+    let meshes = [
+        gen::shuffle_faces(&gen::icosphere(2), 7),
+        gen::shuffle_faces(&gen::torus(12, 8, 2.0, 0.5), 11),
+        gen::shuffle_faces(&gen::grid_quads(6, 5), 3),
+        gen::shuffle_faces(&gen::torus_quads(10, 6, 2.0, 0.5), 5),
+    ];
+    for mesh in &meshes {
+        for algorithm in algorithms() {
+            let s = stripify(mesh, &StripOptions::default().algorithm(algorithm.clone())).unwrap();
+            assert!(s.figures.verified);
+            assert_eq!(s.figures.triangles, mesh.triangle_count(), "{}", algorithm.name());
+        }
+    }
+    // Auto takes QSTRIP on quad meshes, greedy on triangle meshes.
+    let s = stripify(&meshes[3], &StripOptions::default()).unwrap();
+    assert_eq!((s.algorithm.name(), s.split), ("qstrip", Split::Qstrip));
+    assert_eq!(s.quads, Some(60));
+    let s = stripify(&meshes[0], &StripOptions::default()).unwrap();
+    assert_eq!((s.algorithm.name(), s.split), ("greedy", Split::Fan));
+    // Quad-single on a closed quad mesh: one strip per component.
+    let s = stripify(&meshes[3], &StripOptions::default().algorithm(Algorithm::QuadSingle)).unwrap();
+    assert_eq!(s.figures.strips, 1);
+    assert_eq!(s.quads, Some(60));
+    // The cache-aware modes on the quads, with each split.
+    for split in [Split::Auto, Split::Fan, Split::Qstrip] {
+        let options = StripOptions::default().algorithm(Algorithm::balanced(0.8)).split(split);
+        let s = stripify(&meshes[3], &options).unwrap();
+        assert!(s.figures.acmr <= 0.8, "{split:?}: {}", s.figures.acmr);
+        if split != Split::Auto {
+            assert_eq!(s.split, split);
+        }
+    }
+}
+
+#[test]
+fn the_joined_form_and_files_hold_the_same_triangles() {
+    let mesh = gen::shuffle_faces(&gen::torus(10, 6, 2.0, 0.5), 1);
+    for join in [Join::Restart, Join::Degenerate, Join::Separate] {
+        let s = stripify(&mesh, &StripOptions::default().algorithm(Algorithm::cache()).join(join)).unwrap();
+        assert_eq!(decode(&s.joined).len(), s.figures.triangles);
+        for format in [io::Format::Ply, io::Format::Glb, io::Format::Gltf] {
+            let bytes = s.to_file_bytes(&mesh, format).unwrap();
+            let back = io::read_bytes(std::path::Path::new("x"), format, &bytes).unwrap();
+            assert!(verify_triangles(&s.triangles, &back.triangulate().tris).ok());
+        }
+        assert!(s.to_file_bytes(&mesh, io::Format::Obj).is_err());
+    }
+    // A restart buffer separates as many strips as there are.
+    let s = stripify(&mesh, &StripOptions::default()).unwrap();
+    let buf = s.restart_buffer();
+    assert_eq!(buf.len(), s.figures.indices_restart);
+    assert_eq!(buf.iter().filter(|&&i| i == u32::MAX).count(), s.figures.strips - 1);
+}
+
+fn invalid(r: Result<impl std::fmt::Debug, Error>, needle: &str) {
+    match r {
+        Err(Error::Invalid(m)) => assert!(m.contains(needle), "{m:?} lacks {needle:?}"),
+        other => panic!("expected an Invalid error with {needle:?}, got {other:?}"),
+    }
+}
+
+#[test]
+fn bad_input_and_options_that_do_not_apply_are_errors() {
+    let d = StripOptions::default();
+    let quad = [0, 1, 2, 0, 2, 3];
+    invalid(stripify_indices(&[], 3, u32::MAX, &d), "empty");
+    invalid(stripify_indices(&[0, 1], 3, u32::MAX, &d), "multiple of 3");
+    invalid(stripify_indices(&[0, 1, 5], 3, u32::MAX, &d), "vertex 5");
+    invalid(stripify_indices(&quad, 4, 2, &d), "restart index 2");
+    invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().join(Join::Separate)), "separate");
+    invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().cache_size(0)), "cache");
+    invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::balanced(f64::NAN))), "positive");
+    invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::balanced(0.0))), "positive");
+    invalid(
+        stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::greedy()).split(Split::Qstrip)),
+        "greedy",
+    );
+    invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::qstrip()).split(Split::Fan)), "qstrip");
+    // A restart index at or past the vertices is fine, even one unused by any index.
+    assert_eq!(stripify_indices(&quad, 5, 5, &d).unwrap().len(), 4);
+    // With stitching the restart index is not used at all.
+    assert_eq!(stripify_indices(&quad, 4, 0, &d.clone().join(Join::Degenerate)).unwrap().len(), 4);
+
+    // The mesh door checks faces before any stripifier sees them.
+    let mut m = Mesh::from_triangles(vec![[0.0; 3]; 3], &[[0, 1, 2]]);
+    m.face_indices[2] = 9;
+    invalid(stripify(&m, &d), "vertex 9");
+    let m = Mesh::from_polygons(vec![[0.0; 3]; 3], &[vec![0u32, 1]]);
+    invalid(stripify(&m, &d), "at least 3");
+    invalid(stripify(&gen::grid(2, 2), &d.clone().restart_index(3)), "restart index 3");
+    // Quad-single refuses a mesh that is not closed and made of quads.
+    invalid(stripify(&gen::grid_quads(2, 2), &d.clone().algorithm(Algorithm::QuadSingle)), "quad");
+    // An empty mesh gives no strips, verified.
+    let s = stripify(&Mesh::new(), &d).unwrap();
+    assert!(s.figures.verified && s.strips.is_empty());
+}
