@@ -39,6 +39,18 @@ pub enum Error {
     /// An output failed its independent check; never written silently.
     #[error("verification failed: {0}")]
     Verification(String),
+    /// An error of the matching solver (bad graph input, graph file errors, or a
+    /// failed certificate check); its message is passed through unchanged.
+    #[error(transparent)]
+    Matching(#[from] stripkit_matching::Error),
+}
+
+impl Error {
+    /// True for a failed independent check of an output ([`Error::Verification`], or
+    /// the matching's own [`stripkit_matching::Error::Verification`]).
+    pub fn is_verification(&self) -> bool {
+        matches!(self, Error::Verification(_) | Error::Matching(stripkit_matching::Error::Verification(_)))
+    }
 }
 
 /// Shorthand for results of this crate.

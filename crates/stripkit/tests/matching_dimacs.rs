@@ -2,7 +2,7 @@
 
 use std::path::Path;
 use stripkit::matching::{self, Graph, Objective};
-use stripkit::Error;
+use stripkit::matching::Error;
 
 fn parse(text: &str) -> Result<Graph, Error> {
     Graph::parse_dimacs(text, Path::new("g.dimacs"))
