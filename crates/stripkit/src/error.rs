@@ -55,3 +55,19 @@ impl Error {
 
 /// Shorthand for results of this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::Error;
+
+    #[test]
+    fn matching_errors_convert_with_their_message_and_kind() {
+        let e: Error = stripkit_matching::Error::Verification("dual bound 4, primal 6".into()).into();
+        assert_eq!(e.to_string(), "verification failed: dual bound 4, primal 6");
+        assert!(e.is_verification());
+        let e: Error = stripkit_matching::Error::Invalid("edge 3 joins 0 and 9".into()).into();
+        assert_eq!(e.to_string(), "edge 3 joins 0 and 9");
+        assert!(!e.is_verification());
+        assert!(Error::Verification("x".into()).is_verification());
+    }
+}
