@@ -192,7 +192,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let mut ut = Vec::new();
         for _ in 0..runs {
             let t = Instant::now();
-            let mate = matching::unweighted::maximum_cardinality_matching(g);
+            let mate = matching::maximum_cardinality_matching(g);
             ut.push(t.elapsed().as_secs_f64() * 1e3);
             let card = mate.iter().filter(|&&x| x != matching::UNMATCHED).count();
             if card != 2 * m.edges.len() {

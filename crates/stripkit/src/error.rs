@@ -39,7 +39,35 @@ pub enum Error {
     /// An output failed its independent check; never written silently.
     #[error("verification failed: {0}")]
     Verification(String),
+    /// An error of the matching solver (bad graph input, graph file errors, or a
+    /// failed certificate check); its message is passed through unchanged.
+    #[error(transparent)]
+    Matching(#[from] stripkit_matching::Error),
+}
+
+impl Error {
+    /// True for a failed independent check of an output ([`Error::Verification`], or
+    /// the matching's own [`stripkit_matching::Error::Verification`]).
+    pub fn is_verification(&self) -> bool {
+        matches!(self, Error::Verification(_) | Error::Matching(stripkit_matching::Error::Verification(_)))
+    }
 }
 
 /// Shorthand for results of this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::Error;
+
+    #[test]
+    fn matching_errors_convert_with_their_message_and_kind() {
+        let e: Error = stripkit_matching::Error::Verification("dual bound 4, primal 6".into()).into();
+        assert_eq!(e.to_string(), "verification failed: dual bound 4, primal 6");
+        assert!(e.is_verification());
+        let e: Error = stripkit_matching::Error::Invalid("edge 3 joins 0 and 9".into()).into();
+        assert_eq!(e.to_string(), "edge 3 joins 0 and 9");
+        assert!(!e.is_verification());
+        assert!(Error::Verification("x".into()).is_verification());
+    }
+}

@@ -12,7 +12,13 @@ use std::process::ExitCode;
 /// Exit status for an error: 1 for a failed verification, 2 for bad input.
 pub fn exit_code(err: &anyhow::Error) -> ExitCode {
     for cause in err.chain() {
-        if let Some(stripkit::Error::Verification(_)) = cause.downcast_ref::<stripkit::Error>() {
+        // The matching solver's errors come either as they are or wrapped in stripkit's.
+        let failed_check = cause.downcast_ref::<stripkit::Error>().is_some_and(stripkit::Error::is_verification)
+            || matches!(
+                cause.downcast_ref::<stripkit::matching::Error>(),
+                Some(stripkit::matching::Error::Verification(_))
+            );
+        if failed_check {
             return ExitCode::from(1);
         }
     }

@@ -2,10 +2,10 @@
 //! pair of triangles across a manifold, consistently oriented edge) with a choice of
 //! weights.
 
-use super::graph::Graph;
 use crate::error::Result;
 use crate::mesh::Mesh;
-use crate::topology::DualGraph;
+use crate::topology::{DualGraph, NO_NEIGHBOR};
+use stripkit_matching::Graph;
 
 /// How to weight the dual edges.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,16 +32,34 @@ pub(crate) fn splitmix(state: &mut u64) -> u64 {
     z ^ (z >> 31)
 }
 
+/// The dual graph of a mesh as a matching graph: one node per triangle, one edge per
+/// pair of dual neighbours, weighted by `weight(t, j, u)` for the edge from triangle
+/// `t` across its edge `j` to triangle `u` (called once per edge, with `t < u`).
+/// (Formerly `Graph::from_dual`; it moved here when the matching became its own crate.)
+pub fn graph_from_dual(dual: &DualGraph, mut weight: impl FnMut(usize, usize, usize) -> i64) -> Result<Graph> {
+    let mut edges = Vec::with_capacity(dual.len() * 3 / 2);
+    let mut weights = Vec::with_capacity(dual.len() * 3 / 2);
+    for (t, nb) in dual.neighbors.iter().enumerate() {
+        for (j, &u) in nb.iter().enumerate() {
+            if u != NO_NEIGHBOR && (t as u32) < u {
+                edges.push([t as u32, u]);
+                weights.push(weight(t, j, u as usize));
+            }
+        }
+    }
+    Ok(Graph::new(dual.len(), edges, weights)?)
+}
+
 /// The weighted dual graph of a mesh's triangles (faces fanned by
 /// [`Mesh::triangulate`]; node `t` is triangle `t`). O(triangles + vertices).
 pub fn mesh_dual_graph(mesh: &Mesh, weights: DualWeights) -> Result<Graph> {
     let tris = mesh.triangulate().tris;
     let dual = DualGraph::from_triangles(&tris, mesh.vertex_count());
     match weights {
-        DualWeights::Uniform => Graph::from_dual(&dual, |_, _, _| 1),
+        DualWeights::Uniform => graph_from_dual(&dual, |_, _, _| 1),
         DualWeights::Random { seed } => {
             let mut s = seed;
-            Graph::from_dual(&dual, |_, _, _| 1 + (splitmix(&mut s) % 1000) as i64)
+            graph_from_dual(&dual, |_, _, _| 1 + (splitmix(&mut s) % 1000) as i64)
         }
         DualWeights::NormalAngle => {
             let normal = |t: usize| -> [f64; 3] {
@@ -60,7 +78,7 @@ pub fn mesh_dual_graph(mesh: &Mesh, weights: DualWeights) -> Result<Graph> {
                     [0.0; 3]
                 }
             };
-            Graph::from_dual(&dual, |t, _, u| {
+            graph_from_dual(&dual, |t, _, u| {
                 let (a, b) = (normal(t), normal(u));
                 if a == [0.0; 3] || b == [0.0; 3] {
                     return 0;

@@ -14,7 +14,7 @@
 //! Scale: the certificate is stated for the *internal* weights `2w` (maximising) or
 //! `-2w` (minimising cost `w`), so that every dual is an integer.
 
-use super::blossom::NONE;
+use crate::blossom::NONE;
 use crate::error::{Error, Result};
 
 /// One blossom of the dual solution.
@@ -27,7 +27,8 @@ pub struct DualBlossom {
     pub parent: u32,
 }
 
-/// Dual solution proving a perfect matching optimal (see the module text).
+/// Dual solution proving a perfect matching optimal: vertex duals `y`, and blossom
+/// duals `z_B` on a laminar family (see the [crate docs](crate#the-certificate)).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Certificate {
     /// Vertex duals, one per vertex, for the internal weights (`2w` or `-2w`).
@@ -55,7 +56,14 @@ fn fail(what: String) -> Error {
 /// Checks that `matched` (edge ids) is a perfect matching of the graph with `n`
 /// vertices, edges `ends` and internal weights `w`, and that `cert` proves it
 /// maximum-weight. Self-loops in `ends` are ignored; parallel edges are all checked.
-pub fn check(
+///
+/// The weights are *internal* ones (`2w` to maximise `w`, `-2w` to minimise it, see
+/// [`Objective::internal`](crate::Objective::internal)); [`verify`](crate::verify)
+/// does the conversion for a [`Graph`](crate::Graph). Checks every condition of the
+/// [crate docs](crate#the-certificate) from scratch in O(edges * blossom depth).
+/// Returns the primal weight and the dual bound, which are equal when it passes; fails
+/// with [`Error::Verification`] naming the first violated condition.
+pub fn check_certificate(
     n: usize,
     ends: &[[u32; 2]],
     w: &[i64],

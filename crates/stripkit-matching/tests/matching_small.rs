@@ -1,7 +1,7 @@
 //! The weighted matching engine against exhaustive search on all kinds of small
 //! random graphs; every solve's certificate is checked independently.
 
-use stripkit::matching::{self, Graph, Objective, UNMATCHED};
+use stripkit_matching::{self as matching, Graph, Objective, UNMATCHED};
 
 mod test_rng;
 use test_rng::Rng;
@@ -100,7 +100,7 @@ fn uniform_weights_match_unweighted_cardinality() {
     for round in 0..1500 {
         let n = 1 + (round % 12);
         let g = random_graph(&mut rng, n, [15, 30, 60][round % 3], 0, 0, round % 5 == 0);
-        let mate = matching::unweighted::maximum_cardinality_matching(&g);
+        let mate = matching::maximum_cardinality_matching(&g);
         let card = mate.iter().filter(|&&m| m != UNMATCHED).count() / 2;
         for (v, &m) in mate.iter().enumerate() {
             if m != UNMATCHED {

@@ -1,8 +1,8 @@
 //! The DIMACS-style reader: what it accepts, and the errors it gives.
 
 use std::path::Path;
-use stripkit::matching::{self, Graph, Objective};
-use stripkit::Error;
+use stripkit_matching::{self as matching, Graph, Objective};
+use stripkit_matching::Error;
 
 fn parse(text: &str) -> Result<Graph, Error> {
     Graph::parse_dimacs(text, Path::new("g.dimacs"))

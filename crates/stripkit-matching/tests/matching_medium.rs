@@ -1,9 +1,10 @@
 //! The weighted engine on graphs of a few hundred to a few thousand nodes: against a
 //! dense O(n^3) Hungarian reference on bipartite graphs, for consistency between the
-//! objectives and with the unweighted matcher elsewhere, on mesh dual graphs, and on
-//! disconnected graphs. Every solve checks its certificate; tests check it again.
+//! objectives and with the unweighted matcher elsewhere, and on disconnected graphs
+//! (mesh dual graphs: stripkit's tests/matching_mesh_dual.rs). Every solve checks its
+//! certificate; tests check it again.
 
-use stripkit::matching::{self, DualWeights, Graph, Objective, UNMATCHED};
+use stripkit_matching::{self as matching, Graph, Objective, UNMATCHED};
 
 mod test_rng;
 use test_rng::Rng;
@@ -92,7 +93,7 @@ fn check(g: &Graph, obj: Objective) -> matching::Matching {
         assert_eq!(report.primal, 2 * m.total_weight as i128 * if obj == Objective::MaxWeight { 1 } else { -1 });
     }
     // Cardinality is maximum in every case.
-    let mate = matching::unweighted::maximum_cardinality_matching(g);
+    let mate = matching::maximum_cardinality_matching(g);
     let card = mate.iter().filter(|&&x| x != UNMATCHED).count();
     assert_eq!(card, 2 * m.edges.len());
     m
@@ -188,25 +189,6 @@ fn general_sparse_graphs_are_optimal_and_consistent() {
     }
     eprintln!("perfect {perfect}/60, blossoms formed {formed}, inner expanded {expanded}");
     assert!(formed > 100 && expanded > 0 && perfect > 5 && perfect < 55);
-}
-
-#[test]
-fn mesh_dual_graphs_have_certified_perfect_matchings() {
-    for level in 0..4 {
-        let mesh = stripkit::gen::shuffle_faces(&stripkit::gen::icosphere(level), 9 + level as u64);
-        for w in [DualWeights::Uniform, DualWeights::Random { seed: 3 }, DualWeights::NormalAngle] {
-            let g = matching::mesh_dual_graph(&mesh, w).unwrap();
-            assert_eq!(g.node_count(), 20 << (2 * level));
-            assert_eq!(g.edge_count(), 30 << (2 * level));
-            let m = check(&g, Objective::MaxWeight);
-            assert!(m.perfect);
-            if w == DualWeights::Uniform {
-                assert_eq!(m.total_weight, (10 << (2 * level)) as i64);
-            }
-            let u = matching::unweighted::perfect_matching(&g).unwrap();
-            assert!(u.iter().all(|&x| x != UNMATCHED));
-        }
-    }
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! The input graph: an edge list with integer weights plus a CSR adjacency, and the
 //! DIMACS-style text reader.
 //!
-//! Input conventions (documented for callers and for `stripkit match`):
+//! Input conventions (documented for callers and for the `stripkit match` command):
 //! * vertices are `0..node_count` in the API, `1..=N` in files;
 //! * self-loops are kept in the edge list but ignored by the solvers (a vertex cannot
 //!   be matched to itself);
@@ -76,27 +76,6 @@ impl Graph {
             }
         }
         Ok(Graph { node_count, edges, weights, offsets, adj })
-    }
-
-    /// The dual graph of a mesh as a matching graph: one node per triangle, one edge
-    /// per pair of dual neighbours, weighted by `weight(t, j, u)` for the edge from
-    /// triangle `t` across its edge `j` to triangle `u` (called once per edge, with
-    /// `t < u`).
-    pub fn from_dual(
-        dual: &crate::topology::DualGraph,
-        mut weight: impl FnMut(usize, usize, usize) -> i64,
-    ) -> Result<Graph> {
-        let mut edges = Vec::with_capacity(dual.len() * 3 / 2);
-        let mut weights = Vec::with_capacity(dual.len() * 3 / 2);
-        for (t, nb) in dual.neighbors.iter().enumerate() {
-            for (j, &u) in nb.iter().enumerate() {
-                if u != crate::topology::NO_NEIGHBOR && (t as u32) < u {
-                    edges.push([t as u32, u]);
-                    weights.push(weight(t, j, u as usize));
-                }
-            }
-        }
-        Graph::new(dual.len(), edges, weights)
     }
 
     /// Number of nodes.

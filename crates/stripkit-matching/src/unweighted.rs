@@ -6,12 +6,12 @@
 //! A search that fails from a vertex can be skipped for good (Edmonds' theorem), so
 //! every vertex starts at most one search.
 
-use super::graph::Graph;
+use crate::graph::Graph;
 
 const NONE: u32 = u32::MAX;
 
 /// A maximum-cardinality matching: the partner of each vertex or
-/// [`UNMATCHED`](super::UNMATCHED).
+/// [`UNMATCHED`](crate::UNMATCHED).
 /// Self-loops are ignored. O(n + m) start; each of the remaining searches is a BFS over
 /// the region it reaches.
 pub fn maximum_cardinality_matching(g: &Graph) -> Vec<u32> {
@@ -61,9 +61,9 @@ pub fn maximum_cardinality_matching_bounded(g: &Graph, min_exposed: usize) -> Ve
     s.mate
 }
 
-/// A perfect matching (partner of each vertex) in a graph with uniform weights, or
-/// `None` when there is none.
-pub fn perfect_matching(g: &Graph) -> Option<Vec<u32>> {
+/// A perfect matching (partner of each vertex), ignoring the weights, or `None` when
+/// there is none (the maximum-cardinality matching leaves a vertex exposed).
+pub fn unweighted_perfect_matching(g: &Graph) -> Option<Vec<u32>> {
     let mate = maximum_cardinality_matching(g);
     if mate.iter().all(|&m| m != NONE) {
         Some(mate)

@@ -4,7 +4,7 @@
 //! checked against exhaustive search on many tiny graphs.
 
 use std::collections::VecDeque;
-use stripkit::matching::{self, Graph, Objective, UNMATCHED};
+use stripkit_matching::{self as matching, Graph, Objective, UNMATCHED};
 
 mod matching_brute;
 mod test_rng;
