@@ -2,15 +2,16 @@
 //! of a folder, every figure computed by stripkit's own decoder and metrics
 //! (METRICS.md), every row verified, times as medians.
 //!
-//! Adding a row: one more entry in [`modes`].
+//! Every stripkit row goes through the library's front door, as a user's call would.
+//! Adding a row: one more entry in [`modes`] (or [`quad_modes`]).
 
 use anyhow::Context;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stripkit::metrics::{self, CacheModel, Figures};
 use stripkit::strip::{self, StripSet};
-use stripkit::stripify::cache::{self, CacheOptions};
-use stripkit::stripify::greedy::{self, GreedyOptions, Heuristic};
+use stripkit::stripify::greedy::{GreedyOptions, Heuristic};
+use stripkit::{Algorithm, Split, StripOptions};
 
 /// Arguments of the `strips` comparison.
 #[derive(clap::Args)]
@@ -40,69 +41,44 @@ pub struct Args {
 
 /// A triangle list reordered before stripifying (the reorder is timed on its own).
 type Reorder = fn(&[[u32; 3]], usize) -> Vec<[u32; 3]>;
-/// A stripifier: triangles and vertex count in, strips out.
-type Stripifier = Box<dyn Fn(&[[u32; 3]], usize) -> StripSet>;
 
-/// One row kind of the table.
-pub struct Mode {
-    /// Row label.
-    pub name: &'static str,
-    /// Optional reordering before the stripify call (timed separately).
-    pub reorder: Option<Reorder>,
-    /// The stripify call (timed).
-    pub stripify: Stripifier,
-    /// True for stripkit's own modes: a failed verification is then an error.
-    pub ours: bool,
+/// One row kind of the table for every mesh: a peer, or stripkit through its front
+/// door ([`stripkit::stripify`], which verifies what it returns).
+pub enum Mode {
+    /// stripkit with these options; the time is the door's stripify time (the
+    /// algorithm alone, as the peers are timed).
+    Ours(&'static str, StripOptions),
+    /// A peer: an optional reorder (timed separately), then its stripify call.
+    Peer(&'static str, Reorder, fn(&[[u32; 3]], usize) -> StripSet),
 }
 
-fn ours(name: &'static str, f: impl Fn(&[[u32; 3]], usize) -> StripSet + 'static) -> Mode {
-    Mode {
-        name,
-        reorder: None,
-        stripify: Box::new(f),
-        ours: true,
-    }
+fn greedy(heuristic: Heuristic, tunnel_cuts: Option<usize>) -> StripOptions {
+    StripOptions::default().algorithm(Algorithm::Greedy(GreedyOptions { heuristic, tunnel_cuts }))
 }
 
-fn peer(
-    name: &'static str,
-    reorder: Reorder,
-    f: impl Fn(&[[u32; 3]], usize) -> StripSet + 'static,
-) -> Mode {
-    Mode {
-        name,
-        reorder: Some(reorder),
-        stripify: Box::new(f),
-        ours: false,
-    }
-}
-
-/// The rows, in table order. Other stripkit modes are one line each.
+/// The rows for every mesh, in table order. Other stripkit modes are one line each.
 pub fn modes() -> Vec<Mode> {
     vec![
-        ours("stripkit greedy --heuristic strips", |t, n| {
-            greedy::stripify(
-                t,
-                n,
-                &GreedyOptions::with_heuristic(Heuristic::Strips),
-            )
-        }),
-        ours("stripkit greedy --heuristic indices", |t, n| {
-            greedy::stripify(
-                t,
-                n,
-                &GreedyOptions::with_heuristic(Heuristic::Indices),
-            )
-        }),
-        ours("stripkit greedy --heuristic indices --tunnel 0 (paper)", |t, n| {
-            let options = GreedyOptions {
-                heuristic: Heuristic::Indices,
-                tunnel_cuts: None,
-            };
-            greedy::stripify(t, n, &options)
-        }),
-        peer("meshopt optimize_vertex_cache + stripify", reorder_cache, meshopt_stripify),
-        peer("meshopt optimize_vertex_cache_strip + stripify", reorder_strip, meshopt_stripify),
+        Mode::Ours("stripkit greedy --heuristic strips", greedy(Heuristic::Strips, Some(1))),
+        Mode::Ours("stripkit greedy --heuristic indices", greedy(Heuristic::Indices, Some(1))),
+        Mode::Ours("stripkit greedy --heuristic indices --tunnel 0 (paper)", greedy(Heuristic::Indices, None)),
+        Mode::Peer("meshopt optimize_vertex_cache + stripify", reorder_cache, meshopt_stripify),
+        Mode::Peer("meshopt optimize_vertex_cache_strip + stripify", reorder_strip, meshopt_stripify),
+        Mode::Ours("stripkit cache", StripOptions::default().algorithm(Algorithm::cache())),
+        Mode::Ours("stripkit cache --refine", StripOptions::default().algorithm(Algorithm::Cache { refine: true })),
+        Mode::Ours("stripkit balanced (acmr16 <= 0.8)", StripOptions::default().algorithm(Algorithm::balanced(0.8))),
+    ]
+}
+
+/// Extra rows on quad-dominant meshes: the cache-aware modes on the fan alone, so
+/// that the gain of QSTRIP's split shows, and QSTRIP itself (followed by the peer on
+/// QSTRIP's split, see [`run`]).
+fn quad_modes() -> Vec<Mode> {
+    let fan = StripOptions::default().split(Split::Fan);
+    vec![
+        Mode::Ours("stripkit cache --diagonals fan", fan.clone().algorithm(Algorithm::cache())),
+        Mode::Ours("stripkit balanced --diagonals fan (acmr16 <= 0.8)", fan.algorithm(Algorithm::balanced(0.8))),
+        Mode::Ours("stripkit qstrip (other faces: greedy)", StripOptions::default().algorithm(Algorithm::qstrip())),
     ]
 }
 
@@ -156,7 +132,6 @@ struct Row {
     figures: Figures,
     ms: f64,
     reorder_ms: Option<f64>,
-    ours: bool,
     /// Quads of the mesh when at least half its faces are quads (for `idx/quad`).
     quads: Option<usize>,
 }
@@ -189,6 +164,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let runs = args.runs.max(1);
     let modes = modes();
     let mut rows = Vec::new();
+    let mut failed: Vec<String> = Vec::new();
     for path in mesh_files(&args.dir)? {
         let name = path
             .strip_prefix(&args.dir)
@@ -216,29 +192,43 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let tris = mesh.triangulate().tris;
         let n = mesh.vertex_count();
         eprintln!("{name}: {} triangles", tris.len());
-        for mode in &modes {
-            let (input, reorder_ms) = match mode.reorder {
-                Some(r) => {
-                    let (out, ms) = timed(runs, || r(&tris, n));
-                    (out, Some(ms))
+        let quad_dominant = stripkit::is_quad_dominant(&mesh);
+        let first = rows.len();
+        let mut extra = if quad_dominant { quad_modes() } else { Vec::new() };
+        for mode in modes.iter().chain(extra.iter()) {
+            let row = match mode {
+                Mode::Peer(label, reorder, stripify) => {
+                    let (input, reorder_ms) = timed(runs, || reorder(&tris, n));
+                    let (strips, ms) = timed(runs, || stripify(&input, n));
+                    // Figures against the original triangles: the reorder must not lose any.
+                    let figures = metrics::figures(&tris, &strips, CacheModel::default());
+                    Row { model: name.clone(), mode: label, figures, ms, reorder_ms: Some(reorder_ms), quads: None }
                 }
-                None => (tris.clone(), None),
+                Mode::Ours(label, options) => ours_row(&mesh, &name, label, options, runs, &mut failed),
             };
-            let (strips, ms) = timed(runs, || (mode.stripify)(&input, n));
-            // Figures against the original triangles: the reorder must not lose any.
-            let figures = metrics::figures(&tris, &strips, CacheModel::default());
+            rows.push(row);
+        }
+        extra.clear();
+        if quad_dominant {
+            // The peer on QSTRIP's split (the triangles the QSTRIP row's strips chose),
+            // so that the diagonals' own gain shows.
+            let qstrip = stripkit::stripify(&mesh, &StripOptions::default().algorithm(Algorithm::qstrip()))
+                .with_context(|| format!("{name}: qstrip"))?;
+            let split = qstrip.triangles;
+            let (input, reorder_ms) = timed(runs, || reorder_cache(&split, n));
+            let (out, ms) = timed(runs, || meshopt_stripify(&input, n));
             rows.push(Row {
-                model: name.clone(),
-                mode: mode.name,
-                figures,
+                model: name.to_string(),
+                mode: "meshopt optimize_vertex_cache + stripify, QSTRIP split",
+                figures: metrics::figures(&split, &out, CacheModel::default()),
                 ms,
-                reorder_ms,
-                ours: mode.ours,
+                reorder_ms: Some(reorder_ms),
                 quads: None,
             });
+            for r in &mut rows[first..] {
+                r.quads = qstrip.quads;
+            }
         }
-        cache_rows(&mesh, &name, &tris, runs, &mut rows);
-        quad_row(&mesh, &name, runs, &mut rows);
     }
     let table = render(&rows, runs);
     print!("{table}");
@@ -248,100 +238,49 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(svg) = &args.svg {
         std::fs::write(svg, pareto_svg(&rows)).with_context(|| format!("writing {}", svg.display()))?;
     }
-    let failed: Vec<String> =
-        rows.iter().filter(|r| r.ours && !r.figures.verified).map(|r| format!("{} on {}", r.mode, r.model)).collect();
     if !failed.is_empty() {
         anyhow::bail!("verification failed: {}", failed.join(", "));
     }
     Ok(())
 }
 
-/// The cache-aware modes as the CLI runs them (`cache::stripify_mesh`: a canonical
-/// vertex order, and on quad-dominant meshes the cheaper of the fan and QSTRIP's split,
-/// `--diagonals auto`); on quad-dominant meshes also on the fan alone. Strips on
-/// QSTRIP's split are checked at quad level, the others against the input's fan.
-fn cache_rows(mesh: &stripkit::Mesh, name: &str, tris: &[[u32; 3]], runs: usize, rows: &mut Vec<Row>) {
-    use stripkit::stripify::{quad, quad_verify};
-    let quad_dominant = quad::quad_fraction(mesh) >= 0.5;
-    let mut modes: Vec<(&'static str, CacheOptions, Option<f64>, cache::Diagonals)> = vec![
-        ("stripkit cache", CacheOptions::cache(16), None, cache::Diagonals::Auto),
-        (
-            "stripkit cache --refine",
-            CacheOptions { refine: true, ..CacheOptions::cache(16) },
-            None,
-            cache::Diagonals::Auto,
-        ),
-        ("stripkit balanced (acmr16 <= 0.8)", CacheOptions::balanced(16), Some(0.8), cache::Diagonals::Auto),
-    ];
-    if quad_dominant {
-        modes.push(("stripkit cache --diagonals fan", CacheOptions::cache(16), None, cache::Diagonals::Fan));
-        modes.push((
-            "stripkit balanced --diagonals fan (acmr16 <= 0.8)",
-            CacheOptions::balanced(16),
-            Some(0.8),
-            cache::Diagonals::Fan,
-        ));
+/// One stripkit row through the front door: the door verifies (at quad level where
+/// quads were split along chosen diagonals) and measures; a refusal is recorded as a
+/// failure and shown as an unverified row.
+fn ours_row(
+    mesh: &stripkit::Mesh,
+    model: &str,
+    label: &'static str,
+    options: &StripOptions,
+    runs: usize,
+    failed: &mut Vec<String>,
+) -> Row {
+    let mut times = Vec::with_capacity(runs);
+    let mut last = None;
+    for _ in 0..runs {
+        let r = stripkit::stripify(mesh, options);
+        if let Ok(s) = &r {
+            times.push(s.stripify_time.as_secs_f64() * 1e3);
+        }
+        last = Some(r);
     }
-    for (mode, options, bound, diagonals) in modes {
-        let (m, ms) = timed(runs, || cache::stripify_mesh(mesh, &options, bound, diagonals));
-        let figures = if m.qstrip_diagonals {
-            let mut f = metrics::figures(&m.triangles, &m.strips, CacheModel::default());
-            if let Err(e) = quad_verify::verify_quads(mesh, &m.strips) {
-                eprintln!("{name}: {mode}: {e}");
-                f.verified = false;
-            }
-            f
-        } else {
-            metrics::figures(tris, &m.strips, CacheModel::default())
-        };
-        rows.push(Row { model: name.to_string(), mode, figures, ms, reorder_ms: None, ours: true, quads: None });
+    match last.expect("at least one run") {
+        Ok(s) => Row {
+            model: model.to_string(),
+            mode: label,
+            figures: s.figures,
+            ms: median(times),
+            reorder_ms: None,
+            quads: s.quads,
+        },
+        Err(e) => {
+            eprintln!("{model}: {label}: {e}");
+            failed.push(format!("{label} on {model}: {e}"));
+            let mut figures = metrics::figures(&[], &StripSet::new(), CacheModel::default());
+            figures.verified = false;
+            Row { model: model.to_string(), mode: label, figures, ms: f64::NAN, reorder_ms: None, quads: None }
+        }
     }
-}
-
-/// QSTRIP on quad-dominant meshes (at least half the faces quads): quads through
-/// QSTRIP, the rest through greedy; verified at quad level (either diagonal), figures
-/// against the triangles the strips chose. Marks the mesh's rows with its quad count.
-fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>) {
-    use stripkit::stripify::{quad, quad_verify};
-    if quad::quad_fraction(mesh) < 0.5 {
-        return;
-    }
-    let ((q, strips), qstrip_ms) =
-        timed(runs, || quad::qstrip_mesh(mesh, &quad::QuadOptions::default()));
-    let check = quad_verify::verify_quads(mesh, &strips);
-    // The triangles the strips chose (the quad check proved them the mesh's).
-    let qstrip_tris = strip::decode(&strips);
-    let mut figures = metrics::figures(&qstrip_tris, &strips, CacheModel::default());
-    if let Err(e) = &check {
-        eprintln!("{name}: QSTRIP {e}");
-        figures.verified = false;
-    }
-    let quads = Some(q.quad_count());
-    for r in rows.iter_mut().filter(|r| r.model == name) {
-        r.quads = quads;
-    }
-    rows.push(Row {
-        model: name.to_string(),
-        mode: "stripkit qstrip (other faces: greedy)",
-        figures,
-        ms: qstrip_ms,
-        reorder_ms: None,
-        ours: true,
-        quads,
-    });
-    // The peer on the same split, so that the diagonals' own gain shows.
-    let n = mesh.vertex_count();
-    let (input, reorder_ms) = timed(runs, || reorder_cache(&qstrip_tris, n));
-    let (out, ms) = timed(runs, || meshopt_stripify(&input, n));
-    rows.push(Row {
-        model: name.to_string(),
-        mode: "meshopt optimize_vertex_cache + stripify, QSTRIP split",
-        figures: metrics::figures(&qstrip_tris, &out, CacheModel::default()),
-        ms,
-        reorder_ms: Some(reorder_ms),
-        ours: false,
-        quads,
-    });
 }
 
 fn render(rows: &[Row], runs: usize) -> String {
