@@ -34,11 +34,12 @@ pub fn is_quad_dominant(mesh: &Mesh) -> bool {
 }
 
 /// Which stripifier runs, with the settings that belong to it alone.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 #[non_exhaustive]
 pub enum Algorithm {
     /// QSTRIP on quad-dominant meshes (see [`QUAD_DOMINANT`]), greedy otherwise; the
     /// result names the one that ran.
+    #[default]
     Auto,
     /// Greedy lowest-degree strips with one-level look-ahead (van Kaick et al.), then
     /// tunnelling; on the mesh's fan triangulation.
@@ -62,12 +63,6 @@ pub enum Algorithm {
         /// The most FIFO misses per triangle to accept (positive, finite).
         max_acmr: f64,
     },
-}
-
-impl Default for Algorithm {
-    fn default() -> Self {
-        Algorithm::Auto
-    }
 }
 
 impl Algorithm {
