@@ -251,7 +251,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     }
     let mut stripifier = Stripifier::new(options(&args)).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
+    // A spinner on a terminal (indicatif draws nothing when stderr is not one):
+    // balanced and --refine take seconds on meshes of a million triangles.
     let progress = indicatif::ProgressBar::new_spinner();
+    progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
     let mesh = io::read(&args.input)?;
 
