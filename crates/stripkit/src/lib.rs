@@ -27,9 +27,16 @@ pub mod gen;
 pub mod test_support;
 
 pub use error::{Error, Result};
-pub use mesh::{Mesh, Triangles};
-pub use strip::StripSet;
+pub use mesh::{io, Mesh, Triangles};
+pub use metrics::{acmr, cache_misses, figures, swaps, CacheKind, CacheModel, Figures};
 pub use pipeline::{
     is_quad_dominant, stripify, stripify_bound, stripify_indices, unstripify, Algorithm, Join, Split,
     StripOptions, Stripifier, Strips, QUAD_DOMINANT,
 };
+pub use strip::{
+    decode, decode_restart, encode_restart, encode_separate, encode_stitched, for_each_triangle,
+    is_degenerate, stitched_len, verify, verify_triangles, StripSet, Verification, DEFAULT_RESTART,
+};
+pub use stripify::greedy::{GreedyOptions, Heuristic};
+pub use stripify::quad::{Policy, QuadOptions};
+pub use topology::{validate, MeshFacts};
