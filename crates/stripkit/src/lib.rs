@@ -25,6 +25,8 @@ pub mod lod;
 pub mod gen;
 #[doc(hidden)]
 pub mod test_support;
+#[cfg(test)]
+mod tests;
 
 pub use error::{Error, Result};
 pub use mesh::{io, Mesh, Triangles};
