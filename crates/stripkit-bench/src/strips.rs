@@ -2,15 +2,17 @@
 //! of a folder, every figure computed by stripkit's own decoder and metrics
 //! (METRICS.md), every row verified, times as medians.
 //!
-//! Adding a row: one more entry in [`modes`].
+//! stripkit's rows run through the library's front door ([`stripkit::stripify`]), which
+//! verifies every result; their time is the door's `stripify_time` (the stripifier
+//! alone). Adding a row: one more entry in [`modes`] (or in [`cache_rows`]).
 
 use anyhow::Context;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use stripkit::metrics::{self, CacheModel, Figures};
-use stripkit::strip::{self, StripSet};
-use stripkit::stripify::cache::{self, CacheOptions};
-use stripkit::stripify::greedy::{self, GreedyOptions, Heuristic};
+use stripkit::{
+    figures, stripify, Algorithm, CacheModel, Figures, GreedyOptions, Heuristic, Mesh, Split, StripOptions,
+    StripSet, Strips,
+};
 
 /// Arguments of the `strips` comparison.
 #[derive(clap::Args)]
@@ -40,70 +42,57 @@ pub struct Args {
 
 /// A triangle list reordered before stripifying (the reorder is timed on its own).
 type Reorder = fn(&[[u32; 3]], usize) -> Vec<[u32; 3]>;
-/// A stripifier: triangles and vertex count in, strips out.
-type Stripifier = Box<dyn Fn(&[[u32; 3]], usize) -> StripSet>;
+/// A peer's stripifier: triangles and vertex count in, strips out.
+type PeerStripify = fn(&[[u32; 3]], usize) -> StripSet;
+
+/// How a row's strips are made.
+pub enum Run {
+    /// stripkit through the front door with these options (verified there).
+    Ours(StripOptions),
+    /// Another library on the fan triangles: a reordering (timed separately), then its
+    /// stripify call (timed), verified against the fan here.
+    Peer(Reorder, PeerStripify),
+}
 
 /// One row kind of the table.
 pub struct Mode {
     /// Row label.
     pub name: &'static str,
-    /// Optional reordering before the stripify call (timed separately).
-    pub reorder: Option<Reorder>,
-    /// The stripify call (timed).
-    pub stripify: Stripifier,
-    /// True for stripkit's own modes: a failed verification is then an error.
-    pub ours: bool,
+    /// How the strips are made.
+    pub run: Run,
 }
 
-fn ours(name: &'static str, f: impl Fn(&[[u32; 3]], usize) -> StripSet + 'static) -> Mode {
-    Mode {
-        name,
-        reorder: None,
-        stripify: Box::new(f),
-        ours: true,
-    }
+fn ours(name: &'static str, algorithm: Algorithm) -> Mode {
+    Mode { name, run: Run::Ours(StripOptions::default().algorithm(algorithm)) }
 }
 
-fn peer(
-    name: &'static str,
-    reorder: Reorder,
-    f: impl Fn(&[[u32; 3]], usize) -> StripSet + 'static,
-) -> Mode {
-    Mode {
-        name,
-        reorder: Some(reorder),
-        stripify: Box::new(f),
-        ours: false,
-    }
+fn peer(name: &'static str, reorder: Reorder, stripify: PeerStripify) -> Mode {
+    Mode { name, run: Run::Peer(reorder, stripify) }
 }
 
-/// The rows, in table order. Other stripkit modes are one line each.
+/// The rows run on every mesh's fan triangulation, in table order.
 pub fn modes() -> Vec<Mode> {
+    let greedy = |heuristic, tunnel_cuts| Algorithm::Greedy(GreedyOptions { heuristic, tunnel_cuts });
     vec![
-        ours("stripkit greedy --heuristic strips", |t, n| {
-            greedy::stripify(
-                t,
-                n,
-                &GreedyOptions::with_heuristic(Heuristic::Strips),
-            )
-        }),
-        ours("stripkit greedy --heuristic indices", |t, n| {
-            greedy::stripify(
-                t,
-                n,
-                &GreedyOptions::with_heuristic(Heuristic::Indices),
-            )
-        }),
-        ours("stripkit greedy --heuristic indices --tunnel 0 (paper)", |t, n| {
-            let options = GreedyOptions {
-                heuristic: Heuristic::Indices,
-                tunnel_cuts: None,
-            };
-            greedy::stripify(t, n, &options)
-        }),
+        ours("stripkit greedy --heuristic strips", greedy(Heuristic::Strips, Some(1))),
+        ours("stripkit greedy --heuristic indices", greedy(Heuristic::Indices, Some(1))),
+        ours("stripkit greedy --heuristic indices --tunnel 0 (paper)", greedy(Heuristic::Indices, None)),
         peer("meshopt optimize_vertex_cache + stripify", reorder_cache, meshopt_stripify),
         peer("meshopt optimize_vertex_cache_strip + stripify", reorder_strip, meshopt_stripify),
     ]
+}
+
+/// The door with `options` `runs` times (at least once): its last result and the median
+/// of its `stripify_time` in ms. A failed check is an error naming the row.
+fn door(mesh: &Mesh, options: &StripOptions, runs: usize, what: &str) -> anyhow::Result<(Strips, f64)> {
+    let mut times = Vec::with_capacity(runs.max(1));
+    let mut out = None;
+    for _ in 0..runs.max(1) {
+        let s = stripify(mesh, options).with_context(|| what.to_string())?;
+        times.push(s.stripify_time.as_secs_f64() * 1e3);
+        out = Some(s);
+    }
+    Ok((out.expect("at least one run"), median(times)))
 }
 
 fn flat(tris: &[[u32; 3]]) -> Vec<u32> {
@@ -128,7 +117,7 @@ fn reorder_strip(tris: &[[u32; 3]], n: usize) -> Vec<[u32; 3]> {
 /// meshoptimizer's stripify with restart index `u32::MAX`, split by stripkit's decoder.
 fn meshopt_stripify(tris: &[[u32; 3]], n: usize) -> StripSet {
     match meshopt::stripify(&flat(tris), n, u32::MAX) {
-        Ok(buf) => strip::decode_restart(&buf, u32::MAX),
+        Ok(buf) => stripkit::decode_restart(&buf, u32::MAX),
         Err(_) => StripSet::new(), // shows up as "lost" in the verified column
     }
 }
@@ -161,6 +150,13 @@ struct Row {
     quads: Option<usize>,
 }
 
+impl Row {
+    /// A row of stripkit's, verified by the door.
+    fn ours(model: &str, mode: &'static str, figures: Figures, ms: f64, quads: Option<usize>) -> Row {
+        Row { model: model.to_string(), mode, figures, ms, reorder_ms: None, ours: true, quads }
+    }
+}
+
 fn mesh_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     let mut files = Vec::new();
     for d in [dir.to_path_buf(), dir.join("quads")] {
@@ -169,7 +165,7 @@ fn mesh_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
         };
         for e in entries {
             let p = e?.path();
-            if p.is_file() && stripkit::mesh::io::Format::from_path(&p).is_some() {
+            if p.is_file() && stripkit::io::Format::from_path(&p).is_some() {
                 files.push(p);
             }
         }
@@ -202,7 +198,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         {
             continue;
         }
-        let mut mesh = stripkit::mesh::io::read(&path)
+        let mut mesh = stripkit::io::read(&path)
             .with_context(|| format!("reading {}", path.display()))?;
         let name = if args.loop_levels > 0 {
             mesh = stripkit::gen::subdivide_loop(
@@ -217,28 +213,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let n = mesh.vertex_count();
         eprintln!("{name}: {} triangles", tris.len());
         for mode in &modes {
-            let (input, reorder_ms) = match mode.reorder {
-                Some(r) => {
-                    let (out, ms) = timed(runs, || r(&tris, n));
-                    (out, Some(ms))
+            rows.push(match &mode.run {
+                Run::Ours(options) => {
+                    let (s, ms) = door(&mesh, options, runs, &format!("{} on {name}", mode.name))?;
+                    Row::ours(&name, mode.name, s.figures, ms, None)
                 }
-                None => (tris.clone(), None),
-            };
-            let (strips, ms) = timed(runs, || (mode.stripify)(&input, n));
-            // Figures against the original triangles: the reorder must not lose any.
-            let figures = metrics::figures(&tris, &strips, CacheModel::default());
-            rows.push(Row {
-                model: name.clone(),
-                mode: mode.name,
-                figures,
-                ms,
-                reorder_ms,
-                ours: mode.ours,
-                quads: None,
+                Run::Peer(reorder, stripify) => {
+                    let (input, reorder_ms) = timed(runs, || reorder(&tris, n));
+                    let (strips, ms) = timed(runs, || stripify(&input, n));
+                    // Figures against the original triangles: the reorder must not lose any.
+                    let figures = figures(&tris, &strips, CacheModel::default());
+                    Row { model: name.clone(), mode: mode.name, figures, ms, reorder_ms: Some(reorder_ms), ours: false, quads: None }
+                }
             });
         }
-        cache_rows(&mesh, &name, &tris, runs, &mut rows);
-        quad_row(&mesh, &name, runs, &mut rows);
+        cache_rows(&mesh, &name, runs, &mut rows)?;
+        quad_row(&mesh, &name, runs, &mut rows)?;
     }
     let table = render(&rows, runs);
     print!("{table}");
@@ -256,79 +246,45 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The cache-aware modes as the CLI runs them (`cache::stripify_mesh`: a canonical
-/// vertex order, and on quad-dominant meshes the cheaper of the fan and QSTRIP's split,
-/// `--diagonals auto`); on quad-dominant meshes also on the fan alone. Strips on
-/// QSTRIP's split are checked at quad level, the others against the input's fan.
-fn cache_rows(mesh: &stripkit::Mesh, name: &str, tris: &[[u32; 3]], runs: usize, rows: &mut Vec<Row>) {
-    use stripkit::stripify::{quad, quad_verify};
-    let quad_dominant = quad::quad_fraction(mesh) >= 0.5;
-    let mut modes: Vec<(&'static str, CacheOptions, Option<f64>, cache::Diagonals)> = vec![
-        ("stripkit cache", CacheOptions::cache(16), None, cache::Diagonals::Auto),
-        (
-            "stripkit cache --refine",
-            CacheOptions { refine: true, ..CacheOptions::cache(16) },
-            None,
-            cache::Diagonals::Auto,
-        ),
-        ("stripkit balanced (acmr16 <= 0.8)", CacheOptions::balanced(16), Some(0.8), cache::Diagonals::Auto),
+/// The cache-aware modes as the CLI runs them (the door's `cache`, `cache` with
+/// refinement and `balanced`, FIFO 16, split auto: on quad-dominant meshes the cheaper
+/// of the fan and QSTRIP's split); on quad-dominant meshes also on the fan alone. The
+/// door checks strips on QSTRIP's split at quad level, the others against the fan.
+fn cache_rows(mesh: &Mesh, name: &str, runs: usize, rows: &mut Vec<Row>) -> anyhow::Result<()> {
+    let mut modes: Vec<(&'static str, Algorithm, Split)> = vec![
+        ("stripkit cache", Algorithm::cache(), Split::Auto),
+        ("stripkit cache --refine", Algorithm::Cache { refine: true }, Split::Auto),
+        ("stripkit balanced (acmr16 <= 0.8)", Algorithm::balanced(0.8), Split::Auto),
     ];
-    if quad_dominant {
-        modes.push(("stripkit cache --diagonals fan", CacheOptions::cache(16), None, cache::Diagonals::Fan));
-        modes.push((
-            "stripkit balanced --diagonals fan (acmr16 <= 0.8)",
-            CacheOptions::balanced(16),
-            Some(0.8),
-            cache::Diagonals::Fan,
-        ));
+    if stripkit::is_quad_dominant(mesh) {
+        modes.push(("stripkit cache --diagonals fan", Algorithm::cache(), Split::Fan));
+        modes.push(("stripkit balanced --diagonals fan (acmr16 <= 0.8)", Algorithm::balanced(0.8), Split::Fan));
     }
-    for (mode, options, bound, diagonals) in modes {
-        let (m, ms) = timed(runs, || cache::stripify_mesh(mesh, &options, bound, diagonals));
-        let figures = if m.qstrip_diagonals {
-            let mut f = metrics::figures(&m.triangles, &m.strips, CacheModel::default());
-            if let Err(e) = quad_verify::verify_quads(mesh, &m.strips) {
-                eprintln!("{name}: {mode}: {e}");
-                f.verified = false;
-            }
-            f
-        } else {
-            metrics::figures(tris, &m.strips, CacheModel::default())
-        };
-        rows.push(Row { model: name.to_string(), mode, figures, ms, reorder_ms: None, ours: true, quads: None });
+    for (mode, algorithm, split) in modes {
+        let options = StripOptions::default().algorithm(algorithm).split(split);
+        let (s, ms) = door(mesh, &options, runs, &format!("{mode} on {name}"))?;
+        rows.push(Row::ours(name, mode, s.figures, ms, None));
     }
+    Ok(())
 }
 
-/// QSTRIP on quad-dominant meshes (at least half the faces quads): quads through
-/// QSTRIP, the rest through greedy; verified at quad level (either diagonal), figures
-/// against the triangles the strips chose. Marks the mesh's rows with its quad count.
-fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>) {
-    use stripkit::stripify::{quad, quad_verify};
-    if quad::quad_fraction(mesh) < 0.5 {
-        return;
+/// QSTRIP on quad-dominant meshes (see [`stripkit::is_quad_dominant`]): quads through
+/// QSTRIP, the rest through greedy; verified by the door at quad level (either
+/// diagonal), figures against the triangles the strips chose. Marks the mesh's rows
+/// with its quad count.
+fn quad_row(mesh: &Mesh, name: &str, runs: usize, rows: &mut Vec<Row>) -> anyhow::Result<()> {
+    if !stripkit::is_quad_dominant(mesh) {
+        return Ok(());
     }
-    let ((q, strips), qstrip_ms) =
-        timed(runs, || quad::qstrip_mesh(mesh, &quad::QuadOptions::default()));
-    let check = quad_verify::verify_quads(mesh, &strips);
+    let options = StripOptions::default().algorithm(Algorithm::qstrip());
+    let (s, qstrip_ms) = door(mesh, &options, runs, &format!("QSTRIP on {name}"))?;
     // The triangles the strips chose (the quad check proved them the mesh's).
-    let qstrip_tris = strip::decode(&strips);
-    let mut figures = metrics::figures(&qstrip_tris, &strips, CacheModel::default());
-    if let Err(e) = &check {
-        eprintln!("{name}: QSTRIP {e}");
-        figures.verified = false;
-    }
-    let quads = Some(q.quad_count());
+    let qstrip_tris = s.triangles;
+    let quads = s.quads;
     for r in rows.iter_mut().filter(|r| r.model == name) {
         r.quads = quads;
     }
-    rows.push(Row {
-        model: name.to_string(),
-        mode: "stripkit qstrip (other faces: greedy)",
-        figures,
-        ms: qstrip_ms,
-        reorder_ms: None,
-        ours: true,
-        quads,
-    });
+    rows.push(Row::ours(name, "stripkit qstrip (other faces: greedy)", s.figures, qstrip_ms, quads));
     // The peer on the same split, so that the diagonals' own gain shows.
     let n = mesh.vertex_count();
     let (input, reorder_ms) = timed(runs, || reorder_cache(&qstrip_tris, n));
@@ -336,12 +292,13 @@ fn quad_row(mesh: &stripkit::Mesh, name: &str, runs: usize, rows: &mut Vec<Row>)
     rows.push(Row {
         model: name.to_string(),
         mode: "meshopt optimize_vertex_cache + stripify, QSTRIP split",
-        figures: metrics::figures(&qstrip_tris, &out, CacheModel::default()),
+        figures: figures(&qstrip_tris, &out, CacheModel::default()),
         ms,
         reorder_ms: Some(reorder_ms),
         ours: false,
         quads,
     });
+    Ok(())
 }
 
 fn render(rows: &[Row], runs: usize) -> String {
