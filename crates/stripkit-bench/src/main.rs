@@ -6,6 +6,7 @@ mod simplify;
 mod matching;
 
 use clap::{Parser, Subcommand};
+use std::path::PathBuf;
 
 /// Side-by-side comparisons of stripkit with other libraries.
 #[derive(Parser)]
@@ -23,6 +24,16 @@ enum Command {
     Simplify(simplify::Args),
     /// Weighted perfect matching: stripkit next to LEMON (when installed).
     Matching(matching::Args),
+}
+
+/// The research meshes: the folder named by `STRIPKIT_MODELS`, else `../shared/models`
+/// beside the checkout (as the tests find it); `None` when it is absent.
+fn models_dir() -> Option<PathBuf> {
+    let dir = match std::env::var_os("STRIPKIT_MODELS") {
+        Some(d) => PathBuf::from(d),
+        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/models"),
+    };
+    dir.is_dir().then_some(dir)
 }
 
 fn main() -> anyhow::Result<()> {

@@ -138,11 +138,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             graph: matching::mesh_dual_graph(&mesh, DualWeights::Random { seed: 1 })?,
         });
     }
-    let models = args.models.clone().or_else(stripkit::test_support::models_dir);
+    let models = args.models.clone().or_else(crate::models_dir);
     if let Some(dir) = &models {
         let bunny = dir.join("bunny.obj");
         if bunny.exists() {
-            let mesh = stripkit::mesh::io::read(&bunny)?;
+            let mesh = stripkit::io::read(&bunny)?;
             rows.push(Row {
                 name: "bunny.obj dual, random 1..1000".into(),
                 graph: matching::mesh_dual_graph(&mesh, DualWeights::Random { seed: 1 })?,
@@ -150,7 +150,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         let dragon = dir.join("dragon.obj");
         if dragon.exists() && args.dragon_levels >= 0 {
-            let mesh = stripkit::mesh::io::read(&dragon)?;
+            let mesh = stripkit::io::read(&dragon)?;
             let mesh = stripkit::gen::subdivide_loop(&mesh, args.dragon_levels as u32)?;
             let g = matching::mesh_dual_graph(&mesh, DualWeights::Random { seed: 1 })?;
             // Two-valued weights: 1 or 2.

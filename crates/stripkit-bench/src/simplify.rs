@@ -51,7 +51,7 @@ fn meshopt_simplify(mesh: &Mesh, tris: &[[u32; 3]], target_tris: usize) -> (Vec<
 
 /// Runs the comparison.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let dir = match args.models.clone().or_else(stripkit::test_support::models_dir) {
+    let dir = match args.models.clone().or_else(crate::models_dir) {
         Some(d) => d,
         None => anyhow::bail!("no models folder (give --models)"),
     };
@@ -60,7 +60,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     writeln!(table, "|---|---|---|---:|---:|---:|---:|---:|---:|")?;
     for file in &args.files {
         let path = dir.join(file);
-        let mesh = stripkit::mesh::io::read(&path)?;
+        let mesh = stripkit::io::read(&path)?;
         let tris = mesh.triangulate().tris;
         for &ratio in &args.ratios {
             let target = ((tris.len() as f64) * ratio).round() as usize;
@@ -113,7 +113,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     if args.big {
         let first = args.files.first().map(|f| dir.join(f)).unwrap_or_default();
-        let mesh = stripkit::gen::subdivide_loop(&stripkit::mesh::io::read(&first)?, 2)?;
+        let mesh = stripkit::gen::subdivide_loop(&stripkit::io::read(&first)?, 2)?;
         let n = mesh.triangle_count();
         for placement in [Placement::Endpoint, Placement::Optimal] {
             let opts = Options { target: Target::Ratio(0.01), placement, ..Options::default() };

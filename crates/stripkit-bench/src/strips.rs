@@ -8,10 +8,7 @@
 use anyhow::Context;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use stripkit::metrics::{self, CacheModel, Figures};
-use stripkit::strip::{self, StripSet};
-use stripkit::stripify::greedy::{GreedyOptions, Heuristic};
-use stripkit::{Algorithm, Split, StripOptions};
+use stripkit::{Algorithm, CacheModel, Figures, GreedyOptions, Heuristic, Split, StripOptions, StripSet};
 
 /// Arguments of the `strips` comparison.
 #[derive(clap::Args)]
@@ -104,7 +101,7 @@ fn reorder_strip(tris: &[[u32; 3]], n: usize) -> Vec<[u32; 3]> {
 /// meshoptimizer's stripify with restart index `u32::MAX`, split by stripkit's decoder.
 fn meshopt_stripify(tris: &[[u32; 3]], n: usize) -> StripSet {
     match meshopt::stripify(&flat(tris), n, u32::MAX) {
-        Ok(buf) => strip::decode_restart(&buf, u32::MAX),
+        Ok(buf) => stripkit::decode_restart(&buf, u32::MAX),
         Err(_) => StripSet::new(), // shows up as "lost" in the verified column
     }
 }
@@ -144,7 +141,7 @@ fn mesh_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
         };
         for e in entries {
             let p = e?.path();
-            if p.is_file() && stripkit::mesh::io::Format::from_path(&p).is_some() {
+            if p.is_file() && stripkit::io::Format::from_path(&p).is_some() {
                 files.push(p);
             }
         }
@@ -178,7 +175,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         {
             continue;
         }
-        let mut mesh = stripkit::mesh::io::read(&path)
+        let mut mesh = stripkit::io::read(&path)
             .with_context(|| format!("reading {}", path.display()))?;
         let name = if args.loop_levels > 0 {
             mesh = stripkit::gen::subdivide_loop(
@@ -201,7 +198,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                     let (input, reorder_ms) = timed(runs, || reorder(&tris, n));
                     let (strips, ms) = timed(runs, || stripify(&input, n));
                     // Figures against the original triangles: the reorder must not lose any.
-                    let figures = metrics::figures(&tris, &strips, CacheModel::default());
+                    let figures = stripkit::figures(&tris, &strips, CacheModel::default());
                     Row { model: name.clone(), mode: label, figures, ms, reorder_ms: Some(reorder_ms), quads: None }
                 }
                 Mode::Ours(label, options) => ours_row(&mesh, &name, label, options, runs, &mut failed),
@@ -220,7 +217,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             rows.push(Row {
                 model: name.to_string(),
                 mode: "meshopt optimize_vertex_cache + stripify, QSTRIP split",
-                figures: metrics::figures(&split, &out, CacheModel::default()),
+                figures: stripkit::figures(&split, &out, CacheModel::default()),
                 ms,
                 reorder_ms: Some(reorder_ms),
                 quads: None,
@@ -276,7 +273,7 @@ fn ours_row(
         Err(e) => {
             eprintln!("{model}: {label}: {e}");
             failed.push(format!("{label} on {model}: {e}"));
-            let mut figures = metrics::figures(&[], &StripSet::new(), CacheModel::default());
+            let mut figures = stripkit::figures(&[], &StripSet::new(), CacheModel::default());
             figures.verified = false;
             Row { model: model.to_string(), mode: label, figures, ms: f64::NAN, reorder_ms: None, quads: None }
         }

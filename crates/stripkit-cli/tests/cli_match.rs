@@ -72,7 +72,7 @@ fn reports_when_there_is_no_perfect_matching() {
 fn matches_the_dual_graph_of_a_mesh() {
     let mesh = stripkit::gen::icosphere(2);
     let f = tmp("ico2.obj");
-    stripkit::mesh::io::write(&f, &mesh, None).unwrap();
+    stripkit::io::write(&f, &mesh, None).unwrap();
     for w in ["uniform", "random", "normal-angle"] {
         let v = json(&["match", "--dual", f.to_str().unwrap(), "--weights", w, "--seed", "5", "--json"]);
         assert_eq!(v["nodes"], 320);

@@ -1,5 +1,7 @@
 //! `stripkit stats` and `stripkit gen` through the built binary.
 
+mod support;
+
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -119,7 +121,7 @@ fn bad_input_exits_with_status_two_and_says_why() {
 
 #[test]
 fn stats_on_the_models_matches_the_readme() {
-    let Some(dir) = stripkit::test_support::models_dir() else { return };
+    let Some(dir) = support::models_dir() else { return };
     let j = stats_json(&dir.join("bunny.obj"));
     assert_eq!(j["vertices"], 35947);
     assert_eq!(j["faces"], 69451);

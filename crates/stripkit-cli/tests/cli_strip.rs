@@ -10,7 +10,7 @@ fn tmp(name: &str) -> PathBuf {
 }
 
 fn spot() -> String {
-    stripkit::test_support::assets_dir()
+    support::assets_dir()
         .join("spot.obj")
         .to_string_lossy()
         .into_owned()
@@ -48,16 +48,16 @@ fn spot_to_ply_verifies_and_reads_back() {
     let restart = v["indices_restart"].as_u64().unwrap();
     assert!(restart < 5856 * 125 / 100, "{restart}");
     // The written file holds the same triangles.
-    let input = stripkit::mesh::io::read(Path::new(&spot())).unwrap();
-    let back = stripkit::mesh::io::read(&out_path).unwrap();
+    let input = stripkit::io::read(Path::new(&spot())).unwrap();
+    let back = stripkit::io::read(&out_path).unwrap();
     let check =
-        stripkit::strip::verify_triangles(&input.triangulate().tris, &back.triangulate().tris);
+        stripkit::verify_triangles(&input.triangulate().tris, &back.triangulate().tris);
     assert!(check.ok(), "{check}");
 }
 
 #[test]
 fn json_output_holds_strips_for_every_join() {
-    let input = stripkit::mesh::io::read(Path::new(&spot())).unwrap();
+    let input = stripkit::io::read(Path::new(&spot())).unwrap();
     let tris = input.triangulate().tris;
     for join in ["restart", "degenerate", "separate"] {
         for heuristic in ["strips", "indices"] {
@@ -80,7 +80,7 @@ fn json_output_holds_strips_for_every_join() {
                 serde_json::from_slice(&std::fs::read(&out_path).unwrap()).unwrap();
             let strips: Vec<Vec<u32>> = serde_json::from_value(file["strips"].clone()).unwrap();
             let set = stripkit::StripSet::from_strips(&strips);
-            assert!(stripkit::strip::verify(&tris, &set).ok(), "{join}");
+            assert!(stripkit::verify(&tris, &set).ok(), "{join}");
             if join == "degenerate" {
                 assert_eq!(strips.len(), 1);
                 assert_eq!(
@@ -97,9 +97,9 @@ fn json_output_holds_strips_for_every_join() {
                     printed["indices_restart"].as_u64().unwrap()
                 );
                 assert_eq!(file["restart_index"], 70000);
-                assert!(stripkit::strip::verify(
+                assert!(stripkit::verify(
                     &tris,
-                    &stripkit::strip::decode_restart(&buf, 70000)
+                    &stripkit::decode_restart(&buf, 70000)
                 )
                 .ok());
             }
@@ -207,7 +207,7 @@ fn help_explains_every_option() {
 
 #[test]
 fn gltf_outputs_hold_the_stitched_strip() {
-    let input = stripkit::mesh::io::read(Path::new(&spot())).unwrap();
+    let input = stripkit::io::read(Path::new(&spot())).unwrap();
     let tris = input.triangulate().tris;
     for name in ["spot.glb", "spot.gltf"] {
         let out_path = tmp(name);
@@ -219,8 +219,8 @@ fn gltf_outputs_hold_the_stitched_strip() {
             "--json",
         ]));
         assert_eq!(v["verified"], true);
-        let back = stripkit::mesh::io::read(&out_path).unwrap();
-        let check = stripkit::strip::verify_triangles(&tris, &back.triangulate().tris);
+        let back = stripkit::io::read(&out_path).unwrap();
+        let check = stripkit::verify_triangles(&tris, &back.triangulate().tris);
         assert!(check.ok(), "{name}: {check}");
     }
 }

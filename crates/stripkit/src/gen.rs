@@ -4,8 +4,8 @@
 //!
 //! Every generator gives faces oriented counter-clockwise seen from outside (closed
 //! meshes) or from +z (grids); subdivision keeps the orientation of its input face by
-//! face. Everything runs in O(output) over flat arrays; edge points are numbered by
-//! [`EdgeMap`] edge id, so no hashing is involved.
+//! face. Everything runs in O(output) over flat arrays; edge points are numbered in
+//! edge order (by lower vertex, then higher vertex), so no hashing is involved.
 //!
 //! | generator | vertices | faces |
 //! |---|---|---|
@@ -206,7 +206,7 @@ pub fn cube() -> Mesh {
 ///
 /// Vertex ids are stable: vertex `v < V` of the output is vertex `v` of the input
 /// (unreferenced ones keep their position), then one vertex per input edge in
-/// [`EdgeMap`] edge order. Triangle `4t..4t+4` of the output come from input triangle
+/// edge order (by lower vertex, then higher vertex). Triangle `4t..4t+4` of the output come from input triangle
 /// `t`, with its orientation.
 ///
 /// Fails on a malformed mesh, on faces that are not triangles, on a triangle with a
@@ -305,8 +305,8 @@ fn split_triangles_in_four(mesh: &Mesh, map: &EdgeMap, positions: Vec<[f32; 3]>)
 /// edges follow the boundary curve (3/4·v + 1/8·(two neighbours)); vertices on one or
 /// more than two crease edges stay fixed. Interior vertices: (Q + 2R + (n−3)S)/n.
 ///
-/// Vertex ids are stable: input vertices first, then one per edge ([`EdgeMap`]
-/// order), then one per face. The quads of input face `f` come in the order of its
+/// Vertex ids are stable: input vertices first, then one per edge (by lower vertex,
+/// then higher vertex), then one per face. The quads of input face `f` come in the order of its
 /// corners, each `[corner, edge point after it, face point, edge point before it]`,
 /// which keeps the face's orientation.
 ///

@@ -1,35 +1,93 @@
 //! # stripkit
 //!
 //! Triangle strips for meshes: read a mesh, build strips with one of several
-//! algorithms, check them independently, measure them, write them out.
+//! algorithms (greedy, cache-aware, QSTRIP on quads, one strip per closed quad mesh),
+//! check them independently, measure them, write them out.
 //!
-//! Data flows one way: **file -> [`Mesh`] -> [`topology`] -> [`strip::StripSet`] ->
-//! encoded buffers / files**, with [`simplify`] and [`lod`] branching off the mesh.
+//! ## Data flow
 //!
-//! Every stripifier returns a [`strip::StripSet`] that [`strip::verify`] checks
-//! against the input: nothing lost, nothing added, winding kept.
+//! **file -> [`Mesh`] -> [`stripify`] -> [`Strips`] -> buffers / files**:
+//!
+//! * [`io::read`] turns a file (OBJ, PLY, OFF, STL, glTF) into a [`Mesh`] of polygons;
+//!   [`gen`] makes procedural ones.
+//! * [`stripify`] (the front door) chooses a stripifier ([`Algorithm::Auto`]: QSTRIP on
+//!   quad-dominant meshes, greedy otherwise) or runs the one [`StripOptions`] names,
+//!   verifies what it made with [`verify`] (or at quad level where the algorithm chose
+//!   the quads' diagonals), and returns [`Strips`]: the [`StripSet`], the triangles it
+//!   was verified against, and its [`Figures`]. A failed check is
+//!   [`Error::Verification`], never a silent result.
+//! * [`Strips`] encodes itself ([`Strips::restart_buffer`], [`Strips::stitched`],
+//!   [`Strips::to_file_bytes`]); [`encode_restart`], [`encode_stitched`] and
+//!   [`encode_separate`] do the same for any [`StripSet`].
+//! * For plain index buffers, [`stripify_indices`], [`stripify_bound`] and
+//!   [`unstripify`] do the same without a [`Mesh`] (meshoptimizer's shape).
+//!
+//! A strip `s` draws triangle `i` as `(s[i], s[i+1], s[i+2])` for even `i` and
+//! `(s[i+1], s[i], s[i+2])` for odd `i`, so every triangle keeps its winding; a
+//! triangle with a repeated index (a *swap*) draws nothing. [`decode`] applies this
+//! rule, [`figures`] measures strips by it (indices per join, swaps, vertex-cache
+//! misses per triangle under a [`CacheModel`]).
+//!
+//! Beside the strips: [`MeshFacts`] (what `stripkit stats` prints), [`simplify`]
+//! (edge collapse), [`distance`] (Hausdorff and RMS distances between surfaces) and
+//! [`matching`] (weighted perfect matching).
+//!
+//! ## Example
+//!
+//! ```
+//! use stripkit::{gen, stripify, stripify_indices, unstripify, Algorithm, StripOptions};
+//!
+//! // A mesh: strips chosen, run, verified and measured by the front door.
+//! let mesh = gen::icosphere(3);
+//! let strips = stripify(&mesh, &StripOptions::default())?;
+//! assert!(strips.figures.verified);
+//! assert_eq!(strips.figures.triangles, mesh.triangle_count());
+//! let buffer = strips.restart_buffer(); // strips separated by u32::MAX
+//! assert_eq!(buffer.len(), strips.figures.indices_restart);
+//!
+//! // Another algorithm: the cache-aware stripifier, tuned for a FIFO of 32.
+//! let options = StripOptions::default().algorithm(Algorithm::cache()).cache_size(32);
+//! assert!(stripify(&mesh, &options)?.figures.acmr < 1.0);
+//!
+//! // A plain index list: two triangles sharing the edge 1-2.
+//! let triangles = [0, 1, 2, 2, 1, 3];
+//! let strip = stripify_indices(&triangles, 4, u32::MAX, &StripOptions::default())?;
+//! assert_eq!(strip.len(), 4);
+//! assert_eq!(unstripify(&strip, u32::MAX).len(), triangles.len());
+//! # Ok::<(), stripkit::Error>(())
+//! ```
 
 #![warn(missing_docs)]
 
-pub mod error;
+mod error;
+mod mesh;
+mod metrics;
 mod pipeline;
-pub mod mesh;
-pub mod topology;
-pub mod strip;
-pub mod metrics;
-pub mod stripify;
+mod strip;
+mod stripify;
+mod topology;
+
+pub mod distance;
+pub mod gen;
 pub mod matching;
 pub mod simplify;
-pub mod distance;
-pub mod lod;
-pub mod gen;
-#[doc(hidden)]
-pub mod test_support;
+
+#[cfg(test)]
+pub(crate) mod test_support;
+#[cfg(test)]
+mod tests;
 
 pub use error::{Error, Result};
-pub use mesh::{Mesh, Triangles};
-pub use strip::StripSet;
+pub use mesh::{io, Mesh, Triangles};
+pub use metrics::{acmr, cache_misses, figures, swaps, CacheKind, CacheModel, Figures};
 pub use pipeline::{
     is_quad_dominant, stripify, stripify_bound, stripify_indices, unstripify, Algorithm, Join, Split,
     StripOptions, Stripifier, Strips, QUAD_DOMINANT,
 };
+pub use strip::{
+    decode, decode_restart, encode_restart, encode_separate, encode_stitched, for_each_triangle,
+    is_degenerate, stitched_len, verify, verify_triangles, StripSet, Verification, DEFAULT_RESTART,
+};
+pub use stripify::greedy::{GreedyOptions, Heuristic};
+pub use stripify::quad::{Policy, QuadOptions};
+pub use topology::{validate, MeshFacts};

@@ -3,10 +3,10 @@
 //! [`crate::strip::verify`].
 //!
 //! ```
-//! use stripkit::{metrics, StripSet};
+//! use stripkit::{figures, CacheModel, StripSet};
 //! let tris = [[0, 1, 2], [2, 1, 3]];
 //! let strips = StripSet::from_strips(&[vec![0, 1, 2, 3]]);
-//! let f = metrics::figures(&tris, &strips, metrics::CacheModel::fifo(16));
+//! let f = figures(&tris, &strips, CacheModel::fifo(16));
 //! assert!(f.verified);
 //! assert_eq!((f.strips, f.indices_restart, f.indices_degenerate), (1, 4, 4));
 //! ```

@@ -1,11 +1,13 @@
-//! Helpers for tests and benchmarks (not part of the stable API).
+//! Helpers for the crate's own tests: the research meshes and a seeded generator.
+//! (Integration tests, the CLI's tests and the bench have their own copies of
+//! `models_dir`: this module exists only under `cfg(test)`.)
 
 use std::path::PathBuf;
 
 /// The research meshes folder `../shared/models` beside the checkout, or the folder
 /// named by `STRIPKIT_MODELS`; `None` (after printing why) when it is absent, so that
 /// tests needing it can skip with a reason.
-pub fn models_dir() -> Option<PathBuf> {
+pub(crate) fn models_dir() -> Option<PathBuf> {
     let dir = match std::env::var_os("STRIPKIT_MODELS") {
         Some(d) => PathBuf::from(d),
         None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/models"),
@@ -20,9 +22,9 @@ pub fn models_dir() -> Option<PathBuf> {
 
 /// The research mesh `name` from [`models_dir`]; `None` (after printing why) when the
 /// folder or the file is absent or unreadable, so that a test can skip it.
-pub fn model(name: &str) -> Option<crate::Mesh> {
+pub(crate) fn model(name: &str) -> Option<crate::Mesh> {
     let dir = models_dir()?;
-    match crate::mesh::io::read(&dir.join(name)) {
+    match crate::io::read(&dir.join(name)) {
         Ok(mesh) => Some(mesh),
         Err(e) => {
             eprintln!("skipped: {name} in {}: {e}", dir.display());
@@ -31,14 +33,9 @@ pub fn model(name: &str) -> Option<crate::Mesh> {
     }
 }
 
-/// The bundled public-domain meshes (`assets/` at the workspace root).
-pub fn assets_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets")
-}
-
 /// A xorshift64 generator for tests: each call returns the next state modulo `m`
 /// (`m` > 0), so that random inputs are the same on every run.
-pub fn xorshift(mut x: u64) -> impl FnMut(u32) -> u32 {
+pub(crate) fn xorshift(mut x: u64) -> impl FnMut(u32) -> u32 {
     move |m: u32| {
         x ^= x << 13;
         x ^= x >> 7;

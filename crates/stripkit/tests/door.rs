@@ -3,10 +3,10 @@
 //! oriented triangles; the bound; the errors a user can cause.
 
 use proptest::prelude::*;
-use stripkit::mesh::io;
-use stripkit::strip::{decode, verify_triangles};
-use stripkit::stripify::greedy::{GreedyOptions, Heuristic};
-use stripkit::{gen, stripify, stripify_bound, stripify_indices, unstripify, Algorithm, Error, Join, Mesh, Split, StripOptions};
+use stripkit::{
+    decode, gen, io, stripify, stripify_bound, stripify_indices, unstripify, verify_triangles, Algorithm, Error,
+    GreedyOptions, Heuristic, Join, Mesh, Split, StripOptions,
+};
 
 /// Every algorithm setting the door offers for triangle input.
 fn algorithms() -> Vec<Algorithm> {

@@ -1,31 +1,45 @@
-//! The greedy stripifier on procedural meshes, awkward topology, shuffled inputs and
-//! (when present) the research meshes: every output verified, figures consistent.
+//! The greedy stripifier through the front door, on procedural meshes, awkward
+//! topology, shuffled inputs and (when present) the research meshes: every output
+//! verified (by the door, and its joins here again), figures consistent. (The dual
+//! graph it walks is tested inside the crate: `src/tests/dual_graph.rs`.)
 
-use stripkit::metrics::{self, CacheModel, Figures};
-use stripkit::strip::{self, StripSet};
-use stripkit::stripify::greedy::{self, GreedyOptions, Heuristic};
+mod support;
+
+use stripkit::{
+    decode_restart, encode_restart, encode_stitched, is_degenerate, stripify, verify, Algorithm, Figures,
+    GreedyOptions, Heuristic, Mesh, StripOptions, StripSet, DEFAULT_RESTART,
+};
 
 const BOTH: [Heuristic; 2] = [Heuristic::Strips, Heuristic::Indices];
 
+/// The door's greedy strips for a triangle list over `vertex_count` vertices (the
+/// greedy stripifier needs no positions: they are all 0).
+fn greedy(tris: &[[u32; 3]], vertex_count: usize, options: GreedyOptions) -> (StripSet, Figures) {
+    let mesh = Mesh::from_triangles(vec![[0.0; 3]; vertex_count], tris);
+    let options = StripOptions::default().algorithm(Algorithm::Greedy(options));
+    let strips = stripify(&mesh, &options).unwrap_or_else(|e| panic!("{options:?}: {e}"));
+    assert_eq!(strips.triangles, tris, "the door strips the triangles given");
+    (strips.strips, strips.figures)
+}
+
 /// Stripifies, verifies and checks the bookkeeping identities; returns the figures.
 fn check(tris: &[[u32; 3]], vertex_count: usize, heuristic: Heuristic) -> (StripSet, Figures) {
-    let strips = greedy::stripify(tris, vertex_count, &GreedyOptions::with_heuristic(heuristic));
-    let f = metrics::figures(tris, &strips, CacheModel::default());
+    let (strips, f) = greedy(tris, vertex_count, GreedyOptions::with_heuristic(heuristic));
     assert!(
         f.verified,
         "{heuristic:?}: {}",
-        strip::verify(tris, &strips)
+        verify(tris, &strips)
     );
     assert!(f.winding_preserved);
-    let degenerate = tris.iter().filter(|t| strip::is_degenerate(t)).count();
+    let degenerate = tris.iter().filter(|t| is_degenerate(t)).count();
     assert_eq!(f.dropped_degenerate, degenerate);
     // The other joins draw the same triangles.
-    let stitched = StripSet::from_strips(&[strip::encode_stitched(&strips)]);
-    assert!(strip::verify(tris, &stitched).ok(), "stitched");
-    let restart = strip::encode_restart(&strips, strip::DEFAULT_RESTART);
-    assert!(strip::verify(
+    let stitched = StripSet::from_strips(&[encode_stitched(&strips)]);
+    assert!(verify(tris, &stitched).ok(), "stitched");
+    let restart = encode_restart(&strips, DEFAULT_RESTART);
+    assert!(verify(
         tris,
-        &strip::decode_restart(&restart, strip::DEFAULT_RESTART)
+        &decode_restart(&restart, DEFAULT_RESTART)
     )
     .ok());
     // Every strip is t + 2 + swaps long; the joins add one index each.
@@ -38,7 +52,7 @@ fn check(tris: &[[u32; 3]], vertex_count: usize, heuristic: Heuristic) -> (Strip
 
 // ---- small generators (procedural meshes, consistently oriented) ----
 
-fn triangles_of(mesh: stripkit::Mesh) -> (Vec<[u32; 3]>, usize) {
+fn triangles_of(mesh: Mesh) -> (Vec<[u32; 3]>, usize) {
     (mesh.triangulate().tris, mesh.vertex_count())
 }
 
@@ -204,13 +218,13 @@ fn tiny_inputs() {
 
 #[test]
 fn real_meshes_strip_as_well_shuffled() {
-    let Some(dir) = stripkit::test_support::models_dir() else {
+    let Some(dir) = support::models_dir() else {
         eprintln!("skipped: ../shared/models not found");
         return;
     };
     // The goal is 1%; horse's strips heuristic measures 0.9% for this seed.
     for (name, tolerance) in [("bunny.obj", 0.01), ("horse.ply", 0.02)] {
-        let mesh = stripkit::mesh::io::read(&dir.join(name)).unwrap();
+        let mesh = stripkit::io::read(&dir.join(name)).unwrap();
         let tris = mesh.triangulate().tris;
         let n = mesh.vertex_count();
         for heur in BOTH {
@@ -228,7 +242,7 @@ fn real_meshes_strip_as_well_shuffled() {
 
 #[test]
 fn real_meshes_when_present() {
-    let Some(dir) = stripkit::test_support::models_dir() else {
+    let Some(dir) = support::models_dir() else {
         eprintln!("skipped: ../shared/models not found");
         return;
     };
@@ -239,7 +253,7 @@ fn real_meshes_when_present() {
         "fandisk.obj",
         "quads/halftunnel.off",
     ] {
-        let mesh = match stripkit::mesh::io::read(&dir.join(name)) {
+        let mesh = match stripkit::io::read(&dir.join(name)) {
             Ok(m) => m,
             Err(stripkit::Error::UnknownFormat { .. }) => {
                 eprintln!("skipped {name}: no reader for it yet");
@@ -259,63 +273,10 @@ fn real_meshes_when_present() {
     }
 }
 
-mod dual_graph_oracle {
-    use proptest::prelude::*;
-    use stripkit::topology::{DualGraph, NO_NEIGHBOR};
-
-    /// The definition, by brute force: `t` and `u` are neighbours across `t`'s edge
-    /// `j` when `u` runs that edge the opposite way and the two have the same rank
-    /// (by triangle id) among the non-degenerate triangles running the edge their
-    /// own way (a manifold edge: both rank 0; a non-manifold edge pairs up in order).
-    fn brute(tris: &[[u32; 3]]) -> DualGraph {
-        let deg = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-        let runs = |u: &[u32; 3], a: u32, b: u32| (0..3).any(|k| (u[k], u[(k + 1) % 3]) == (a, b));
-        let mut neighbors = vec![[NO_NEIGHBOR; 3]; tris.len()];
-        for (ti, t) in tris.iter().enumerate() {
-            if deg(t) {
-                continue;
-            }
-            for j in 0..3 {
-                let (a, b) = (t[j], t[(j + 1) % 3]);
-                let same: Vec<usize> = (0..tris.len()).filter(|&u| !deg(&tris[u]) && runs(&tris[u], a, b)).collect();
-                let other: Vec<usize> = (0..tris.len()).filter(|&u| !deg(&tris[u]) && runs(&tris[u], b, a)).collect();
-                let rank = same.iter().position(|&u| u == ti).expect("t runs its own edge");
-                if let Some(&u) = other.get(rank) {
-                    neighbors[ti][j] = u as u32;
-                }
-            }
-        }
-        DualGraph { neighbors }
-    }
-
-    proptest! {
-        // Random soups over few vertices: many shared, non-manifold, flipped and
-        // degenerate edges.
-        #[test]
-        fn matches_the_definition(tris in prop::collection::vec([0u32..9, 0u32..9, 0u32..9], 0..40)) {
-            prop_assert_eq!(DualGraph::from_triangles(&tris, 9), brute(&tris));
-        }
-    }
-
-    #[test]
-    fn icosphere_and_a_high_valence_fan() {
-        let (tris, n) = super::icosphere(2);
-        assert_eq!(DualGraph::from_triangles(&tris, n), brute(&tris));
-        // Indices beyond the stated count are tolerated.
-        assert_eq!(DualGraph::from_triangles(&tris, 0), brute(&tris));
-        // A closed fan of 200 triangles around vertex 0 (buckets far over 16).
-        let fan: Vec<[u32; 3]> = (0..200u32).map(|i| [0, 1 + i, 1 + (i + 1) % 200]).collect();
-        let g = DualGraph::from_triangles(&fan, 201);
-        assert_eq!(g, brute(&fan));
-        assert!(g.neighbors.iter().all(|n| n[0] != NO_NEIGHBOR && n[2] != NO_NEIGHBOR));
-    }
-}
-
 /// Figures of one configuration, verified.
 fn run_with(tris: &[[u32; 3]], n: usize, options: GreedyOptions) -> Figures {
-    let strips = greedy::stripify(tris, n, &options);
-    let f = metrics::figures(tris, &strips, CacheModel::default());
-    assert!(f.verified, "{options:?}: {}", strip::verify(tris, &strips));
+    let (strips, f) = greedy(tris, n, options);
+    assert!(f.verified, "{options:?}: {}", verify(tris, &strips));
     f
 }
 
@@ -381,11 +342,11 @@ fn tunnelling_saves_indices_and_keeps_every_triangle() {
 
 #[test]
 fn bunny_meets_the_index_goal() {
-    let Some(dir) = stripkit::test_support::models_dir() else {
+    let Some(dir) = support::models_dir() else {
         eprintln!("skipped: ../shared/models not found");
         return;
     };
-    let mesh = stripkit::mesh::io::read(&dir.join("bunny.obj")).unwrap();
+    let mesh = stripkit::io::read(&dir.join("bunny.obj")).unwrap();
     let tris = mesh.triangulate().tris;
     let n = mesh.vertex_count();
     let f = run_with(&tris, n, GreedyOptions::with_heuristic(Heuristic::Indices));

@@ -2,7 +2,7 @@
 //! (line, element or byte) and what is wrong, and never panics.
 
 use std::path::{Path, PathBuf};
-use stripkit::mesh::io::{self, Format};
+use stripkit::io::{self, Format};
 use stripkit::{Error, Mesh};
 
 fn tmp(name: &str) -> PathBuf {

@@ -1,8 +1,10 @@
 //! Every research mesh in ../shared/models loads with the vertex and face counts its
 //! README lists (skipped when the folder is absent).
 
-use stripkit::mesh::io;
-use stripkit::test_support::models_dir;
+mod support;
+
+use stripkit::io;
+use support::models_dir;
 
 /// (file, V, F) from the README's tables.
 const MODELS: &[(&str, usize, usize)] = &[

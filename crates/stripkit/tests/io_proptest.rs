@@ -2,8 +2,8 @@
 //! set survive a write and read in every format that can hold them.
 
 use proptest::prelude::*;
-use stripkit::mesh::io::{read_bytes, write_bytes, Format, WriteOptions};
-use stripkit::strip::{decode, StripSet};
+use stripkit::io::{read_bytes, write_bytes, Format, WriteOptions};
+use stripkit::{decode, StripSet};
 use stripkit::Mesh;
 
 fn finite_f32() -> impl Strategy<Value = f32> {

@@ -3,8 +3,8 @@
 
 use std::io::Write;
 use std::path::PathBuf;
-use stripkit::mesh::io::{self, WriteOptions};
-use stripkit::strip::{decode, StripSet};
+use stripkit::io::{self, WriteOptions};
+use stripkit::{decode, StripSet};
 use stripkit::Mesh;
 
 fn tmp(name: &str) -> PathBuf {

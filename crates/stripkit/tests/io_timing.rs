@@ -1,9 +1,11 @@
 //! Reader timings (not a test of speed: it only prints). Run with
 //! `cargo test --release -p stripkit --test io_timing -- --ignored --nocapture`.
 
+mod support;
+
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use stripkit::mesh::io;
+use stripkit::io;
 use stripkit::Mesh;
 
 /// Median wall time of five reads, in milliseconds, and the mesh read.
@@ -43,7 +45,7 @@ fn grid(n: u32) -> Mesh {
 #[ignore]
 fn print_read_times() {
     let mut files: Vec<PathBuf> = Vec::new();
-    if let Some(dir) = stripkit::test_support::models_dir() {
+    if let Some(dir) = support::models_dir() {
         for name in ["bunny.obj", "horse.ply", "dragon.obj", "bunny_res2.ply", "cow_tristrips.ply"] {
             files.push(dir.join(name));
         }

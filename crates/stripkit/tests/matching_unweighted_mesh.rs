@@ -1,6 +1,8 @@
 //! The unweighted matcher on mesh dual graphs (3-regular, large blossoms): it must
 //! finish and agree with the weighted solver's cardinality.
 
+mod support;
+
 use stripkit::matching::{self, DualWeights};
 
 #[test]
@@ -18,11 +20,11 @@ fn unweighted_matches_weighted_cardinality_on_icosphere_duals() {
 
 #[test]
 fn unweighted_bunny_dual_reaches_the_odd_component_bound() {
-    let Some(dir) = stripkit::test_support::models_dir() else {
+    let Some(dir) = support::models_dir() else {
         eprintln!("skipped: ../shared/models not found");
         return;
     };
-    let mesh = stripkit::mesh::io::read(&dir.join("bunny.obj")).unwrap();
+    let mesh = stripkit::io::read(&dir.join("bunny.obj")).unwrap();
     let g = matching::mesh_dual_graph(&mesh, DualWeights::Uniform).unwrap();
     let mate = matching::unweighted::maximum_cardinality_matching(&g);
     let exposed = mate.iter().filter(|&&x| x == matching::UNMATCHED).count();

@@ -1,15 +1,16 @@
 //! The simplifier on the research meshes (skipped when they are absent).
 
 mod simplify_meshes;
+mod support;
 
 use simplify_meshes::*;
 use stripkit::simplify::{simplify, Options, Placement, Target};
 
 #[test]
 fn bunny_and_horse_replay_and_stay_valid() {
-    let Some(dir) = stripkit::test_support::models_dir() else { return };
+    let Some(dir) = support::models_dir() else { return };
     for (file, closed) in [("bunny.obj", false), ("horse.ply", true)] {
-        let mesh = match stripkit::mesh::io::read(&dir.join(file)) {
+        let mesh = match stripkit::io::read(&dir.join(file)) {
             Ok(m) => m,
             Err(e) => {
                 eprintln!("skipped {file}: {e}");

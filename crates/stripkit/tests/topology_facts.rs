@@ -1,7 +1,7 @@
 //! `MeshFacts` on procedural meshes whose figures are known by construction.
 
 use stripkit::gen;
-use stripkit::topology::MeshFacts;
+use stripkit::MeshFacts;
 use stripkit::Mesh;
 
 fn facts(mesh: &Mesh) -> MeshFacts {

@@ -1,9 +1,11 @@
 //! `MeshFacts` on the research meshes must reproduce the figures that
 //! `../shared/models/README.md` lists (skipped when that folder is absent).
 
-use stripkit::mesh::io;
-use stripkit::test_support::models_dir;
-use stripkit::topology::MeshFacts;
+mod support;
+
+use stripkit::io;
+use stripkit::MeshFacts;
+use support::models_dir;
 
 /// file, V, F, bnd, nm-e, nm-v, comp, χ, unreferenced (None where the README gives none).
 /// The README's `comp` joins faces that share a vertex, as `MeshFacts::components` does.

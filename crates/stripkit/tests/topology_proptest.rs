@@ -5,7 +5,7 @@
 use proptest::prelude::*;
 use std::collections::{HashMap, HashSet};
 use stripkit::gen;
-use stripkit::topology::MeshFacts;
+use stripkit::MeshFacts;
 use stripkit::Mesh;
 
 fn soup() -> impl Strategy<Value = Mesh> {

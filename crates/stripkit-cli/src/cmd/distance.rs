@@ -22,8 +22,8 @@ pub struct Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let a = stripkit::mesh::io::read(&args.a)?;
-    let b = stripkit::mesh::io::read(&args.b)?;
+    let a = stripkit::io::read(&args.a)?;
+    let b = stripkit::io::read(&args.b)?;
     let start = Instant::now();
     let d = stripkit::distance::distance(&a, &b, args.samples)?;
     let ms = start.elapsed().as_secs_f64() * 1e3;

@@ -141,7 +141,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             (mesh, output, format!("cube, {levels} Catmull-Clark levels"))
         }
         What::Subdivide { file, scheme, levels, output } => {
-            let mesh = stripkit::mesh::io::read(&file)?;
+            let mesh = stripkit::io::read(&file)?;
             check_size(mesh.face_indices.len() as u64 * 4u64.saturating_pow(levels), 0)?;
             let name = match scheme {
                 Scheme::Loop => "Loop",
@@ -152,7 +152,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     };
     let built = Instant::now();
-    stripkit::mesh::io::write(&output, &mesh, None)?;
+    stripkit::io::write(&output, &mesh, None)?;
     let written = Instant::now();
     println!(
         "wrote {}: {what}: {} vertices, {} faces ({} triangles) in {:.0} ms (+{:.0} ms to write)",

@@ -56,7 +56,7 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let t0 = Instant::now();
     let (graph, source) = if let Some(mesh_path) = &args.dual {
-        let mesh = stripkit::mesh::io::read(mesh_path)?;
+        let mesh = stripkit::io::read(mesh_path)?;
         let w = match args.weights {
             WeightKind::Uniform => DualWeights::Uniform,
             WeightKind::Random => DualWeights::Random { seed: args.seed },

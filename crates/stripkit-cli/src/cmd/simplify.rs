@@ -72,7 +72,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         PlacementArg::Endpoint => Placement::Endpoint,
         PlacementArg::Optimal => Placement::Optimal,
     };
-    let mesh = stripkit::mesh::io::read(&args.file)?;
+    let mesh = stripkit::io::read(&args.file)?;
     let options = Options {
         target,
         placement,
@@ -95,7 +95,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     .with_context(|| format!("simplifying {}", args.file.display()))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     bar.finish_and_clear();
-    stripkit::mesh::io::write(&args.output, &result.mesh, None)?;
+    stripkit::io::write(&args.output, &result.mesh, None)?;
     if let Some(seq) = &args.sequence {
         result.sequence.write(seq)?;
     }

@@ -3,7 +3,7 @@
 use anyhow::Context;
 use std::path::PathBuf;
 use std::time::Instant;
-use stripkit::topology::MeshFacts;
+use stripkit::MeshFacts;
 
 /// Arguments of `stripkit stats`.
 #[derive(clap::Args)]
@@ -32,7 +32,7 @@ pub struct Args {
 /// Runs the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let start = Instant::now();
-    let mesh = stripkit::mesh::io::read(&args.file)?;
+    let mesh = stripkit::io::read(&args.file)?;
     let loaded = Instant::now();
     let facts = MeshFacts::of(&mesh).with_context(|| format!("{}: malformed mesh", args.file.display()))?;
     let done = Instant::now();

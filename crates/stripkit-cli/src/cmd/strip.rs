@@ -14,11 +14,11 @@ use clap::ValueEnum;
 use serde::Serialize;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use stripkit::mesh::io::{self, Format};
-use stripkit::metrics::{CacheKind, CacheModel, Figures};
-use stripkit::strip;
-use stripkit::stripify::greedy::{GreedyOptions, Heuristic};
-use stripkit::{Algorithm, Error, Split, StripOptions, Stripifier};
+use stripkit::io::{self, Format};
+use stripkit::{
+    Algorithm, CacheKind, CacheModel, Error, Figures, GreedyOptions, Heuristic, Split, StripOptions, Stripifier,
+    DEFAULT_RESTART,
+};
 
 /// The stripifying algorithm.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize)]
@@ -124,7 +124,7 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "restart")]
     pub join: Join,
     /// Primitive-restart index for `--join restart`; must not be a vertex id of the mesh.
-    #[arg(long, value_name = "N", default_value_t = strip::DEFAULT_RESTART)]
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_RESTART)]
     pub restart_index: u32,
     /// Vertex-cache size: the FIFO `--algo cache|balanced` tune for, and the cache of the
     /// `acmr` figure (acmr16 and acmr32 are always printed).

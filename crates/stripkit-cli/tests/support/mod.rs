@@ -13,6 +13,7 @@ pub fn stripkit(args: &[&str]) -> Output {
 }
 
 /// A path for file `name` in this test binary's own temporary folder `group`.
+#[allow(dead_code)]
 pub fn tmp(group: &str, name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("stripkit-cli-{group}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -33,5 +34,28 @@ pub fn json(out: &Output) -> serde_json::Value {
 /// Writes `mesh` to `path` (format by extension) for a test to read back.
 #[allow(dead_code)]
 pub fn write_mesh(path: &std::path::Path, mesh: &stripkit::Mesh) {
-    stripkit::mesh::io::write(path, mesh, None).expect("writes the test mesh");
+    stripkit::io::write(path, mesh, None).expect("writes the test mesh");
+}
+
+/// The research meshes folder `../shared/models` beside the checkout, or the folder
+/// named by `STRIPKIT_MODELS`; `None` (after printing why) when it is absent, so that
+/// tests needing it can skip with a reason.
+#[allow(dead_code)]
+pub fn models_dir() -> Option<PathBuf> {
+    let dir = match std::env::var_os("STRIPKIT_MODELS") {
+        Some(d) => PathBuf::from(d),
+        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/models"),
+    };
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        eprintln!("skipped: research meshes not found at {} (set STRIPKIT_MODELS)", dir.display());
+        None
+    }
+}
+
+/// The bundled public-domain meshes (`assets/` at the workspace root).
+#[allow(dead_code)]
+pub fn assets_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets")
 }

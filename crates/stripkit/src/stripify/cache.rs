@@ -149,13 +149,16 @@ impl Default for CacheOptions {
 
 /// Strips for `tris` (indices below `vertex_count`; larger ones are tolerated),
 /// ordered for a FIFO vertex cache (see the module docs). Degenerate triangles are
-/// dropped; every other triangle appears exactly once with its winding.
+/// dropped; every other triangle appears exactly once with its winding. (The door
+/// runs [`stripify_mesh`]; the tests run this on raw triangle lists.)
+#[cfg(test)]
 pub fn stripify(tris: &[[u32; 3]], vertex_count: usize, options: &CacheOptions) -> StripSet {
     let (graph, twins) = DualGraph::from_triangles_with_twins(tris, vertex_count);
     run_once(tris, (&graph, &twins), vertex_count, options).0
 }
 
 /// As [`stripify`], with the dual graph of `tris` already built.
+#[cfg(test)]
 pub fn stripify_with_graph(
     tris: &[[u32; 3]],
     vertex_count: usize,
@@ -344,6 +347,7 @@ pub struct MeshStrips {
     /// [`verify_quads`](super::quad_verify::verify_quads)).
     pub qstrip_diagonals: bool,
     /// The miss weight used (see [`stripify_within`]).
+    #[cfg_attr(not(test), allow(dead_code))] // read by the tests
     pub miss_weight: f32,
     /// Cache misses per triangle of the strips in the FIFO they were tuned for.
     pub acmr: f64,

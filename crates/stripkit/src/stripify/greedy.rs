@@ -59,12 +59,13 @@ impl std::str::FromStr for Heuristic {
     }
 }
 
-/// Options of [`stripify`].
+/// Options of the greedy stripifier ([`Algorithm::Greedy`](crate::Algorithm::Greedy)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct GreedyOptions {
     /// What to optimise.
     pub heuristic: Heuristic,
-    /// Tunnelling after the greedy pass ([`super::tunnel`]): the most strip links one
+    /// Tunnelling after the greedy pass (strips relinked along alternating paths through
+    /// the dual graph, where that saves indices): the most strip links one
     /// relinking may cut, or `None` for the plain greedy of the paper. Default 1 (bunny,
     /// `indices`: 83,179 -> 81,755 indices for about 5 ms more; 2 gives 81,215 for about
     /// 12 ms more).

@@ -51,7 +51,7 @@ pub enum Policy {
     FewestSwaps,
     /// Trades one swap for four more quads of straight run ahead: a turn that leads
     /// into a long free row beats going straight into a short one. Breaks the costly
-    /// same-side spirals ([`SWAP_WORTH`] quads per swap, runs counted up to 32).
+    /// same-side spirals (4 quads per swap, runs counted up to 32).
     LongRuns,
 }
 
@@ -59,7 +59,7 @@ pub enum Policy {
 pub const SWAP_WORTH: i64 = 4;
 const RUN_CAP: u32 = 32;
 
-/// Options of [`qstrip`].
+/// Options of QSTRIP ([`Algorithm::Qstrip`](crate::Algorithm::Qstrip)).
 #[derive(Clone, Debug, PartialEq)]
 pub struct QuadOptions {
     /// After a sequence's forward end is stuck, extend it backwards from its first
@@ -105,9 +105,11 @@ pub struct QuadStrips {
     /// The faces that went through QSTRIP (quads: four distinct vertices), ascending.
     pub quad_faces: Vec<u32>,
     /// Swaps (degenerate triangles) inside the strips.
+    #[cfg_attr(not(test), allow(dead_code))] // read by the tests
     pub swaps: usize,
     /// Pairs of quads that share two or more edges (or three vertices) and had a
     /// diagonal forced to avoid coincident triangles.
+    #[cfg_attr(not(test), allow(dead_code))] // read by the tests
     pub forced_diagonals: usize,
 }
 

@@ -4,41 +4,43 @@
 //! union-finds over faces and vertices, per-vertex corner lists for the fans,
 //! duplicate candidates taken from the edge map), in O(n).
 //!
-//! Definitions (the ones `../shared/models/README.md` uses for its table):
-//!
-//! * an edge's *incident faces* are its half-edges (face corners running along it);
-//! * **boundary edge**: exactly one incident face; **non-manifold edge**: three or more;
-//! * **boundary loop**: a closed walk along boundary half-edges; at a vertex where
-//!   several boundary walks meet, the walk turns to the next boundary half-edge found
-//!   by rotating through the fan of faces it arrived through (the loops of the surface
-//!   once every pinch vertex is split into one copy per fan: two triangles sharing a
-//!   vertex have two loops, two holes of a grid touching at one corner form one
-//!   figure-eight loop); every boundary half-edge is used once, so the walk ends;
-//! * **non-manifold (pinch) vertex**: the faces around the vertex form more than one
-//!   group when two faces are joined if they share an edge incident to the vertex
-//!   (any edge with two or more faces, non-manifold edges included);
-//! * **component**: faces joined through shared vertices, as the models README counts
-//!   them (a pinch vertex does not split a component); unreferenced vertices form none;
-//! * **edge component**: faces joined across shared edges only (two triangles sharing
-//!   just a vertex are two: no strip can cross between them; `bunny_res4.ply` has one
-//!   triangle that touches the rest at two vertices only: 1 component, 2 edge
-//!   components);
-//! * **Euler characteristic** χ = V_used − E + F;
-//! * **degenerate face**: a repeated vertex index, or zero area (exactly zero Newell
-//!   normal in `f64`);
-//! * **duplicate face**: the same cycle of vertices as an earlier face, up to rotation
-//!   and orientation (for triangles: the same three vertices); each such later face
-//!   counts once;
-//! * **consistently oriented**: no edge with exactly two faces is traversed in the same
-//!   direction by both.
+//! The definitions are on [`MeshFacts`], where the public documentation shows them.
 
 use super::EdgeMap;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use std::fmt;
 
-/// Topological and combinatorial facts about a mesh (see the module docs for the
-/// definitions). Serialises to one flat JSON object.
+/// Topological and combinatorial facts about a mesh, computed by [`MeshFacts::of`] in
+/// O(n). Serialises to one flat JSON object.
+///
+/// Definitions (the ones `../shared/models/README.md` uses for its table):
+///
+/// * an edge's *incident faces* are its half-edges (face corners running along it);
+/// * **boundary edge**: exactly one incident face; **non-manifold edge**: three or more;
+/// * **boundary loop**: a closed walk along boundary half-edges; at a vertex where
+///   several boundary walks meet, the walk turns to the next boundary half-edge found
+///   by rotating through the fan of faces it arrived through (the loops of the surface
+///   once every pinch vertex is split into one copy per fan: two triangles sharing a
+///   vertex have two loops, two holes of a grid touching at one corner form one
+///   figure-eight loop); every boundary half-edge is used once, so the walk ends;
+/// * **non-manifold (pinch) vertex**: the faces around the vertex form more than one
+///   group when two faces are joined if they share an edge incident to the vertex
+///   (any edge with two or more faces, non-manifold edges included);
+/// * **component**: faces joined through shared vertices, as the models README counts
+///   them (a pinch vertex does not split a component); unreferenced vertices form none;
+/// * **edge component**: faces joined across shared edges only (two triangles sharing
+///   just a vertex are two: no strip can cross between them; `bunny_res4.ply` has one
+///   triangle that touches the rest at two vertices only: 1 component, 2 edge
+///   components);
+/// * **Euler characteristic** χ = V_used − E + F;
+/// * **degenerate face**: a repeated vertex index, or zero area (exactly zero Newell
+///   normal in `f64`);
+/// * **duplicate face**: the same cycle of vertices as an earlier face, up to rotation
+///   and orientation (for triangles: the same three vertices); each such later face
+///   counts once;
+/// * **consistently oriented**: no edge with exactly two faces is traversed in the same
+///   direction by both.
 #[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct MeshFacts {
     /// Vertex records, referenced or not.
@@ -173,7 +175,7 @@ impl MeshFacts {
     }
 
     /// Computes all facts from an already built edge map of a valid mesh.
-    pub fn with_edge_map(mesh: &Mesh, map: &EdgeMap) -> MeshFacts {
+    pub(crate) fn with_edge_map(mesh: &Mesh, map: &EdgeMap) -> MeshFacts {
         let vcount = mesh.vertex_count();
         let fcount = mesh.face_count();
         let fi = &mesh.face_indices;

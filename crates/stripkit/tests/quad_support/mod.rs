@@ -1,12 +1,9 @@
 //! Procedural quad meshes for the QSTRIP tests: grids (open), tori and cubes (closed),
-//! a connectivity-exact Catmull-Clark split, shuffles, and the configurations where two
-//! quads share two edges.
+//! a connectivity-exact Catmull-Clark split, shuffles; and QSTRIP through the door.
 #![allow(dead_code)]
 
 use std::collections::HashMap;
-use stripkit::stripify::quad::{qstrip_mesh, QuadOptions, QuadStrips};
-use stripkit::stripify::quad_verify::{verify_quads, QuadCheck};
-use stripkit::Mesh;
+use stripkit::{stripify, Algorithm, Mesh, Split, StripOptions, Strips};
 
 /// `nx` x `ny` quads in the plane, counter-clockwise seen from +z.
 pub fn grid(nx: usize, ny: usize) -> Mesh {
@@ -110,29 +107,23 @@ pub struct Figures {
     pub indices_per_quad: f64,
 }
 
-/// Runs QSTRIP, verifies the output at quad level, returns its figures.
-pub fn strip_and_verify(mesh: &Mesh) -> (QuadStrips, QuadCheck, Figures) {
-    let (q, all) = qstrip_mesh(mesh, &QuadOptions::default());
-    let check = match verify_quads(mesh, &all) {
-        Ok(c) => c,
+/// Runs QSTRIP through the door, which verifies the output at quad level; returns the
+/// door's result and its figures (of all strips: on a pure-quad mesh, QSTRIP's own).
+pub fn strip_and_verify(mesh: &Mesh) -> (Strips, Figures) {
+    let options = StripOptions::default().algorithm(Algorithm::qstrip());
+    let s = match stripify(mesh, &options) {
+        Ok(s) => s,
         Err(e) => panic!("verification failed: {e}"),
     };
-    assert_eq!(check.quads, q.quad_count());
-    assert_eq!(
-        verify_quads(mesh, &q.strips)
-            .map(|c| c.degenerate)
-            .unwrap_or(q.swaps),
-        q.swaps,
-        "swaps counted by the stripifier and the checker differ"
-    );
-    let strips = q.strips.len();
-    let indices_restart = q.strips.indices.len() + strips.saturating_sub(1);
+    assert_eq!(s.split, Split::Qstrip);
+    let quads = s.quads.expect("QSTRIP counts the quads it strips");
+    let f = &s.figures;
     let fig = Figures {
-        quads: q.quad_count(),
-        strips,
-        swaps: q.swaps,
-        indices_restart,
-        indices_per_quad: indices_restart as f64 / q.quad_count().max(1) as f64,
+        quads,
+        strips: f.strips,
+        swaps: f.swaps,
+        indices_restart: f.indices_restart,
+        indices_per_quad: f.indices_restart as f64 / quads.max(1) as f64,
     };
-    (q, check, fig)
+    (s, fig)
 }

@@ -1,2 +1,0 @@
-//! Level-of-detail strips: multiresolution strips with sorted edges (SETS) and LoD
-//! strips for deforming meshes.

@@ -1,0 +1,154 @@
+//! Inputs for the crate's internal tests: a seeded generator, triangle lists of
+//! procedural meshes, shuffles, and the procedural quad meshes of the QSTRIP tests.
+#![allow(dead_code)] // each test module uses a different subset
+
+use crate::{gen, Mesh};
+use std::collections::HashMap;
+
+/// Small deterministic generator (xorshift), so tests need no dependency.
+pub(crate) struct Rng(pub(crate) u64);
+impl Rng {
+    pub(crate) fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+    pub(crate) fn below(&mut self, n: usize) -> usize {
+        (self.next() % n as u64) as usize
+    }
+}
+
+/// Triangles and vertex count of a generated mesh.
+pub(crate) fn tris_of(mesh: Mesh) -> (Vec<[u32; 3]>, usize) {
+    (mesh.triangulate().tris, mesh.vertex_count())
+}
+
+/// A `w` x `h` triangle grid.
+pub(crate) fn grid(w: u32, h: u32) -> (Vec<[u32; 3]>, usize) {
+    tris_of(gen::grid(w, h))
+}
+
+/// An icosphere of `levels` subdivisions.
+pub(crate) fn icosphere(levels: u32) -> (Vec<[u32; 3]>, usize) {
+    tris_of(gen::icosphere(levels))
+}
+
+/// A torus of `n x m` quads, each split along a random diagonal when `rng` is given.
+pub(crate) fn torus(n: u32, m: u32, mut rng: Option<&mut Rng>) -> (Vec<[u32; 3]>, usize) {
+    let id = |x: u32, y: u32| (y % m) * n + (x % n);
+    let mut tris = Vec::new();
+    for y in 0..m {
+        for x in 0..n {
+            let (a, b, c, d) = (id(x, y), id(x + 1, y), id(x + 1, y + 1), id(x, y + 1));
+            if rng.as_mut().is_some_and(|r| r.below(2) == 0) {
+                tris.push([a, b, d]);
+                tris.push([b, c, d]);
+            } else {
+                tris.push([a, b, c]);
+                tris.push([a, c, d]);
+            }
+        }
+    }
+    (tris, (n * m) as usize)
+}
+
+/// Faces shuffled, each rotated, vertices renumbered.
+pub(crate) fn shuffled(tris: &[[u32; 3]], vertex_count: usize, rng: &mut Rng) -> Vec<[u32; 3]> {
+    let mut perm: Vec<u32> = (0..vertex_count as u32).collect();
+    for i in (1..perm.len()).rev() {
+        perm.swap(i, rng.below(i + 1));
+    }
+    let mut out: Vec<[u32; 3]> = tris
+        .iter()
+        .map(|t| {
+            let r = rng.below(3);
+            let u = t.map(|v| perm[v as usize]);
+            [u[r], u[(r + 1) % 3], u[(r + 2) % 3]]
+        })
+        .collect();
+    for i in (1..out.len()).rev() {
+        out.swap(i, rng.below(i + 1));
+    }
+    out
+}
+
+// ---- quad meshes (the same as tests/quad_support) ----
+
+/// `nx` x `ny` quads in the plane, counter-clockwise seen from +z.
+pub(crate) fn quad_grid(nx: usize, ny: usize) -> Mesh {
+    gen::grid_quads(nx as u32, ny as u32)
+}
+
+/// A closed torus of `nu` x `nv` quads, outward orientation.
+pub(crate) fn quad_torus(nu: usize, nv: usize) -> Mesh {
+    gen::torus_quads(nu as u32, nv as u32, 2.0, 1.0)
+}
+
+/// A closed cube with `n` x `n` quads on each side, outward orientation.
+pub(crate) fn cube(n: usize) -> Mesh {
+    let mut ids: HashMap<[i32; 3], u32> = HashMap::new();
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    let n = n as i32;
+    // For each axis and side: a frame (u, v) with u x v pointing outward.
+    for axis in 0..3 {
+        for side in [0, n] {
+            let (ua, va) = ((axis + 1) % 3, (axis + 2) % 3);
+            let outward_positive = side == n;
+            let mut vid = |i: i32, j: i32| {
+                let mut p = [0i32; 3];
+                p[axis] = side;
+                p[ua] = i;
+                p[va] = j;
+                *ids.entry(p).or_insert_with(|| {
+                    positions.push([p[0] as f32, p[1] as f32, p[2] as f32]);
+                    (positions.len() - 1) as u32
+                })
+            };
+            for j in 0..n {
+                for i in 0..n {
+                    let q = [vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1)];
+                    if outward_positive {
+                        faces.push(q.to_vec());
+                    } else {
+                        faces.push(vec![q[0], q[3], q[2], q[1]]);
+                    }
+                }
+            }
+        }
+    }
+    Mesh::from_polygons(positions, &faces)
+}
+
+/// One Catmull-Clark step: a face of k vertices becomes k quads.
+pub(crate) fn subdivide(mesh: &Mesh) -> Mesh {
+    gen::subdivide_catmull_clark(mesh, 1).expect("a valid polygon mesh")
+}
+
+/// Same surface, faces in random order, each face's corners rotated at random, vertex
+/// ids permuted.
+pub(crate) fn shuffled_mesh(mesh: &Mesh, seed: u64) -> Mesh {
+    let mut rng = Rng(seed | 1);
+    let n = mesh.vertex_count();
+    let mut perm: Vec<u32> = (0..n as u32).collect();
+    for i in (1..n).rev() {
+        perm.swap(i, rng.below(i + 1));
+    }
+    let mut positions = vec![[0.0; 3]; n];
+    for (old, &new) in perm.iter().enumerate() {
+        positions[new as usize] = mesh.positions[old];
+    }
+    let mut faces: Vec<Vec<u32>> = mesh
+        .faces()
+        .map(|f| f.iter().map(|&v| perm[v as usize]).collect())
+        .collect();
+    for i in (1..faces.len()).rev() {
+        faces.swap(i, rng.below(i + 1));
+    }
+    for f in &mut faces {
+        let r = rng.below(f.len());
+        f.rotate_left(r);
+    }
+    Mesh::from_polygons(positions, &faces)
+}
