@@ -10,7 +10,7 @@ fn unweighted_matches_weighted_cardinality_on_icosphere_duals() {
     for level in 0..5 {
         let mesh = stripkit::gen::icosphere(level);
         let g = matching::mesh_dual_graph(&mesh, DualWeights::Random { seed: 3 }).unwrap();
-        let mate = matching::unweighted::maximum_cardinality_matching(&g);
+        let mate = matching::maximum_cardinality_matching(&g);
         let card = mate.iter().filter(|&&x| x != matching::UNMATCHED).count();
         let m = matching::solve(&g, matching::Objective::MaxWeight).unwrap();
         assert!(m.certified);
@@ -26,7 +26,7 @@ fn unweighted_bunny_dual_reaches_the_odd_component_bound() {
     };
     let mesh = stripkit::io::read(&dir.join("bunny.obj")).unwrap();
     let g = matching::mesh_dual_graph(&mesh, DualWeights::Uniform).unwrap();
-    let mate = matching::unweighted::maximum_cardinality_matching(&g);
+    let mate = matching::maximum_cardinality_matching(&g);
     let exposed = mate.iter().filter(|&&x| x == matching::UNMATCHED).count();
     assert_eq!(exposed, 1);
     let m = matching::solve(&g, matching::Objective::MaxWeight).unwrap();

@@ -35,8 +35,7 @@ pub(crate) fn splitmix(state: &mut u64) -> u64 {
 /// The dual graph of a mesh as a matching graph: one node per triangle, one edge per
 /// pair of dual neighbours, weighted by `weight(t, j, u)` for the edge from triangle
 /// `t` across its edge `j` to triangle `u` (called once per edge, with `t < u`).
-/// (Formerly `Graph::from_dual`; it moved here when the matching became its own crate.)
-pub fn graph_from_dual(dual: &DualGraph, mut weight: impl FnMut(usize, usize, usize) -> i64) -> Result<Graph> {
+pub(crate) fn graph_from_dual(dual: &DualGraph, mut weight: impl FnMut(usize, usize, usize) -> i64) -> Result<Graph> {
     let mut edges = Vec::with_capacity(dual.len() * 3 / 2);
     let mut weights = Vec::with_capacity(dual.len() * 3 / 2);
     for (t, nb) in dual.neighbors.iter().enumerate() {
