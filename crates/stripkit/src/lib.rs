@@ -17,6 +17,7 @@ pub mod topology;
 pub mod strip;
 pub mod metrics;
 pub mod stripify;
+mod improve;
 pub mod matching;
 pub mod simplify;
 pub mod distance;

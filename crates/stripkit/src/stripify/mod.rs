@@ -19,7 +19,7 @@ pub mod greedy;
 pub mod quad;
 pub mod quad_single;
 pub mod quad_verify;
-pub mod tunnel;
+pub use crate::improve::tunnel;
 
 use crate::strip::StripSet;
 use crate::topology::{DualGraph, NO_NEIGHBOR};

@@ -120,6 +120,15 @@ impl EdgeMap {
     }
 }
 
+/// One more than the largest index of `tris` (0 for none).
+pub(crate) fn vertex_bound(tris: &[[u32; 3]]) -> usize {
+    tris.iter()
+        .flatten()
+        .map(|&v| v as usize + 1)
+        .max()
+        .unwrap_or(0)
+}
+
 /// Prefix sums of the corners (edges) of non-degenerate triangles bucketed by their
 /// edge's lower vertex: bucket `v` is `start[v]..start[v + 1]`.
 /// Sorts one bucket of a counting sort: insertion sort for the usual handful of

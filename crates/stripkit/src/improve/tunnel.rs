@@ -304,7 +304,7 @@ impl State<'_> {
 /// Reduces the index count of `walks` by tunnelling and returns the new walks. Here a
 /// [`StripSet`] holds walks, not strips: each entry is a sequence of triangle ids of
 /// `tris`, each a `graph` neighbour of the one before (encode them with
-/// [`super::encode_path`]). Every triangle of `walks` appears
+/// [`crate::stripify::encode_path`]). Every triangle of `walks` appears
 /// exactly once in the result, and every walk is a path through `graph`, so encoding
 /// keeps every triangle's winding.
 pub fn tunnel(tris: &[[u32; 3]], graph: &DualGraph, walks: &StripSet, options: &TunnelOptions) -> StripSet {

@@ -1,0 +1,156 @@
+//! The moves of [`super::refine`]: new walks for a few slots of the output, written
+//! as ranges of a pool, and the pieces of old walks they are made of.
+
+use super::flips::FLIP_LINKS;
+use super::tunnels::REFINE_CUTS;
+use crate::topology::DualGraph;
+
+pub(super) const NONE: u32 = u32::MAX;
+
+/// Most strips one move of [`refine`] changes: a tunnel of [`REFINE_CUTS`] cuts, or a
+/// flip of [`FLIP_LINKS`] dropped links ([`Flips`] makes no move of more slots).
+pub(super) const MOVE_SLOTS: usize = if REFINE_CUTS + 2 > FLIP_LINKS {
+    REFINE_CUTS + 2
+} else {
+    FLIP_LINKS
+};
+
+/// A move of [`refine`]: up to [`MOVE_SLOTS`] strips (slots in the output order) get
+/// new walks, ranges `(slot, start, len)` of a pool (len 0 empties the slot), sorted by
+/// slot.
+#[derive(Clone, Copy, Default)]
+pub(super) struct Move {
+    pub(super) n: u8,
+    pub(super) ch: [(u32, u32, u32); MOVE_SLOTS],
+}
+
+impl Move {
+    pub(super) fn new(list: &[(u32, u32, u32)]) -> Move {
+        let mut m = Move {
+            n: list.len() as u8,
+            ..Move::default()
+        };
+        m.ch[..list.len()].copy_from_slice(list);
+        m.ch[..list.len()].sort_unstable_by_key(|c| c.0);
+        m
+    }
+}
+
+/// Appends to `pool` each walk that joins `sw` at its end `n` to `xw` at its end `e`
+/// (a dual neighbour of `n`), in `sw`'s direction, and calls `found` with its range.
+pub(super) fn attach(
+    pool: &mut Vec<u32>,
+    sw: &[u32],
+    n: u32,
+    xw: &[u32],
+    e: u32,
+    mut found: impl FnMut(u32, u32),
+) {
+    let len = (sw.len() + xw.len()) as u32;
+    let forward = xw[0] == e;
+    if sw[sw.len() - 1] == n {
+        let start = pool.len() as u32;
+        pool.extend_from_slice(sw);
+        if forward {
+            pool.extend_from_slice(xw);
+        } else {
+            pool.extend(xw.iter().rev());
+        }
+        found(start, len);
+    }
+    if sw[0] == n {
+        let start = pool.len() as u32;
+        if forward {
+            pool.extend(xw.iter().rev());
+        } else {
+            pool.extend_from_slice(xw);
+        }
+        pool.extend_from_slice(sw);
+        found(start, len);
+    }
+}
+
+/// Swaps of the walk `w` as [`crate::stripify::walk`] encodes it.
+pub(super) fn wswaps(tris: &[[u32; 3]], graph: &DualGraph, w: &[u32]) -> u32 {
+    crate::stripify::walk(tris, graph, w.len(), |j| w[j], |_| {}) as u32
+}
+
+/// The swaps a walk needs at `w[2]` of four consecutive triangles `w` (a swap at an
+/// inner triangle depends only on it, the one after it and the two before): those of
+/// the four less those of the first three.
+pub(super) fn inner_swap(tris: &[[u32; 3]], graph: &DualGraph, w: &[u32]) -> u32 {
+    wswaps(tris, graph, w) - wswaps(tris, graph, &w[..3])
+}
+
+/// A part of a walk in a tunnel of [`refine`]: `walks[slot][lo..hi]`, read backwards
+/// when `rev`.
+#[derive(Clone, Copy)]
+pub(super) struct Piece {
+    pub(super) slot: u32,
+    pub(super) lo: u32,
+    pub(super) hi: u32,
+    pub(super) rev: bool,
+}
+
+impl Piece {
+    pub(super) fn len(&self) -> usize {
+        (self.hi - self.lo) as usize
+    }
+
+    pub(super) fn reversed(self) -> Piece {
+        Piece {
+            rev: !self.rev,
+            ..self
+        }
+    }
+
+    /// The walk `self` then `b` as a new strip reads it: in the direction of its longer
+    /// part's old strip (the pair, read backwards and swapped where that is against).
+    pub(super) fn join(self, b: Piece) -> (Piece, Piece) {
+        let flip = if self.len() >= b.len() {
+            self.rev
+        } else {
+            b.rev
+        };
+        if flip {
+            (b.reversed(), self.reversed())
+        } else {
+            (self, b)
+        }
+    }
+
+    /// A part cut off and left alone, in its old strip's direction.
+    pub(super) fn alone(self) -> Piece {
+        Piece { rev: false, ..self }
+    }
+
+    /// Triangle `j` in the piece's direction.
+    #[inline]
+    pub(super) fn at(&self, walks: &[Vec<u32>], j: usize) -> u32 {
+        let w = &walks[self.slot as usize];
+        if self.rev {
+            w[self.hi as usize - 1 - j]
+        } else {
+            w[self.lo as usize + j]
+        }
+    }
+
+    /// Appends the piece to `pool` in its direction.
+    pub(super) fn extend(&self, walks: &[Vec<u32>], pool: &mut Vec<u32>) {
+        let w = &walks[self.slot as usize][self.lo as usize..self.hi as usize];
+        if self.rev {
+            pool.extend(w.iter().rev());
+        } else {
+            pool.extend_from_slice(w);
+        }
+    }
+}
+
+/// The end triangles of a walk (one for a single triangle).
+pub(super) fn ends(w: &[u32]) -> ([u32; 2], usize) {
+    match w.len() {
+        0 => ([NONE; 2], 0),
+        1 => ([w[0], NONE], 1),
+        n => ([w[0], w[n - 1]], 2),
+    }
+}
