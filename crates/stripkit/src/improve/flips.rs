@@ -1,7 +1,8 @@
 //! The flips of [`super::refine`]: alternating cycles through swaps and alternating
 //! paths that touch some strip twice.
 
-use super::moves::{ends, inner_swap, wswaps, Move, Piece, MOVE_SLOTS, NONE};
+use super::moves::{ends, Move, Piece, MOVE_SLOTS, NONE};
+use crate::topology::walks::{inner_swap, walk_swaps};
 use super::tunnels::Tunnels;
 use crate::topology::{DualGraph, NO_NEIGHBOR};
 
@@ -86,7 +87,7 @@ impl Flips<'_> {
         if w.len() < 3 {
             return 0;
         }
-        i64::from(wswaps(self.tris, self.graph, &w[..3]) + self.pre[w[w.len() - 2] as usize])
+        i64::from(walk_swaps(self.tris, self.graph, &w[..3]) + self.pre[w[w.len() - 2] as usize])
     }
 
     /// Swaps of the walk made of `pieces` in order, each in its direction: the swaps
@@ -108,7 +109,7 @@ impl Flips<'_> {
             unreachable!("index within the walk")
         };
         let tri3 = [at(0), at(1), at(2)];
-        let mut s = i64::from(wswaps(self.tris, self.graph, &tri3));
+        let mut s = i64::from(walk_swaps(self.tris, self.graph, &tri3));
         let mut prev_j = 0usize;
         let mut j = 0usize;
         for (k, p) in pieces.iter().enumerate() {

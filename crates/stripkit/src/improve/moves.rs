@@ -3,7 +3,6 @@
 
 use super::flips::FLIP_LINKS;
 use super::tunnels::REFINE_CUTS;
-use crate::topology::DualGraph;
 
 pub(super) const NONE: u32 = u32::MAX;
 
@@ -68,18 +67,6 @@ pub(super) fn attach(
         pool.extend_from_slice(sw);
         found(start, len);
     }
-}
-
-/// Swaps of the walk `w` as [`crate::stripify::walk`] encodes it.
-pub(super) fn wswaps(tris: &[[u32; 3]], graph: &DualGraph, w: &[u32]) -> u32 {
-    crate::stripify::walk(tris, graph, w.len(), |j| w[j], |_| {}) as u32
-}
-
-/// The swaps a walk needs at `w[2]` of four consecutive triangles `w` (a swap at an
-/// inner triangle depends only on it, the one after it and the two before): those of
-/// the four less those of the first three.
-pub(super) fn inner_swap(tris: &[[u32; 3]], graph: &DualGraph, w: &[u32]) -> u32 {
-    wswaps(tris, graph, w) - wswaps(tris, graph, &w[..3])
 }
 
 /// A part of a walk in a tunnel of [`refine`]: `walks[slot][lo..hi]`, read backwards

@@ -2,10 +2,11 @@
 //! exactly ([`Refiner`]).
 
 use super::flips::{Flips, FLIP_LINKS};
-use super::moves::{attach, ends, inner_swap, Move, Piece, MOVE_SLOTS, NONE};
+use super::moves::{attach, ends, Move, Piece, MOVE_SLOTS, NONE};
 use super::tunnels::Tunnels;
 use crate::strip::{join_shared_ends, joins_at_vertex, StripSet};
-use crate::topology::{vertex_bound, DualGraph, NO_NEIGHBOR};
+use crate::topology::walks::{inner_swap, walk};
+use crate::topology::{vertex_bound, DualGraph, Walks, NO_NEIGHBOR};
 
 /// Triangles simulated past a change: a move whose FIFO has not come back to the old
 /// contents by then is not taken (so that every taken move is measured exactly).
@@ -254,7 +255,7 @@ impl Refiner<'_> {
             let mut buf = std::mem::take(&mut self.nbuf[i]);
             buf.clear();
             if !w.is_empty() {
-                crate::stripify::walk(self.tris, self.graph, w.len(), |j| w[j], |v| buf.push(v));
+                walk(self.tris, self.graph, w.len(), |j| w[j], |v| buf.push(v));
                 di += buf.len() as i64 + 1;
             }
             self.nbuf[i] = buf;
@@ -332,8 +333,8 @@ impl Refiner<'_> {
     }
 }
 
-/// Local search over the walks (the strips in output order, as triangle ids: walk `i`
-/// is `flat[offsets[i]..offsets[i + 1]]`, as the stripifier records them), scored by
+/// Local search over `walks` (the strips in output order, as the stripifier records
+/// them), scored by
 /// `indices_restart + lambda * misses` on the exact FIFO of `cache_size` entries,
 /// with the total misses kept at most `budget`. `indices_restart` is that of the
 /// strips after [`join_shared_ends`]: a boundary where a strip of even length ends on
@@ -351,7 +352,7 @@ impl Refiner<'_> {
 /// path in their order, shifted by one or not; and the flips of [`Flips`]
 /// (alternating cycles through a swap of X, and alternating paths from an end of X
 /// that touch some strip twice), the new walks in the places of the strips they
-/// touch. The best move that lowers the cost is taken. Every walk is encoded with [`crate::stripify::walk`], so every triangle keeps its
+/// touch. The best move that lowers the cost is taken. Every walk is encoded with [`walk`], so every triangle keeps its
 /// winding.
 ///
 /// A move is evaluated by replaying the FIFO from the snapshot before the first strip
@@ -361,16 +362,13 @@ impl Refiner<'_> {
 pub(crate) fn refine(
     tris: &[[u32; 3]],
     graph: &DualGraph,
-    (flat, offsets): (&[u32], &[u32]),
+    walks: &Walks,
     cache_size: usize,
     lambda: f64,
     budget: u64,
     effort: Effort,
 ) -> (StripSet, u64) {
-    let walks: Vec<Vec<u32>> = offsets
-        .windows(2)
-        .map(|r| flat[r[0] as usize..r[1] as usize].to_vec())
-        .collect();
+    let walks: Vec<Vec<u32>> = walks.iter().map(|w| w.to_vec()).collect();
     let c = cache_size;
     let slots = walks.len();
     let mut slot_of = vec![NONE; tris.len()];
@@ -383,7 +381,7 @@ pub(crate) fn refine(
         .iter()
         .map(|w| {
             let mut strip = Vec::with_capacity(w.len() + 4);
-            crate::stripify::walk(tris, graph, w.len(), |i| w[i], |v| strip.push(v));
+            walk(tris, graph, w.len(), |i| w[i], |v| strip.push(v));
             strip
         })
         .collect();

@@ -1,6 +1,7 @@
 //! The tunnels of [`super::refine`]: alternating paths through up to three strips.
 
-use super::moves::{wswaps, Move, Piece, MOVE_SLOTS, NONE};
+use super::moves::{Move, Piece, MOVE_SLOTS, NONE};
+use crate::topology::walks::walk_swaps;
 use crate::topology::{DualGraph, NO_NEIGHBOR};
 
 /// Most links a tunnel of [`refine`] cuts (bunny: 85,637 indices with 2, 85,540 with
@@ -73,7 +74,7 @@ impl Tunnels<'_> {
                 a.at(self.walks, 1),
                 a.at(self.walks, 2),
             ];
-            return wswaps(self.tris, self.graph, &head)
+            return walk_swaps(self.tris, self.graph, &head)
                 + self.inner(a, a.lo + 2, a.hi.saturating_sub(2));
         }
         let at = |i: usize| {
@@ -89,10 +90,10 @@ impl Tunnels<'_> {
         for i in lo..hi {
             win[i - lo] = at(i);
         }
-        let mut s = wswaps(self.tris, self.graph, &win[..hi - lo]);
+        let mut s = walk_swaps(self.tris, self.graph, &win[..hi - lo]);
         if lo > 0 {
             let head = [at(0), at(1), at(2)];
-            s = s + wswaps(self.tris, self.graph, &head) - wswaps(self.tris, self.graph, &win[..3]);
+            s = s + walk_swaps(self.tris, self.graph, &head) - walk_swaps(self.tris, self.graph, &win[..3]);
         }
         // Pair windows inside a part: stored positions lo + 2 ..= hi - 2.
         s += self.inner(a, a.lo + 2, a.hi.saturating_sub(2));

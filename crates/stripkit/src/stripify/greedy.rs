@@ -32,9 +32,8 @@
 //! end strips. Degenerate triangles (a repeated index) are dropped. Runs in
 //! O(triangles + vertices).
 
-use super::encode_path;
 use crate::strip::{is_degenerate, StripSet};
-use crate::topology::{DualGraph, NO_NEIGHBOR};
+use crate::topology::{DualGraph, Walks, NO_NEIGHBOR};
 
 /// What the greedy choice optimises.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -270,19 +269,11 @@ pub fn stripify_with_graph(
     graph: &DualGraph,
     options: &GreedyOptions,
 ) -> StripSet {
-    let walks = walks_with_graph(tris, graph, options);
-    let mut out = StripSet::new();
-    out.indices.reserve(tris.len() + tris.len() / 4);
-    for i in 0..walks.len() {
-        encode_path(tris, graph, walks.strip(i), &mut out);
-    }
-    out
+    walks_with_graph(tris, graph, options).encode(tris, graph)
 }
 
-/// The strips of [`stripify_with_graph`] as walks before they are encoded: each entry
-/// of the returned [`StripSet`] is a sequence of triangle ids, each a `graph`
-/// neighbour of the one before (see [`encode_path`]).
-fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOptions) -> StripSet {
+/// The strips of [`stripify_with_graph`] as walks, before they are encoded.
+fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOptions) -> Walks {
     let n = tris.len();
     let mut g = Greedy {
         tris,
@@ -302,9 +293,7 @@ fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOption
             .count() as u8;
         g.b.push_front(t as u32, d);
     }
-    // The strips as walks (triangle ids) until they are encoded.
-    let mut walks = StripSet::new();
-    walks.indices.reserve(n);
+    let mut walks = Walks::with_capacity(n);
     let mut path: Vec<u32> = Vec::new();
     let mut back: Vec<u32> = Vec::new();
     while let Some(t0) = g.b.lowest() {
@@ -326,8 +315,7 @@ fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOption
             };
             g.grow(&mut back, t0, entry, last_pivot);
         }
-        walks.indices.extend(back.iter().rev().chain(&path));
-        walks.offsets.push(walks.indices.len() as u32);
+        walks.push_iter(back.iter().rev().chain(&path).copied());
     }
     match options.tunnel_cuts {
         Some(max_cuts) => {
@@ -337,12 +325,12 @@ fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOption
                 Heuristic::Strips => 1 << 16,
                 Heuristic::Indices => 3,
             };
-            let topts = super::tunnel::TunnelOptions {
+            let topts = crate::improve::tunnel::TunnelOptions {
                 max_cuts,
                 strip_cost,
                 ..Default::default()
             };
-            super::tunnel::tunnel(tris, graph, &walks, &topts)
+            crate::improve::tunnel::tunnel_walks(tris, graph, &walks, &topts)
         }
         None => walks,
     }

@@ -10,8 +10,10 @@
 //! * [`facts`]: the figures `stripkit stats` prints.
 
 pub mod facts;
+pub(crate) mod walks;
 
 pub use facts::{validate, MeshFacts};
+pub use walks::Walks;
 
 use crate::mesh::Mesh;
 use crate::strip::is_degenerate;

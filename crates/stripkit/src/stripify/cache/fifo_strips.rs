@@ -4,7 +4,7 @@
 use super::{CacheOptions, Links};
 use crate::stripify::greedy::Buckets;
 use crate::strip::{is_degenerate, StripSet};
-use crate::topology::{vertex_bound, NO_NEIGHBOR};
+use crate::topology::{vertex_bound, Walks, NO_NEIGHBOR};
 
 pub(super) const NONE: u32 = u32::MAX;
 /// `mark` of a triangle already in a strip.
@@ -149,9 +149,8 @@ pub(super) struct State<'a> {
     pub(super) last: u32,
 
     pub(super) out: StripSet,
-    /// The strips as walks (triangle ids in output order), flat, with `woff` offsets.
-    pub(super) wtris: Vec<u32>,
-    pub(super) woff: Vec<u32>,
+    /// The strips as walks (triangle ids in output order).
+    pub(super) walks: Walks,
 }
 
 impl<'a> State<'a> {
@@ -248,8 +247,7 @@ impl<'a> State<'a> {
             bpath: vec![(0, 0, 0); opt.max_len as usize],
             last: NONE,
             out,
-            wtris: Vec::with_capacity(n),
-            woff: vec![0],
+            walks: Walks::with_capacity(n),
         }
     }
 
@@ -600,13 +598,13 @@ impl<'a> State<'a> {
         let steps = best.len as usize - usize::from(slot != CONTINUE);
         let (mut a, mut b);
         if slot == CONTINUE {
-            self.woff.pop();
+            self.walks.reopen_last();
             self.out.offsets.pop();
             let n = self.out.indices.len();
             (a, b) = (self.out.indices[n - 2], self.out.indices[n - 1]);
         } else {
             let [x, u, w] = start_of(self.tris[t as usize], slot);
-            self.wtris.push(t);
+            self.walks.push_triangle(t);
             self.take(t);
             self.out.indices.extend_from_slice(&[x, u, w]);
             self.touch(x);
@@ -624,7 +622,7 @@ impl<'a> State<'a> {
                 self.out.indices.extend_from_slice(&[p, b]);
             }
             self.take(n);
-            self.wtris.push(n);
+            self.walks.push_triangle(n);
             self.out.indices.push(y);
             // The decoded order of the new triangle (the two old vertices are hits
             // unless that triangle's own pushes evicted one).
@@ -645,6 +643,6 @@ impl<'a> State<'a> {
         }
         let end = self.out.indices.len() as u32;
         self.out.offsets.push(end);
-        self.woff.push(self.wtris.len() as u32);
+        self.walks.end_walk();
     }
 }

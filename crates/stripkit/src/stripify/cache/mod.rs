@@ -70,7 +70,7 @@ mod fifo_strips;
 
 use crate::improve::{refine, Effort};
 use crate::strip::{is_degenerate, join_shared_ends, StripSet};
-use crate::topology::DualGraph;
+use crate::topology::{DualGraph, Walks};
 use canonical::Canonical;
 use fifo_strips::State;
 
@@ -195,7 +195,7 @@ fn run_once(
     let (strips, refined) = refine(
         tris,
         links.0,
-        (&s.wtris, &s.woff),
+        &s.walks,
         cache_size,
         lambda,
         misses,
@@ -247,8 +247,7 @@ pub fn stripify_within(
             miss_weight,
             misses: u64::from(s.time),
             strips: s.out,
-            walks: s.wtris,
-            walk_offsets: s.woff,
+            walks: s.walks,
         }
     };
     let acmr = |misses: u64| {
@@ -292,11 +291,10 @@ pub fn stripify_within(
     // The largest miss count within the bound (or, beyond it, the one reached).
     let budget = ((max_acmr * triangles as f64).floor() as u64).max(best.misses);
     let cache_size = options.cache_size.max(3) as usize;
-    let walks = (&best.walks[..], &best.walk_offsets[..]);
     let (strips, misses) = refine(
         tris,
         &graph,
-        walks,
+        &best.walks,
         cache_size,
         REFINE_LAMBDA,
         budget,
@@ -312,13 +310,12 @@ pub fn stripify_within(
 }
 
 /// One run of the stripifier in [`stripify_within`]: its strips, their misses, and
-/// the strips as walks (triangle ids, `walks[walk_offsets[i]..walk_offsets[i + 1]]`).
+/// the strips as walks.
 struct Try {
     miss_weight: f32,
     misses: u64,
     strips: StripSet,
-    walks: Vec<u32>,
-    walk_offsets: Vec<u32>,
+    walks: Walks,
 }
 
 /// How [`stripify_mesh`] splits a mesh's quads into triangles.
@@ -529,14 +526,13 @@ mod tests {
         let mut s = State::new(&tris, (&graph, &twins), vc, &CacheOptions::balanced(16));
         s.run();
         let budget = ((0.8 * tris.len() as f64) as u64).max(u64::from(s.time));
-        let walks = (&s.wtris[..], &s.woff[..]);
         let mut counts = Vec::new();
         for flip_links in [0, 3] {
             let effort = Effort {
                 passes: 3,
                 flip_links,
             };
-            let (strips, misses) = refine(&tris, &graph, walks, 16, REFINE_LAMBDA, budget, effort);
+            let (strips, misses) = refine(&tris, &graph, &s.walks, 16, REFINE_LAMBDA, budget, effort);
             assert!(verify(&tris, &strips).ok(), "{flip_links}");
             assert!(misses <= budget, "{flip_links}: {misses} > {budget}");
             let measured = cache_misses(&decode(&strips), vc, 16, CacheKind::Fifo);
