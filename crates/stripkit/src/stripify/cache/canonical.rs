@@ -3,6 +3,7 @@
 //! the order of the faces or the vertex ids.
 
 use crate::strip::StripSet;
+use crate::topology::{sort_bucket, Csr};
 
 /// A mesh's vertices renumbered in an order that depends only on the geometry, so that
 /// the stripifier sees the same input whatever the order of the faces and the ids of
@@ -74,24 +75,11 @@ impl Canonical {
         // sorted on its own. O(triangles + vertices) for bounded valence, O(t log t)
         // at worst.
         let n = self.old.len();
-        let mut start = vec![0u32; n + 1];
-        for t in &tris {
-            start[t[0] as usize + 1] += 1;
-        }
+        let mut out = Csr::from_entries(n, tris.iter().map(|t| (t[0] as usize, *t)));
         for v in 0..n {
-            start[v + 1] += start[v];
+            sort_bucket(out.bucket_mut(v));
         }
-        let mut fill = start.clone();
-        let mut out = vec![[0u32; 3]; tris.len()];
-        for t in &tris {
-            let slot = &mut fill[t[0] as usize];
-            out[*slot as usize] = *t;
-            *slot += 1;
-        }
-        for v in 0..n {
-            crate::topology::sort_bucket(&mut out[start[v] as usize..start[v + 1] as usize]);
-        }
-        out
+        out.into_parts().1
     }
 
     /// The mesh in new ids, faces sorted, triangles and quads starting at their lowest

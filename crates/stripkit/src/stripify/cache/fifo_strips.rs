@@ -4,7 +4,7 @@
 use super::{CacheOptions, Links};
 use crate::stripify::greedy::Buckets;
 use crate::strip::{is_degenerate, StripSet};
-use crate::topology::{vertex_bound, Walks, NO_NEIGHBOR};
+use crate::topology::{vertex_bound, vertex_triangles, Csr, Walks, NO_NEIGHBOR};
 
 pub(super) const NONE: u32 = u32::MAX;
 /// `mark` of a triangle already in a strip.
@@ -123,9 +123,8 @@ pub(super) struct State<'a> {
     pub(super) opt: CacheOptions,
     /// Free triangles by free degree (the greedy stripifier's buckets).
     pub(super) b: Buckets,
-    /// Vertex -> incident triangles (CSR).
-    pub(super) vstart: Vec<u32>,
-    pub(super) vtris: Vec<u32>,
+    /// Vertex -> its triangles.
+    pub(super) vtris: Csr<u32>,
     /// Per vertex, in one record: [0] FIFO push time (NONE: never); [1] the epoch of the
     /// walk that pushed it in its private copy of the FIFO and [2] that walk's push
     /// count then; [3] the epoch of the walk that counted [4] of its free triangles as
@@ -162,28 +161,7 @@ impl<'a> State<'a> {
         opt.max_len = opt.max_len.max(1);
         opt.scan_entries = opt.scan_entries.clamp(1, opt.cache_size);
         let degenerate: Vec<bool> = tris.iter().map(is_degenerate).collect();
-        let mut vstart = vec![0u32; vcount + 1];
-        for (t, _) in tris.iter().zip(&degenerate).filter(|(_, &d)| !d) {
-            for &v in t {
-                vstart[v as usize + 1] += 1;
-            }
-        }
-        for v in 0..vcount {
-            vstart[v + 1] += vstart[v];
-        }
-        let mut fill = vstart.clone();
-        let mut vtris = vec![0u32; vstart[vcount] as usize];
-        let mut vfree = vec![0u32; vcount];
-        for (i, t) in tris.iter().enumerate() {
-            if degenerate[i] {
-                continue;
-            }
-            for &v in t {
-                vtris[fill[v as usize] as usize] = i as u32;
-                fill[v as usize] += 1;
-                vfree[v as usize] += 1;
-            }
-        }
+        let vtris = vertex_triangles(tris, vcount);
         // The record of a triangle: a missing neighbour becomes the sentinel `n`.
         let record = |nbr: [u32; 3], twin: [u8; 3]| {
             let mut a = Adj {
@@ -229,9 +207,8 @@ impl<'a> State<'a> {
             adj,
             opt,
             b,
-            vstart,
+            vs: (0..vcount).map(|v| [NONE, 0, 0, 0, 0, vtris.bucket(v).len() as u32]).collect(),
             vtris,
-            vs: vfree.iter().map(|&f| [NONE, 0, 0, 0, 0, f]).collect(),
             ring: vec![NONE; opt.cache_size as usize],
             time: 0,
             // The sentinel triangle `n` is TAKEN.
@@ -579,8 +556,9 @@ impl<'a> State<'a> {
             if self.vs[v as usize][5] == 0 {
                 continue;
             }
-            for idx in self.vstart[v as usize]..self.vstart[v as usize + 1] {
-                let t = self.vtris[idx as usize];
+            let offsets = self.vtris.offsets();
+            for idx in offsets[v as usize]..offsets[v as usize + 1] {
+                let t = self.vtris.values()[idx as usize];
                 if self.mark[t as usize] != TAKEN {
                     self.consider(t, min_cached, best);
                 }
