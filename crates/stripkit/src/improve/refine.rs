@@ -4,6 +4,7 @@
 use super::flips::{Flips, FLIP_LINKS};
 use super::moves::{attach, ends, Move, Piece, MOVE_SLOTS, NONE};
 use super::tunnels::Tunnels;
+use crate::metrics::Fifo;
 use crate::strip::{join_shared_ends, joins_at_vertex, StripSet};
 use crate::topology::walks::{inner_swap, walk};
 use crate::topology::{vertex_bound, DualGraph, Walks, NO_NEIGHBOR};
@@ -45,13 +46,8 @@ pub(super) struct Refiner<'a> {
     /// The pass in which a taken move last replayed the slot.
     pub(super) touched: Vec<u32>,
     pub(super) pass: u32,
-    /// The replay FIFO: per vertex its push clock and the epoch of the replay that
-    /// pushed it; the last `c` pushes by `clock % c`.
-    pub(super) stamp: Vec<u32>,
-    pub(super) vepoch: Vec<u32>,
-    pub(super) epoch: u32,
-    pub(super) clock: u32,
-    pub(super) ring: Vec<u32>,
+    /// The replay FIFO.
+    pub(super) fifo: Fifo,
     /// The encoded new strips of the move being evaluated.
     pub(super) nbuf: [Vec<u32>; MOVE_SLOTS],
 }
@@ -161,36 +157,8 @@ impl Refiner<'_> {
 
     /// Starts a replay from the FIFO before slot `k`.
     fn load(&mut self, k: usize) {
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            self.vepoch.fill(0);
-            self.epoch = 1;
-        }
         let c = self.c;
-        self.clock = c as u32;
-        for i in 0..c {
-            let v = self.snap[k * c + i];
-            self.ring[self.clock as usize % c] = v;
-            if v != NONE {
-                self.stamp[v as usize] = self.clock;
-                self.vepoch[v as usize] = self.epoch;
-            }
-            self.clock += 1;
-        }
-    }
-
-    /// Feeds `v` to the replay FIFO; true on a miss.
-    #[inline]
-    fn touch(&mut self, v: u32) -> bool {
-        let vi = v as usize;
-        if self.vepoch[vi] == self.epoch && self.clock - self.stamp[vi] <= self.c as u32 {
-            return false;
-        }
-        self.vepoch[vi] = self.epoch;
-        self.stamp[vi] = self.clock;
-        self.ring[self.clock as usize % self.c] = v;
-        self.clock += 1;
-        true
+        self.fifo.load(&self.snap[k * c..(k + 1) * c]);
     }
 
     /// Feeds the triangles of one strip; returns its misses.
@@ -199,7 +167,7 @@ impl Refiner<'_> {
         let mut m = 0;
         crate::strip::for_each_triangle(strip, |t| {
             for v in t {
-                m += u32::from(self.touch(v));
+                m += u32::from(self.fifo.touch(v));
             }
         });
         m
@@ -208,17 +176,12 @@ impl Refiner<'_> {
     /// Whether the replay FIFO holds what snapshot `k` holds, in the same order.
     fn matches(&self, k: usize) -> bool {
         let c = self.c;
-        let snap = &self.snap[k * c..(k + 1) * c];
-        let h = self.clock as usize;
-        (0..c).all(|i| snap[i] == self.ring[(h + i) % c])
+        self.fifo.matches(&self.snap[k * c..(k + 1) * c])
     }
 
     fn store(&mut self, k: usize) {
         let c = self.c;
-        let h = self.clock as usize;
-        for i in 0..c {
-            self.snap[k * c + i] = self.ring[(h + i) % c];
-        }
+        self.fifo.snapshot(&mut self.snap[k * c..(k + 1) * c]);
     }
 
     /// Replays every strip from an empty FIFO, taking the snapshots; the misses.
@@ -399,11 +362,7 @@ pub(crate) fn refine(
         miss: vec![0; slots],
         touched: vec![0; slots],
         pass: 0,
-        stamp: vec![0; vcount],
-        vepoch: vec![0; vcount],
-        epoch: 0,
-        clock: 0,
-        ring: vec![NONE; c],
+        fifo: Fifo::new(c as u32, vcount),
         nbuf: Default::default(),
     };
     for k in 0..slots {

@@ -3,6 +3,7 @@
 
 use super::{CacheOptions, Links};
 use crate::stripify::greedy::Buckets;
+use crate::metrics::Fifo;
 use crate::strip::{is_degenerate, StripSet};
 use crate::topology::{vertex_bound, vertex_triangles, Csr, Walks, NO_NEIGHBOR};
 
@@ -25,13 +26,14 @@ pub(super) struct Adj {
     pub(super) twin: [u8; 3],
 }
 
-/// What a walk reads and writes, in locals: the per-vertex records, the triangle
-/// marks, the walk's epoch, the FIFO's clock and size, and the walk's pushes so far.
+/// What a walk reads and writes: the per-vertex records, the triangle marks, the
+/// walk's epoch, the FIFO (read only: the walk's own pushes go to its private copy in
+/// the records) and the walk's pushes so far.
 pub(super) struct Walk<'s> {
-    pub(super) vs: &'s mut [[u32; 6]],
+    pub(super) vs: &'s mut [[u32; 5]],
     pub(super) mark: &'s mut [u32],
     pub(super) epoch: u32,
-    pub(super) time: u32,
+    pub(super) fifo: &'s Fifo,
     pub(super) c: u32,
     pub(super) pushes: u32,
 }
@@ -47,11 +49,11 @@ impl Walk<'_> {
     /// Whether `v` is in the FIFO after the walk's pushes so far.
     #[inline(always)]
     fn cached_after(&self, v: u32) -> bool {
-        let [s, mark, local, ..] = self.vs[v as usize];
+        let [mark, local, ..] = self.vs[v as usize];
         if mark == self.epoch {
             return self.pushes - local <= self.c;
         }
-        s != NONE && self.time.wrapping_sub(s).wrapping_add(self.pushes) <= self.c
+        self.fifo.contains_after(v, self.pushes)
     }
 
     /// Feeds `v` to the walk's private copy of the FIFO; true on a miss.
@@ -61,8 +63,8 @@ impl Walk<'_> {
             return false;
         }
         let e = &mut self.vs[v as usize];
-        e[1] = self.epoch;
-        e[2] = self.pushes;
+        e[0] = self.epoch;
+        e[1] = self.pushes;
         self.pushes += 1;
         true
     }
@@ -71,9 +73,9 @@ impl Walk<'_> {
     #[inline(always)]
     fn uncover(&mut self, v: u32) {
         let e = &mut self.vs[v as usize];
-        if e[3] != self.epoch {
-            e[3] = self.epoch;
-            e[4] = 0;
+        if e[2] != self.epoch {
+            e[2] = self.epoch;
+            e[3] = 0;
         }
     }
 
@@ -82,8 +84,8 @@ impl Walk<'_> {
     #[inline(always)]
     fn cover(&mut self, v: u32) -> bool {
         let e = &mut self.vs[v as usize];
-        e[4] += 1;
-        e[4] == e[5]
+        e[3] += 1;
+        e[3] == e[4]
     }
 }
 
@@ -125,14 +127,13 @@ pub(super) struct State<'a> {
     pub(super) b: Buckets,
     /// Vertex -> its triangles.
     pub(super) vtris: Csr<u32>,
-    /// Per vertex, in one record: [0] FIFO push time (NONE: never); [1] the epoch of the
-    /// walk that pushed it in its private copy of the FIFO and [2] that walk's push
-    /// count then; [3] the epoch of the walk that counted [4] of its free triangles as
-    /// covered; [5] its free triangles.
-    pub(super) vs: Vec<[u32; 6]>,
-    /// The FIFO: the last `cache_size` pushes by `time % cache_size`, and the pushes.
-    pub(super) ring: Vec<u32>,
-    pub(super) time: u32,
+    /// Per vertex, in one record: [0] the epoch of the walk that pushed it in its
+    /// private copy of the FIFO and [1] that walk's push count then; [2] the epoch of
+    /// the walk that counted [3] of its free triangles as covered; [4] its free
+    /// triangles.
+    pub(super) vs: Vec<[u32; 5]>,
+    /// The FIFO the emitted strips went through; its pushes are their misses.
+    pub(super) fifo: Fifo,
     /// TAKEN for triangles in strips, else the epoch of the last walk through them.
     pub(super) mark: Vec<u32>,
     pub(super) epoch: u32,
@@ -207,10 +208,9 @@ impl<'a> State<'a> {
             adj,
             opt,
             b,
-            vs: (0..vcount).map(|v| [NONE, 0, 0, 0, 0, vtris.bucket(v).len() as u32]).collect(),
+            vs: (0..vcount).map(|v| [0, 0, 0, 0, vtris.bucket(v).len() as u32]).collect(),
             vtris,
-            ring: vec![NONE; opt.cache_size as usize],
-            time: 0,
+            fifo: Fifo::new(opt.cache_size, vcount),
             // The sentinel triangle `n` is TAKEN.
             mark: degenerate
                 .iter()
@@ -234,24 +234,11 @@ impl<'a> State<'a> {
         self.mark[t as usize] != TAKEN
     }
 
-    #[inline]
-    fn cached_now(&self, v: u32) -> bool {
-        let s = self.vs[v as usize][0];
-        s != NONE && self.time.wrapping_sub(s) <= self.opt.cache_size
-    }
-
     /// Feeds `v` to the FIFO for real.
     #[inline]
     fn touch(&mut self, v: u32) {
-        if self.cached_now(v) {
-            return;
-        }
-        self.vs[v as usize][0] = self.time;
-        let slot = (self.time % self.opt.cache_size) as usize;
-        self.ring[slot] = v;
-        self.time = self.time.wrapping_add(1);
+        self.fifo.touch(v);
     }
-
 
     /// Walks from `t` leaving across `slot` (or, with CONTINUE, from the end of the
     /// last strip, `t` being its last triangle) and offers each prefix to `best`; the
@@ -263,8 +250,8 @@ impl<'a> State<'a> {
                 *m = 0;
             }
             self.vs.iter_mut().for_each(|x| {
-                x[1] = 0;
-                x[3] = 0;
+                x[0] = 0;
+                x[2] = 0;
             });
             self.epoch = 1;
         }
@@ -274,7 +261,7 @@ impl<'a> State<'a> {
             vs: &mut self.vs,
             mark: &mut self.mark,
             epoch: self.epoch,
-            time: self.time,
+            fifo: &self.fifo,
             c: self.opt.cache_size,
             pushes: 0,
         };
@@ -465,7 +452,7 @@ impl<'a> State<'a> {
         if min_cached > 0 {
             let cached = self.tris[t as usize]
                 .iter()
-                .filter(|&&v| self.cached_now(v))
+                .filter(|&&v| self.fifo.contains(v))
                 .count() as u32;
             if cached < min_cached {
                 return;
@@ -480,7 +467,7 @@ impl<'a> State<'a> {
         self.b.free[t as usize] = false;
         self.mark[t as usize] = TAKEN;
         for &v in &self.tris[t as usize] {
-            self.vs[v as usize][5] -= 1;
+            self.vs[v as usize][4] -= 1;
         }
         for k in 0..3 {
             let m = self.adj[t as usize].nbr[k];
@@ -549,11 +536,10 @@ impl<'a> State<'a> {
     /// Offers the free triangles around the oldest `entries` entries of the FIFO
     /// (see [`State::consider`]), oldest first.
     fn scan(&mut self, entries: u32, min_cached: u32, best: &mut Best) {
-        let c = self.opt.cache_size;
-        let live = c.min(self.time);
+        let live = self.fifo.len();
         for i in (live.saturating_sub(entries)..live).rev() {
-            let v = self.ring[((self.time - 1 - i) % c) as usize];
-            if self.vs[v as usize][5] == 0 {
+            let v = self.fifo.newest(i);
+            if self.vs[v as usize][4] == 0 {
                 continue;
             }
             let offsets = self.vtris.offsets();

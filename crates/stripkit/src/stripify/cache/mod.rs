@@ -184,7 +184,7 @@ fn run_once(
 ) -> (StripSet, u64) {
     let mut s = State::new(tris, links, vertex_count, options);
     s.run();
-    let misses = u64::from(s.time);
+    let misses = u64::from(s.fifo.pushes());
     let mut out = s.out;
     join_shared_ends(&mut out);
     if !options.refine {
@@ -245,7 +245,7 @@ pub fn stripify_within(
         // The simulated FIFO is the measured one: its pushes are the misses.
         Try {
             miss_weight,
-            misses: u64::from(s.time),
+            misses: u64::from(s.fifo.pushes()),
             strips: s.out,
             walks: s.walks,
         }
@@ -525,7 +525,7 @@ mod tests {
         let (graph, twins) = DualGraph::from_triangles_with_twins(&tris, vc);
         let mut s = State::new(&tris, (&graph, &twins), vc, &CacheOptions::balanced(16));
         s.run();
-        let budget = ((0.8 * tris.len() as f64) as u64).max(u64::from(s.time));
+        let budget = ((0.8 * tris.len() as f64) as u64).max(u64::from(s.fifo.pushes()));
         let mut counts = Vec::new();
         for flip_links in [0, 3] {
             let effort = Effort {
@@ -558,7 +558,7 @@ mod tests {
             s.run();
             let decoded = decode(&s.out);
             let measured = cache_misses(&decoded, vc, o.cache_size as usize, CacheKind::Fifo);
-            assert_eq!(s.time as usize, measured, "{o:?}");
+            assert_eq!(s.fifo.pushes() as usize, measured, "{o:?}");
             assert!(verify(&tris, &s.out).ok());
         }
     }
