@@ -6,7 +6,8 @@
 //! most recent first: a triangle whose degree drops goes to the front of its new
 //! bucket (the paper's "insert before the first node of degree k-1") in O(1), so the
 //! next strip starts near the last one. (The paper's intrusive linked lists are
-//! replaced by stacks with lazy deletion that give the same order; see `Buckets`.)
+//! replaced by stacks with lazy deletion that give the same order; see
+//! `super::buckets`.)
 //!
 //! * A strip starts at a free triangle of lowest degree.
 //! * It grows forwards, then backwards from its start. The next triangle is the free
@@ -32,7 +33,8 @@
 //! end strips. Degenerate triangles (a repeated index) are dropped. Runs in
 //! O(triangles + vertices).
 
-use crate::strip::{is_degenerate, StripSet};
+use super::buckets::Buckets;
+use crate::strip::StripSet;
 use crate::topology::{DualGraph, Walks, NO_NEIGHBOR};
 
 /// What the greedy choice optimises.
@@ -95,53 +97,6 @@ const NONE: u32 = u32::MAX;
 type Key = (u8, u8, u8, u8, u8);
 /// Slot value meaning "no entry edge".
 const NO_SLOT: usize = 3;
-
-/// Free triangles bucketed by degree, most recently (re)inserted first.
-///
-/// The paper keeps one intrusive doubly linked list per degree and moves a triangle to
-/// the front of the next lower list when its degree drops. The same order comes out of
-/// one stack per degree with lazy deletion: a degree change pushes the triangle on the
-/// lower stack (a degree only falls, so a triangle enters each stack at most once) and
-/// leaves a stale entry behind, which [`Buckets::lowest`] skips (its degree or freedom no
-/// longer matches). Pushes are sequential writes instead of three random ones per move,
-/// which on a million triangles halves the running time; the strips are the same.
-pub(super) struct Buckets {
-    stacks: [Vec<u32>; 4],
-    /// Free dual neighbours of each triangle (valid while it is free).
-    pub(super) degree: Vec<u8>,
-    /// Not yet in a strip.
-    pub(super) free: Vec<bool>,
-}
-
-impl Buckets {
-    pub(super) fn new(n: usize) -> Self {
-        Buckets {
-            stacks: std::array::from_fn(|_| Vec::with_capacity(n)),
-            degree: vec![0; n],
-            free: vec![false; n],
-        }
-    }
-
-    /// Puts free triangle `t` at the front of degree `d`.
-    #[inline]
-    pub(super) fn push_front(&mut self, t: u32, d: u8) {
-        self.stacks[d as usize].push(t);
-        self.degree[t as usize] = d;
-    }
-
-    /// The first free triangle of the lowest degree, dropping stale entries on the way.
-    pub(super) fn lowest(&mut self) -> Option<u32> {
-        for d in 0..4 {
-            while let Some(&t) = self.stacks[d].last() {
-                if self.free[t as usize] && self.degree[t as usize] as usize == d {
-                    return Some(t);
-                }
-                self.stacks[d].pop();
-            }
-        }
-        None
-    }
-}
 
 struct Greedy<'a> {
     tris: &'a [[u32; 3]],
@@ -278,21 +233,9 @@ fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOption
     let mut g = Greedy {
         tris,
         nbr: &graph.neighbors,
-        b: Buckets::new(n),
+        b: Buckets::of(tris, graph),
         heuristic: options.heuristic,
     };
-    // Insert in reverse so that each bucket starts in input order.
-    for t in (0..n).rev() {
-        if is_degenerate(&tris[t]) {
-            continue;
-        }
-        g.b.free[t] = true;
-        let d = graph.neighbors[t]
-            .iter()
-            .filter(|&&x| x != NO_NEIGHBOR)
-            .count() as u8;
-        g.b.push_front(t as u32, d);
-    }
     let mut walks = Walks::with_capacity(n);
     let mut path: Vec<u32> = Vec::new();
     let mut back: Vec<u32> = Vec::new();

@@ -7,9 +7,12 @@
 //! [`encode_path`]. The quad stripifiers ([`quad`], [`quad_single`]) work on quad
 //! sequences instead, and [`quad_verify`] checks their output against the quads.
 
+mod buckets;
 pub mod cache;
 pub mod greedy;
 pub mod quad;
+mod quad_adjacency;
+mod quad_sequence;
 pub mod quad_single;
 pub mod quad_verify;
 pub use crate::improve::tunnel;

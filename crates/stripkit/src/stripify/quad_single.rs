@@ -21,7 +21,8 @@
 //!
 //! O(quads log quads) (reversals always take the smaller cycle).
 
-use super::quad::{emit_quad_sequence, step, QuadAdjacency, INF, NONE, NO_EDGE};
+use super::quad_adjacency::{QuadAdjacency, NONE};
+use super::quad_sequence::{emit_quad_sequence, step, INF, NO_EDGE};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::strip::StripSet;

@@ -2,7 +2,7 @@
 //! free triangles around a simulated FIFO (see the module docs of [`super`]).
 
 use super::{CacheOptions, Links};
-use crate::stripify::greedy::Buckets;
+use crate::stripify::buckets::Buckets;
 use crate::metrics::Fifo;
 use crate::strip::{is_degenerate, StripSet};
 use crate::topology::{vertex_bound, vertex_triangles, Csr, Walks, NO_NEIGHBOR};
@@ -191,16 +191,7 @@ impl<'a> State<'a> {
             opp: [0; 3],
             twin: [0; 3],
         });
-        let mut b = Buckets::new(n);
-        // Inserted in reverse so that each bucket starts in input order.
-        for i in (0..n).rev() {
-            if degenerate[i] {
-                continue;
-            }
-            b.free[i] = true;
-            let d = adj[i].nbr.iter().filter(|&&x| x != n as u32).count() as u8;
-            b.push_front(i as u32, d);
-        }
+        let b = Buckets::of(tris, graph);
         let mut out = StripSet::new();
         out.indices.reserve(n + n / 2);
         State {
