@@ -1,10 +1,10 @@
 //! The flips of [`super::refine`]: alternating cycles through swaps and alternating
 //! paths that touch some strip twice.
 
-use super::moves::{ends, Move, Piece, MOVE_SLOTS, NONE};
+use super::moves::{ends, Move, MoveList, Piece, MOVE_SLOTS, NONE};
+use super::slots::Slots;
 use crate::topology::walks::{inner_swap, walk_swaps};
-use super::tunnels::Tunnels;
-use crate::topology::{DualGraph, NO_NEIGHBOR};
+use crate::topology::NO_NEIGHBOR;
 
 /// Most links one flip of [`refine`] can drop (the size of its fixed arrays); each
 /// call sets its own limit, [`Effort::flip_links`]: cycles of up to twice that many
@@ -39,14 +39,8 @@ pub(super) const FLIP_LINKS: usize = 4;
 /// vertex) and each new walk's first three triangles walked; flips of no more indices
 /// become moves and [`Refiner::eval`] scores them exactly.
 pub(super) struct Flips<'a> {
-    pub(super) tris: &'a [[u32; 3]],
-    pub(super) graph: &'a DualGraph,
-    pub(super) walks: &'a [Vec<u32>],
-    pub(super) slot_of: &'a [u32],
-    pub(super) pos: &'a [u32],
-    pub(super) pre: &'a [u32],
-    pub(super) pool: &'a mut Vec<u32>,
-    pub(super) moves: &'a mut Vec<Move>,
+    pub(super) s: &'a Slots<'a>,
+    pub(super) out: &'a mut MoveList,
     /// The cycle being grown: `cyc[2i]`, `cyc[2i + 1]` is a used link, `cyc[2i + 1]`,
     /// `cyc[2i + 2]` (cyclically) an unused dual edge.
     pub(super) cyc: [u32; 2 * FLIP_LINKS + 2],
@@ -64,30 +58,21 @@ impl Flips<'_> {
     /// Whether `a` and `b` are consecutive in a walk.
     #[inline]
     fn linked(&self, a: u32, b: u32) -> bool {
-        let s = self.slot_of[a as usize];
+        let s = self.s.slot_of[a as usize];
         s != NONE
-            && s == self.slot_of[b as usize]
-            && self.pos[a as usize].abs_diff(self.pos[b as usize]) == 1
+            && s == self.s.slot_of[b as usize]
+            && self.s.pos[a as usize].abs_diff(self.s.pos[b as usize]) == 1
     }
 
     /// The triangles before and after `u` in its walk that are not in `cyc[..len]`
     /// (the links a flip may drop at `u`), NONE where there is none.
     fn walk_neighbours(&self, u: u32, len: usize) -> [u32; 2] {
-        let w = &self.walks[self.slot_of[u as usize] as usize];
-        let p = self.pos[u as usize] as usize;
+        let w = &self.s.walks[self.s.slot_of[u as usize] as usize];
+        let p = self.s.pos[u as usize] as usize;
         [p.wrapping_sub(1), p + 1].map(|q| match w.get(q) {
             Some(&v) if !self.cyc[..len].contains(&v) => v,
             _ => NONE,
         })
-    }
-
-    /// Swaps of the walk in slot `s` (its reading direction).
-    fn old_swaps(&self, s: u32) -> i64 {
-        let w = &self.walks[s as usize];
-        if w.len() < 3 {
-            return 0;
-        }
-        i64::from(walk_swaps(self.tris, self.graph, &w[..3]) + self.pre[w[w.len() - 2] as usize])
     }
 
     /// Swaps of the walk made of `pieces` in order, each in its direction: the swaps
@@ -102,21 +87,18 @@ impl Flips<'_> {
         let at = |mut i: usize| {
             for p in pieces {
                 if i < p.len() {
-                    return p.at(self.walks, i);
+                    return p.at(&self.s.walks, i);
                 }
                 i -= p.len();
             }
             unreachable!("index within the walk")
         };
         let tri3 = [at(0), at(1), at(2)];
-        let mut s = i64::from(walk_swaps(self.tris, self.graph, &tri3));
+        let mut s = i64::from(walk_swaps(self.s.tris, self.s.graph, &tri3));
         let mut prev_j = 0usize;
         let mut j = 0usize;
         for (k, p) in pieces.iter().enumerate() {
-            s += i64::from(Tunnels::inner_of(
-                self.walks,
-                self.pre,
-                *p,
+            s += i64::from(self.s.inner(*p,
                 p.lo + 2,
                 p.hi.saturating_sub(2),
             ));
@@ -129,7 +111,7 @@ impl Flips<'_> {
                         break;
                     }
                     let win = [at(st), at(st + 1), at(st + 2), at(st + 3)];
-                    s += i64::from(inner_swap(self.tris, self.graph, &win));
+                    s += i64::from(inner_swap(self.s.tris, self.s.graph, &win));
                 }
                 prev_j = j;
             }
@@ -141,7 +123,7 @@ impl Flips<'_> {
     /// Flips from the links of strip `x` that take part in a swap.
     pub(super) fn search(&mut self, x: u32) {
         self.seen.clear();
-        let walks = self.walks;
+        let walks = &self.s.walks;
         let w = &walks[x as usize];
         let n = w.len();
         if n < 4 {
@@ -150,7 +132,7 @@ impl Flips<'_> {
         // Swap at position q (2 <= q <= n - 2): the links q - 1, q, q + 1 around one
         // vertex (link j joins w[j - 1] and w[j]).
         let swap_at = |q: usize| {
-            q >= 2 && q + 2 <= n && self.pre[w[q] as usize] != self.pre[w[q - 1] as usize]
+            q >= 2 && q + 2 <= n && self.s.pre[w[q] as usize] != self.s.pre[w[q - 1] as usize]
         };
         for j in 0..n - 1 {
             // The link w[j], w[j + 1] takes part in the swaps at j, j + 1, j + 2.
@@ -167,8 +149,8 @@ impl Flips<'_> {
     /// dual edge and a used link, or closes it into a cycle.
     fn grow(&mut self, len: usize) {
         let t = self.cyc[len - 1];
-        for u in self.graph.neighbors[t as usize] {
-            if u == NO_NEIGHBOR || self.slot_of[u as usize] == NONE || self.linked(t, u) {
+        for u in self.s.graph.neighbors[t as usize] {
+            if u == NO_NEIGHBOR || self.s.slot_of[u as usize] == NONE || self.linked(t, u) {
                 continue;
             }
             if u == self.cyc[0] {
@@ -212,7 +194,7 @@ impl Flips<'_> {
     /// triangle, one of its links dropped, a link added from the triangle left with a
     /// free side, ..., ending after a drop or with a link into a walk end.
     pub(super) fn search_paths(&mut self, x: u32) {
-        let walks = self.walks;
+        let walks = &self.s.walks;
         let w = &walks[x as usize];
         let (xe, nx) = ends(w);
         for &e in &xe[..nx] {
@@ -226,16 +208,16 @@ impl Flips<'_> {
     fn repeats(&self, len: usize, joined: bool) -> bool {
         let mut ev = [NONE; FLIP_LINKS + 2];
         let mut m = 0;
-        ev[m] = self.slot_of[self.cyc[0] as usize];
+        ev[m] = self.s.slot_of[self.cyc[0] as usize];
         m += 1;
         let mut i = 2;
         while i < len {
-            ev[m] = self.slot_of[self.cyc[i] as usize];
+            ev[m] = self.s.slot_of[self.cyc[i] as usize];
             m += 1;
             i += 2;
         }
         if joined {
-            ev[m] = self.slot_of[self.cyc[len - 1] as usize];
+            ev[m] = self.s.slot_of[self.cyc[len - 1] as usize];
             m += 1;
         }
         let ev = &mut ev[..m];
@@ -246,16 +228,16 @@ impl Flips<'_> {
     /// Extends the path `cyc[..len]` (odd length: its last triangle has a free side).
     fn grow_path(&mut self, len: usize) {
         let t = self.cyc[len - 1];
-        for u in self.graph.neighbors[t as usize] {
+        for u in self.s.graph.neighbors[t as usize] {
             if u == NO_NEIGHBOR
-                || self.slot_of[u as usize] == NONE
+                || self.s.slot_of[u as usize] == NONE
                 || self.linked(t, u)
                 || self.cyc[..len].contains(&u)
             {
                 continue;
             }
-            let w = &self.walks[self.slot_of[u as usize] as usize];
-            let p = self.pos[u as usize] as usize;
+            let w = &self.s.walks[self.s.slot_of[u as usize] as usize];
+            let p = self.s.pos[u as usize] as usize;
             self.cyc[len] = u;
             if (p == 0 || p + 1 == w.len()) && len >= 3 && self.repeats(len + 1, true) {
                 self.path(len + 1);
@@ -298,13 +280,13 @@ impl Flips<'_> {
     /// longest piece where free, the others in the free slots, slots left over
     /// emptied.
     fn assemble(&mut self, drops: &[(u32, u32)], adds: &[(u32, u32)]) {
-        let walks = self.walks;
+        let walks = &self.s.walks;
         // Touched slots.
         let mut slots = [0u32; MOVE_SLOTS];
         let mut nslots = 0;
         for &(a, b) in drops.iter().chain(adds.iter()) {
             for t in [a, b] {
-                let s = self.slot_of[t as usize];
+                let s = self.s.slot_of[t as usize];
                 if !slots[..nslots].contains(&s) {
                     if nslots == MOVE_SLOTS {
                         return;
@@ -320,8 +302,8 @@ impl Flips<'_> {
         let mut cuts = [(0u32, 0u32); FLIP_LINKS];
         for (i, &(a, b)) in drops.iter().enumerate() {
             cuts[i] = (
-                self.slot_of[a as usize],
-                self.pos[a as usize].min(self.pos[b as usize]),
+                self.s.slot_of[a as usize],
+                self.s.pos[a as usize].min(self.s.pos[b as usize]),
             );
         }
         let cuts = &mut cuts[..k];
@@ -360,7 +342,7 @@ impl Flips<'_> {
         // The free end (2 * piece + side, side 1 at hi) that triangle t offers to an
         // added link: at its dropped link, else at its walk end.
         let end_of = |t: u32, mate: &[usize]| -> usize {
-            let (s, p) = (self.slot_of[t as usize], self.pos[t as usize]);
+            let (s, p) = (self.s.slot_of[t as usize], self.s.pos[t as usize]);
             let dropped = drops.iter().find_map(|&(a, b)| {
                 if a == t {
                     Some(b)
@@ -373,7 +355,7 @@ impl Flips<'_> {
             let seg =
                 |f: &dyn Fn(&Piece) -> bool| (0..ns).find(|&g| segs[g].slot == s && f(&segs[g]));
             match dropped {
-                Some(o) if self.pos[o as usize] == p + 1 => {
+                Some(o) if self.s.pos[o as usize] == p + 1 => {
                     2 * seg(&|q| q.hi == p + 1).expect("a cut end") + 1
                 }
                 Some(_) => 2 * seg(&|q| q.lo == p).expect("a cut end"),
@@ -466,7 +448,7 @@ impl Flips<'_> {
         }
         let mut di = 3 * (nw as i64 - nslots as i64);
         for &s in &slots[..nslots] {
-            di -= self.old_swaps(s);
+            di -= self.s.swaps(s);
         }
         for i in 0..nw {
             di += self.new_swaps(&order[bounds[i]..bounds[i + 1]]);
@@ -514,14 +496,14 @@ impl Flips<'_> {
         }
         let mut list = [(0u32, 0u32, 0u32); MOVE_SLOTS];
         for i in 0..nw {
-            let start = self.pool.len();
+            let start = self.out.pool.len();
             for p in &order[bounds[i]..bounds[i + 1]] {
-                p.extend(walks, self.pool);
+                p.extend(walks, &mut self.out.pool);
             }
             list[i] = (
                 slots[home[i] as usize],
                 start as u32,
-                (self.pool.len() - start) as u32,
+                (self.out.pool.len() - start) as u32,
             );
         }
         let mut m = nw;
@@ -531,6 +513,6 @@ impl Flips<'_> {
                 m += 1;
             }
         }
-        self.moves.push(Move::new(&list[..m]));
+        self.out.moves.push(Move::new(&list[..m]));
     }
 }

@@ -10,6 +10,7 @@
 mod flips;
 mod moves;
 mod refine;
+mod slots;
 pub mod tunnel;
 mod tunnels;
 

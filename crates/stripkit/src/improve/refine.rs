@@ -2,11 +2,12 @@
 //! exactly ([`Refiner`]).
 
 use super::flips::{Flips, FLIP_LINKS};
-use super::moves::{attach, ends, Move, Piece, MOVE_SLOTS, NONE};
+use super::moves::{ends, simple_moves, Move, MoveList, Piece, MOVE_SLOTS, NONE};
+use super::slots::Slots;
 use super::tunnels::Tunnels;
 use crate::metrics::Fifo;
 use crate::strip::{join_shared_ends, joins_at_vertex, StripSet};
-use crate::topology::walks::{inner_swap, walk};
+use crate::topology::walks::walk;
 use crate::topology::{vertex_bound, DualGraph, Walks, NO_NEIGHBOR};
 
 /// Triangles simulated past a change: a move whose FIFO has not come back to the old
@@ -25,47 +26,39 @@ pub(crate) struct Effort {
 
 /// The strips of [`refine`] with the FIFO before each of them, and a private FIFO to
 /// replay a stretch of the output from one of those snapshots.
-pub(super) struct Refiner<'a> {
-    pub(super) tris: &'a [[u32; 3]],
-    pub(super) graph: &'a DualGraph,
+struct Refiner<'a> {
+    /// The walks and strips in their slots.
+    s: Slots<'a>,
     /// Cache entries.
-    pub(super) c: usize,
-    /// Walk and encoded strip per slot (empty: the slot lost its strip).
-    pub(super) walks: Vec<Vec<u32>>,
-    pub(super) enc: Vec<Vec<u32>>,
-    /// Triangle -> slot, position in the slot's walk, and the swaps its walk needs
-    /// at inner triangles up to it (see [`Refiner::index_walk`]).
-    pub(super) slot_of: Vec<u32>,
-    pub(super) pos: Vec<u32>,
-    pub(super) pre: Vec<u32>,
+    c: usize,
     /// FIFO contents (oldest first, NONE for empty entries) before each slot, and
     /// after the last one: `snap[k * c..(k + 1) * c]`.
-    pub(super) snap: Vec<u32>,
+    snap: Vec<u32>,
     /// Misses of each slot's strip.
-    pub(super) miss: Vec<u32>,
+    miss: Vec<u32>,
     /// The pass in which a taken move last replayed the slot.
-    pub(super) touched: Vec<u32>,
-    pub(super) pass: u32,
+    touched: Vec<u32>,
+    pass: u32,
     /// The replay FIFO.
-    pub(super) fifo: Fifo,
+    fifo: Fifo,
     /// The encoded new strips of the move being evaluated.
-    pub(super) nbuf: [Vec<u32>; MOVE_SLOTS],
+    nbuf: [Vec<u32>; MOVE_SLOTS],
 }
 
-impl Refiner<'_> {
-    /// Fills `pos` and `pre` for the walk of slot `k`: `pre[w[j]]` counts the swaps at
-    /// `w[2..=j]`. A swap at an inner triangle depends only on it, the triangle after
-    /// it and the two before (see the module docs of `stripify`): the swaps of a
-    /// 4-window less those of its first three triangles.
-    fn index_walk(&mut self, k: usize) {
-        let w = &self.walks[k];
-        let mut acc = 0;
-        for (j, &t) in w.iter().enumerate() {
-            self.pos[t as usize] = j as u32;
-            if j >= 2 && j + 1 < w.len() {
-                acc += inner_swap(self.tris, self.graph, &w[j - 2..j + 2]);
-            }
-            self.pre[t as usize] = acc;
+impl<'a> Refiner<'a> {
+    /// The slots of `walks` and the FIFO before each of them.
+    fn new(tris: &'a [[u32; 3]], graph: &'a DualGraph, walks: &Walks, cache_size: usize) -> Self {
+        let s = Slots::new(tris, graph, walks);
+        let (slots, c) = (s.len(), cache_size);
+        Refiner {
+            s,
+            c,
+            snap: vec![NONE; (slots + 1) * c],
+            miss: vec![0; slots],
+            touched: vec![0; slots],
+            pass: 0,
+            fifo: Fifo::new(c as u32, vertex_bound(tris)),
+            nbuf: Default::default(),
         }
     }
 
@@ -74,7 +67,7 @@ impl Refiner<'_> {
     fn strip_after<'s>(&'s self, mv: &Move, k: u32) -> &'s [u32] {
         match mv.ch[..mv.n as usize].iter().position(|c| c.0 == k) {
             Some(i) => &self.nbuf[i],
-            None => &self.enc[k as usize],
+            None => &self.s.enc[k as usize],
         }
     }
 
@@ -92,11 +85,11 @@ impl Refiner<'_> {
             u[m] = k;
             m += 1;
             let k = k as usize;
-            if let Some(p) = (0..k).rev().find(|&p| !self.enc[p].is_empty()) {
+            if let Some(p) = (0..k).rev().find(|&p| !self.s.enc[p].is_empty()) {
                 u[m] = p as u32;
                 m += 1;
             }
-            if let Some(q) = (k + 1..self.enc.len()).find(|&q| !self.enc[q].is_empty()) {
+            if let Some(q) = (k + 1..self.s.enc.len()).find(|&q| !self.s.enc[q].is_empty()) {
                 u[m] = q as u32;
                 m += 1;
             }
@@ -115,7 +108,7 @@ impl Refiner<'_> {
             if after {
                 self.strip_after(mv, k)
             } else {
-                &self.enc[k as usize][..]
+                &self.s.enc[k as usize][..]
             }
         };
         let mut joins = 0i64;
@@ -141,18 +134,36 @@ impl Refiner<'_> {
         joins
     }
 
-    /// Joins at a vertex between consecutive non-empty slots: the strips of
-    /// [`refine`] save that many restart indices once [`join_shared_ends`] has run.
-    fn vertex_joins(&self) -> u64 {
-        let mut joins = 0;
-        let mut prev: Option<&[u32]> = None;
-        for s in self.enc.iter().filter(|s| !s.is_empty()) {
-            if prev.is_some_and(|p| joins_at_vertex(p, s)) {
-                joins += 1;
+    /// Whether slot `x`, or a slot next to one of its ends, was replayed by a move of
+    /// the pass before `pass` (the later passes look only there).
+    fn near_change(&self, x: usize, pass: u32) -> bool {
+        let recent = |k: u32| k != NONE && self.touched[k as usize] + 1 >= pass;
+        let (xe, nx) = ends(&self.s.walks[x]);
+        recent(x as u32)
+            || xe[..nx].iter().any(|&e| {
+                self.s.graph.neighbors[e as usize]
+                    .iter()
+                    .any(|&n| n != NO_NEIGHBOR && recent(self.s.slot_of[n as usize]))
+            })
+    }
+
+    /// The move of `list` that lowers `indices + lambda * misses` most with the misses
+    /// (now `total`) kept within `budget`, and its change in misses.
+    fn best(&mut self, list: &MoveList, total: u64, budget: u64, lambda: f64) -> Option<(usize, i64)> {
+        let mut best: Option<(f64, usize, i64)> = None;
+        for (i, mv) in list.moves.iter().enumerate() {
+            let Some((di, dm)) = self.eval(mv, &list.pool, false) else {
+                continue;
+            };
+            if total as i64 + dm > budget as i64 {
+                continue;
             }
-            prev = Some(s);
+            let d = di as f64 + lambda * dm as f64;
+            if d < -1e-9 && best.is_none_or(|b| d < b.0) {
+                best = Some((d, i, dm));
+            }
         }
-        joins
+        best.map(|(_, i, dm)| (i, dm))
     }
 
     /// Starts a replay from the FIFO before slot `k`.
@@ -190,10 +201,10 @@ impl Refiner<'_> {
         self.snap[..c].fill(NONE);
         self.load(0);
         let mut total = 0;
-        for k in 0..self.walks.len() {
-            let strip = std::mem::take(&mut self.enc[k]);
+        for k in 0..self.s.walks.len() {
+            let strip = std::mem::take(&mut self.s.enc[k]);
             self.miss[k] = self.replay(&strip);
-            self.enc[k] = strip;
+            self.s.enc[k] = strip;
             total += u64::from(self.miss[k]);
             self.store(k + 1);
         }
@@ -209,7 +220,7 @@ impl Refiner<'_> {
     /// change: from there on nothing differs. Between changes far apart, the replay
     /// jumps to the next change once the FIFO matches.
     fn eval(&mut self, mv: &Move, pool: &[u32], apply: bool) -> Option<(i64, i64)> {
-        let slots = self.walks.len();
+        let slots = self.s.walks.len();
         let n = mv.n as usize;
         let mut di = 0i64;
         for i in 0..n {
@@ -218,11 +229,11 @@ impl Refiner<'_> {
             let mut buf = std::mem::take(&mut self.nbuf[i]);
             buf.clear();
             if !w.is_empty() {
-                walk(self.tris, self.graph, w.len(), |j| w[j], |v| buf.push(v));
+                walk(self.s.tris, self.s.graph, w.len(), |j| w[j], |v| buf.push(v));
                 di += buf.len() as i64 + 1;
             }
             self.nbuf[i] = buf;
-            let old = &self.enc[k as usize];
+            let old = &self.s.enc[k as usize];
             if !old.is_empty() {
                 di -= old.len() as i64 + 1;
             }
@@ -242,10 +253,10 @@ impl Refiner<'_> {
                 ci += 1;
                 m
             } else {
-                let strip = std::mem::take(&mut self.enc[k]);
+                let strip = std::mem::take(&mut self.s.enc[k]);
                 let m = self.replay(&strip);
-                self.enc[k] = strip;
-                steps += self.walks[k].len();
+                self.s.enc[k] = strip;
+                steps += self.s.walks[k].len();
                 m
             };
             dm += i64::from(misses) - i64::from(self.miss[k]);
@@ -279,17 +290,10 @@ impl Refiner<'_> {
             for i in 0..n {
                 let (k, start, len) = mv.ch[i];
                 let w = &pool[start as usize..(start + len) as usize];
-                for &t in w {
-                    self.slot_of[t as usize] = k;
-                }
-                let k = k as usize;
-                self.walks[k].clear();
-                self.walks[k].extend_from_slice(w);
-                self.enc[k].clear();
-                self.enc[k].extend_from_slice(&self.nbuf[i]);
+                self.s.set(k, w, &self.nbuf[i]);
             }
             for i in 0..n {
-                self.index_walk(mv.ch[i].0 as usize);
+                self.s.index_walk(mv.ch[i].0 as usize);
             }
         }
         Some((di, dm))
@@ -331,187 +335,45 @@ pub(crate) fn refine(
     budget: u64,
     effort: Effort,
 ) -> (StripSet, u64) {
-    let walks: Vec<Vec<u32>> = walks.iter().map(|w| w.to_vec()).collect();
-    let c = cache_size;
-    let slots = walks.len();
-    let mut slot_of = vec![NONE; tris.len()];
-    for (k, w) in walks.iter().enumerate() {
-        for &t in w {
-            slot_of[t as usize] = k as u32;
-        }
-    }
-    let enc = walks
-        .iter()
-        .map(|w| {
-            let mut strip = Vec::with_capacity(w.len() + 4);
-            walk(tris, graph, w.len(), |i| w[i], |v| strip.push(v));
-            strip
-        })
-        .collect();
-    let vcount = vertex_bound(tris);
-    let mut r = Refiner {
-        tris,
-        graph,
-        c,
-        walks,
-        enc,
-        slot_of,
-        pos: vec![0; tris.len()],
-        pre: vec![0; tris.len()],
-        snap: vec![NONE; (slots + 1) * c],
-        miss: vec![0; slots],
-        touched: vec![0; slots],
-        pass: 0,
-        fifo: Fifo::new(c as u32, vcount),
-        nbuf: Default::default(),
-    };
-    for k in 0..slots {
-        r.index_walk(k);
-    }
+    let mut r = Refiner::new(tris, graph, walks, cache_size);
     let mut total = r.replay_all();
     // The index count of the strips once joined at their shared ends, kept up to date
     // by the moves taken (checked against the output in debug builds).
-    let mut indices = r.enc.iter().map(|s| s.len() as i64 + 1).sum::<i64>()
+    let mut indices = r.s.enc.iter().map(|s| s.len() as i64 + 1).sum::<i64>()
         - 1
-        - r.vertex_joins() as i64;
-    let mut pool: Vec<u32> = Vec::new();
-    let mut moves: Vec<Move> = Vec::new();
+        - r.s.vertex_joins() as i64;
+    let mut list = MoveList::default();
     let mut used: Vec<u32> = Vec::new();
     let mut joins: Vec<(Piece, Piece)> = Vec::new();
     let mut seen: Vec<[u32; 2 * FLIP_LINKS + 2]> = Vec::new();
     for pass in 1..=effort.passes {
         r.pass = pass;
         let mut changed = false;
-        for x in 0..slots {
-            let lx = r.walks[x].len();
-            if lx == 0 {
+        for x in 0..r.s.len() {
+            if r.s.walks[x].is_empty() || (pass > 1 && !r.near_change(x, pass)) {
                 continue;
             }
-            let (xe, nx) = ends(&r.walks[x]);
-            if pass > 1 {
-                // Only strips next to the last pass's changes.
-                let recent = |k: u32| k != NONE && r.touched[k as usize] + 1 >= pass;
-                let near = recent(x as u32)
-                    || xe[..nx].iter().any(|&e| {
-                        graph.neighbors[e as usize]
-                            .iter()
-                            .any(|&n| n != NO_NEIGHBOR && recent(r.slot_of[n as usize]))
-                    });
-                if !near {
-                    continue;
-                }
-            }
-            pool.clear();
-            moves.clear();
-            let xw = &r.walks[x];
             let xs = x as u32;
-            if lx >= 2 {
-                let start = pool.len() as u32;
-                pool.extend(xw.iter().rev());
-                moves.push(Move::new(&[(xs, start, lx as u32)]));
-            }
-            for &e in &xe[..nx] {
-                for &n in &graph.neighbors[e as usize] {
-                    if n == NO_NEIGHBOR {
-                        continue;
-                    }
-                    let s = r.slot_of[n as usize];
-                    if s == xs || s == NONE {
-                        continue;
-                    }
-                    let sw = &r.walks[s as usize];
-                    if sw[0] == n || sw[sw.len() - 1] == n {
-                        attach(&mut pool, sw, n, xw, e, |start, len| {
-                            moves.push(Move::new(&[(s, start, len), (xs, 0, 0)]));
-                            moves.push(Move::new(&[(xs, start, len), (s, 0, 0)]));
-                        });
-                        continue;
-                    }
-                    // n inside S = A n B: X joins `A n` (B cut off) or `n B` (A cut
-                    // off); the part cut off joins a strip Z at one of its ends.
-                    let i = sw.iter().position(|&t| t == n).unwrap_or(0);
-                    for (kept, cut) in [(&sw[..=i], &sw[i + 1..]), (&sw[i..], &sw[..i])] {
-                        let mut joined = [(0u32, 0u32); 2];
-                        let mut nj = 0;
-                        attach(&mut pool, kept, n, xw, e, |start, len| {
-                            joined[nj] = (start, len);
-                            nj += 1;
-                        });
-                        let (ce, nc) = ends(cut);
-                        for &p in &ce[..nc] {
-                            for &q in &graph.neighbors[p as usize] {
-                                if q == NO_NEIGHBOR {
-                                    continue;
-                                }
-                                let z = r.slot_of[q as usize];
-                                if z == xs || z == s || z == NONE {
-                                    continue;
-                                }
-                                let zw = &r.walks[z as usize];
-                                if zw[0] != q && zw[zw.len() - 1] != q {
-                                    continue;
-                                }
-                                attach(&mut pool, zw, q, cut, p, |zs, zl| {
-                                    for &(js, jl) in &joined[..nj] {
-                                        for (a, b, e) in [(s, z, xs), (xs, z, s), (xs, s, z)] {
-                                            moves.push(Move::new(&[
-                                                (a, js, jl),
-                                                (b, zs, zl),
-                                                (e, 0, 0),
-                                            ]));
-                                        }
-                                    }
-                                });
-                            }
-                        }
-                    }
-                }
-            }
-            let mut tun = Tunnels {
-                tris,
-                graph,
-                walks: &r.walks,
-                enc: &r.enc,
-                slot_of: &r.slot_of,
-                pos: &r.pos,
-                pre: &r.pre,
-                pool: &mut pool,
-                moves: &mut moves,
+            list.clear();
+            simple_moves(&r.s, xs, &mut list);
+            Tunnels {
+                s: &r.s,
+                out: &mut list,
                 used: &mut used,
                 joins: &mut joins,
-            };
-            tun.search(xs);
+            }
+            .search(xs);
             let mut flips = Flips {
-                tris,
-                graph,
-                walks: &r.walks,
-                slot_of: &r.slot_of,
-                pos: &r.pos,
-                pre: &r.pre,
-                pool: &mut pool,
-                moves: &mut moves,
+                s: &r.s,
+                out: &mut list,
                 cyc: [NONE; 2 * FLIP_LINKS + 2],
                 links: effort.flip_links.min(FLIP_LINKS),
                 seen: &mut seen,
             };
             flips.search(xs);
             flips.search_paths(xs);
-            let mut best: Option<(f64, usize, i64)> = None;
-            for (i, mv) in moves.iter().enumerate() {
-                let Some((di, dm)) = r.eval(mv, &pool, false) else {
-                    continue;
-                };
-                if total as i64 + dm > budget as i64 {
-                    continue;
-                }
-                let d = di as f64 + lambda * dm as f64;
-                if d < -1e-9 && best.is_none_or(|b| d < b.0) {
-                    best = Some((d, i, dm));
-                }
-            }
-            if let Some((_, i, dm)) = best {
-                let mv = moves[i];
-                if let Some((di, _)) = r.eval(&mv, &pool, true) {
+            if let Some((i, dm)) = r.best(&list, total, budget, lambda) {
+                if let Some((di, _)) = r.eval(&list.moves[i], &list.pool, true) {
                     indices += di;
                 }
                 total = (total as i64 + dm) as u64;
@@ -522,10 +384,7 @@ pub(crate) fn refine(
             break;
         }
     }
-    let mut out = StripSet::new();
-    for strip in r.enc.iter().filter(|s| !s.is_empty()) {
-        out.push(strip);
-    }
+    let mut out = r.s.strips();
     join_shared_ends(&mut out);
     debug_assert_eq!(out.restart_len() as i64, indices.max(0));
     (out, total)

@@ -1,8 +1,9 @@
 //! The tunnels of [`super::refine`]: alternating paths through up to three strips.
 
-use super::moves::{Move, Piece, MOVE_SLOTS, NONE};
+use super::moves::{Move, MoveList, Piece, MOVE_SLOTS, NONE};
+use super::slots::Slots;
 use crate::topology::walks::walk_swaps;
-use crate::topology::{DualGraph, NO_NEIGHBOR};
+use crate::topology::NO_NEIGHBOR;
 
 /// Most links a tunnel of [`refine`] cuts (bunny: 85,637 indices with 2, 85,540 with
 /// 3, 85,499 with 4 for a third more time).
@@ -27,15 +28,8 @@ pub(super) const REFINE_CUTS: usize = 3;
 /// more time). Strips on a path are distinct, so no walk closes a
 /// cycle.
 pub(super) struct Tunnels<'a> {
-    pub(super) tris: &'a [[u32; 3]],
-    pub(super) graph: &'a DualGraph,
-    pub(super) walks: &'a [Vec<u32>],
-    pub(super) enc: &'a [Vec<u32>],
-    pub(super) slot_of: &'a [u32],
-    pub(super) pos: &'a [u32],
-    pub(super) pre: &'a [u32],
-    pub(super) pool: &'a mut Vec<u32>,
-    pub(super) moves: &'a mut Vec<Move>,
+    pub(super) s: &'a Slots<'a>,
+    pub(super) out: &'a mut MoveList,
     /// Slots of the strips on the path, and the walks joined so far (the part cut off
     /// from the strip before, the part of the next strip with its crossing triangle).
     pub(super) used: &'a mut Vec<u32>,
@@ -43,20 +37,6 @@ pub(super) struct Tunnels<'a> {
 }
 
 impl Tunnels<'_> {
-    /// Swaps inside the stored walk of `p` at `w[a..=b]` (none when `b < a`).
-    fn inner(&self, p: Piece, a: u32, b: u32) -> u32 {
-        Tunnels::inner_of(self.walks, self.pre, p, a, b)
-    }
-
-    /// [`Tunnels::inner`] for any walks and prefix counts.
-    pub(super) fn inner_of(walks: &[Vec<u32>], pre: &[u32], p: Piece, a: u32, b: u32) -> u32 {
-        if b < a {
-            return 0;
-        }
-        let w = &walks[p.slot as usize];
-        pre[w[b as usize] as usize] - pre[w[a as usize - 1] as usize]
-    }
-
     /// Swaps of the walk `a` then `b` (`b` may be empty), each in its direction.
     /// Windows that lie inside one part are the stored walk's (a swap does not depend
     /// on the direction of reading, only the first triangles' does); the others are
@@ -70,18 +50,18 @@ impl Tunnels<'_> {
         }
         if lb == 0 {
             let head = [
-                a.at(self.walks, 0),
-                a.at(self.walks, 1),
-                a.at(self.walks, 2),
+                a.at(&self.s.walks, 0),
+                a.at(&self.s.walks, 1),
+                a.at(&self.s.walks, 2),
             ];
-            return walk_swaps(self.tris, self.graph, &head)
-                + self.inner(a, a.lo + 2, a.hi.saturating_sub(2));
+            return walk_swaps(self.s.tris, self.s.graph, &head)
+                + self.s.inner(a, a.lo + 2, a.hi.saturating_sub(2));
         }
         let at = |i: usize| {
             if i < la {
-                a.at(self.walks, i)
+                a.at(&self.s.walks, i)
             } else {
-                b.unwrap().at(self.walks, i - la)
+                b.unwrap().at(&self.s.walks, i - la)
             }
         };
         let lo = la.saturating_sub(3);
@@ -90,15 +70,15 @@ impl Tunnels<'_> {
         for i in lo..hi {
             win[i - lo] = at(i);
         }
-        let mut s = walk_swaps(self.tris, self.graph, &win[..hi - lo]);
+        let mut s = walk_swaps(self.s.tris, self.s.graph, &win[..hi - lo]);
         if lo > 0 {
             let head = [at(0), at(1), at(2)];
-            s = s + walk_swaps(self.tris, self.graph, &head) - walk_swaps(self.tris, self.graph, &win[..3]);
+            s = s + walk_swaps(self.s.tris, self.s.graph, &head) - walk_swaps(self.s.tris, self.s.graph, &win[..3]);
         }
         // Pair windows inside a part: stored positions lo + 2 ..= hi - 2.
-        s += self.inner(a, a.lo + 2, a.hi.saturating_sub(2));
+        s += self.s.inner(a, a.lo + 2, a.hi.saturating_sub(2));
         if let Some(b) = b {
-            s += self.inner(b, b.lo + 2, b.hi.saturating_sub(2));
+            s += self.s.inner(b, b.lo + 2, b.hi.saturating_sub(2));
         }
         s
     }
@@ -109,14 +89,9 @@ impl Tunnels<'_> {
         (len + 3) as i64 + i64::from(self.swaps(a, b))
     }
 
-    /// Indices (with the restart) of the strip in slot `s`.
-    fn old(&self, s: u32) -> i64 {
-        self.enc[s as usize].len() as i64 + 1
-    }
-
     /// Tunnels from strip `x` (every end, every path).
     pub(super) fn search(&mut self, x: u32) {
-        let w = &self.walks[x as usize];
+        let w = &self.s.walks[x as usize];
         let lx = w.len() as u32;
         let nx = if lx >= 2 { 2 } else { lx };
         for j in 0..nx {
@@ -129,7 +104,7 @@ impl Tunnels<'_> {
             self.used.clear();
             self.joins.clear();
             self.used.push(x);
-            let acc = -self.old(x);
+            let acc = -self.s.indices(x);
             self.grow(open, 0, acc);
         }
     }
@@ -137,19 +112,19 @@ impl Tunnels<'_> {
     /// Extends the path whose open walk `open` ends at its new end, after `cuts` cuts;
     /// `acc`: the indices of the joins so far less those of the strips on the path.
     fn grow(&mut self, open: Piece, cuts: usize, acc: i64) {
-        let walks = self.walks;
+        let walks = &self.s.walks;
         let p = open.at(walks, open.len() - 1);
-        for n in self.graph.neighbors[p as usize] {
+        for n in self.s.graph.neighbors[p as usize] {
             if n == NO_NEIGHBOR {
                 continue;
             }
-            let s = self.slot_of[n as usize];
+            let s = self.s.slot_of[n as usize];
             if s == NONE || self.used.contains(&s) {
                 continue;
             }
             let l = walks[s as usize].len() as u32;
-            let i = self.pos[n as usize];
-            let acc = acc - self.old(s);
+            let i = self.s.pos[n as usize];
+            let acc = acc - self.s.indices(s);
             if i == 0 || i + 1 == l {
                 // An end of S: joined (a single cut is the chain move of `refine`).
                 if cuts >= 2 {
@@ -225,16 +200,16 @@ impl Tunnels<'_> {
         let mut ranges = [(0u32, 0u32); MOVE_SLOTS];
         let mut m = 0;
         for &(a, b) in self.joins.iter() {
-            let start = self.pool.len();
-            a.extend(self.walks, self.pool);
-            b.extend(self.walks, self.pool);
-            ranges[m] = (start as u32, (self.pool.len() - start) as u32);
+            let start = self.out.pool.len();
+            a.extend(&self.s.walks, &mut self.out.pool);
+            b.extend(&self.s.walks, &mut self.out.pool);
+            ranges[m] = (start as u32, (self.out.pool.len() - start) as u32);
             m += 1;
         }
         if let Some(c) = alone {
-            let start = self.pool.len();
-            c.extend(self.walks, self.pool);
-            ranges[m] = (start as u32, (self.pool.len() - start) as u32);
+            let start = self.out.pool.len();
+            c.extend(&self.s.walks, &mut self.out.pool);
+            ranges[m] = (start as u32, (self.out.pool.len() - start) as u32);
             m += 1;
         }
         let u = &self.used[..];
@@ -248,7 +223,7 @@ impl Tunnels<'_> {
                     list[j] = (k, ranges[j].0, ranges[j].1);
                 }
                 list[m] = (u[g], 0, 0);
-                self.moves.push(Move::new(&list[..=m]));
+                self.out.moves.push(Move::new(&list[..=m]));
             }
         } else {
             // m walks in m slots: each joined walk in its first slot (the part cut off
@@ -256,12 +231,12 @@ impl Tunnels<'_> {
             for j in 0..m {
                 list[j] = (u[j], ranges[j].0, ranges[j].1);
             }
-            self.moves.push(Move::new(&list[..m]));
+            self.out.moves.push(Move::new(&list[..m]));
             for j in 0..m - 1 {
                 list[j] = (u[j + 1], ranges[j].0, ranges[j].1);
             }
             list[m - 1] = (u[0], ranges[m - 1].0, ranges[m - 1].1);
-            self.moves.push(Move::new(&list[..m]));
+            self.out.moves.push(Move::new(&list[..m]));
         }
     }
 }
