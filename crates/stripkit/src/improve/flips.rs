@@ -54,6 +54,19 @@ pub(super) struct Flips<'a> {
 /// Most pieces a flip cuts its strips into: one per cut and one per strip.
 pub(super) const FLIP_PIECES: usize = 2 * FLIP_LINKS + 2;
 
+/// A flip being assembled, in fixed arrays: the slots it touches (sorted), their
+/// strips cut into pieces, and the new walks as runs of pieces
+/// (`order[bounds[i]..bounds[i + 1]]`).
+struct Assembly {
+    slots: [u32; MOVE_SLOTS],
+    nslots: usize,
+    segs: [Piece; FLIP_PIECES],
+    ns: usize,
+    order: [Piece; FLIP_PIECES],
+    bounds: [usize; MOVE_SLOTS + 1],
+    nw: usize,
+}
+
 impl Flips<'_> {
     /// Whether `a` and `b` are consecutive in a walk.
     #[inline]
@@ -280,6 +293,28 @@ impl Flips<'_> {
     /// longest piece where free, the others in the free slots, slots left over
     /// emptied.
     fn assemble(&mut self, drops: &[(u32, u32)], adds: &[(u32, u32)]) {
+        let Some(mut asm) = self.cut(drops, adds) else {
+            return;
+        };
+        if !self.relink(&mut asm, drops, adds) {
+            return;
+        }
+        let mut di = 3 * (asm.nw as i64 - asm.nslots as i64);
+        for &s in &asm.slots[..asm.nslots] {
+            di -= self.s.swaps(s);
+        }
+        for i in 0..asm.nw {
+            di += self.new_swaps(&asm.order[asm.bounds[i]..asm.bounds[i + 1]]);
+        }
+        if di > 0 {
+            return;
+        }
+        self.place(&asm);
+    }
+
+    /// The strips that dropping `drops` and adding `adds` touch, cut at the dropped
+    /// links into pieces (in stored order); None when they are too many for a move.
+    fn cut(&self, drops: &[(u32, u32)], adds: &[(u32, u32)]) -> Option<Assembly> {
         let walks = &self.s.walks;
         // Touched slots.
         let mut slots = [0u32; MOVE_SLOTS];
@@ -289,7 +324,7 @@ impl Flips<'_> {
                 let s = self.s.slot_of[t as usize];
                 if !slots[..nslots].contains(&s) {
                     if nslots == MOVE_SLOTS {
-                        return;
+                        return None;
                     }
                     slots[nslots] = s;
                     nslots += 1;
@@ -338,6 +373,27 @@ impl Flips<'_> {
             };
             ns += 1;
         }
+        Some(Assembly {
+            slots,
+            nslots,
+            segs,
+            ns,
+            order: [segs[0]; FLIP_PIECES],
+            bounds: [0; MOVE_SLOTS + 1],
+            nw: 0,
+        })
+    }
+
+    /// Joins the pieces of `a` along the links `adds` (each at the free end its
+    /// triangle offers: at its dropped link, else at its walk end) into the new walks,
+    /// each read in the direction of its longest piece's old strip; false when that
+    /// is no flip (an added link at no free end, a closed loop, more walks than
+    /// slots).
+    fn relink(&self, asm: &mut Assembly, drops: &[(u32, u32)], adds: &[(u32, u32)]) -> bool {
+        let walks = &self.s.walks;
+        let (segs, ns, nslots) = (&asm.segs, asm.ns, asm.nslots);
+        let (order, bounds) = (&mut asm.order, &mut asm.bounds);
+        let mut nw = 0;
         let mut mate = [usize::MAX; 2 * FLIP_PIECES];
         // The free end (2 * piece + side, side 1 at hi) that triangle t offers to an
         // added link: at its dropped link, else at its walk end.
@@ -382,15 +438,12 @@ impl Flips<'_> {
                 || mate[eb] != usize::MAX
                 || ea == eb
             {
-                return;
+                return false;
             }
             mate[ea] = eb;
             mate[eb] = ea;
         }
         // Reassembly from the free ends: walks as runs of pieces.
-        let mut order = [segs[0]; FLIP_PIECES];
-        let mut bounds = [0usize; MOVE_SLOTS + 1];
-        let mut nw = 0;
         let mut no = 0;
         let mut visited = [false; FLIP_PIECES];
         for g0 in 0..ns {
@@ -401,7 +454,7 @@ impl Flips<'_> {
                 let (mut g, mut enter) = (g0, side0);
                 loop {
                     if visited[g] {
-                        return;
+                        return false;
                     }
                     visited[g] = true;
                     order[no] = Piece {
@@ -418,7 +471,7 @@ impl Flips<'_> {
                     enter = m % 2;
                 }
                 if nw == MOVE_SLOTS {
-                    return;
+                    return false;
                 }
                 nw += 1;
                 bounds[nw] = no;
@@ -426,10 +479,10 @@ impl Flips<'_> {
         }
         if no < ns {
             // A closed loop of links.
-            return;
+            return false;
         }
         if nw > nslots {
-            return;
+            return false;
         }
         // Each new walk read in the direction of its longest piece's old strip.
         for i in 0..nw {
@@ -446,16 +499,16 @@ impl Flips<'_> {
                 }
             }
         }
-        let mut di = 3 * (nw as i64 - nslots as i64);
-        for &s in &slots[..nslots] {
-            di -= self.s.swaps(s);
-        }
-        for i in 0..nw {
-            di += self.new_swaps(&order[bounds[i]..bounds[i + 1]]);
-        }
-        if di > 0 {
-            return;
-        }
+        asm.nw = nw;
+        true
+    }
+
+    /// Makes the move of the assembled flip: each new walk in the slot of its longest
+    /// piece where free, the others in the free slots, slots left over emptied.
+    fn place(&mut self, asm: &Assembly) {
+        let walks = &self.s.walks;
+        let (slots, nslots, order, bounds, nw) =
+            (&asm.slots, asm.nslots, &asm.order, &asm.bounds, asm.nw);
         // Each new walk in the slot of its longest piece, where still free; the others
         // in the free slots in order; slots left over emptied.
         let mut home = [NONE; MOVE_SLOTS];
