@@ -89,6 +89,85 @@ impl Walk<'_> {
     }
 }
 
+/// Where a walk stands after its first step (see [`State::evaluate`]): its cost so far,
+/// its new triangles, the triangle it is at, the slot it entered that triangle by,
+/// whether the natural exit is `NEXT[entry]`, and the triangle's vertices from the
+/// entry slot on.
+pub(super) struct Head {
+    total: f32,
+    len: u32,
+    cur: u32,
+    entry: usize,
+    fwd: bool,
+    r: [u32; 3],
+}
+
+impl Walk<'_> {
+    /// A walk that goes on from the end `(a, b)` of the last strip, `t` (vertices
+    /// `tri`) being its last triangle: no restart index, no start indices; the natural
+    /// exit is the edge {a, b}, the swap exit the other edge at b.
+    fn go_on(&mut self, t: u32, tri: [u32; 3], (a, b): (u32, u32), fb: f32) -> Head {
+        let nat = (0..3)
+            .find(|&k| {
+                let (x, y) = (tri[k], tri[NEXT[k]]);
+                (x == a && y == b) || (x == b && y == a)
+            })
+            .unwrap_or(0);
+        let swp = if tri[NEXT[nat]] == b {
+            NEXT[nat]
+        } else {
+            PREV[nat]
+        };
+        let entry = 3 - nat - swp;
+        if fb != 0.0 {
+            for v in tri {
+                self.uncover(v);
+            }
+        }
+        Head {
+            total: 0.0,
+            len: 0,
+            cur: t,
+            entry,
+            fwd: nat == NEXT[entry],
+            r: [tri[entry], tri[NEXT[entry]], tri[PREV[entry]]],
+        }
+    }
+
+    /// A new strip at `t` (vertices `tri`) leaving across `slot`: three indices and
+    /// the restart, the misses of its vertices at `w` each, `fb` off for each vertex
+    /// it finishes, and `penalty` for the free neighbours it leaves behind.
+    fn start(&mut self, t: u32, tri: [u32; 3], slot: usize, w: f32, fb: f32, penalty: f32) -> Head {
+        let [x, u, v] = start_of(tri, slot);
+        let mut total = 4.0;
+        for y in [x, u, v] {
+            if self.touch(y) {
+                total += w;
+            }
+        }
+        self.mark[t as usize] = self.epoch;
+        if fb != 0.0 {
+            for v in tri {
+                self.uncover(v);
+                if self.cover(v) {
+                    total -= fb;
+                }
+            }
+        }
+        total += penalty;
+        // The strip [x, u, v] leaves across (u, v) without a swap, or across {x, v}
+        // with one: as if entered across (x, u).
+        Head {
+            total,
+            len: 1,
+            cur: t,
+            entry: PREV[slot],
+            fwd: true,
+            r: [x, u, v],
+        }
+    }
+}
+
 /// The first triangle of a strip that leaves `tri` across `slot`, rotated so that the
 /// strip's last two indices are that edge.
 #[inline]
@@ -231,10 +310,9 @@ impl<'a> State<'a> {
         self.fifo.touch(v);
     }
 
-    /// Walks from `t` leaving across `slot` (or, with CONTINUE, from the end of the
-    /// last strip, `t` being its last triangle) and offers each prefix to `best`; the
-    /// walk is kept in `bpath` when it improved `best`.
-    fn evaluate(&mut self, t: u32, slot: usize, best: &mut Best) {
+    /// A new epoch for the next walk (marks and records of older walks then read as
+    /// untouched).
+    fn next_epoch(&mut self) {
         self.epoch = self.epoch.wrapping_add(1);
         if self.epoch == TAKEN {
             for m in self.mark.iter_mut().filter(|m| **m != TAKEN) {
@@ -246,6 +324,13 @@ impl<'a> State<'a> {
             });
             self.epoch = 1;
         }
+    }
+
+    /// Walks from `t` leaving across `slot` (or, with CONTINUE, from the end of the
+    /// last strip, `t` being its last triangle) and offers each prefix to `best`; the
+    /// walk is kept in `bpath` when it improved `best`.
+    fn evaluate(&mut self, t: u32, slot: usize, best: &mut Best) {
+        self.next_epoch();
         let w = self.opt.miss_weight;
         let fb = self.opt.finish_bonus;
         let mut k = Walk {
@@ -262,62 +347,23 @@ impl<'a> State<'a> {
         // `total` is the cost so far: indices (and the restart), plus weighed misses.
         // The vertices of `cur` count as covered (with none of their triangles when
         // `cur` is the last strip's end), so a step covers only its new vertex afresh.
-        let (mut total, mut len, mut cur, mut entry, mut fwd, mut r);
-        if slot == CONTINUE {
-            // No restart index, no start indices. The strip ends (a, b): the natural
-            // exit is the edge {a, b}, the swap exit the other edge at b.
+        let tri = self.tris[t as usize];
+        let Head {
+            mut total,
+            mut len,
+            mut cur,
+            mut entry,
+            mut fwd,
+            mut r,
+        } = if slot == CONTINUE {
             let n = self.out.indices.len();
-            let (a, b) = (self.out.indices[n - 2], self.out.indices[n - 1]);
-            let tri = self.tris[t as usize];
-            let nat = (0..3)
-                .find(|&k| {
-                    let (x, y) = (tri[k], tri[NEXT[k]]);
-                    (x == a && y == b) || (x == b && y == a)
-                })
-                .unwrap_or(0);
-            let swp = if tri[NEXT[nat]] == b {
-                NEXT[nat]
-            } else {
-                PREV[nat]
-            };
-            entry = 3 - nat - swp;
-            fwd = nat == NEXT[entry];
-            r = [tri[entry], tri[NEXT[entry]], tri[PREV[entry]]];
-            if fb != 0.0 {
-                for v in tri {
-                    k.uncover(v);
-                }
-            }
-            cur = t;
-            total = 0.0;
-            len = 0;
+            let end = (self.out.indices[n - 2], self.out.indices[n - 1]);
+            k.go_on(t, tri, end, fb)
         } else {
-            let tri = self.tris[t as usize];
-            let [x, u, v] = start_of(tri, slot);
-            // Three indices and the restart.
-            total = 4.0;
-            for y in [x, u, v] {
-                if k.touch(y) {
-                    total += w;
-                }
-            }
-            k.mark[t as usize] = k.epoch;
-            if fb != 0.0 {
-                for v in tri {
-                    k.uncover(v);
-                    if k.cover(v) {
-                        total -= fb;
-                    }
-                }
-            }
             let nb = self.adj[t as usize].nbr[slot];
             let left = self.b.degree[t as usize] as f32 - f32::from(k.mark[nb as usize] != TAKEN);
-            total += self.opt.start_penalty * left.max(0.0);
-            len = 1;
-            // The strip [x, u, v] leaves across (u, v) without a swap, or across {x, v}
-            // with one: as if entered across (x, u).
-            (cur, entry, fwd, r) = (t, PREV[slot], true, [x, u, v]);
-        }
+            k.start(t, tri, slot, w, fb, self.opt.start_penalty * left.max(0.0))
+        };
         let adjs = &self.adj[..];
         let wpath = &mut self.wpath[..];
         let first = len;
