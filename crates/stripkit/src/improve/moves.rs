@@ -1,4 +1,4 @@
-//! The moves of [`super::refine`]: new walks for a few slots of the output, written
+//! The moves of [`refine`](super::refine::refine): new walks for a few slots of the output, written
 //! as ranges of a pool, and the pieces of old walks they are made of.
 
 use super::flips::FLIP_LINKS;
@@ -8,15 +8,15 @@ use crate::topology::NO_NEIGHBOR;
 
 pub(super) const NONE: u32 = u32::MAX;
 
-/// Most strips one move of [`refine`] changes: a tunnel of [`REFINE_CUTS`] cuts, or a
-/// flip of [`FLIP_LINKS`] dropped links ([`Flips`] makes no move of more slots).
+/// Most strips one move of [`refine`](super::refine::refine) changes: a tunnel of [`REFINE_CUTS`] cuts, or a
+/// flip of [`FLIP_LINKS`] dropped links ([`Flips`](super::flips::Flips) makes no move of more slots).
 pub(super) const MOVE_SLOTS: usize = if REFINE_CUTS + 2 > FLIP_LINKS {
     REFINE_CUTS + 2
 } else {
     FLIP_LINKS
 };
 
-/// A move of [`refine`]: up to [`MOVE_SLOTS`] strips (slots in the output order) get
+/// A move of [`refine`](super::refine::refine): up to [`MOVE_SLOTS`] strips (slots in the output order) get
 /// new walks, ranges `(slot, start, len)` of a pool (len 0 empties the slot), sorted by
 /// slot.
 #[derive(Clone, Copy, Default)]
@@ -85,7 +85,7 @@ pub(super) fn attach(
     }
 }
 
-/// A part of a walk in a tunnel of [`refine`]: `walks[slot][lo..hi]`, read backwards
+/// A part of a walk in a tunnel of [`refine`](super::refine::refine): `walks[slot][lo..hi]`, read backwards
 /// when `rev`.
 #[derive(Clone, Copy)]
 pub(super) struct Piece {

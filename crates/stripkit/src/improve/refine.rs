@@ -301,8 +301,8 @@ impl<'a> Refiner<'a> {
 }
 
 /// Local search over `walks` (the strips in output order, as the stripifier records
-/// them), scored by
-/// `indices_restart + lambda * misses` on the exact FIFO of `cache_size` entries,
+/// them), scored by `indices_restart + lambda * misses` on the exact FIFO of
+/// `cache_size` entries,
 /// with the total misses kept at most `budget`. `indices_restart` is that of the
 /// strips after [`join_shared_ends`]: a boundary where a strip of even length ends on
 /// the vertex the next non-empty slot's strip starts with costs no restart index.
@@ -319,13 +319,13 @@ impl<'a> Refiner<'a> {
 /// path in their order, shifted by one or not; and the flips of [`Flips`]
 /// (alternating cycles through a swap of X, and alternating paths from an end of X
 /// that touch some strip twice), the new walks in the places of the strips they
-/// touch. The best move that lowers the cost is taken. Every walk is encoded with [`walk`], so every triangle keeps its
-/// winding.
+/// touch. The best move that lowers the cost is taken. Every walk is encoded with
+/// [`walk`], so every triangle keeps its winding.
 ///
 /// A move is evaluated by replaying the FIFO from the snapshot before the first strip
-/// it changes until the FIFO matches the old one again (see [`Refiner::eval`]): on
-/// bunny about 200 triangles per move, 113,000 moves in three passes (23,000 of them
-/// tunnels, out of about 300,000 paths whose index change is counted in O(1)).
+/// it changes until the FIFO matches the old one again (see [`Refiner::eval`]): a few
+/// hundred triangles per move; most generated paths are dropped by their O(1) index
+/// count before any replay.
 pub(crate) fn refine(
     tris: &[[u32; 3]],
     graph: &DualGraph,

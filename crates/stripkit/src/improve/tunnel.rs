@@ -19,6 +19,32 @@
 //! stops at an inner triangle and cuts one of its links). Searches are depth-first from
 //! every strip end, bounded in length, so the pass is O(triangles) with a small
 //! constant; the strip ends' start-of-strip swap is settled by the encoder.
+//!
+//! **Why this is not the search of `tunnels.rs`.** The refinement's tunnels
+//! (`super::tunnels`) look for the same alternating paths, but the two searches
+//! differ in ways that decide which path is found, so one search with the scoring
+//! passed in would change the strips of one or the other:
+//!
+//! * *Acceptance.* This pass applies the first improving path it meets and goes on
+//!   from the changed links (first improvement, ends requeued after a change); the
+//!   refinement collects every path of no more indices from one strip as moves on a
+//!   fixed snapshot and takes the best after replaying each on the FIFO (best
+//!   improvement, ties to the first generated). Here the visiting order decides the
+//!   output; there it decides the tie-breaks.
+//! * *Order at a cut.* Here a linked triangle's links are cut in the order of its link
+//!   array, which earlier relinkings leave in either order; the refinement cuts after
+//!   the crossing triangle first, then before it.
+//! * *Pruning.* Here only triangles already on the path are excluded (a path may come
+//!   back through a strip it cut, guarded by a cycle check); the refinement excludes
+//!   whole strips already on the path (paths that come back are its flips, scored
+//!   differently), and joins at a strip end only after two cuts (shorter joins are its
+//!   simple moves).
+//! * *Scoring.* Here swaps are counted from the pivots of the touched triangles on the
+//!   live links; the refinement counts them from stored prefix sums over windows of
+//!   the old walks, then exactly on the FIFO.
+//!
+//! What the two share is the walk encoding and its swap rule
+//! ([`crate::topology::Walks`], [`crate::stripify::encode_path`]).
 
 use crate::strip::StripSet;
 use crate::topology::{DualGraph, Walks, NO_NEIGHBOR};

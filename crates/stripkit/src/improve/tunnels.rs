@@ -1,15 +1,17 @@
-//! The tunnels of [`super::refine`]: alternating paths through up to three strips.
+//! The tunnels of `refine`: alternating paths through up to three strips. Why this
+//! is a different search from greedy's tunnelling pass ([`super::tunnel`]) is written
+//! at the top of that file.
 
 use super::moves::{Move, MoveList, Piece, MOVE_SLOTS, NONE};
 use super::slots::Slots;
 use crate::topology::walks::walk_swaps;
 use crate::topology::NO_NEIGHBOR;
 
-/// Most links a tunnel of [`refine`] cuts (bunny: 85,637 indices with 2, 85,540 with
-/// 3, 85,499 with 4 for a third more time).
+/// Most links a tunnel of `refine` cuts (measured on bunny: 4 saves a few more indices
+/// for a third more time).
 pub(super) const REFINE_CUTS: usize = 3;
 
-/// Generates the tunnels of [`refine`] from one strip: alternating paths in the dual
+/// Generates the tunnels of [`refine`](super::refine::refine) from one strip: alternating paths in the dual
 /// graph that start at an end of the strip, cross to a triangle `n` of another strip
 /// S = A n B, cut S on one side of `n` (the part with `n` joins the path so far), and
 /// go on from the new end of the part cut off, through up to [`REFINE_CUTS`] strips.
@@ -20,13 +22,11 @@ pub(super) const REFINE_CUTS: usize = 3;
 /// start from windows of at most six triangles: a swap depends on four consecutive
 /// triangles only, so this is the encoder's count but around non-manifold edges);
 /// only paths with no more indices become moves, one per placement of the new walks in
-/// the slots of the strips they came from, and [`Refiner::eval`] then counts their
+/// the slots of the strips they came from, and `Refiner::eval` then counts their
 /// indices (with the joins at a vertex, which the O(1) count does not see) and misses
 /// exactly. The paths of as many indices are kept for those joins and for the misses
-/// a relink may save (balanced, 16 models: 428,273 -> 428,136 indices, ACMR lower,
-/// for about 20% more time; paths of one index more: 426,862 at 0.25 but 50%
-/// more time). Strips on a path are distinct, so no walk closes a
-/// cycle.
+/// a relink may save (measured: fewer indices and a lower ACMR for about 20% more
+/// time). Strips on a path are distinct, so no walk closes a cycle.
 pub(super) struct Tunnels<'a> {
     pub(super) s: &'a Slots<'a>,
     pub(super) out: &'a mut MoveList,

@@ -9,9 +9,9 @@ use crate::topology::{sort_bucket, Csr};
 /// the stripifier sees the same input whatever the order of the faces and the ids of
 /// the vertices: by the Morton code (Z-order) of their positions quantized to 21 bits
 /// per axis in the bounding box, then by a mix of the exact coordinates, then by id
-/// (only for coincident vertices). Z-order keeps neighbours close in memory: on the
-/// 1.1M-triangle bunny the cache run takes 261-272 ms in this order and 425-440 ms in
-/// x-then-y-then-z order (about the same strips on the models either way).
+/// (only for coincident vertices). Z-order keeps neighbours close in memory (measured:
+/// the cache run about 1.6x faster than in x-then-y-then-z order on a 1.1M-triangle
+/// mesh, about the same strips).
 pub(super) struct Canonical {
     /// The new id of every input vertex, and the input id of every new one.
     new: Vec<u32>,

@@ -1,5 +1,35 @@
-//! The cache-aware stripifier proper: one strip at a time, chosen among walks from the
-//! free triangles around a simulated FIFO (see the module docs of [`super`]).
+//! The cache-aware stripifier proper: it grows one strip at a time while it simulates
+//! exactly the FIFO of METRICS.md (a hit does not reorder, a miss evicts the oldest
+//! entry):
+//!
+//! * **Candidates.** Every free triangle around one of the oldest `scan_entries`
+//!   entries of the FIFO that has at least `min_cached` cached vertices, with each of
+//!   its three exit edges; and the end of the last strip, which may go on (a turn
+//!   instead of a restart). When none of these exists, the scan widens before it
+//!   jumps away from the cache: to the triangles around every entry, then to those
+//!   with a single cached vertex; only when the cache touches no free triangle at all,
+//!   the free triangle of lowest free degree (a corner of the free region, as in the
+//!   greedy stripifier). A jump costs three misses at once and starts a region with a
+//!   cold cache, so the wider scans pay on meshes whose free region falls apart into
+//!   pockets (measured on bunny_res3, cow and bunny).
+//! * **Walks.** From a candidate the strip follows its line through free triangles;
+//!   it swaps (one repeated index) where the line is blocked, or where the line's next
+//!   vertex would miss the cache while the swap's would hit: that keeps the strip
+//!   hugging the cached side of the previous one on irregular meshes. At most
+//!   `max_swaps` swaps, `max_len` triangles.
+//! * **Choice.** Every prefix of every walk is scored by what it costs per triangle
+//!   it covers: `(indices + miss_weight * misses + start_penalty * free neighbours
+//!   of the first triangle left behind - finish_bonus * vertices finished) /
+//!   triangles`, where `indices` counts the strip's indices and its restart index
+//!   (none for going on from the last strip), and `misses` the FIFO misses the prefix
+//!   causes after the strips already emitted. The cheapest prefix is emitted. A walk
+//!   is abandoned as soon as no longer prefix can beat the best one found.
+//!
+//! Cost: O(T * c * L) for c candidates per strip (the free triangles around the
+//! cache) and walks of at most L triangles; flat arrays, nothing allocated per step.
+//! A step reads one neighbour record (neighbours, their new vertices, the twin slots)
+//! and the records of four vertices; the walk that found the chosen strip is kept, not
+//! walked again.
 
 use super::{CacheOptions, Links};
 use crate::stripify::buckets::Buckets;
@@ -14,7 +44,7 @@ pub(super) const TAKEN: u32 = u32::MAX;
 pub(super) const NEXT: [usize; 3] = [1, 2, 0];
 pub(super) const PREV: [usize; 3] = [2, 0, 1];
 
-/// A triangle's [`DualGraph`] neighbours (a missing one is the sentinel triangle
+/// A triangle's [`DualGraph`](crate::topology::DualGraph) neighbours (a missing one is the sentinel triangle
 /// `tris.len()`, always TAKEN) and, for each, the neighbour's vertex opposite the shared
 /// edge and the slot of that edge in the neighbour (one 32-byte record: a walk step
 /// reads one and nothing of `tris`).
@@ -206,9 +236,9 @@ pub(super) struct State<'a> {
     pub(super) b: Buckets,
     /// Vertex -> its triangles.
     pub(super) vtris: Csr<u32>,
-    /// Per vertex, in one record: [0] the epoch of the walk that pushed it in its
-    /// private copy of the FIFO and [1] that walk's push count then; [2] the epoch of
-    /// the walk that counted [3] of its free triangles as covered; [4] its free
+    /// Per vertex, in one record: `[0]` the epoch of the walk that pushed it in its
+    /// private copy of the FIFO and `[1]` that walk's push count then; `[2]` the epoch
+    /// of the walk that counted `[3]` of its free triangles as covered; `[4]` its free
     /// triangles.
     pub(super) vs: Vec<[u32; 5]>,
     /// The FIFO the emitted strips went through; its pushes are their misses.

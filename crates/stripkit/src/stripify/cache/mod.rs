@@ -8,62 +8,29 @@
 //! like the rows of a grid, and a line started next to the beginning of the previous
 //! strip runs along it and reads the previous strip's far side from the cache.
 //!
-//! The stripifier grows one strip at a time while it simulates exactly the FIFO of
-//! METRICS.md (a hit does not reorder, a miss evicts the oldest entry):
+//! How a mesh flows through this module:
 //!
-//! * **Candidates.** Every free triangle around one of the oldest `scan_entries`
-//!   entries of the FIFO that has at least `min_cached` cached vertices, with each of
-//!   its three exit edges; and the end of the last strip, which may go on (a turn
-//!   instead of a restart). When none of these exists, the scan widens before it
-//!   jumps away from the cache: to the triangles around every entry, then to those
-//!   with a single cached vertex; only when the cache touches no free triangle at all,
-//!   the free triangle of lowest free degree (a corner of the free region, as in the
-//!   greedy stripifier). A jump costs three misses at once and starts a region with a
-//!   cold cache, so the wider scans pay on meshes whose free region falls apart into
-//!   pockets (bunny_res3: 5,487 @ 0.693 -> 5,475 @ 0.688; cow 8,227 @ 0.683 -> 8,155
-//!   @ 0.672; bunny 94,372 -> 94,283 at the same misses).
-//! * **Walks.** From a candidate the strip follows its line through free triangles;
-//!   it swaps (one repeated index) where the line is blocked, or where the line's next
-//!   vertex would miss the cache while the swap's would hit: that keeps the strip
-//!   hugging the cached side of the previous one on irregular meshes. At most
-//!   `max_swaps` swaps, `max_len` triangles.
-//! * **Choice.** Every prefix of every walk is scored by what it costs per triangle
-//!   it covers: `(indices + miss_weight * misses + start_penalty * free neighbours
-//!   of the first triangle left behind) / triangles`, where `indices` counts the
-//!   strip's indices and its restart index (none for going on from the last strip),
-//!   and `misses` the FIFO misses the prefix causes after the strips already
-//!   emitted. The cheapest prefix is emitted. A walk is abandoned as soon as no
-//!   longer prefix can beat the best one found. `miss_weight` trades indices for
-//!   misses: [`CacheOptions::cache`] and [`CacheOptions::balanced`] are two points.
-//!
-//! [`stripify_within`] then refines its strips with a local search scored by the exact
-//! FIFO: it joins strips end to end (or one into another's inside, the part cut off
-//! joining a third), relinks them along tunnels (alternating paths through up to three
-//! strips, after Stewart), flips alternating cycles through swaps and alternating
-//! paths that come back through a strip they cut (rerouting walks inside strips, e.g.
-//! an end linked into its own strip's inside) and reads strips backwards where that
-//! lowers
-//! `indices + 0.25 * misses` within the bound. Each move is replayed from a snapshot of
-//! the FIFO before the first strip it changes until the FIFO matches the old run again.
-//!
-//! Last, a strip is joined to the one before it where that one ends, at an even
-//! length, on the vertex it starts with (`[.., x, y] + [y, u, ..]` is one strip
-//! `[.., x, y, y, u, ..]`, see [`join_shared_ends`]): the same triangles in the same
-//! order, one restart index fewer (bunny, `cache`: 188 joins). The local search
-//! counts these joins in the indices of every move (a move changes only the
-//! boundaries next to the strips it changes), so the index count it works with is
-//! that of the joined output.
+//! 1. [`stripify_mesh`] puts the mesh in a canonical order (`canonical.rs`: vertices
+//!    by position in Z-order, faces sorted), so that a shuffled input gives the same
+//!    strips, and picks how quads are split ([`Diagonals`]).
+//! 2. The stripifier (`fifo_strips.rs`) grows one strip at a time while it simulates
+//!    exactly the FIFO of METRICS.md ([`crate::metrics`]), choosing among walks from
+//!    the free triangles around the cache by their indices and weighed misses per
+//!    triangle; `miss_weight` trades indices for misses ([`CacheOptions::cache`] and
+//!    [`CacheOptions::balanced`] are two points). It records the strips and the walks
+//!    they encode ([`crate::topology::Walks`]).
+//! 3. [`stripify_within`] (the `balanced` mode) searches the miss weight for the
+//!    fewest indices within an ACMR bound.
+//! 4. A strip is joined to the one before it where that one ends, at an even length,
+//!    on the vertex it starts with ([`join_shared_ends`]: one restart index fewer).
+//! 5. With [`CacheOptions::refine`] or a bound, the walks go through the local search
+//!    of `crate::improve` (reversals, joins, chains, tunnels and flips, each scored
+//!    on the exact FIFO, the joins of step 4 counted in every move).
+//! 6. [`stripify_mesh`] maps the strips back to the input's vertex ids.
 //!
 //! The input order only breaks ties, so shuffled inputs give about the same figures
-//! from [`stripify`]; [`stripify_mesh`] first puts the mesh in an order that depends
-//! only on its geometry, so there a shuffled input gives the same strips.
-//! Steps follow [`DualGraph`] edges only, so every triangle keeps its winding.
-//!
-//! Cost: O(T * c * L) for c candidates per strip (the free triangles around the
-//! cache) and walks of at most L triangles; flat arrays, nothing allocated per step.
-//! A step reads one neighbour record (neighbours, their new vertices, the twin slots)
-//! and the records of four vertices; the walk that found the chosen strip is kept, not
-//! walked again.
+//! from [`stripify`]. Steps follow [`DualGraph`] edges only, so every triangle keeps
+//! its winding.
 
 mod canonical;
 mod fifo_strips;
@@ -102,10 +69,9 @@ pub struct CacheOptions {
     /// will likely miss again once evicted.
     pub finish_bonus: f32,
     /// Then refine the strips with the local search of [`stripify_within`] (joins,
-    /// chains, reversals and tunnels scored by the exact FIFO), a miss costing
+    /// chains, reversals, tunnels and flips scored by the exact FIFO), a miss costing
     /// `miss_weight` indices and no move adding misses: fewer indices and fewer misses
-    /// for about 27x the time (bunny: 94,283 @ 0.645 -> 91,564 @ 0.630 in 0.46 s).
-    /// Used by [`stripify`], [`stripify_with_graph`] and [`stripify_mesh`] without a
+    /// for many times the time. Used by [`stripify`], [`stripify_with_graph`] and [`stripify_mesh`] without a
     /// bound; [`stripify_within`] always refines.
     pub refine: bool,
 }
@@ -113,8 +79,8 @@ pub struct CacheOptions {
 impl CacheOptions {
     /// The `cache` mode: a miss weighs 1.1 indices and finishing a vertex earns one,
     /// walks of at most `cache_size` triangles from around the oldest five eighths of
-    /// the cache. Bunny: 0.65 misses per triangle with 1.36 indices per triangle
-    /// (meshoptimizer's cache order and strips: 0.71 with 1.74).
+    /// the cache (bunny: fewer misses and fewer indices than meshoptimizer's cache
+    /// order and strips).
     pub fn cache(cache_size: u32) -> Self {
         let cache_size = cache_size.max(3);
         CacheOptions {
@@ -133,9 +99,8 @@ impl CacheOptions {
 
     /// The `balanced` mode's first try: a miss weighs half an index and finishing a
     /// vertex a quarter (fewer indices, more misses), and strips may start at
-    /// triangles with one cached vertex. With [`stripify_within`] and a bound of 0.8
-    /// misses per triangle: bunny 1.25 indices per triangle at 0.80 (1.28 at 0.79
-    /// before the refinement of [`stripify_within`]).
+    /// triangles with one cached vertex; meant for [`stripify_within`] with a bound
+    /// (the CLI's: 0.8 misses per triangle).
     pub fn balanced(cache_size: u32) -> Self {
         CacheOptions {
             miss_weight: 0.5,
@@ -220,12 +185,10 @@ fn run_once(
 /// is then refined: strips are joined end to end (or one into another's inside, the
 /// part cut off joining a third), relinked along tunnels through up to three strips,
 /// rerouted by flips of alternating cycles and paths, and read backwards wherever
-/// that lowers
-/// `indices + 0.25 * misses` on the exact FIFO while the misses stay within the bound
-/// (or, when no try kept it, do not grow); the refined strips are kept when they have
-/// fewer indices. Returns the strips, the weight of the try refined and their ACMR.
-/// Bunny: 88,807 indices at 0.790 before the refinement, 84,504 at 0.800 after (1.217
-/// per triangle); the whole call takes about 0.7 s (0.1 s without the refinement).
+/// that lowers `indices + 0.25 * misses` on the exact FIFO while the misses stay
+/// within the bound (or, when no try kept it, do not grow); the refined strips are
+/// kept when they have fewer indices. Returns the strips, the weight of the try
+/// refined and their ACMR. The refinement takes most of the time.
 pub fn stripify_within(
     tris: &[[u32; 3]],
     vertex_count: usize,
@@ -367,7 +330,7 @@ pub struct MeshStrips {
 /// ids or where a triangle or quad starts: a shuffled input gives the same strips,
 /// vertex for vertex through the renumbering. (Where a larger polygon, or a quad under
 /// the fan, starts decides its fan, so that stays part of the input; vertices at equal
-/// positions fall back to their ids.) The copy costs about 1 ms on bunny.
+/// positions fall back to their ids.) The copy costs little next to the stripifier.
 pub fn stripify_mesh(
     mesh: &crate::Mesh,
     options: &CacheOptions,
@@ -439,27 +402,21 @@ pub fn stripify_mesh(
 }
 
 /// What one miss costs, in indices, in the refinement of [`stripify_within`]: about
-/// the exchange rate along the stripifier's own frontier (bunny: 0.3 indices per
-/// miss), so that a join is taken where it buys indices more cheaply than a lower
-/// miss weight would. Since tunnels of no more indices are tried too (they mostly
-/// save misses), 0.3 left the ACMR at 0.79 on bunny and horse; 0.25 spends it
-/// (16 models: 428,136 indices at 0.3, 427,093 at 0.25, 427,179 at 0.28, 427,289
-/// at 0.2).
+/// the exchange rate along the stripifier's own frontier; 0.25 measured best against
+/// 0.2 to 0.3 on the shared models.
 const REFINE_LAMBDA: f64 = 0.25;
 
 /// The search of `balanced`, where the index count is the point: five passes, flips
-/// of up to four links (16 models: 423,184 indices with three passes and three links,
-/// 422,400 with four links, 421,867 with four passes too, 421,677 with five; horse
-/// 120,576 -> 120,394 -> 120,214 -> 120,167, spot_control_mesh 463 -> 468 -> 465 ->
-/// 461; 1.8x the time of three and three: bunny about 0.65 s).
+/// of up to four links (measured on the shared models: 0.3% fewer indices than three
+/// and three, for 1.8x the time).
 const BALANCED_EFFORT: Effort = Effort {
     passes: 5,
     flip_links: 4,
 };
 
 /// The search of `cache --refine`: three passes, flips of up to three links (four
-/// links and five passes: 451,741 -> 451,079 indices over the 16 models, 0.15%, for
-/// 1.8x the time).
+/// links and five passes gave 0.15% fewer indices on the shared models for 1.8x the
+/// time).
 const CACHE_EFFORT: Effort = Effort {
     passes: 3,
     flip_links: 3,
