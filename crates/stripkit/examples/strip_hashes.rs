@@ -98,6 +98,8 @@ fn main() {
             .map(|&(c, k)| metrics::cache_misses(&d, vc, c, k))
             .collect();
         line("greedy default", format!("{} misses {misses:?}", hash(&g)), t);
+        let f = metrics::figures(&tris, &g, metrics::CacheModel::lru(8));
+        line("greedy figures", format!("{f:?}"), Instant::now());
         if tris.len() < 30_000 {
             let diag = mesh.bounds().map_or(1.0, |(lo, hi)| {
                 ((0..3).map(|i| ((hi[i] - lo[i]) as f64).powi(2)).sum::<f64>()).sqrt()
@@ -152,6 +154,8 @@ fn main() {
         }
         let t = Instant::now();
         let (q, all) = quad::qstrip_mesh(&mesh, &quad::QuadOptions::default());
+        let check = stripkit::stripify::quad_verify::verify_quads(&mesh, &all).map_err(|e| e.to_string());
+        line("qstrip verify", format!("{check:?}"), Instant::now());
         line(
             "qstrip_mesh",
             format!("{} | quads {} swaps {} forced {}", hash(&all), hash(&q.strips), q.swaps, q.forced_diagonals),

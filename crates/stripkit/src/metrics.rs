@@ -262,11 +262,7 @@ pub fn acmr(
 pub fn swaps(strips: &StripSet) -> usize {
     let mut n = 0;
     for s in strips.iter() {
-        for w in s.windows(3) {
-            if w[0] == w[1] || w[1] == w[2] || w[2] == w[0] {
-                n += 1;
-            }
-        }
+        n += s.windows(3).filter(|w| strip::is_degenerate(&[w[0], w[1], w[2]])).count();
     }
     n
 }

@@ -84,13 +84,8 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
     let mut counts = Counts::default();
     let vcount = mesh.vertex_count() as u32;
     let mut bad_index = None;
+    check.degenerate = crate::metrics::swaps(strips);
     for s in strips.iter() {
-        for i in 0..s.len().saturating_sub(2) {
-            let (x, y, z) = (s[i], s[i + 1], s[i + 2]);
-            if x == y || y == z || x == z {
-                check.degenerate += 1;
-            }
-        }
         if let Some(&v) = s.iter().find(|&&v| v >= vcount) {
             bad_index = Some(v);
         }

@@ -225,13 +225,7 @@ impl DualGraph {
         mut twins: Option<&mut Vec<[u8; 3]>>,
     ) -> DualGraph {
         let n = tris.len();
-        let max_index = tris
-            .iter()
-            .flatten()
-            .copied()
-            .max()
-            .map_or(0, |m| m as usize + 1);
-        let vcount = vertex_count.max(max_index);
+        let vcount = vertex_count.max(vertex_bound(tris));
         // Entry: higher vertex in the top 32 bits, below it corner * 2 + 1 when the
         // corner runs low -> high; corner * 2 + 1 must fit in 32 bits.
         if n >= (u32::MAX / 6) as usize {
