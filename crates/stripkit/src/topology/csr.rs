@@ -23,16 +23,32 @@ impl<T: Copy + Default> Csr<T> {
     where
         I: IntoIterator<Item = (usize, T)> + Clone,
     {
+        Csr::from_items(buckets, entries, |e| e.0, |e| e.1)
+    }
+
+    /// [`Csr::from_entries`] for items whose value costs more than their key:
+    /// bucket `key(&item)` gets `value(item)`, and the counting pass computes only the
+    /// keys.
+    pub fn from_items<I, E>(
+        buckets: usize,
+        items: I,
+        key: impl Fn(&E) -> usize,
+        value: impl Fn(E) -> T,
+    ) -> Csr<T>
+    where
+        I: IntoIterator<Item = E> + Clone,
+    {
         let mut offsets = vec![0u32; buckets + 1];
-        entries.clone().into_iter().for_each(|(k, _)| offsets[k + 1] += 1);
+        items.clone().into_iter().for_each(|e| offsets[key(&e) + 1] += 1);
         for k in 0..buckets {
             offsets[k + 1] += offsets[k];
         }
         let mut values = vec![T::default(); offsets[buckets] as usize];
         // Each bucket's next free slot; ends up at the bucket's end.
         let mut fill = offsets.clone();
-        entries.into_iter().for_each(|(k, v)| {
-            values[fill[k] as usize] = v;
+        items.into_iter().for_each(|e| {
+            let k = key(&e);
+            values[fill[k] as usize] = value(e);
             fill[k] += 1;
         });
         Csr { offsets, values }

@@ -329,15 +329,16 @@ fn count_pinch_vertices(mesh: &Mesh, map: &EdgeMap) -> usize {
     let fi = &mesh.face_indices;
     let vcount = mesh.vertex_count();
     // [outgoing edge, incoming edge, face] of each corner, grouped by vertex.
-    let corners = Csr::from_entries(
+    let corners = Csr::from_items(
         vcount,
-        mesh.face_offsets.windows(2).enumerate().flat_map(|(f, w)| {
-            let (s, t) = (w[0] as usize, w[1] as usize);
-            (s..t).map(move |h| {
-                let prev = if h == s { t - 1 } else { h - 1 };
-                (fi[h] as usize, [map.halfedge_edge[h], map.halfedge_edge[prev], f as u32])
-            })
-        }),
+        0..fi.len(),
+        |&h| fi[h] as usize,
+        |h| {
+            let f = map.halfedge_face[h];
+            let start = mesh.face_offsets[f as usize] as usize;
+            let prev = if h == start { mesh.face_offsets[f as usize + 1] as usize - 1 } else { h - 1 };
+            [map.halfedge_edge[h], map.halfedge_edge[prev], f]
+        },
     );
     let mut local: Vec<u32> = Vec::new();
     let mut pinches = 0;
