@@ -1,17 +1,22 @@
-//! The flips of [`refine`](super::refine::refine): alternating cycles through swaps and alternating
+//! The flips of [`refine`]: alternating cycles through swaps and alternating
 //! paths that touch some strip twice.
+//!
+//! [`refine`]: super::refine::refine
 
 use super::moves::{ends, Move, MoveList, Piece, MOVE_SLOTS, NONE};
 use super::slots::Slots;
 use crate::topology::walks::{inner_swap, walk_swaps};
 use crate::topology::NO_NEIGHBOR;
 
-/// Most links one flip of [`refine`](super::refine::refine) can drop (the size of its fixed arrays); each
-/// call sets its own limit, [`Effort::flip_links`](super::refine::Effort::flip_links): cycles of up to twice that many
+/// Most links one flip of [`refine`] can drop (the size of its fixed arrays); each
+/// call sets its own limit, [`Effort::flip_links`]: cycles of up to twice that many
 /// dual edges, paths of one more.
+///
+/// [`refine`]: super::refine::refine
+/// [`Effort::flip_links`]: super::refine::Effort::flip_links
 pub(super) const FLIP_LINKS: usize = 4;
 
-/// Generates the flips of [`refine`](super::refine::refine): alternating cycles and paths in the dual graph,
+/// Generates the flips of [`refine`]: alternating cycles and paths in the dual graph,
 /// whose edges alternate between links of the walks (used) and dual edges no walk
 /// crosses (unused). Flipping one drops its used links and takes its unused ones; the
 /// strips it touches are cut where links are dropped and the pieces reassembled along
@@ -29,20 +34,26 @@ pub(super) const FLIP_LINKS: usize = 4;
 ///   drop (as many walks) or with a link into a walk end (one walk fewer) that touch
 ///   some strip twice: Pósa's rotations (an end linked into its own strip's inside)
 ///   and tunnels that come back through a strip they cut. Those through distinct
-///   strips are [`Tunnels`](super::tunnels::Tunnels). They give most of the gain of the flips.
+///   strips are [`Tunnels`]. They give most of the gain of the flips.
 ///
 /// The index change of a flip is its swap change plus three per walk gained or lost,
-/// counted in O(1) per piece like [`Tunnels::cost`](super::tunnels::Tunnels::cost): the swaps inside each piece from
+/// counted in O(1) per piece like [`Tunnels::cost`]: the swaps inside each piece from
 /// `pre`, the windows of four triangles across each new link (three links around one
 /// vertex) and each new walk's first three triangles walked; flips of no more indices
 /// become moves and `Refiner::eval` scores them exactly.
+///
+/// [`refine`]: super::refine::refine
+/// [`Tunnels`]: super::tunnels::Tunnels
+/// [`Tunnels::cost`]: super::tunnels::Tunnels::cost
 pub(super) struct Flips<'a> {
     pub(super) s: &'a Slots<'a>,
     pub(super) out: &'a mut MoveList,
     /// The cycle being grown: `cyc[2i]`, `cyc[2i + 1]` is a used link, `cyc[2i + 1]`,
     /// `cyc[2i + 2]` (cyclically) an unused dual edge.
     pub(super) cyc: [u32; 2 * FLIP_LINKS + 2],
-    /// Most links a flip drops ([`Effort::flip_links`](super::refine::Effort::flip_links), at most [`FLIP_LINKS`]).
+    /// Most links a flip drops ([`Effort::flip_links`], at most [`FLIP_LINKS`]).
+    ///
+    /// [`Effort::flip_links`]: super::refine::Effort::flip_links
     pub(super) links: usize,
     /// The cycles found from the current strip, as sorted triangle lists (each cycle
     /// is found once per link of it that takes part in a swap; each path only once).
@@ -201,9 +212,11 @@ impl Flips<'_> {
     }
 
     /// Alternating paths from the ends of strip `x` that visit some strip twice (those
-    /// through distinct strips are [`Tunnels`](super::tunnels::Tunnels)): a link added from the end into a
+    /// through distinct strips are [`Tunnels`]): a link added from the end into a
     /// triangle, one of its links dropped, a link added from the triangle left with a
     /// free side, ..., ending after a drop or with a link into a walk end.
+    ///
+    /// [`Tunnels`]: super::tunnels::Tunnels
     pub(super) fn search_paths(&mut self, x: u32) {
         let walks = &self.s.walks;
         let w = &walks[x as usize];

@@ -1,5 +1,7 @@
-//! The moves of [`refine`](super::refine::refine): new walks for a few slots of the output, written
+//! The moves of [`refine`]: new walks for a few slots of the output, written
 //! as ranges of a pool, and the pieces of old walks they are made of.
+//!
+//! [`refine`]: super::refine::refine
 
 use super::flips::FLIP_LINKS;
 use super::slots::Slots;
@@ -8,17 +10,22 @@ use crate::topology::NO_NEIGHBOR;
 
 pub(super) const NONE: u32 = u32::MAX;
 
-/// Most strips one move of [`refine`](super::refine::refine) changes: a tunnel of [`REFINE_CUTS`] cuts, or a
-/// flip of [`FLIP_LINKS`] dropped links ([`Flips`](super::flips::Flips) makes no move of more slots).
+/// Most strips one move of [`refine`] changes: a tunnel of [`REFINE_CUTS`] cuts, or a
+/// flip of [`FLIP_LINKS`] dropped links ([`Flips`] makes no move of more slots).
+///
+/// [`refine`]: super::refine::refine
+/// [`Flips`]: super::flips::Flips
 pub(super) const MOVE_SLOTS: usize = if REFINE_CUTS + 2 > FLIP_LINKS {
     REFINE_CUTS + 2
 } else {
     FLIP_LINKS
 };
 
-/// A move of [`refine`](super::refine::refine): up to [`MOVE_SLOTS`] strips (slots in the output order) get
+/// A move of [`refine`]: up to [`MOVE_SLOTS`] strips (slots in the output order) get
 /// new walks, ranges `(slot, start, len)` of a pool (len 0 empties the slot), sorted by
 /// slot.
+///
+/// [`refine`]: super::refine::refine
 #[derive(Clone, Copy, Default)]
 pub(super) struct Move {
     pub(super) n: u8,
@@ -85,8 +92,10 @@ pub(super) fn attach(
     }
 }
 
-/// A part of a walk in a tunnel of [`refine`](super::refine::refine): `walks[slot][lo..hi]`, read backwards
+/// A part of a walk in a tunnel of [`refine`]: `walks[slot][lo..hi]`, read backwards
 /// when `rev`.
+///
+/// [`refine`]: super::refine::refine
 #[derive(Clone, Copy)]
 pub(super) struct Piece {
     pub(super) slot: u32,

@@ -11,7 +11,7 @@ use crate::topology::NO_NEIGHBOR;
 /// for a third more time).
 pub(super) const REFINE_CUTS: usize = 3;
 
-/// Generates the tunnels of [`refine`](super::refine::refine) from one strip: alternating paths in the dual
+/// Generates the tunnels of [`refine`] from one strip: alternating paths in the dual
 /// graph that start at an end of the strip, cross to a triangle `n` of another strip
 /// S = A n B, cut S on one side of `n` (the part with `n` joins the path so far), and
 /// go on from the new end of the part cut off, through up to [`REFINE_CUTS`] strips.
@@ -27,6 +27,8 @@ pub(super) const REFINE_CUTS: usize = 3;
 /// exactly. The paths of as many indices are kept for those joins and for the misses
 /// a relink may save (measured: fewer indices and a lower ACMR for about 20% more
 /// time). Strips on a path are distinct, so no walk closes a cycle.
+///
+/// [`refine`]: super::refine::refine
 pub(super) struct Tunnels<'a> {
     pub(super) s: &'a Slots<'a>,
     pub(super) out: &'a mut MoveList,
