@@ -7,14 +7,20 @@
 //!   triangles are *consistently oriented* (they traverse the edge in opposite
 //!   directions). Only such neighbours may follow each other in a strip without
 //!   flipping a triangle, so every stripifier walks this graph.
+//! * [`Csr`]: lists bucketed by vertex (or any small key) by one counting sort;
+//!   [`vertex_triangles`] is the vertex -> triangles list. Every such list of the
+//!   crate is built by it.
+//! * [`Walks`]: paths through the dual graph, what the stripifiers build and the
+//!   local searches of `crate::improve` rewrite, and their encoding as strips
+//!   ([`crate::stripify::encode_path`]).
 //! * [`facts`]: the figures `stripkit stats` prints.
 
-pub mod csr;
+mod csr;
 pub mod facts;
 pub(crate) mod walks;
 
-pub use facts::{validate, MeshFacts};
 pub use csr::{vertex_triangles, Csr};
+pub use facts::{validate, MeshFacts};
 pub use walks::Walks;
 
 use crate::mesh::Mesh;
