@@ -65,6 +65,7 @@
 pub struct ReadmeDoctests;
 
 mod error;
+mod improve;
 mod mesh;
 mod metrics;
 mod pipeline;

@@ -72,18 +72,13 @@ pub fn cache_misses(
     let mut misses = 0usize;
     match kind {
         CacheKind::Fifo => {
-            // A vertex is cached while fewer than `cache_size` misses followed its own:
-            // `clock - pushed_at[v] - 1` pushes came after it.
-            let mut pushed_at = vec![0u64; vertex_count];
-            let mut clock = cache_size as u64 + 1; // stamps of 0 read as "long evicted"
+            // A FIFO at least as large as the vertex count never evicts, whatever its
+            // size.
+            let size = cache_size.min(vertex_count.max(1)).min(1 << 30) as u32;
+            let mut fifo = Fifo::new(size, vertex_count);
             for t in triangles {
                 for &v in t {
-                    let v = v as usize;
-                    if clock - pushed_at[v] > cache_size as u64 {
-                        pushed_at[v] = clock;
-                        clock += 1;
-                        misses += 1;
-                    }
+                    misses += usize::from(fifo.touch(v));
                 }
             }
         }
@@ -108,6 +103,146 @@ pub fn cache_misses(
     misses
 }
 
+/// The FIFO vertex cache of METRICS.md, simulated: a hit does not reorder, a miss
+/// pushes the vertex and evicts the oldest entry. The one simulation behind
+/// [`cache_misses`], the cache-aware stripifier (which also asks what a few more
+/// pushes would leave cached) and its refinement (which replays stretches of the
+/// output from snapshots of the contents). O(1) per vertex, nothing allocated after
+/// [`Fifo::new`].
+#[derive(Clone, Debug)]
+pub(crate) struct Fifo {
+    size: u32,
+    /// Advances by one per push; starts at `size + 1` so that a stamp of 0 (never
+    /// pushed) reads as long evicted.
+    clock: u32,
+    /// Pushes so far (wrapping).
+    pushes: u32,
+    /// Per vertex: the clock at its last push (0: never).
+    stamp: Vec<u32>,
+    /// The last `size` pushes by `clock % size` ([`NONE`] where there was none).
+    ring: Vec<u32>,
+}
+
+/// An empty entry of [`Fifo`]'s ring and snapshots.
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// The clock at which [`Fifo`] moves its clock back (keeping it far from overflow).
+const REBASE_AT: u32 = u32::MAX / 2;
+
+impl Fifo {
+    /// An empty FIFO of `size` entries (1 to 2^30) for vertices `0..vertex_count`.
+    pub(crate) fn new(size: u32, vertex_count: usize) -> Fifo {
+        assert!((1..=1 << 30).contains(&size), "FIFO size {size} out of range");
+        Fifo {
+            size,
+            clock: size + 1,
+            pushes: 0,
+            stamp: vec![0; vertex_count],
+            ring: vec![NONE; size as usize],
+        }
+    }
+
+    /// Whether `v` is cached.
+    #[inline(always)]
+    pub(crate) fn contains(&self, v: u32) -> bool {
+        self.clock - self.stamp[v as usize] <= self.size
+    }
+
+    /// Whether `v` is still cached after `pushes` more pushes (of other vertices).
+    #[inline(always)]
+    pub(crate) fn contains_after(&self, v: u32, pushes: u32) -> bool {
+        self.clock - self.stamp[v as usize] + pushes <= self.size
+    }
+
+    /// Feeds `v` to the cache; true on a miss.
+    #[inline(always)]
+    pub(crate) fn touch(&mut self, v: u32) -> bool {
+        if self.contains(v) {
+            return false;
+        }
+        self.push(v);
+        true
+    }
+
+    /// Pushes `v` (not cached), evicting the oldest entry; `NONE` pushes an empty
+    /// entry.
+    #[inline(always)]
+    fn push(&mut self, v: u32) {
+        if self.clock >= REBASE_AT {
+            self.rebase();
+        }
+        if v != NONE {
+            self.stamp[v as usize] = self.clock;
+        }
+        self.ring[(self.clock % self.size) as usize] = v;
+        self.clock += 1;
+        self.pushes = self.pushes.wrapping_add(1);
+    }
+
+    /// Pushes so far (the misses, for a FIFO fed only through [`Fifo::touch`]).
+    pub(crate) fn pushes(&self) -> u32 {
+        self.pushes
+    }
+
+    /// Entries in the cache: `size` once that many pushes were made.
+    pub(crate) fn len(&self) -> u32 {
+        self.size.min(self.pushes)
+    }
+
+    /// The entry pushed `i` pushes before the newest (`i < len()`).
+    #[inline]
+    pub(crate) fn newest(&self, i: u32) -> u32 {
+        self.ring[((self.clock - 1 - i) % self.size) as usize]
+    }
+
+    /// The entries, oldest first, into `out[..size]` ([`NONE`] for empty ones).
+    pub(crate) fn snapshot(&self, out: &mut [u32]) {
+        let (h, c) = (self.clock as usize, self.size as usize);
+        for (i, e) in out[..c].iter_mut().enumerate() {
+            *e = self.ring[(h + i) % c];
+        }
+    }
+
+    /// Whether the entries, oldest first, are `snap` (as [`Fifo::snapshot`] gives them).
+    pub(crate) fn matches(&self, snap: &[u32]) -> bool {
+        let (h, c) = (self.clock as usize, self.size as usize);
+        (0..c).all(|i| snap[i] == self.ring[(h + i) % c])
+    }
+
+    /// Empties the cache, then pushes the entries of `snap[..size]` (oldest first,
+    /// [`NONE`] for an empty entry): the cache then holds what it held when the
+    /// snapshot was taken.
+    pub(crate) fn load(&mut self, snap: &[u32]) {
+        if self.clock >= REBASE_AT {
+            self.stamp.fill(0);
+            self.clock = self.size + 1;
+        }
+        // Every stamp falls more than `size` pushes behind: nothing is cached.
+        self.clock += self.size + 1;
+        for &v in &snap[..self.size as usize] {
+            self.push(v);
+        }
+    }
+
+    /// Moves the clock back to its start, keeping the contents: each entry, oldest
+    /// first, restamped as if pushed again.
+    #[cold]
+    fn rebase(&mut self) {
+        let c = self.size;
+        self.stamp.fill(0);
+        // Oldest first, then placed so that the entry pushed at clock k sits at k % c.
+        self.ring.rotate_left((self.clock % c) as usize);
+        self.clock = c + 1;
+        for (i, &v) in self.ring.iter().enumerate() {
+            if v != NONE {
+                self.stamp[v as usize] = self.clock + i as u32;
+            }
+        }
+        self.ring.rotate_right((self.clock % c) as usize);
+        self.clock += c;
+    }
+}
+
 /// Average cache miss ratio: [`cache_misses`] per triangle (0 for no triangles).
 pub fn acmr(
     triangles_in_order: &[[u32; 3]],
@@ -127,11 +262,7 @@ pub fn acmr(
 pub fn swaps(strips: &StripSet) -> usize {
     let mut n = 0;
     for s in strips.iter() {
-        for w in s.windows(3) {
-            if w[0] == w[1] || w[1] == w[2] || w[2] == w[0] {
-                n += 1;
-            }
-        }
+        n += s.windows(3).filter(|w| strip::is_degenerate(&[w[0], w[1], w[2]])).count();
     }
     n
 }
@@ -230,5 +361,74 @@ mod tests {
         // 5m [5 0 4 3]; 6m.
         assert_eq!(cache_misses(&tris, 7, 4, CacheKind::Lru), 7);
         assert_eq!(acmr(&[], 0, 16, CacheKind::Fifo), 0.0);
+    }
+
+    /// A plain FIFO, for comparison: the entries, oldest first.
+    fn naive_touch(q: &mut std::collections::VecDeque<u32>, size: usize, v: u32) -> bool {
+        if q.contains(&v) {
+            return false;
+        }
+        if q.len() == size {
+            q.pop_front();
+        }
+        q.push_back(v);
+        true
+    }
+
+    #[test]
+    fn fifo_matches_a_plain_queue_through_snapshots_loads_and_rebases() {
+        let mut next = crate::test_support::xorshift(0x5DEE_CE66_D1CE_4E5Bu64);
+        for round in 0..60 {
+            let size = 1 + round % 7;
+            let vc = 2 + (round * 3) % 20;
+            let mut f = Fifo::new(size as u32, vc);
+            if round % 3 == 1 {
+                // Close to the rebase: it happens during the round.
+                f.clock = REBASE_AT - 50;
+                f.stamp.fill(0);
+            }
+            let mut q = std::collections::VecDeque::new();
+            let mut saved: Option<(Vec<u32>, std::collections::VecDeque<u32>)> = None;
+            let mut loaded = false;
+            for step in 0..400 {
+                let v = next(vc as u32);
+                assert_eq!(f.touch(v), naive_touch(&mut q, size, v), "round {round} step {step}");
+                for w in 0..vc as u32 {
+                    assert_eq!(f.contains(w), q.contains(&w));
+                }
+                // A load pushes the empty entries of its snapshot too.
+                if !loaded {
+                    let live = f.len() as usize;
+                    assert_eq!(live, q.len());
+                    for i in 0..live {
+                        assert_eq!(f.newest(i as u32), q[q.len() - 1 - i]);
+                    }
+                }
+                match step % 97 {
+                    13 => {
+                        let mut snap = vec![0; size];
+                        f.snapshot(&mut snap);
+                        assert!(f.matches(&snap));
+                        saved = Some((snap, q.clone()));
+                    }
+                    71 => {
+                        if let Some((snap, sq)) = &saved {
+                            f.load(snap);
+                            q = sq.clone();
+                            loaded = true;
+                            assert!(f.matches(snap));
+                        }
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn cache_larger_than_the_vertices_never_evicts() {
+        let tris = [[0, 1, 2], [2, 1, 0], [1, 2, 0]];
+        assert_eq!(cache_misses(&tris, 3, usize::MAX, CacheKind::Fifo), 3);
+        assert_eq!(cache_misses(&tris, 3, 2, CacheKind::Fifo), 7);
     }
 }

@@ -6,7 +6,8 @@
 //! most recent first: a triangle whose degree drops goes to the front of its new
 //! bucket (the paper's "insert before the first node of degree k-1") in O(1), so the
 //! next strip starts near the last one. (The paper's intrusive linked lists are
-//! replaced by stacks with lazy deletion that give the same order; see `Buckets`.)
+//! replaced by stacks with lazy deletion that give the same order; see
+//! `super::buckets`.)
 //!
 //! * A strip starts at a free triangle of lowest degree.
 //! * It grows forwards, then backwards from its start. The next triangle is the free
@@ -24,7 +25,7 @@
 //!
 //! * Then, unless [`GreedyOptions::tunnel_cuts`] is `None`, [`super::tunnel`] relinks
 //!   the strips along short alternating paths where that saves indices (`indices`) or
-//!   strips (`strips`): bunny, `indices`, 83,179 -> 81,755 indices.
+//!   strips (`strips`).
 //!
 //! Strips step only between [`DualGraph`] neighbours (two triangles running an edge in
 //! opposite directions; on a non-manifold edge, the pairs the graph makes), so every
@@ -32,9 +33,9 @@
 //! end strips. Degenerate triangles (a repeated index) are dropped. Runs in
 //! O(triangles + vertices).
 
-use super::encode_path;
-use crate::strip::{is_degenerate, StripSet};
-use crate::topology::{DualGraph, NO_NEIGHBOR};
+use super::buckets::Buckets;
+use crate::strip::StripSet;
+use crate::topology::{DualGraph, Walks, NO_NEIGHBOR};
 
 /// What the greedy choice optimises.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -64,11 +65,11 @@ impl std::str::FromStr for Heuristic {
 pub struct GreedyOptions {
     /// What to optimise.
     pub heuristic: Heuristic,
-    /// Tunnelling after the greedy pass (strips relinked along alternating paths through
-    /// the dual graph, where that saves indices): the most strip links one
-    /// relinking may cut, or `None` for the plain greedy of the paper. Default 1 (bunny,
-    /// `indices`: 83,179 -> 81,755 indices for about 5 ms more; 2 gives 81,215 for about
-    /// 12 ms more).
+    /// Tunnelling after the greedy pass (strips relinked along alternating paths
+    /// through the dual graph, where that saves indices): the most strip links one
+    /// relinking may cut, or `None` for the plain greedy of the paper. Default 1 (on
+    /// bunny about 2% fewer indices for a few ms; 2 cuts save a little more for twice
+    /// that).
     pub tunnel_cuts: Option<usize>,
 }
 
@@ -97,53 +98,6 @@ const NONE: u32 = u32::MAX;
 type Key = (u8, u8, u8, u8, u8);
 /// Slot value meaning "no entry edge".
 const NO_SLOT: usize = 3;
-
-/// Free triangles bucketed by degree, most recently (re)inserted first.
-///
-/// The paper keeps one intrusive doubly linked list per degree and moves a triangle to
-/// the front of the next lower list when its degree drops. The same order comes out of
-/// one stack per degree with lazy deletion: a degree change pushes the triangle on the
-/// lower stack (a degree only falls, so a triangle enters each stack at most once) and
-/// leaves a stale entry behind, which [`Buckets::lowest`] skips (its degree or freedom no
-/// longer matches). Pushes are sequential writes instead of three random ones per move,
-/// which on a million triangles halves the running time; the strips are the same.
-pub(super) struct Buckets {
-    stacks: [Vec<u32>; 4],
-    /// Free dual neighbours of each triangle (valid while it is free).
-    pub(super) degree: Vec<u8>,
-    /// Not yet in a strip.
-    pub(super) free: Vec<bool>,
-}
-
-impl Buckets {
-    pub(super) fn new(n: usize) -> Self {
-        Buckets {
-            stacks: std::array::from_fn(|_| Vec::with_capacity(n)),
-            degree: vec![0; n],
-            free: vec![false; n],
-        }
-    }
-
-    /// Puts free triangle `t` at the front of degree `d`.
-    #[inline]
-    pub(super) fn push_front(&mut self, t: u32, d: u8) {
-        self.stacks[d as usize].push(t);
-        self.degree[t as usize] = d;
-    }
-
-    /// The first free triangle of the lowest degree, dropping stale entries on the way.
-    pub(super) fn lowest(&mut self) -> Option<u32> {
-        for d in 0..4 {
-            while let Some(&t) = self.stacks[d].last() {
-                if self.free[t as usize] && self.degree[t as usize] as usize == d {
-                    return Some(t);
-                }
-                self.stacks[d].pop();
-            }
-        }
-        None
-    }
-}
 
 struct Greedy<'a> {
     tris: &'a [[u32; 3]],
@@ -210,7 +164,7 @@ impl Greedy<'_> {
             // neighbour's neighbour of degree 3 means open surface ahead); this keeps
             // the free region compact and saves strips. Indices: avoid the swap first,
             // then head into open surface (measured: slightly fewer indices than the
-            // lowest look-ahead on every research mesh, e.g. bunny 83,244 -> 83,179).
+            // lowest look-ahead on every research mesh).
             let key = match self.heuristic {
                 Heuristic::Strips => (d, early, u8::from(la >= 3), swap, la),
                 Heuristic::Indices => (d, early, swap, 3 - la.min(3), 0),
@@ -271,41 +225,19 @@ pub fn stripify_with_graph(
     graph: &DualGraph,
     options: &GreedyOptions,
 ) -> StripSet {
-    let walks = walks_with_graph(tris, graph, options);
-    let mut out = StripSet::new();
-    out.indices.reserve(tris.len() + tris.len() / 4);
-    for i in 0..walks.len() {
-        encode_path(tris, graph, walks.strip(i), &mut out);
-    }
-    out
+    walks_with_graph(tris, graph, options).encode(tris, graph)
 }
 
-/// The strips of [`stripify_with_graph`] as walks before they are encoded: each entry
-/// of the returned [`StripSet`] is a sequence of triangle ids, each a `graph`
-/// neighbour of the one before (see [`encode_path`]).
-fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOptions) -> StripSet {
+/// The strips of [`stripify_with_graph`] as walks, before they are encoded.
+fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOptions) -> Walks {
     let n = tris.len();
     let mut g = Greedy {
         tris,
         nbr: &graph.neighbors,
-        b: Buckets::new(n),
+        b: Buckets::of(tris, graph),
         heuristic: options.heuristic,
     };
-    // Insert in reverse so that each bucket starts in input order.
-    for t in (0..n).rev() {
-        if is_degenerate(&tris[t]) {
-            continue;
-        }
-        g.b.free[t] = true;
-        let d = graph.neighbors[t]
-            .iter()
-            .filter(|&&x| x != NO_NEIGHBOR)
-            .count() as u8;
-        g.b.push_front(t as u32, d);
-    }
-    // The strips as walks (triangle ids) until they are encoded.
-    let mut walks = StripSet::new();
-    walks.indices.reserve(n);
+    let mut walks = Walks::with_capacity(n);
     let mut path: Vec<u32> = Vec::new();
     let mut back: Vec<u32> = Vec::new();
     while let Some(t0) = g.b.lowest() {
@@ -327,8 +259,7 @@ fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOption
             };
             g.grow(&mut back, t0, entry, last_pivot);
         }
-        walks.indices.extend(back.iter().rev().chain(&path));
-        walks.offsets.push(walks.indices.len() as u32);
+        walks.push_iter(back.iter().rev().chain(&path).copied());
     }
     match options.tunnel_cuts {
         Some(max_cuts) => {
@@ -338,12 +269,12 @@ fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOption
                 Heuristic::Strips => 1 << 16,
                 Heuristic::Indices => 3,
             };
-            let topts = super::tunnel::TunnelOptions {
+            let topts = crate::improve::tunnel::TunnelOptions {
                 max_cuts,
                 strip_cost,
                 ..Default::default()
             };
-            super::tunnel::tunnel(tris, graph, &walks, &topts)
+            crate::improve::tunnel::tunnel_walks(tris, graph, &walks, &topts)
         }
         None => walks,
     }

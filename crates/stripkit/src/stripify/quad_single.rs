@@ -21,7 +21,8 @@
 //!
 //! O(quads log quads) (reversals always take the smaller cycle).
 
-use super::quad::{emit_quad_sequence, step, QuadAdjacency, INF, NONE, NO_EDGE};
+use super::quad_adjacency::{QuadAdjacency, NONE};
+use super::quad_sequence::{emit_quad_sequence, step, INF, NO_EDGE};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::strip::StripSet;
@@ -66,15 +67,40 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
             s % 4,
             adj.quad_face[s / 4]
         )));
+    }    let (outs, ins) = orient(link, n);
+    let mut succ_slot = two_factor(link, &outs, &ins);
+    if succ_slot.contains(&NONE) {
+        return Err(Error::Invalid(
+            "quad-single: could not build a cycle cover of the quads".into(),
+        ));
     }
-    let head = |s: u32| link[s as usize] >> 2;
-    // Partner slot (the same edge seen from the other quad).
-    let partner = |s: u32| {
-        let l = link[s as usize];
-        4 * (l >> 2) + (l & 3)
-    };
+    splice_cycles(link, &mut succ_slot);
+    let (strips, cycles, swaps) = emit_cycles(&adj, &succ_slot);
+    Ok(SingleStrips {
+        strips,
+        quads: n,
+        cycles,
+        swaps,
+    })
+}
 
-    // Eulerian orientation by closed trails.
+/// The quad across slot `s` (edge `s % 4` of quad `s / 4`).
+fn slot_head(link: &[u32], s: u32) -> u32 {
+    link[s as usize] >> 2
+}
+
+/// The partner slot of `s`: the same edge seen from the other quad.
+fn slot_partner(link: &[u32], s: u32) -> u32 {
+    let l = link[s as usize];
+    4 * (l >> 2) + (l & 3)
+}
+
+/// Eulerian orientation of the dual edges by closed trails: for each of the `n`
+/// quads, the slots of its two edges out and of the two edges in (as the other
+/// quad's slot).
+fn orient(link: &[u32], n: usize) -> (Vec<[u32; 2]>, Vec<[u32; 2]>) {
+    let head = |s: u32| slot_head(link, s);
+    let partner = |s: u32| slot_partner(link, s);
     let mut used = vec![false; 4 * n];
     let mut outs = vec![[NONE; 2]; n];
     let mut ins = vec![[NONE; 2]; n];
@@ -110,7 +136,14 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
             cur = h;
         }
     }
+    (outs, ins)
+}
 
+/// A 2-factor of the oriented dual graph: each quad's successor slot (NONE where
+/// none was found).
+fn two_factor(link: &[u32], outs: &[[u32; 2]], ins: &[[u32; 2]]) -> Vec<u32> {
+    let n = outs.len();
+    let head = |s: u32| slot_head(link, s);
     // 2-factor: every other edge of each cycle of the out/in bipartite graph. Each
     // such cycle offers two choices (even or odd edges); take the one that lets more
     // quads go straight through (entry and exit on opposite edges), judged against
@@ -170,11 +203,15 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
             }
         }
     }
-    if succ_slot.contains(&NONE) {
-        return Err(Error::Invalid(
-            "quad-single: could not build a cycle cover of the quads".into(),
-        ));
-    }
+    succ_slot
+}
+
+/// Splices the cycles of the 2-factor `succ_slot` (each quad's successor slot)
+/// together wherever two of them run side by side (see the module docs).
+fn splice_cycles(link: &[u32], succ_slot: &mut [u32]) {
+    let n = succ_slot.len();
+    let head = |s: u32| slot_head(link, s);
+    let partner = |s: u32| slot_partner(link, s);
     let mut succ: Vec<u32> = succ_slot.iter().map(|&s| head(s)).collect();
     let mut pred = vec![NONE; n];
     for u in 0..n {
@@ -242,13 +279,13 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
                     if succ[c as usize] == d && pred[c as usize] != d {
                         // Other cycle runs c -> d: reverse the smaller cycle.
                         if size[rc as usize] <= size[ra as usize] {
-                            reverse_cycle(c, &mut succ, &mut pred, &mut succ_slot, link);
+                            reverse_cycle(c, &mut succ, &mut pred, succ_slot, link);
                         } else {
-                            reverse_cycle(a, &mut succ, &mut pred, &mut succ_slot, link);
+                            reverse_cycle(a, &mut succ, &mut pred, succ_slot, link);
                             // Now b -> a and (still) c -> d: splice b -> d ... c -> a.
                             let sbd = sb;
                             let sca = partner(sa);
-                            splice(b, d, c, a, sbd, sca, &mut succ, &mut pred, &mut succ_slot);
+                            splice(b, d, c, a, sbd, sca, &mut succ, &mut pred, succ_slot);
                             union(&mut parent, &mut size, ra, rc);
                             done = true;
                             break;
@@ -257,7 +294,7 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
                     if pred[c as usize] == d {
                         // a -> c ... (forward in the other cycle) ... d -> b.
                         let sdb = partner(sb);
-                        splice(a, c, d, b, sa, sdb, &mut succ, &mut pred, &mut succ_slot);
+                        splice(a, c, d, b, sa, sdb, &mut succ, &mut pred, succ_slot);
                         union(&mut parent, &mut size, ra, rc);
                         done = true;
                         break;
@@ -270,7 +307,13 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
             }
         }
     }
+}
 
+/// Cuts every cycle of `succ_slot` once and emits it as a strip (more where a forced
+/// diagonal forbids a turn): the strips, the cycles and the swaps.
+fn emit_cycles(adj: &QuadAdjacency, succ_slot: &[u32]) -> (StripSet, usize, usize) {
+    let (link, n) = (&adj.link, succ_slot.len());
+    let head = |s: u32| slot_head(link, s);
     // Cut every cycle once and emit it.
     let mut strips = StripSet::new();
     let mut swaps = 0;
@@ -283,7 +326,7 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
         if let Some(last) = seq.last_mut() {
             last.2 = NO_EDGE;
             strip.clear();
-            *swaps += emit_quad_sequence(&adj, seq, &mut togo, &mut strip);
+            *swaps += emit_quad_sequence(adj, seq, &mut togo, &mut strip);
             strips.push(&strip);
         }
         seq.clear();
@@ -327,12 +370,7 @@ pub fn quad_single(mesh: &Mesh) -> Result<SingleStrips> {
         }
         flush(&mut seq, &mut strips, &mut swaps);
     }
-    Ok(SingleStrips {
-        strips,
-        quads: n,
-        cycles,
-        swaps,
-    })
+    (strips, cycles, swaps)
 }
 
 fn union(parent: &mut [u32], size: &mut [u32], ra: u32, rc: u32) {

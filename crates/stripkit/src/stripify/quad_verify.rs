@@ -16,10 +16,10 @@
 //! Independent of how the strips were built: it only decodes them by the METRICS.md
 //! rule. O(T) expected time with hashing.
 
-use super::quad::is_quad;
+use super::quad_adjacency::{coincide, is_quad, split};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
-use crate::strip::{for_each_triangle, StripSet};
+use crate::strip::{canonical, for_each_triangle, StripSet};
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 
@@ -61,17 +61,6 @@ impl Hasher for TripleHasher {
 
 type Counts = HashMap<[u32; 3], u32, BuildHasherDefault<TripleHasher>>;
 
-/// The oriented triangle rotated so that its smallest index comes first.
-fn canonical(t: [u32; 3]) -> [u32; 3] {
-    if t[0] <= t[1] && t[0] <= t[2] {
-        t
-    } else if t[1] <= t[2] {
-        [t[1], t[2], t[0]]
-    } else {
-        [t[2], t[0], t[1]]
-    }
-}
-
 fn take(counts: &mut Counts, t: [u32; 3]) -> bool {
     match counts.get_mut(&canonical(t)) {
         Some(c) if *c > 0 => {
@@ -95,13 +84,8 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
     let mut counts = Counts::default();
     let vcount = mesh.vertex_count() as u32;
     let mut bad_index = None;
+    check.degenerate = crate::metrics::swaps(strips);
     for s in strips.iter() {
-        for i in 0..s.len().saturating_sub(2) {
-            let (x, y, z) = (s[i], s[i + 1], s[i + 2]);
-            if x == y || y == z || x == z {
-                check.degenerate += 1;
-            }
-        }
         if let Some(&v) = s.iter().find(|&&v| v >= vcount) {
             bad_index = Some(v);
         }
@@ -133,12 +117,6 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
     }
     // Quads: take the unambiguous ones first (only one diagonal's pair present), then
     // the rest, so that a neighbouring pillow cannot steal a triangle.
-    let split = |v: &[u32], d: usize| -> [[u32; 3]; 2] {
-        [
-            [v[d], v[d + 1], v[(d + 2) % 4]],
-            [v[d], v[(d + 2) % 4], v[(d + 3) % 4]],
-        ]
-    };
     let mut deferred = Vec::new();
     let mut quad_sets: Vec<([u32; 3], u32)> = Vec::new();
     for pass in 0..2 {
@@ -203,17 +181,5 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
 /// the same three vertices (false only for pairs on the same four vertices whose every
 /// split clashes, which the input forces).
 fn avoidable(a: &[u32], b: &[u32]) -> bool {
-    let sets = |v: &[u32], d: usize| {
-        let mut t1 = [v[d], v[d + 1], v[(d + 2) % 4]];
-        let mut t2 = [v[d], v[(d + 2) % 4], v[(d + 3) % 4]];
-        t1.sort_unstable();
-        t2.sort_unstable();
-        [t1, t2]
-    };
-    (0..2).any(|da| {
-        (0..2).any(|db| {
-            let (x, y) = (sets(a, da), sets(b, db));
-            !x.iter().any(|t| y.contains(t))
-        })
-    })
+    (0..2).any(|da| (0..2).any(|db| !coincide(a, da, b, db)))
 }

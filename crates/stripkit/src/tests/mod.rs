@@ -6,4 +6,5 @@ mod cache;
 mod dual_graph;
 mod quad;
 mod quad_single;
+mod strip_hashes;
 mod support;

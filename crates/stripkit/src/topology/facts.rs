@@ -6,7 +6,7 @@
 //!
 //! The definitions are on [`MeshFacts`], where the public documentation shows them.
 
-use super::EdgeMap;
+use super::{Csr, EdgeMap};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use std::fmt;
@@ -249,31 +249,15 @@ fn count_boundary_loops(mesh: &Mesh, map: &EdgeMap) -> usize {
         e != u32::MAX && map.halfedges(e as usize).len() == 1
     };
     // Boundary half-edges bucketed by their start vertex, for the fallback step.
-    let vcount = mesh.vertex_count();
-    let mut start = vec![0u32; vcount + 1];
-    let mut boundary_count = 0usize;
-    for h in 0..fi.len() as u32 {
-        if is_boundary(h) {
-            start[fi[h as usize] as usize + 1] += 1;
-            boundary_count += 1;
-        }
-    }
-    if boundary_count == 0 {
+    let leaving = Csr::from_entries(
+        mesh.vertex_count(),
+        (0..fi.len() as u32).filter(|&h| is_boundary(h)).map(|h| (fi[h as usize] as usize, h)),
+    );
+    if leaving.values().is_empty() {
         return 0;
     }
-    for v in 0..vcount {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    let mut leaving = vec![0u32; boundary_count];
-    for h in 0..fi.len() as u32 {
-        if is_boundary(h) {
-            let v = fi[h as usize] as usize;
-            leaving[fill[v] as usize] = h;
-            fill[v] += 1;
-        }
-    }
-    // `fill[v]` now marks the end; `cursor[v]` skips used entries in the fallback.
+    let (start, leaving) = leaving.into_parts();
+    // `cursor[v]` skips used entries of bucket `v` in the fallback.
     let mut cursor = start.clone();
     let mut used = vec![false; fi.len()];
     let step_limit = fi.len();
@@ -319,10 +303,10 @@ fn count_boundary_loops(mesh: &Mesh, map: &EdgeMap) -> usize {
             if next.is_none() {
                 // Fallback: any unused boundary half-edge leaving the end vertex.
                 let v = fi[map.halfedge_next[h as usize] as usize] as usize;
-                while cursor[v] < fill[v] && used[leaving[cursor[v] as usize] as usize] {
+                while cursor[v] < start[v + 1] && used[leaving[cursor[v] as usize] as usize] {
                     cursor[v] += 1;
                 }
-                if cursor[v] < fill[v] {
+                if cursor[v] < start[v + 1] {
                     next = Some(leaving[cursor[v] as usize]);
                 }
             }
@@ -346,31 +330,22 @@ fn count_boundary_loops(mesh: &Mesh, map: &EdgeMap) -> usize {
 fn count_pinch_vertices(mesh: &Mesh, map: &EdgeMap) -> usize {
     let fi = &mesh.face_indices;
     let vcount = mesh.vertex_count();
-    let mut start = vec![0u32; vcount + 1];
-    for &v in fi {
-        start[v as usize + 1] += 1;
-    }
-    for v in 0..vcount {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
     // [outgoing edge, incoming edge, face] of each corner, grouped by vertex.
-    let mut corners = vec![[0u32; 3]; fi.len()];
-    for (f, w) in mesh.face_offsets.windows(2).enumerate() {
-        let (s, t) = (w[0] as usize, w[1] as usize);
-        let mut prev = t - 1;
-        for h in s..t {
-            let v = fi[h] as usize;
-            corners[fill[v] as usize] = [map.halfedge_edge[h], map.halfedge_edge[prev], f as u32];
-            fill[v] += 1;
-            prev = h;
-        }
-    }
-    drop(fill);
+    let corners = Csr::from_items(
+        vcount,
+        0..fi.len(),
+        |&h| fi[h] as usize,
+        |h| {
+            let f = map.halfedge_face[h];
+            let start = mesh.face_offsets[f as usize] as usize;
+            let prev = if h == start { mesh.face_offsets[f as usize + 1] as usize - 1 } else { h - 1 };
+            [map.halfedge_edge[h], map.halfedge_edge[prev], f]
+        },
+    );
     let mut local: Vec<u32> = Vec::new();
     let mut pinches = 0;
     for v in 0..vcount {
-        let cs = &corners[start[v] as usize..start[v + 1] as usize];
+        let cs = corners.bucket(v);
         if cs.len() < 2 {
             continue;
         }

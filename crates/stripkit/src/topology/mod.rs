@@ -7,11 +7,21 @@
 //!   triangles are *consistently oriented* (they traverse the edge in opposite
 //!   directions). Only such neighbours may follow each other in a strip without
 //!   flipping a triangle, so every stripifier walks this graph.
+//! * [`Csr`]: lists bucketed by vertex (or any small key) by one counting sort;
+//!   [`vertex_triangles`] is the vertex -> triangles list. Every such list of the
+//!   crate is built by it.
+//! * [`Walks`]: paths through the dual graph, what the stripifiers build and the
+//!   local searches of `crate::improve` rewrite, and their encoding as strips
+//!   ([`walks::encode_path`]).
 //! * [`facts`]: the figures `stripkit stats` prints.
 
+mod csr;
 pub mod facts;
+pub(crate) mod walks;
 
+pub use csr::{vertex_triangles, Csr};
 pub use facts::{validate, MeshFacts};
+pub use walks::Walks;
 
 use crate::mesh::Mesh;
 use crate::strip::is_degenerate;
@@ -54,43 +64,29 @@ impl EdgeMap {
                 halfedge_next[h as usize] = if h + 1 == end { start } else { h + 1 };
             }
         }
-        // Bucket half-edges by their lower vertex (counting sort), each as the key
-        // `hi << 32 | h`; sorting a bucket's keys orders it by higher vertex, then by
-        // half-edge id, so the result depends on nothing but the mesh. Buckets hold
-        // about six entries.
+        // Bucket half-edges by their lower vertex, each as the key `hi << 32 | h`;
+        // sorting a bucket's keys orders it by higher vertex, then by half-edge id, so
+        // the result depends on nothing but the mesh. Buckets hold about six entries.
         let vcount = mesh.vertex_count();
-        let mut bucket_start = vec![0u32; vcount + 1];
         let ends = |h: usize| {
             let a = mesh.face_indices[h];
             let b = mesh.face_indices[halfedge_next[h] as usize];
             (a.min(b), a.max(b))
         };
-        for h in 0..h_count {
-            let (lo, hi) = ends(h);
-            if lo != hi {
-                bucket_start[lo as usize + 1] += 1;
-            }
-        }
-        for v in 0..vcount {
-            bucket_start[v + 1] += bucket_start[v];
-        }
-        let mut fill = bucket_start.clone();
-        let mut bucketed = vec![0u64; bucket_start[vcount] as usize];
-        for h in 0..h_count {
-            let (lo, hi) = ends(h);
-            if lo != hi {
-                bucketed[fill[lo as usize] as usize] = (hi as u64) << 32 | h as u64;
-                fill[lo as usize] += 1;
-            }
-        }
-        drop(fill);
+        let mut bucketed = Csr::from_entries(
+            vcount,
+            (0..h_count).filter_map(|h| {
+                let (lo, hi) = ends(h);
+                (lo != hi).then_some((lo as usize, (hi as u64) << 32 | h as u64))
+            }),
+        );
         let mut edges = Vec::with_capacity(h_count / 2 + 1);
         let mut edge_offsets = Vec::with_capacity(h_count / 2 + 2);
-        let mut edge_halfedges = Vec::with_capacity(bucketed.len());
+        let mut edge_halfedges = Vec::with_capacity(bucketed.values().len());
         let mut halfedge_edge = vec![u32::MAX; h_count];
         edge_offsets.push(0);
         for v in 0..vcount {
-            let bucket = &mut bucketed[bucket_start[v] as usize..bucket_start[v + 1] as usize];
+            let bucket = bucketed.bucket_mut(v);
             bucket.sort_unstable();
             let mut i = 0;
             while i < bucket.len() {
@@ -120,8 +116,15 @@ impl EdgeMap {
     }
 }
 
-/// Prefix sums of the corners (edges) of non-degenerate triangles bucketed by their
-/// edge's lower vertex: bucket `v` is `start[v]..start[v + 1]`.
+/// One more than the largest index of `tris` (0 for none).
+pub(crate) fn vertex_bound(tris: &[[u32; 3]]) -> usize {
+    tris.iter()
+        .flatten()
+        .map(|&v| v as usize + 1)
+        .max()
+        .unwrap_or(0)
+}
+
 /// Sorts one bucket of a counting sort: insertion sort for the usual handful of
 /// entries, pdqsort for a large one (a high-valence vertex), so never quadratic.
 pub(crate) fn sort_bucket<T: Ord>(bucket: &mut [T]) {
@@ -138,17 +141,25 @@ pub(crate) fn sort_bucket<T: Ord>(bucket: &mut [T]) {
     }
 }
 
-fn corner_bucket_starts(tris: &[[u32; 3]], vertex_count: usize) -> Vec<u32> {
-    let mut start = vec![0u32; vertex_count + 1];
-    for t in tris.iter().filter(|t| !is_degenerate(t)) {
-        for j in 0..3 {
-            start[t[j].min(t[(j + 1) % 3]) as usize + 1] += 1;
-        }
-    }
-    for v in 0..vertex_count {
-        start[v + 1] += start[v];
-    }
-    start
+/// `f(corner, a, b)` for every corner `3 t + j` of the non-degenerate triangles, its
+/// edge running `a = t[j]` to `b = t[j + 1]`, bucketed by the edge's lower vertex.
+fn corners_by_lower_vertex<T: Copy + Default>(
+    tris: &[[u32; 3]],
+    vertex_count: usize,
+    f: impl Fn(usize, u32, u32) -> T + Copy,
+) -> Csr<T> {
+    Csr::from_entries(
+        vertex_count,
+        tris.iter()
+            .enumerate()
+            .filter(|(_, t)| !is_degenerate(t))
+            .flat_map(move |(ti, t)| {
+                (0..3).map(move |j| {
+                    let (a, b) = (t[j], t[(j + 1) % 3]);
+                    (a.min(b) as usize, f(ti * 3 + j, a, b))
+                })
+            }),
+    )
 }
 
 /// The dual graph of a triangle list: neighbours across edges that two triangles run
@@ -220,13 +231,7 @@ impl DualGraph {
         mut twins: Option<&mut Vec<[u8; 3]>>,
     ) -> DualGraph {
         let n = tris.len();
-        let max_index = tris
-            .iter()
-            .flatten()
-            .copied()
-            .max()
-            .map_or(0, |m| m as usize + 1);
-        let vcount = vertex_count.max(max_index);
+        let vcount = vertex_count.max(vertex_bound(tris));
         // Entry: higher vertex in the top 32 bits, below it corner * 2 + 1 when the
         // corner runs low -> high; corner * 2 + 1 must fit in 32 bits.
         if n >= (u32::MAX / 6) as usize {
@@ -236,27 +241,13 @@ impl DualGraph {
             }
             return g;
         }
-        let start = corner_bucket_starts(tris, vcount);
-        let mut fill = start.clone();
-        let mut entries = vec![0u64; start[vcount] as usize];
-        for (ti, t) in tris.iter().enumerate() {
-            if is_degenerate(t) {
-                continue;
-            }
-            for j in 0..3 {
-                let (a, b) = (t[j], t[(j + 1) % 3]);
-                let lo = a.min(b) as usize;
-                let corner = (ti * 3 + j) as u64;
-                entries[fill[lo] as usize] =
-                    (u64::from(a.max(b)) << 32) | (corner * 2 + u64::from(a < b));
-                fill[lo] += 1;
-            }
-        }
-        drop(fill);
+        let mut entries = corners_by_lower_vertex(tris, vcount, |corner, a, b| {
+            (u64::from(a.max(b)) << 32) | (corner as u64 * 2 + u64::from(a < b))
+        });
         let mut neighbors = vec![[NO_NEIGHBOR; 3]; n];
         let hi = |e: u64| (e >> 32) as u32;
         for v in 0..vcount {
-            let bucket = &mut entries[start[v] as usize..start[v + 1] as usize];
+            let bucket = entries.bucket_mut(v);
             sort_bucket(bucket);
             let mut i = 0;
             while i < bucket.len() {
@@ -303,19 +294,7 @@ impl DualGraph {
         let n = tris.len();
         // Bucket the corners (t, j) of non-degenerate triangles by the lower vertex of
         // their edge; in a bucket, a corner pairs with the one running the other way.
-        let start = corner_bucket_starts(tris, vertex_count);
-        let mut fill = start.clone();
-        let mut corners = vec![0u32; start[vertex_count] as usize];
-        for (ti, t) in tris.iter().enumerate() {
-            if is_degenerate(t) {
-                continue;
-            }
-            for j in 0..3 {
-                let lo = t[j].min(t[(j + 1) % 3]) as usize;
-                corners[fill[lo] as usize] = (ti * 3 + j) as u32;
-                fill[lo] += 1;
-            }
-        }
+        let corners = corners_by_lower_vertex(tris, vertex_count, |corner, _, _| corner as u32);
         let mut neighbors = vec![[NO_NEIGHBOR; 3]; n];
         let edge = |c: u32| {
             let t = &tris[(c / 3) as usize];
@@ -323,7 +302,7 @@ impl DualGraph {
             (t[j], t[(j + 1) % 3])
         };
         for v in 0..vertex_count {
-            let bucket = &corners[start[v] as usize..start[v + 1] as usize];
+            let bucket = corners.bucket(v);
             for &c in bucket {
                 let (a, b) = edge(c);
                 // The rank of `c` among the corners running its edge its way (by
@@ -354,17 +333,13 @@ impl DualGraph {
         self.neighbors.len()
     }
 
-    /// True for an empty graph.
-    pub fn is_empty(&self) -> bool {
-        self.neighbors.is_empty()
-    }
-
     /// Number of neighbours of triangle `t` (0 to 3).
     pub fn degree(&self, t: usize) -> usize {
         self.neighbors[t].iter().filter(|&&n| n != NO_NEIGHBOR).count()
     }
 
     /// Number of dual edges (each counted once).
+    #[cfg(test)]
     pub fn edge_count(&self) -> usize {
         self.neighbors.iter().flatten().filter(|&&n| n != NO_NEIGHBOR).count() / 2
     }

@@ -19,9 +19,36 @@
 //! stops at an inner triangle and cuts one of its links). Searches are depth-first from
 //! every strip end, bounded in length, so the pass is O(triangles) with a small
 //! constant; the strip ends' start-of-strip swap is settled by the encoder.
+//!
+//! **Why this is not the search of `tunnels.rs`.** The refinement's tunnels
+//! (`super::tunnels`) look for the same alternating paths, but the two searches
+//! differ in ways that decide which path is found, so one search with the scoring
+//! passed in would change the strips of one or the other:
+//!
+//! * *Acceptance.* This pass applies the first improving path it meets and goes on
+//!   from the changed links (first improvement, ends requeued after a change); the
+//!   refinement collects every path of no more indices from one strip as moves on a
+//!   fixed snapshot and takes the best after replaying each on the FIFO (best
+//!   improvement, ties to the first generated). Here the visiting order decides the
+//!   output; there it decides the tie-breaks.
+//! * *Order at a cut.* Here a linked triangle's links are cut in the order of its link
+//!   array, which earlier relinkings leave in either order; the refinement cuts after
+//!   the crossing triangle first, then before it.
+//! * *Pruning.* Here only triangles already on the path are excluded (a path may come
+//!   back through a strip it cut, guarded by a cycle check); the refinement excludes
+//!   whole strips already on the path (paths that come back are its flips, scored
+//!   differently), and joins at a strip end only after two cuts (shorter joins are its
+//!   simple moves).
+//! * *Scoring.* Here swaps are counted from the pivots of the touched triangles on the
+//!   live links; the refinement counts them from stored prefix sums over windows of
+//!   the old walks, then exactly on the FIFO.
+//!
+//! What the two share is the walk encoding and its swap rule
+//! ([`crate::topology::Walks`], [`crate::topology::walks::encode_path`]).
 
+#[cfg(test)]
 use crate::strip::StripSet;
-use crate::topology::{DualGraph, NO_NEIGHBOR};
+use crate::topology::{DualGraph, Walks, NO_NEIGHBOR};
 
 const NONE: u32 = u32::MAX;
 
@@ -301,18 +328,23 @@ impl State<'_> {
     }
 }
 
-/// Reduces the index count of `walks` by tunnelling and returns the new walks. Here a
-/// [`StripSet`] holds walks, not strips: each entry is a sequence of triangle ids of
-/// `tris`, each a `graph` neighbour of the one before (encode them with
-/// [`super::encode_path`]). Every triangle of `walks` appears
-/// exactly once in the result, and every walk is a path through `graph`, so encoding
-/// keeps every triangle's winding.
+/// [`tunnel_walks`] for walks held in a [`StripSet`] (each entry a sequence of triangle
+/// ids of `tris`, each a `graph` neighbour of the one before, as this function took
+/// them before [`Walks`] existed); returns the new walks the same way.
+#[cfg(test)]
 pub fn tunnel(tris: &[[u32; 3]], graph: &DualGraph, walks: &StripSet, options: &TunnelOptions) -> StripSet {
+    tunnel_walks(tris, graph, &Walks::from_strip_set(walks), options).into_strip_set()
+}
+
+/// Reduces the index count of `walks` by tunnelling and returns the new walks (encode
+/// them with [`Walks::encode`]). Every triangle of `walks` appears exactly once in the
+/// result, and every walk is a path through `graph`, so encoding keeps every
+/// triangle's winding.
+pub fn tunnel_walks(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, options: &TunnelOptions) -> Walks {
     let n = tris.len();
     let mut links = vec![[NONE; 2]; n];
     let mut member = vec![false; n];
-    for i in 0..walks.len() {
-        let w = walks.strip(i);
+    for w in walks.iter() {
         for (k, &t) in w.iter().enumerate() {
             member[t as usize] = true;
             let mut l = [NONE; 2];
@@ -381,17 +413,16 @@ pub fn tunnel(tris: &[[u32; 3]], graph: &DualGraph, walks: &StripSet, options: &
     // Read the paths from their ends, in the order the input walks reach the ends
     // (keeps most of the producer's locality, e.g. for the vertex cache).
     let links = st.links;
-    let mut out = StripSet::new();
-    out.indices.reserve(walks.indices.len());
+    let mut out = Walks::with_capacity(walks.triangles().len());
     let mut done = vec![false; n];
-    for &s0 in &walks.indices {
+    for &s0 in walks.triangles() {
         if done[s0 as usize] || links[s0 as usize][1] != NONE {
             continue;
         }
         let (mut prev, mut cur) = (NONE, s0);
         loop {
             done[cur as usize] = true;
-            out.indices.push(cur);
+            out.push_triangle(cur);
             let l = links[cur as usize];
             let next = if l[0] == prev { l[1] } else { l[0] };
             if next == NONE {
@@ -400,9 +431,9 @@ pub fn tunnel(tris: &[[u32; 3]], graph: &DualGraph, walks: &StripSet, options: &
             prev = cur;
             cur = next;
         }
-        out.offsets.push(out.indices.len() as u32);
+        out.end_walk();
     }
-    if out.indices.len() != walks.indices.len() {
+    if out.triangles().len() != walks.triangles().len() {
         // A cycle would lose its triangles here; the searches never close one, but
         // should that ever fail, the input walks are still a correct answer.
         debug_assert!(false, "tunnelling lost or added triangles");
@@ -416,14 +447,14 @@ mod tests {
     use super::*;
 
     /// Checks that `out` covers exactly `expect` (as a set) with valid dual walks.
-    fn check_walks(graph: &DualGraph, out: &StripSet, expect: &[u32]) {
-        let mut got: Vec<u32> = out.indices.clone();
+    fn check_walks(graph: &DualGraph, out: &Walks, expect: &[u32]) {
+        let mut got: Vec<u32> = out.triangles().to_vec();
         got.sort_unstable();
         let mut want = expect.to_vec();
         want.sort_unstable();
         assert_eq!(got, want, "triangles lost or repeated");
         for i in 0..out.len() {
-            for p in out.strip(i).windows(2) {
+            for p in out.walk(i).windows(2) {
                 assert!(graph.neighbors[p[0] as usize].contains(&p[1]), "not a walk: {p:?}");
             }
         }
@@ -437,11 +468,11 @@ mod tests {
     fn single_triangles_are_tunnelled_into_long_walks() {
         let tris = grid_tris(8, 6);
         let graph = DualGraph::from_triangles(&tris, 9 * 7);
-        let mut walks = StripSet::new();
+        let mut walks = Walks::new();
         for t in 0..tris.len() as u32 {
             walks.push(&[t]);
         }
-        let out = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
+        let out = tunnel_walks(&tris, &graph, &walks, &TunnelOptions::default());
         check_walks(&graph, &out, &(0..tris.len() as u32).collect::<Vec<_>>());
         // 96 single triangles: adjacent ends join directly, so very few walks remain.
         assert!(out.len() <= 12, "{} walks", out.len());
@@ -460,17 +491,17 @@ mod tests {
             tris.push([b, c, d]);
         }
         let graph = DualGraph::from_triangles(&tris, 2 * n as usize);
-        let mut walks = StripSet::new();
+        let mut walks = Walks::new();
         walks.push(&(0..2 * n).collect::<Vec<u32>>());
-        let out = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
+        let out = tunnel_walks(&tris, &graph, &walks, &TunnelOptions::default());
         check_walks(&graph, &out, &(0..2 * n).collect::<Vec<_>>());
         assert_eq!(out.len(), 1);
         // Cut into pieces, it comes back to one walk, still not a cycle.
-        let mut walks = StripSet::new();
+        let mut walks = Walks::new();
         walks.push(&(0..5).collect::<Vec<u32>>());
         walks.push(&(5..9).collect::<Vec<u32>>());
         walks.push(&(9..2 * n).collect::<Vec<u32>>());
-        let out = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
+        let out = tunnel_walks(&tris, &graph, &walks, &TunnelOptions::default());
         check_walks(&graph, &out, &(0..2 * n).collect::<Vec<_>>());
         assert_eq!(out.len(), 1);
     }
@@ -479,13 +510,13 @@ mod tests {
     fn triangles_outside_the_walks_are_left_alone() {
         let tris = grid_tris(6, 4);
         let graph = DualGraph::from_triangles(&tris, 7 * 5);
-        let mut walks = StripSet::new();
+        let mut walks = Walks::new();
         let mut covered = Vec::new();
         for t in (0..tris.len() as u32).filter(|t| t % 5 != 0) {
             walks.push(&[t]);
             covered.push(t);
         }
-        let out = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
+        let out = tunnel_walks(&tris, &graph, &walks, &TunnelOptions::default());
         check_walks(&graph, &out, &covered);
         assert!(out.len() < walks.len());
     }
@@ -494,17 +525,38 @@ mod tests {
     fn empty_input_and_a_second_pass() {
         let tris = grid_tris(5, 5);
         let graph = DualGraph::from_triangles(&tris, 36);
-        let out = tunnel(&tris, &graph, &StripSet::new(), &TunnelOptions::default());
+        let out = tunnel_walks(&tris, &graph, &Walks::new(), &TunnelOptions::default());
         assert!(out.is_empty());
-        let mut walks = StripSet::new();
+        let mut walks = Walks::new();
         for t in 0..tris.len() as u32 {
             walks.push(&[t]);
         }
-        let once = tunnel(&tris, &graph, &walks, &TunnelOptions::default());
-        let twice = tunnel(&tris, &graph, &once, &TunnelOptions::default());
+        let once = tunnel_walks(&tris, &graph, &walks, &TunnelOptions::default());
+        let twice = tunnel_walks(&tris, &graph, &once, &TunnelOptions::default());
         let all: Vec<u32> = (0..tris.len() as u32).collect();
         check_walks(&graph, &once, &all);
         check_walks(&graph, &twice, &all);
         assert!(twice.len() <= once.len());
+    }
+}
+
+#[cfg(test)]
+mod strip_set_tests {
+    use super::*;
+
+    #[test]
+    fn walks_in_a_strip_set_give_the_same_walks() {
+        let tris = crate::gen::grid(6, 5).triangulate().tris;
+        let graph = DualGraph::from_triangles(&tris, 7 * 6);
+        let mut set = StripSet::new();
+        let mut walks = Walks::new();
+        for t in 0..tris.len() as u32 {
+            set.push(&[t]);
+            walks.push(&[t]);
+        }
+        let o = TunnelOptions::default();
+        let out = tunnel(&tris, &graph, &set, &o);
+        assert_eq!(out, tunnel_walks(&tris, &graph, &walks, &o).into_strip_set());
+        assert_eq!(tunnel(&tris, &graph, &StripSet::default(), &o), StripSet::new());
     }
 }

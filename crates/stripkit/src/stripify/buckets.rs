@@ -1,0 +1,68 @@
+//! Free triangles by free degree: the bucket queue of the greedy stripifier, which
+//! the cache-aware stripifier uses too for its jumps to a corner of the free region.
+
+use crate::strip::is_degenerate;
+use crate::topology::DualGraph;
+
+/// Free triangles bucketed by degree, most recently (re)inserted first.
+///
+/// The paper keeps one intrusive doubly linked list per degree and moves a triangle to
+/// the front of the next lower list when its degree drops. The same order comes out of
+/// one stack per degree with lazy deletion: a degree change pushes the triangle on the
+/// lower stack (a degree only falls, so a triangle enters each stack at most once) and
+/// leaves a stale entry behind, which [`Buckets::lowest`] skips (its degree or freedom no
+/// longer matches). Pushes are sequential writes instead of three random ones per move,
+/// which on a million triangles halves the running time; the strips are the same.
+pub(super) struct Buckets {
+    stacks: [Vec<u32>; 4],
+    /// Free dual neighbours of each triangle (valid while it is free).
+    pub(super) degree: Vec<u8>,
+    /// Not yet in a strip.
+    pub(super) free: Vec<bool>,
+}
+
+impl Buckets {
+    fn new(n: usize) -> Self {
+        Buckets {
+            stacks: std::array::from_fn(|_| Vec::with_capacity(n)),
+            degree: vec![0; n],
+            free: vec![false; n],
+        }
+    }
+
+    /// Every non-degenerate triangle of `tris` free, with its degree in `graph`; each
+    /// bucket in input order.
+    pub(super) fn of(tris: &[[u32; 3]], graph: &DualGraph) -> Self {
+        let n = tris.len();
+        let mut b = Buckets::new(n);
+        // Inserted in reverse so that each bucket starts in input order.
+        for t in (0..n).rev() {
+            if is_degenerate(&tris[t]) {
+                continue;
+            }
+            b.free[t] = true;
+            b.push_front(t as u32, graph.degree(t) as u8);
+        }
+        b
+    }
+
+    /// Puts free triangle `t` at the front of degree `d`.
+    #[inline]
+    pub(super) fn push_front(&mut self, t: u32, d: u8) {
+        self.stacks[d as usize].push(t);
+        self.degree[t as usize] = d;
+    }
+
+    /// The first free triangle of the lowest degree, dropping stale entries on the way.
+    pub(super) fn lowest(&mut self) -> Option<u32> {
+        for d in 0..4 {
+            while let Some(&t) = self.stacks[d].last() {
+                if self.free[t as usize] && self.degree[t as usize] as usize == d {
+                    return Some(t);
+                }
+                self.stacks[d].pop();
+            }
+        }
+        None
+    }
+}

@@ -1,0 +1,679 @@
+//! The cache-aware stripifier proper: it grows one strip at a time while it simulates
+//! exactly the FIFO of METRICS.md (a hit does not reorder, a miss evicts the oldest
+//! entry):
+//!
+//! * **Candidates.** Every free triangle around one of the oldest `scan_entries`
+//!   entries of the FIFO that has at least `min_cached` cached vertices, with each of
+//!   its three exit edges; and the end of the last strip, which may go on (a turn
+//!   instead of a restart). When none of these exists, the scan widens before it
+//!   jumps away from the cache: to the triangles around every entry, then to those
+//!   with a single cached vertex; only when the cache touches no free triangle at all,
+//!   the free triangle of lowest free degree (a corner of the free region, as in the
+//!   greedy stripifier). A jump costs three misses at once and starts a region with a
+//!   cold cache, so the wider scans pay on meshes whose free region falls apart into
+//!   pockets (measured on bunny_res3, cow and bunny).
+//! * **Walks.** From a candidate the strip follows its line through free triangles;
+//!   it swaps (one repeated index) where the line is blocked, or where the line's next
+//!   vertex would miss the cache while the swap's would hit: that keeps the strip
+//!   hugging the cached side of the previous one on irregular meshes. At most
+//!   `max_swaps` swaps, `max_len` triangles.
+//! * **Choice.** Every prefix of every walk is scored by what it costs per triangle
+//!   it covers: `(indices + miss_weight * misses + start_penalty * free neighbours
+//!   of the first triangle left behind - finish_bonus * vertices finished) /
+//!   triangles`, where `indices` counts the strip's indices and its restart index
+//!   (none for going on from the last strip), and `misses` the FIFO misses the prefix
+//!   causes after the strips already emitted. The cheapest prefix is emitted. A walk
+//!   is abandoned as soon as no longer prefix can beat the best one found.
+//!
+//! Cost: O(T * c * L) for c candidates per strip (the free triangles around the
+//! cache) and walks of at most L triangles; flat arrays, nothing allocated per step.
+//! A step reads one neighbour record (neighbours, their new vertices, the twin slots)
+//! and the records of four vertices; the walk that found the chosen strip is kept, not
+//! walked again.
+
+use super::{CacheOptions, Links};
+use crate::stripify::buckets::Buckets;
+use crate::metrics::Fifo;
+use crate::strip::{is_degenerate, StripSet};
+use crate::topology::{vertex_bound, vertex_triangles, Csr, Walks, NO_NEIGHBOR};
+
+pub(super) const NONE: u32 = u32::MAX;
+/// `mark` of a triangle already in a strip.
+pub(super) const TAKEN: u32 = u32::MAX;
+/// The slot after / before each slot of a triangle.
+pub(super) const NEXT: [usize; 3] = [1, 2, 0];
+pub(super) const PREV: [usize; 3] = [2, 0, 1];
+
+/// A triangle's [`DualGraph`](crate::topology::DualGraph) neighbours (a missing one is the sentinel triangle
+/// `tris.len()`, always TAKEN) and, for each, the neighbour's vertex opposite the shared
+/// edge and the slot of that edge in the neighbour (one 32-byte record: a walk step
+/// reads one and nothing of `tris`).
+#[derive(Clone, Copy)]
+#[repr(C, align(32))]
+pub(super) struct Adj {
+    pub(super) nbr: [u32; 3],
+    pub(super) opp: [u32; 3],
+    pub(super) twin: [u8; 3],
+}
+
+/// What a walk reads and writes: the per-vertex records, the triangle marks, the
+/// walk's epoch, the FIFO (read only: the walk's own pushes go to its private copy in
+/// the records) and the walk's pushes so far.
+pub(super) struct Walk<'s> {
+    pub(super) vs: &'s mut [[u32; 5]],
+    pub(super) mark: &'s mut [u32],
+    pub(super) epoch: u32,
+    pub(super) fifo: &'s Fifo,
+    pub(super) c: u32,
+    pub(super) pushes: u32,
+}
+
+impl Walk<'_> {
+    /// Free and not yet in the walk (a triangle or the sentinel of `Adj::nbr`).
+    #[inline(always)]
+    fn is_open(&self, t: u32) -> bool {
+        let m = self.mark[t as usize];
+        m != TAKEN && m != self.epoch
+    }
+
+    /// Whether `v` is in the FIFO after the walk's pushes so far.
+    #[inline(always)]
+    fn cached_after(&self, v: u32) -> bool {
+        let [mark, local, ..] = self.vs[v as usize];
+        if mark == self.epoch {
+            return self.pushes - local <= self.c;
+        }
+        self.fifo.contains_after(v, self.pushes)
+    }
+
+    /// Feeds `v` to the walk's private copy of the FIFO; true on a miss.
+    #[inline(always)]
+    fn touch(&mut self, v: u32) -> bool {
+        if self.cached_after(v) {
+            return false;
+        }
+        let e = &mut self.vs[v as usize];
+        e[0] = self.epoch;
+        e[1] = self.pushes;
+        self.pushes += 1;
+        true
+    }
+
+    /// Starts the count of `v`'s triangles covered by the walk, unless started.
+    #[inline(always)]
+    fn uncover(&mut self, v: u32) {
+        let e = &mut self.vs[v as usize];
+        if e[2] != self.epoch {
+            e[2] = self.epoch;
+            e[3] = 0;
+        }
+    }
+
+    /// Counts one more of `v`'s free triangles as covered by the walk (its count
+    /// started); true when that was its last one.
+    #[inline(always)]
+    fn cover(&mut self, v: u32) -> bool {
+        let e = &mut self.vs[v as usize];
+        e[3] += 1;
+        e[3] == e[4]
+    }
+}
+
+/// Where a walk stands after its first step (see [`State::evaluate`]): its cost so far,
+/// its new triangles, the triangle it is at, the slot it entered that triangle by,
+/// whether the natural exit is `NEXT[entry]`, and the triangle's vertices from the
+/// entry slot on.
+pub(super) struct Head {
+    total: f32,
+    len: u32,
+    cur: u32,
+    entry: usize,
+    fwd: bool,
+    r: [u32; 3],
+}
+
+impl Walk<'_> {
+    /// A walk that goes on from the end `(a, b)` of the last strip, `t` (vertices
+    /// `tri`) being its last triangle: no restart index, no start indices; the natural
+    /// exit is the edge {a, b}, the swap exit the other edge at b.
+    fn go_on(&mut self, t: u32, tri: [u32; 3], (a, b): (u32, u32), fb: f32) -> Head {
+        let nat = (0..3)
+            .find(|&k| {
+                let (x, y) = (tri[k], tri[NEXT[k]]);
+                (x == a && y == b) || (x == b && y == a)
+            })
+            .unwrap_or(0);
+        let swp = if tri[NEXT[nat]] == b {
+            NEXT[nat]
+        } else {
+            PREV[nat]
+        };
+        let entry = 3 - nat - swp;
+        if fb != 0.0 {
+            for v in tri {
+                self.uncover(v);
+            }
+        }
+        Head {
+            total: 0.0,
+            len: 0,
+            cur: t,
+            entry,
+            fwd: nat == NEXT[entry],
+            r: [tri[entry], tri[NEXT[entry]], tri[PREV[entry]]],
+        }
+    }
+
+    /// A new strip at `t` (vertices `tri`) leaving across `slot`: three indices and
+    /// the restart, the misses of its vertices at `w` each, `fb` off for each vertex
+    /// it finishes, and `penalty` for the free neighbours it leaves behind.
+    fn start(&mut self, t: u32, tri: [u32; 3], slot: usize, w: f32, fb: f32, penalty: f32) -> Head {
+        let [x, u, v] = start_of(tri, slot);
+        let mut total = 4.0;
+        for y in [x, u, v] {
+            if self.touch(y) {
+                total += w;
+            }
+        }
+        self.mark[t as usize] = self.epoch;
+        if fb != 0.0 {
+            for v in tri {
+                self.uncover(v);
+                if self.cover(v) {
+                    total -= fb;
+                }
+            }
+        }
+        total += penalty;
+        // The strip [x, u, v] leaves across (u, v) without a swap, or across {x, v}
+        // with one: as if entered across (x, u).
+        Head {
+            total,
+            len: 1,
+            cur: t,
+            entry: PREV[slot],
+            fwd: true,
+            r: [x, u, v],
+        }
+    }
+}
+
+/// The first triangle of a strip that leaves `tri` across `slot`, rotated so that the
+/// strip's last two indices are that edge.
+#[inline]
+pub(super) fn start_of(tri: [u32; 3], slot: usize) -> [u32; 3] {
+    [tri[PREV[slot]], tri[slot], tri[NEXT[slot]]]
+}
+
+/// `Best::slot` of a walk that goes on from the end of the last strip.
+pub(super) const CONTINUE: usize = 3;
+
+/// The best prefix found so far: start triangle, exit slot (or CONTINUE), length in
+/// new triangles, cost per triangle.
+#[derive(Clone, Copy)]
+pub(super) struct Best {
+    pub(super) t: u32,
+    pub(super) slot: u8,
+    pub(super) len: u32,
+    pub(super) cost: f32,
+}
+
+impl Best {
+    const NOTHING: Best = Best {
+        t: NONE,
+        slot: 0,
+        len: 0,
+        cost: f32::INFINITY,
+    };
+}
+
+pub(super) struct State<'a> {
+    pub(super) tris: &'a [[u32; 3]],
+    /// Neighbours of each triangle.
+    pub(super) adj: Vec<Adj>,
+    pub(super) opt: CacheOptions,
+    /// Free triangles by free degree (the greedy stripifier's buckets).
+    pub(super) b: Buckets,
+    /// Vertex -> its triangles.
+    pub(super) vtris: Csr<u32>,
+    /// Per vertex, in one record: `[0]` the epoch of the walk that pushed it in its
+    /// private copy of the FIFO and `[1]` that walk's push count then; `[2]` the epoch
+    /// of the walk that counted `[3]` of its free triangles as covered; `[4]` its free
+    /// triangles.
+    pub(super) vs: Vec<[u32; 5]>,
+    /// The FIFO the emitted strips went through; its pushes are their misses.
+    pub(super) fifo: Fifo,
+    /// TAKEN for triangles in strips, else the epoch of the last walk through them.
+    pub(super) mark: Vec<u32>,
+    pub(super) epoch: u32,
+    /// Candidate triangles already tried for the current strip (round `round`).
+    pub(super) smark: Vec<u32>,
+    pub(super) round: u32,
+    /// The current walk after its first triangle: (triangle, swap vertex or NONE, the
+    /// triangle's new vertex); `bpath`: that of the walk that set the best prefix last
+    /// (swapped in when a walk ends having improved it), which `emit` emits.
+    pub(super) wpath: Vec<(u32, u32, u32)>,
+    pub(super) bpath: Vec<(u32, u32, u32)>,
+    /// The last triangle of the last strip (NONE before the first).
+    pub(super) last: u32,
+
+    pub(super) out: StripSet,
+    /// The strips as walks (triangle ids in output order).
+    pub(super) walks: Walks,
+}
+
+impl<'a> State<'a> {
+    pub(super) fn new(tris: &'a [[u32; 3]], (graph, twins): Links, vertex_count: usize, opt: &CacheOptions) -> Self {
+        let n = tris.len();
+        let vcount = vertex_bound(tris).max(vertex_count);
+        let mut opt = *opt;
+        opt.cache_size = opt.cache_size.max(3);
+        opt.max_len = opt.max_len.max(1);
+        opt.scan_entries = opt.scan_entries.clamp(1, opt.cache_size);
+        let degenerate: Vec<bool> = tris.iter().map(is_degenerate).collect();
+        let vtris = vertex_triangles(tris, vcount);
+        // The record of a triangle: a missing neighbour becomes the sentinel `n`.
+        let record = |nbr: [u32; 3], twin: [u8; 3]| {
+            let mut a = Adj {
+                nbr: [n as u32; 3],
+                opp: [0; 3],
+                twin,
+            };
+            for k in 0..3 {
+                let m = nbr[k];
+                if m != NO_NEIGHBOR {
+                    a.nbr[k] = m;
+                    a.opp[k] = tris[m as usize][PREV[twin[k] as usize]];
+                }
+            }
+            a
+        };
+        let mut adj: Vec<Adj> = graph
+            .neighbors
+            .iter()
+            .zip(twins)
+            .map(|(&nbr, &twin)| record(nbr, twin))
+            .collect();
+        // The sentinel (its own neighbours: never read, a walk never enters it).
+        adj.push(Adj {
+            nbr: [n as u32; 3],
+            opp: [0; 3],
+            twin: [0; 3],
+        });
+        let b = Buckets::of(tris, graph);
+        let mut out = StripSet::new();
+        out.indices.reserve(n + n / 2);
+        State {
+            tris,
+            adj,
+            opt,
+            b,
+            vs: (0..vcount).map(|v| [0, 0, 0, 0, vtris.bucket(v).len() as u32]).collect(),
+            vtris,
+            fifo: Fifo::new(opt.cache_size, vcount),
+            // The sentinel triangle `n` is TAKEN.
+            mark: degenerate
+                .iter()
+                .map(|&d| if d { TAKEN } else { 0 })
+                .chain([TAKEN])
+                .collect(),
+            epoch: 0,
+            smark: vec![0; n],
+            round: 0,
+            wpath: vec![(0, 0, 0); opt.max_len as usize],
+            bpath: vec![(0, 0, 0); opt.max_len as usize],
+            last: NONE,
+            out,
+            walks: Walks::with_capacity(n),
+        }
+    }
+
+    /// Free (a triangle or the sentinel of `Adj::nbr`).
+    #[inline]
+    fn is_free(&self, t: u32) -> bool {
+        self.mark[t as usize] != TAKEN
+    }
+
+    /// Feeds `v` to the FIFO for real.
+    #[inline]
+    fn touch(&mut self, v: u32) {
+        self.fifo.touch(v);
+    }
+
+    /// A new epoch for the next walk (marks and records of older walks then read as
+    /// untouched).
+    fn next_epoch(&mut self) {
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == TAKEN {
+            for m in self.mark.iter_mut().filter(|m| **m != TAKEN) {
+                *m = 0;
+            }
+            self.vs.iter_mut().for_each(|x| {
+                x[0] = 0;
+                x[2] = 0;
+            });
+            self.epoch = 1;
+        }
+    }
+
+    /// Walks from `t` leaving across `slot` (or, with CONTINUE, from the end of the
+    /// last strip, `t` being its last triangle) and offers each prefix to `best`; the
+    /// walk is kept in `bpath` when it improved `best`.
+    fn evaluate(&mut self, t: u32, slot: usize, best: &mut Best) {
+        self.next_epoch();
+        let w = self.opt.miss_weight;
+        let fb = self.opt.finish_bonus;
+        let mut k = Walk {
+            vs: &mut self.vs,
+            mark: &mut self.mark,
+            epoch: self.epoch,
+            fifo: &self.fifo,
+            c: self.opt.cache_size,
+            pushes: 0,
+        };
+        // The walk is at `cur`, entered across slot `entry`; its exits are the other two
+        // slots, and `fwd` says the natural one (no swap) is NEXT[entry]. `r` holds the
+        // vertices of `cur` from the entry's slot on: `r[0], r[1]` run the entry edge.
+        // `total` is the cost so far: indices (and the restart), plus weighed misses.
+        // The vertices of `cur` count as covered (with none of their triangles when
+        // `cur` is the last strip's end), so a step covers only its new vertex afresh.
+        let tri = self.tris[t as usize];
+        let Head {
+            mut total,
+            mut len,
+            mut cur,
+            mut entry,
+            mut fwd,
+            mut r,
+        } = if slot == CONTINUE {
+            let n = self.out.indices.len();
+            let end = (self.out.indices[n - 2], self.out.indices[n - 1]);
+            k.go_on(t, tri, end, fb)
+        } else {
+            let nb = self.adj[t as usize].nbr[slot];
+            let left = self.b.degree[t as usize] as f32 - f32::from(k.mark[nb as usize] != TAKEN);
+            k.start(t, tri, slot, w, fb, self.opt.start_penalty * left.max(0.0))
+        };
+        let adjs = &self.adj[..];
+        let wpath = &mut self.wpath[..];
+        let first = len;
+        let mut improved = false;
+        let mut swaps = 0u32;
+        let max_len = self.opt.max_len;
+        let max_swaps = self.opt.max_swaps;
+        let limit = max_len as f32;
+        let mut bound = (best.cost - 1.0) * limit;
+        loop {
+            if len > 0 && total < best.cost * len as f32 {
+                *best = Best {
+                    t,
+                    slot: slot as u8,
+                    len,
+                    cost: total / len as f32,
+                };
+                bound = (best.cost - 1.0) * limit;
+                improved = true;
+            }
+            if len >= max_len {
+                break;
+            }
+            // No longer prefix can beat `best`: it covers at most `max_len` triangles,
+            // and the indices, swaps and misses only grow.
+            if total - len as f32 >= bound {
+                break;
+            }
+            let adj = &adjs[cur as usize];
+            let (nat, swp) = if fwd {
+                (NEXT[entry], PREV[entry])
+            } else {
+                (PREV[entry], NEXT[entry])
+            };
+            // The exit: `nat` when open, or `swp` (one swap) where `nat` is blocked or
+            // where its new vertex would miss and the swap's would hit.
+            let nat_ok = k.is_open(adj.nbr[nat]);
+            let (e, swap) = if swaps >= max_swaps {
+                if !nat_ok {
+                    break;
+                }
+                (nat, false)
+            } else {
+                let swp_ok = k.is_open(adj.nbr[swp]);
+                if nat_ok && swp_ok {
+                    if !k.cached_after(adj.opp[nat]) && k.cached_after(adj.opp[swp]) {
+                        (swp, true)
+                    } else {
+                        (nat, false)
+                    }
+                } else if nat_ok {
+                    (nat, false)
+                } else if swp_ok {
+                    (swp, true)
+                } else {
+                    break;
+                }
+            };
+            let n = adj.nbr[e];
+            let j = adj.twin[e] as usize;
+            // The new vertex of `n`, opposite the edge it shares with `cur`.
+            let y = adj.opp[e];
+            total += 1.0;
+            if swap {
+                swaps += 1;
+                total += 1.0;
+            }
+            k.mark[n as usize] = k.epoch;
+            // Leaving across NEXT[entry] the exit edge is (r[1], r[2]), across
+            // PREV[entry] it is (r[2], r[0]); `n` runs it the other way from slot j.
+            let via_next = e == NEXT[entry];
+            // The swap vertex: the exit edge's vertex other than the newest (the
+            // newest, r[2], is on both exits).
+            let p = match (swap, via_next) {
+                (false, _) => NONE,
+                (true, true) => r[1],
+                (true, false) => r[0],
+            };
+            wpath[(len - first) as usize] = (n, p, y);
+            r = if via_next {
+                [r[2], r[1], y]
+            } else {
+                [r[0], r[2], y]
+            };
+            // The other two vertices belong to the triangle just fed, so (but for a
+            // hit evicted by that triangle's own pushes, which the emission counts
+            // exactly) only `y` can miss.
+            if k.touch(y) {
+                total += w;
+            }
+            if fb != 0.0 {
+                // r[0] and r[1] were vertices of `cur`: already seen by this walk.
+                if k.cover(r[0]) {
+                    total -= fb;
+                }
+                if k.cover(r[1]) {
+                    total -= fb;
+                }
+                k.uncover(y);
+                if k.cover(y) {
+                    total -= fb;
+                }
+            }
+            len += 1;
+            // Leaving across NEXT[entry], the newest vertex of `cur` starts the edge it
+            // shares with `n` (as `n` runs it), and the next natural exit is PREV[j].
+            fwd = !via_next;
+            entry = j;
+            cur = n;
+        }
+        if improved {
+            std::mem::swap(&mut self.wpath, &mut self.bpath);
+        }
+    }
+
+    /// Offers every exit of free triangle `t` (once per round) when at least
+    /// `min_cached` of its vertices are cached.
+    fn consider(&mut self, t: u32, min_cached: u32, best: &mut Best) {
+        if self.smark[t as usize] == self.round {
+            return;
+        }
+        self.smark[t as usize] = self.round;
+        if min_cached > 0 {
+            let cached = self.tris[t as usize]
+                .iter()
+                .filter(|&&v| self.fifo.contains(v))
+                .count() as u32;
+            if cached < min_cached {
+                return;
+            }
+        }
+        for slot in 0..3 {
+            self.evaluate(t, slot, best);
+        }
+    }
+
+    fn take(&mut self, t: u32) {
+        self.b.free[t as usize] = false;
+        self.mark[t as usize] = TAKEN;
+        for &v in &self.tris[t as usize] {
+            self.vs[v as usize][4] -= 1;
+        }
+        for k in 0..3 {
+            let m = self.adj[t as usize].nbr[k];
+            if self.is_free(m) {
+                let d = self.b.degree[m as usize] - 1;
+                self.b.push_front(m, d);
+            }
+        }
+    }
+
+    fn next_round(&mut self) {
+        self.round = self.round.wrapping_add(1);
+        if self.round == 0 {
+            self.smark.fill(0);
+            self.round = 1;
+        }
+    }
+
+    pub(super) fn run(&mut self) {
+        loop {
+            self.next_round();
+            let mut best = Best::NOTHING;
+            if self.opt.join && self.last != NONE {
+                self.evaluate(self.last, CONTINUE, &mut best);
+                // A new strip costs at least 1 + 3 / max_len per triangle (its start
+                // and restart indices); going on that cheaply (a cache hit without a
+                // swap) cannot be beaten, and ties keep the first found anyway.
+                if best.cost <= 1.0 + 3.0 / self.opt.max_len as f32 {
+                    self.emit(best);
+                    continue;
+                }
+            }
+            // Oldest entries first: a strip beside the start of the previous one is
+            // usually the best, and finding it early cuts the other walks short.
+            // Where nothing there qualifies, the whole cache, then triangles with a
+            // single cached vertex, before a jump away from the cache.
+            let c = self.opt.cache_size;
+            let tiers = [
+                (self.opt.scan_entries, self.opt.min_cached),
+                (c, self.opt.min_cached),
+                (c, self.opt.min_cached.min(1)),
+            ];
+            self.scan(tiers[0].0, tiers[0].1, &mut best);
+            for k in 1..tiers.len() {
+                if best.t != NONE {
+                    break;
+                }
+                if tiers[k] != tiers[k - 1] {
+                    self.next_round();
+                    self.scan(tiers[k].0, tiers[k].1, &mut best);
+                }
+            }
+            if best.t == NONE {
+                match self.b.lowest() {
+                    Some(t) => {
+                        self.next_round();
+                        self.consider(t, 0, &mut best);
+                    }
+                    None => break,
+                }
+            }
+            self.emit(best);
+        }
+    }
+
+    /// Offers the free triangles around the oldest `entries` entries of the FIFO
+    /// (see [`State::consider`]), oldest first.
+    fn scan(&mut self, entries: u32, min_cached: u32, best: &mut Best) {
+        let live = self.fifo.len();
+        for i in (live.saturating_sub(entries)..live).rev() {
+            let v = self.fifo.newest(i);
+            if self.vs[v as usize][4] == 0 {
+                continue;
+            }
+            let offsets = self.vtris.offsets();
+            for idx in offsets[v as usize]..offsets[v as usize + 1] {
+                let t = self.vtris.values()[idx as usize];
+                if self.mark[t as usize] != TAKEN {
+                    self.consider(t, min_cached, best);
+                }
+            }
+        }
+    }
+
+    /// Emits the chosen prefix as a new strip (or as more of the last one) and feeds
+    /// its triangles to the FIFO.
+    fn emit(&mut self, best: Best) {
+        let t = best.t;
+        let slot = best.slot as usize;
+        // The walk that found `best` is in `bpath`: its triangles after the first
+        // (all of them going on from the last strip).
+        let steps = best.len as usize - usize::from(slot != CONTINUE);
+        let (mut a, mut b);
+        if slot == CONTINUE {
+            self.walks.reopen_last();
+            self.out.offsets.pop();
+            let n = self.out.indices.len();
+            (a, b) = (self.out.indices[n - 2], self.out.indices[n - 1]);
+        } else {
+            let [x, u, w] = start_of(self.tris[t as usize], slot);
+            self.walks.push_triangle(t);
+            self.take(t);
+            self.out.indices.extend_from_slice(&[x, u, w]);
+            self.touch(x);
+            self.touch(u);
+            self.touch(w);
+            (a, b) = (u, w);
+        }
+        self.last = t;
+        for i in 0..steps {
+            let (n, p, y) = self.bpath[i];
+            if p != NONE {
+                // [.., a, b] -> [.., a, p, b]: the last triangle decodes the same and
+                // the strip now ends on its edge {p, b}.
+                self.out.indices.pop();
+                self.out.indices.extend_from_slice(&[p, b]);
+            }
+            self.take(n);
+            self.walks.push_triangle(n);
+            self.out.indices.push(y);
+            // The decoded order of the new triangle (the two old vertices are hits
+            // unless that triangle's own pushes evicted one).
+            let (first, second) = if p != NONE { (p, b) } else { (a, b) };
+            let odd =
+                (self.out.indices.len() - *self.out.offsets.last().unwrap_or(&0) as usize) & 1 == 0;
+            if odd {
+                self.touch(second);
+                self.touch(first);
+            } else {
+                self.touch(first);
+                self.touch(second);
+            }
+            self.touch(y);
+            a = b;
+            b = y;
+            self.last = n;
+        }
+        let end = self.out.indices.len() as u32;
+        self.out.offsets.push(end);
+        self.walks.end_walk();
+    }
+}
