@@ -58,8 +58,9 @@ impl Default for CacheModel {
 }
 
 /// Number of cache misses when the vertices of `triangles` are fed, in order, through
-/// an initially empty cache. `vertex_count` must exceed every index. O(n) for FIFO,
-/// O(n * size) for LRU.
+/// an initially empty cache. `vertex_count` sizes the per-vertex records; an index at
+/// or past it is counted like any other (never a panic), and a cache larger than the
+/// vertices behaves as one of their number. O(n) for FIFO, O(n * size) for LRU.
 pub fn cache_misses(
     triangles: &[[u32; 3]],
     vertex_count: usize,
@@ -69,6 +70,11 @@ pub fn cache_misses(
     if cache_size == 0 {
         return triangles.len() * 3;
     }
+    // An index at or past `vertex_count` is a vertex too: size the records to cover
+    // it rather than fail on it.
+    let vertex_count = triangles.iter().flatten().map(|&v| v as usize + 1).max().unwrap_or(0).max(vertex_count);
+    // Neither cache ever holds more vertices than there are.
+    let cache_size = cache_size.min(vertex_count.max(1));
     let mut misses = 0usize;
     match kind {
         CacheKind::Fifo => {
@@ -343,6 +349,18 @@ pub fn figures(input: &[[u32; 3]], strips: &StripSet, cache: CacheModel) -> Figu
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn indices_past_the_vertex_count_and_huge_caches_are_counted() {
+        let tris = [[0, 1, 2], [1, 2, 3], [0, 3, 4], [0, 1, 4]];
+        for kind in [CacheKind::Fifo, CacheKind::Lru] {
+            let right = cache_misses(&tris, 5, 3, kind);
+            assert_eq!(cache_misses(&tris, 2, 3, kind), right);
+            assert_eq!(cache_misses(&tris, 0, 3, kind), right);
+            // Every vertex misses once and never again.
+            assert_eq!(cache_misses(&tris, 5, usize::MAX, kind), 5);
+        }
+    }
 
     #[test]
     fn fifo_against_a_hand_computed_sequence() {
