@@ -1,6 +1,11 @@
 //! The weighted engine: Edmonds' primal-dual blossom algorithm for a maximum-weight
 //! *perfect* matching on a simple sparse graph with even integer weights.
 //!
+//! One file of about 1,000 lines on purpose: every operation (grow, shrink, expand,
+//! augment, dual change) reads and writes the same engine state (trees, nested
+//! blossoms, lazy duals, event queues), and the invariants tying them together are
+//! easier to check in one place than across files.
+//!
 //! Written from the textbook algorithm (Edmonds 1965; Galil's survey 1986) with the
 //! speed-ups of the sparse implementations (Gabow 1990; Cook & Rohe 1999;
 //! Kolmogorov 2009), not from any of their code:
