@@ -198,6 +198,46 @@ pub fn cube() -> Mesh {
     mesh
 }
 
+/// A closed cube of side `n` with `n` x `n` unit quads on each face, outward-facing,
+/// corners at integer positions from 0 to `n`: `6 n^2` quads on `6 n^2 + 2` vertices
+/// (χ = 2). Where [`cube`] is the smallest closed quad mesh, this one has rows of quads
+/// that wrap around the cube (quad stripifiers' test input).
+pub fn cube_grid(n: u32) -> Mesh {
+    use std::collections::HashMap;
+    let mut ids: HashMap<[i32; 3], u32> = HashMap::new();
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    let n = n.min(1 << 20) as i32;
+    // For each axis and side: a frame (u, v) with u x v pointing outward.
+    for axis in 0..3 {
+        for side in [0, n] {
+            let (ua, va) = ((axis + 1) % 3, (axis + 2) % 3);
+            let outward_positive = side == n;
+            let mut vid = |i: i32, j: i32| {
+                let mut p = [0i32; 3];
+                p[axis] = side;
+                p[ua] = i;
+                p[va] = j;
+                *ids.entry(p).or_insert_with(|| {
+                    positions.push([p[0] as f32, p[1] as f32, p[2] as f32]);
+                    (positions.len() - 1) as u32
+                })
+            };
+            for j in 0..n {
+                for i in 0..n {
+                    let q = [vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1)];
+                    if outward_positive {
+                        faces.push(q.to_vec());
+                    } else {
+                        faces.push(vec![q[0], q[3], q[2], q[1]]);
+                    }
+                }
+            }
+        }
+    }
+    Mesh::from_polygons(positions, &faces)
+}
+
 /// Loop subdivision, `levels` times: every triangle becomes four, vertex and edge
 /// points follow Loop's weights (β = (5/8 − (3/8 + cos(2π/n)/4)²)/n). Edges with other
 /// than two faces (boundary, non-manifold) are creases: their edge point is the

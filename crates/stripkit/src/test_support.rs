@@ -1,24 +1,10 @@
 //! Helpers for the crate's own tests: the research meshes and a seeded generator.
-//! (Integration tests, the CLI's tests and the bench have their own copies of
-//! `models_dir`: this module exists only under `cfg(test)`.)
+//! (`models_dir` is the one of `tests/support/dirs.rs`, shared with the integration
+//! and CLI tests.)
 
-use std::path::PathBuf;
-
-/// The research meshes folder `../shared/models` beside the checkout, or the folder
-/// named by `STRIPKIT_MODELS`; `None` (after printing why) when it is absent, so that
-/// tests needing it can skip with a reason.
-pub(crate) fn models_dir() -> Option<PathBuf> {
-    let dir = match std::env::var_os("STRIPKIT_MODELS") {
-        Some(d) => PathBuf::from(d),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/models"),
-    };
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("skipped: research meshes not found at {} (set STRIPKIT_MODELS)", dir.display());
-        None
-    }
-}
+#[path = "../tests/support/dirs.rs"]
+mod dirs;
+pub(crate) use dirs::models_dir;
 
 /// The research mesh `name` from [`models_dir`]; `None` (after printing why) when the
 /// folder or the file is absent or unreadable, so that a test can skip it.

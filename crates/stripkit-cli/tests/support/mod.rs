@@ -37,25 +37,7 @@ pub fn write_mesh(path: &std::path::Path, mesh: &stripkit::Mesh) {
     stripkit::io::write(path, mesh, None).expect("writes the test mesh");
 }
 
-/// The research meshes folder `../shared/models` beside the checkout, or the folder
-/// named by `STRIPKIT_MODELS`; `None` (after printing why) when it is absent, so that
-/// tests needing it can skip with a reason.
-#[allow(dead_code)]
-pub fn models_dir() -> Option<PathBuf> {
-    let dir = match std::env::var_os("STRIPKIT_MODELS") {
-        Some(d) => PathBuf::from(d),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/models"),
-    };
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("skipped: research meshes not found at {} (set STRIPKIT_MODELS)", dir.display());
-        None
-    }
-}
-
-/// The bundled public-domain meshes (`assets/` at the workspace root).
-#[allow(dead_code)]
-pub fn assets_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets")
-}
+#[path = "../../../stripkit/tests/support/dirs.rs"]
+mod dirs;
+#[allow(unused_imports)]
+pub use dirs::{assets_dir, models_dir};

@@ -2,7 +2,6 @@
 //! a connectivity-exact Catmull-Clark split, shuffles; and QSTRIP through the door.
 #![allow(dead_code)]
 
-use std::collections::HashMap;
 use stripkit::{stripify, Algorithm, Mesh, Split, StripOptions, Strips};
 
 /// `nx` x `ny` quads in the plane, counter-clockwise seen from +z.
@@ -17,38 +16,7 @@ pub fn torus(nu: usize, nv: usize) -> Mesh {
 
 /// A closed cube with `n` x `n` quads on each side, outward orientation.
 pub fn cube(n: usize) -> Mesh {
-    let mut ids: HashMap<[i32; 3], u32> = HashMap::new();
-    let mut positions = Vec::new();
-    let mut faces = Vec::new();
-    let n = n as i32;
-    // For each axis and side: a frame (u, v) with u x v pointing outward.
-    for axis in 0..3 {
-        for side in [0, n] {
-            let (ua, va) = ((axis + 1) % 3, (axis + 2) % 3);
-            let outward_positive = side == n;
-            let mut vid = |i: i32, j: i32| {
-                let mut p = [0i32; 3];
-                p[axis] = side;
-                p[ua] = i;
-                p[va] = j;
-                *ids.entry(p).or_insert_with(|| {
-                    positions.push([p[0] as f32, p[1] as f32, p[2] as f32]);
-                    (positions.len() - 1) as u32
-                })
-            };
-            for j in 0..n {
-                for i in 0..n {
-                    let q = [vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1)];
-                    if outward_positive {
-                        faces.push(q.to_vec());
-                    } else {
-                        faces.push(vec![q[0], q[3], q[2], q[1]]);
-                    }
-                }
-            }
-        }
-    }
-    Mesh::from_polygons(positions, &faces)
+    stripkit::gen::cube_grid(n as u32)
 }
 
 /// One Catmull-Clark step: a face of k vertices becomes k quads.

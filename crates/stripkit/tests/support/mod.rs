@@ -2,23 +2,9 @@
 //! assets are. Include with `mod support;`.
 #![allow(dead_code)] // each test binary uses a different subset
 
-use std::path::PathBuf;
-
-/// The research meshes folder `../shared/models` beside the checkout, or the folder
-/// named by `STRIPKIT_MODELS`; `None` (after printing why) when it is absent, so that
-/// tests needing it can skip with a reason.
-pub fn models_dir() -> Option<PathBuf> {
-    let dir = match std::env::var_os("STRIPKIT_MODELS") {
-        Some(d) => PathBuf::from(d),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/models"),
-    };
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("skipped: research meshes not found at {} (set STRIPKIT_MODELS)", dir.display());
-        None
-    }
-}
+mod dirs;
+#[allow(unused_imports)] // each test binary uses a different subset
+pub use dirs::{assets_dir, models_dir};
 
 /// The research mesh `name` from [`models_dir`]; `None` (after printing why) when the
 /// folder or the file is absent or unreadable, so that a test can skip it.
@@ -31,9 +17,4 @@ pub fn model(name: &str) -> Option<stripkit::Mesh> {
             None
         }
     }
-}
-
-/// The bundled public-domain meshes (`assets/` at the workspace root).
-pub fn assets_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets")
 }
