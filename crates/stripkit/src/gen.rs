@@ -530,6 +530,34 @@ pub fn shuffle_faces(mesh: &Mesh, seed: u64) -> Mesh {
     out
 }
 
+/// The same mesh with its vertex ids permuted pseudo-randomly (seeded, reproducible):
+/// each vertex keeps its position under its new id, faces keep their corners' order.
+/// With [`shuffle_faces`], the input orders a stripifier must not depend on.
+pub fn renumber_vertices(mesh: &Mesh, seed: u64) -> Mesh {
+    let mut state = seed ^ 0xD1B5_4A32_D192_ED03;
+    let mut next = move || {
+        // xorshift64*
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        state.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    };
+    let n = mesh.vertex_count();
+    let mut perm: Vec<u32> = (0..n as u32).collect();
+    for i in (1..n).rev() {
+        perm.swap(i, (next() % (i as u64 + 1)) as usize);
+    }
+    let mut positions = vec![[0.0; 3]; n];
+    for (old, &new) in perm.iter().enumerate() {
+        positions[new as usize] = mesh.positions[old];
+    }
+    Mesh {
+        positions,
+        face_offsets: mesh.face_offsets.clone(),
+        face_indices: mesh.face_indices.iter().map(|&v| perm.get(v as usize).copied().unwrap_or(v)).collect(),
+    }
+}
+
 /// Flips every face whose Newell normal points towards the origin (for the convex,
 /// origin-centred base meshes above).
 fn orient_outward(mesh: &mut Mesh) {

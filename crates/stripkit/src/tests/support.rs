@@ -97,26 +97,5 @@ pub(crate) fn subdivide(mesh: &Mesh) -> Mesh {
 /// Same surface, faces in random order, each face's corners rotated at random, vertex
 /// ids permuted.
 pub(crate) fn shuffled_mesh(mesh: &Mesh, seed: u64) -> Mesh {
-    let mut rng = Rng(seed | 1);
-    let n = mesh.vertex_count();
-    let mut perm: Vec<u32> = (0..n as u32).collect();
-    for i in (1..n).rev() {
-        perm.swap(i, rng.below(i + 1));
-    }
-    let mut positions = vec![[0.0; 3]; n];
-    for (old, &new) in perm.iter().enumerate() {
-        positions[new as usize] = mesh.positions[old];
-    }
-    let mut faces: Vec<Vec<u32>> = mesh
-        .faces()
-        .map(|f| f.iter().map(|&v| perm[v as usize]).collect())
-        .collect();
-    for i in (1..faces.len()).rev() {
-        faces.swap(i, rng.below(i + 1));
-    }
-    for f in &mut faces {
-        let r = rng.below(f.len());
-        f.rotate_left(r);
-    }
-    Mesh::from_polygons(positions, &faces)
+    gen::shuffle_faces(&gen::renumber_vertices(mesh, seed), seed)
 }
