@@ -59,6 +59,7 @@ fn spot_to_ply_verifies_and_reads_back() {
 fn json_output_holds_strips_for_every_join() {
     let input = stripkit::io::read(Path::new(&spot())).unwrap();
     let tris = input.triangulate().tris;
+    let mut strip_counts = Vec::new();
     for join in ["restart", "degenerate", "separate"] {
         for heuristic in ["strips", "indices"] {
             let out_path = tmp(&format!("spot-{join}-{heuristic}.json"));
@@ -104,8 +105,13 @@ fn json_output_holds_strips_for_every_join() {
                 .ok());
             }
             assert_eq!(file["figures"]["verified"], true);
+            // Auto chose greedy on this triangle mesh, with the heuristic given.
+            assert_eq!((printed["algo"].as_str(), printed["heuristic"].as_str()), (Some("greedy"), Some(heuristic)));
+            strip_counts.push(printed["strips"].as_u64().unwrap());
         }
     }
+    // `strips` aims at fewer strips than `indices` (spot: 109 with indices).
+    assert!(strip_counts[0] < strip_counts[1], "{strip_counts:?}");
 }
 
 #[test]
@@ -153,8 +159,13 @@ fn mesh_without_triangles_gives_empty_valid_outputs() {
 
 #[test]
 fn bad_arguments_exit_with_2_and_say_why() {
-    let cases: [(&[&str], &str); 6] = [
+    let cases: [(&[&str], &str); 11] = [
         (&["--cache", "0"], "--cache"),
+        (&["--algo", "greedy", "--refine"], "--refine"),
+        (&["--algo", "cache", "--max-acmr", "0.7"], "--max-acmr"),
+        (&["--algo", "cache", "--heuristic", "strips"], "--heuristic"),
+        (&["--algo", "greedy", "--diagonals", "qstrip"], "--diagonals qstrip"),
+        (&["--algo", "qstrip", "--diagonals", "fan"], "--diagonals fan"),
         (&["--algo", "balanced", "--max-acmr", "0"], "--max-acmr"),
         (&["--algo", "balanced", "--max-acmr", "NaN"], "--max-acmr"),
         (&["--restart-index", "7"], "vertex id"),
@@ -163,13 +174,13 @@ fn bad_arguments_exit_with_2_and_say_why() {
     ];
     for (i, (extra, needle)) in cases.iter().enumerate() {
         let mut args = vec!["strip".to_string()];
-        if i == 5 {
+        if i == 10 {
             args.push("/no/such/nothing.ply".into());
         } else {
             args.push(spot());
         }
         args.push("-o".into());
-        args.push(if i == 4 {
+        args.push(if i == 9 {
             "/no/such/folder/out.ply".into()
         } else {
             tmp("x.ply").to_string_lossy().into_owned()

@@ -450,6 +450,10 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
         Algorithm::Auto => Algorithm::greedy(),
         other => other.clone(),
     };
+    if options.algorithm == Algorithm::Auto && options.split != Split::Auto {
+        // The split must suit the algorithm auto chose (QSTRIP takes no fan).
+        StripOptions { algorithm: algorithm.clone(), ..options.clone() }.check()?;
+    }
     // The fan is the greedy stripifier's input, made outside its timing.
     let fan = matches!(algorithm, Algorithm::Greedy(_)).then(|| mesh.triangulate().tris);
     let start = Instant::now();

@@ -192,6 +192,10 @@ fn bad_input_and_options_that_do_not_apply_are_errors() {
         "greedy",
     );
     invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::qstrip()).split(Split::Fan)), "qstrip");
+    // Auto's choice is checked against the split too: QSTRIP on quads takes no fan.
+    let quads = gen::grid_quads(3, 3);
+    invalid(stripify(&quads, &d.clone().split(Split::Fan)), "qstrip");
+    assert!(stripify(&quads, &d.clone().split(Split::Qstrip)).is_ok());
     // A restart index at or past the vertices is fine, even one unused by any index.
     assert_eq!(stripify_indices(&quad, 5, 5, &d).unwrap().len(), 4);
     // With stitching the restart index is not used at all.

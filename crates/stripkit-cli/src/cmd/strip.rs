@@ -108,17 +108,18 @@ pub struct Args {
     /// Stripifying algorithm.
     #[arg(long, value_enum, default_value = "auto")]
     pub algo: Algo,
-    /// What the greedy algorithm minimises: `strips` (count of strips) or `indices`
-    /// (index count when each swap costs a repeated index).
-    #[arg(long, value_enum, default_value = "indices")]
-    pub heuristic: HeuristicArg,
+    /// Greedy (and auto on meshes that are not quad-dominant): what it minimises,
+    /// `strips` (count of strips) or `indices` (index count when each swap costs a
+    /// repeated index). Default `indices`.
+    #[arg(long, value_enum)]
+    pub heuristic: Option<HeuristicArg>,
     /// Greedy only: after the greedy pass, relink strips along alternating paths
     /// ("tunnelling") that cut at most N strip links each, keeping a change only when it
     /// saves indices (or strips, with `--heuristic strips`). 0 gives the plain greedy of
     /// van Kaick et al.; larger N finds more and takes longer (bunny, indices:
-    /// 0: 83,179 indices, 1: 81,755, 2: 81,215).
-    #[arg(long, value_name = "N", default_value_t = 1)]
-    pub tunnel: usize,
+    /// 0: 83,179 indices, 1: 81,755, 2: 81,215). Default 1.
+    #[arg(long, value_name = "N")]
+    pub tunnel: Option<usize>,
     /// How strips are joined in the output: `restart` (one buffer with a restart index),
     /// `degenerate` (one stitched strip), `separate` (one list per strip).
     #[arg(long, value_enum, default_value = "restart")]
@@ -131,17 +132,18 @@ pub struct Args {
     #[arg(long, value_name = "N", default_value_t = 16)]
     pub cache: usize,
     /// `--algo balanced`: the most cache misses per triangle (FIFO of `--cache`
-    /// entries) to accept for fewer indices.
-    #[arg(long, value_name = "ACMR", default_value_t = 0.8)]
-    pub max_acmr: f64,
+    /// entries) to accept for fewer indices. Default 0.8.
+    #[arg(long, value_name = "ACMR")]
+    pub max_acmr: Option<f64>,
     /// `--algo cache|balanced`: how quads are split into triangles. A quad may be split
     /// along either diagonal; QSTRIP's diagonals let rows of quads run without swaps
     /// (fandisk_quads, cache: 2,137 indices at 0.715 misses per triangle with the fan,
     /// 2,081 at 0.639 with them). `auto` tries both on meshes that are at least half
     /// quads and keeps the cheaper; such strips are checked at quad level (each quad
-    /// covered by two triangles along one of its diagonals, winding kept).
-    #[arg(long, value_enum, default_value = "auto")]
-    pub diagonals: DiagonalsArg,
+    /// covered by two triangles along one of its diagonals, winding kept). Default
+    /// `auto`. Greedy takes only `fan`; qstrip and quad-single only `qstrip`.
+    #[arg(long, value_enum)]
+    pub diagonals: Option<DiagonalsArg>,
     /// `--algo cache`: then refine the strips with balanced's local search (joins and
     /// relinks scored by the exact FIFO, a miss costing 1.1 indices, no move adding a
     /// miss): bunny 94,283 indices at 0.645 misses per triangle -> 91,564 at 0.630, in
@@ -162,7 +164,8 @@ struct Report<'a> {
     input: &'a Path,
     output: &'a Path,
     algo: &'static str,
-    heuristic: HeuristicArg,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    heuristic: Option<HeuristicArg>,
     join: Join,
     vertices: usize,
     #[serde(flatten)]
@@ -204,28 +207,49 @@ fn output_kind(path: &Path) -> anyhow::Result<OutKind> {
     }
 }
 
-/// The library's options for these arguments.
-fn options(args: &Args) -> StripOptions {
-    let algorithm = match args.algo {
-        Algo::Auto => Algorithm::Auto,
-        Algo::Greedy => Algorithm::Greedy(GreedyOptions {
-            heuristic: match args.heuristic {
+/// Flags that belong to one algorithm, given with another: an error, not silence.
+fn check_flags(args: &Args) -> Result<(), Error> {
+    let bad = |m: &str| Err(Error::Invalid(m.to_string()));
+    if args.refine && args.algo != Algo::Cache {
+        return bad("--refine applies to --algo cache (balanced always refines)");
+    }
+    if args.max_acmr.is_some() && args.algo != Algo::Balanced {
+        return bad("--max-acmr applies to --algo balanced");
+    }
+    if (args.heuristic.is_some() || args.tunnel.is_some()) && !matches!(args.algo, Algo::Greedy | Algo::Auto) {
+        return bad("--heuristic and --tunnel apply to --algo greedy (and auto on meshes that are not quad-dominant)");
+    }
+    Ok(())
+}
+
+/// The library's options for these arguments. `mesh`: resolve `--algo auto` the
+/// library's way (`is_quad_dominant`) so that greedy gets the flags given for it.
+fn options(args: &Args, mesh: Option<&stripkit::Mesh>) -> StripOptions {
+    let greedy = || {
+        Algorithm::Greedy(GreedyOptions {
+            heuristic: match args.heuristic.unwrap_or(HeuristicArg::Indices) {
                 HeuristicArg::Strips => Heuristic::Strips,
                 HeuristicArg::Indices => Heuristic::Indices,
             },
-            tunnel_cuts: (args.tunnel > 0).then_some(args.tunnel),
-        }),
+            tunnel_cuts: Some(args.tunnel.unwrap_or(1)).filter(|&n| n > 0),
+        })
+    };
+    let algorithm = match args.algo {
+        Algo::Auto => match mesh {
+            Some(m) if stripkit::is_quad_dominant(m) => Algorithm::qstrip(),
+            Some(_) => greedy(),
+            None => Algorithm::Auto,
+        },
+        Algo::Greedy => greedy(),
         Algo::Qstrip => Algorithm::qstrip(),
         Algo::QuadSingle => Algorithm::QuadSingle,
         Algo::Cache => Algorithm::Cache { refine: args.refine },
-        Algo::Balanced => Algorithm::balanced(args.max_acmr),
+        Algo::Balanced => Algorithm::balanced(args.max_acmr.unwrap_or(0.8)),
     };
-    let split = match (args.algo, args.diagonals) {
-        // `--diagonals` is documented for cache and balanced only; elsewhere the
-        // algorithm splits quads its own way.
-        (Algo::Cache | Algo::Balanced, DiagonalsArg::Fan) => Split::Fan,
-        (Algo::Cache | Algo::Balanced, DiagonalsArg::Qstrip) => Split::Qstrip,
-        _ => Split::Auto,
+    let split = match args.diagonals {
+        None | Some(DiagonalsArg::Auto) => Split::Auto,
+        Some(DiagonalsArg::Fan) => Split::Fan,
+        Some(DiagonalsArg::Qstrip) => Split::Qstrip,
     };
     let cache = if args.lru { CacheModel::lru(args.cache) } else { CacheModel::fifo(args.cache) };
     StripOptions::default()
@@ -250,13 +274,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .into());
         }
     }
-    let mut stripifier = Stripifier::new(options(&args)).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
+    // Arguments are checked before the file is read.
+    check_flags(&args)?;
+    Stripifier::new(options(&args, None)).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
     // A spinner on a terminal (indicatif draws nothing when stderr is not one):
     // balanced and --refine take seconds on meshes of a million triangles.
     let progress = indicatif::ProgressBar::new_spinner();
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
     let mesh = io::read(&args.input)?;
+    let mut stripifier = Stripifier::new(options(&args, Some(&mesh))).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
     let strips = stripifier
@@ -269,7 +296,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         input: &args.input,
         output: &args.output,
         algo: strips.algorithm.name(),
-        heuristic: args.heuristic,
+        heuristic: matches!(strips.algorithm, Algorithm::Greedy(_))
+            .then(|| args.heuristic.unwrap_or(HeuristicArg::Indices)),
         join: args.join,
         vertices: mesh.vertex_count(),
         figures,
@@ -324,11 +352,11 @@ fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
     let name = |v: &dyn std::fmt::Debug| format!("{v:?}").to_lowercase();
     writeln!(
         out,
-        "{} -> {} ({}, heuristic {}, join {})",
+        "{} -> {} ({}{}, join {})",
         r.input.display(),
         r.output.display(),
         r.algo,
-        name(&r.heuristic),
+        r.heuristic.map(|h| format!(", heuristic {}", name(&h))).unwrap_or_default(),
         name(&r.join)
     )?;
     writeln!(
