@@ -8,6 +8,10 @@
 //! unreferenced vertices are kept (STL, which has no shared vertices, welds identical
 //! positions in first-seen order).
 //!
+//! Every writer replaces its file atomically ([`write_atomic`]): a reader, a crash or
+//! a full disk sees the old file or the complete new one, never a partial file;
+//! [`write_atomic_all`] extends this to the several outputs of one run.
+//!
 //! | format | read | write |
 //! |---|---|---|
 //! | OBJ | `v`, `f` (all `v/vt/vn` forms, negative indices), polygons kept | `v`, `f` |
