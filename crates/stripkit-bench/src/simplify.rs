@@ -140,7 +140,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     print!("{table}");
     if let Some(out) = &args.output {
-        std::fs::write(out, &table)?;
+        stripkit::io::write_atomic(out, table.as_bytes())?;
     }
     Ok(())
 }

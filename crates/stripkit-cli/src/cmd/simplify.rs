@@ -52,7 +52,10 @@ pub struct Args {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Write the collapse sequence here: `.json` for JSON, anything else for the
-    /// compact binary format.
+    /// compact binary format. Must not be the same file as `-o`. Both outputs are
+    /// encoded and written in full to temporary files before either is renamed into
+    /// place (the sequence first, the mesh last): a failure while writing leaves both
+    /// files as they were.
     #[arg(long)]
     pub sequence: Option<PathBuf>,
     /// Print one JSON object (triangles_in, triangles_out, collapses, max_error, ms) on stdout.
@@ -72,6 +75,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         PlacementArg::Endpoint => Placement::Endpoint,
         PlacementArg::Optimal => Placement::Optimal,
     };
+    if let Some(seq) = &args.sequence {
+        if stripkit::io::same_destination(&args.output, seq) {
+            return Err(stripkit::Error::Invalid(format!(
+                "-o/--output and --sequence name the same file ({} and {}): the sequence would overwrite the mesh",
+                args.output.display(),
+                seq.display()
+            ))
+            .into());
+        }
+    }
     let mesh = stripkit::io::read(&args.file)?;
     let options = Options {
         target,
@@ -95,9 +108,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     .with_context(|| format!("simplifying {}", args.file.display()))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     bar.finish_and_clear();
-    stripkit::io::write(&args.output, &result.mesh, None)?;
-    if let Some(seq) = &args.sequence {
-        result.sequence.write(seq)?;
+    // Every output encoded before any is written; then all staged on disk before any
+    // is renamed into place, the sequence first and the mesh (-o) last.
+    let mesh_bytes =
+        stripkit::io::encode_file(&args.output, &result.mesh, None, &stripkit::io::WriteOptions::default())?;
+    match &args.sequence {
+        Some(seq) => {
+            let seq_bytes = result.sequence.encode(seq)?;
+            stripkit::io::write_atomic_all(&[(seq, &seq_bytes), (&args.output, &mesh_bytes)])?;
+        }
+        None => stripkit::io::write_atomic(&args.output, &mesh_bytes)?,
     }
     if args.json {
         let out = serde_json::json!({

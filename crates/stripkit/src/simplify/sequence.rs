@@ -141,15 +141,20 @@ impl CollapseSequence {
     }
 
     /// Writes the sequence: JSON for a `.json` path, a compact little-endian binary
-    /// otherwise (see [`CollapseSequence::read`]).
+    /// otherwise (see [`CollapseSequence::read`]). The file is replaced atomically
+    /// ([`crate::io::write_atomic`]): never left half-written.
     pub fn write(&self, path: &Path) -> Result<()> {
-        let io = |source| Error::Io { path: path.to_path_buf(), source };
-        let bytes = if is_json(path) {
-            serde_json::to_vec(self).map_err(|e| Error::Invalid(format!("{}: {e}", path.display())))?
+        crate::io::write_atomic(path, &self.encode(path)?)
+    }
+
+    /// The bytes [`CollapseSequence::write`] would write to `path` (JSON for a `.json`
+    /// path, binary otherwise), for callers that encode every output before writing any.
+    pub fn encode(&self, path: &Path) -> Result<Vec<u8>> {
+        if is_json(path) {
+            serde_json::to_vec(self).map_err(|e| Error::Invalid(format!("{}: {e}", path.display())))
         } else {
-            self.to_bytes()
-        };
-        std::fs::write(path, bytes).map_err(io)
+            Ok(self.to_bytes())
+        }
     }
 
     /// Reads a sequence written by [`CollapseSequence::write`].

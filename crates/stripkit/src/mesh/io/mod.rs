@@ -8,6 +8,10 @@
 //! unreferenced vertices are kept (STL, which has no shared vertices, welds identical
 //! positions in first-seen order).
 //!
+//! Every writer replaces its file atomically ([`write_atomic`]): a reader, a crash or
+//! a full disk sees the old file or the complete new one, never a partial file;
+//! [`write_atomic_all`] extends this to the several outputs of one run.
+//!
 //! | format | read | write |
 //! |---|---|---|
 //! | OBJ | `v`, `f` (all `v/vt/vn` forms, negative indices), polygons kept | `v`, `f` |
@@ -144,29 +148,196 @@ pub fn write(path: &Path, mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> 
 
 /// [`write()`] with options. The mesh is checked first: [`Error::Invalid`] when a face or
 /// strip index is out of range or a coordinate is NaN or infinite (no reader would
-/// accept the file). A name ending in `.gz` is gzip-compressed.
+/// accept the file). A name ending in `.gz` is gzip-compressed. The file is replaced
+/// atomically ([`write_atomic`]).
 pub fn write_with(
     path: &Path,
     mesh: &Mesh,
     strips: Option<&StripSet>,
     options: &WriteOptions,
 ) -> Result<()> {
+    write_atomic(path, &encode_file(path, mesh, strips, options)?)
+}
+
+/// The exact bytes [`write_with`] would write to `path`: encoded in the format its
+/// extension names, gzip-compressed when it ends in `.gz`. For a caller that encodes
+/// every output of a run before writing any (see [`write_atomic_all`]).
+pub fn encode_file(path: &Path, mesh: &Mesh, strips: Option<&StripSet>, options: &WriteOptions) -> Result<Vec<u8>> {
     let (format, _) = Format::from_path(path).ok_or_else(|| unknown(path))?;
     let bytes = write_bytes(format, mesh, strips, options)?;
-    write_encoded(path, &bytes)
+    Ok(compress_for(path, &bytes)?.into_owned())
 }
 
 /// Writes bytes already encoded in the format `path` names (e.g. by
 /// [`write_bytes`] or [`crate::Strips::to_file_bytes`]), gzip-compressed when the name
-/// ends in `.gz`.
+/// ends in `.gz`. The file is replaced atomically ([`write_atomic`]).
 pub fn write_encoded(path: &Path, bytes: &[u8]) -> Result<()> {
-    let gz = Format::from_path(path).is_some_and(|(_, gz)| gz);
-    if gz {
+    write_atomic(path, &compress_for(path, bytes)?)
+}
+
+/// `bytes` gzip-compressed when `path`'s name ends in `.gz`, unchanged otherwise.
+fn compress_for<'a>(path: &Path, bytes: &'a [u8]) -> Result<std::borrow::Cow<'a, [u8]>> {
+    if Format::from_path(path).is_some_and(|(_, gz)| gz) {
         let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
         let packed = enc.write_all(bytes).and_then(|_| enc.finish()).map_err(|e| io_error(path, e))?;
-        std::fs::write(path, packed).map_err(|e| io_error(path, e))
+        Ok(packed.into())
     } else {
-        std::fs::write(path, bytes).map_err(|e| io_error(path, e))
+        Ok(bytes.into())
+    }
+}
+
+/// Writes `bytes` to `path` so that `path` is at every moment either its old content
+/// (or absent) or the complete new content, never a partial file.
+///
+/// The bytes go to a temporary file in the destination's folder, named
+/// `.NAME.tmp-PID-N` (`NAME` the destination's file name, `PID` this process, `N` a
+/// counter), which is flushed and synced to disk (`sync_all`), then renamed over
+/// `path`; on Unix the folder is then synced too, so that the rename itself survives
+/// a crash (an error of that last step is ignored: the file is already in place).
+///
+/// On any failure the temporary file is removed, `path` is left as it was, and the
+/// error ([`Error::Io`]) names `path`. A process killed between the creation and
+/// the rename (SIGKILL, power loss) cannot clean up: it may leave a `.NAME.tmp-*`
+/// file beside the destination, never a partial file at the destination's name.
+///
+/// Every writer of this crate ([`write()`], [`write_with`], [`write_encoded`],
+/// [`crate::simplify::CollapseSequence::write`]) goes through it. If `path` is a
+/// symbolic link, the link itself is replaced by a regular file; an existing file's
+/// permissions are kept.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    Staged::new(path, bytes)?.commit()
+}
+
+/// Writes several files of one run as [`write_atomic`] does, all or nothing as far as
+/// the file system allows: every file is first written in full to its temporary file
+/// and synced; only when all of them are on disk are they renamed over their
+/// destinations, in the order given. A failure while writing (full disk, missing
+/// folder, no permission) removes every temporary file and leaves every destination
+/// as it was. The remaining window is a failure of a rename itself (rare: the
+/// temporaries sit in the destinations' folders): the files renamed before it have
+/// their new content, the others keep their old content, and no file is ever partial.
+///
+/// Two destinations that are the same file ([`same_destination`]) are refused with
+/// [`Error::Invalid`] before anything is written.
+pub fn write_atomic_all(files: &[(&Path, &[u8])]) -> Result<()> {
+    for (i, (a, _)) in files.iter().enumerate() {
+        if let Some((b, _)) = files[..i].iter().find(|(b, _)| same_destination(a, b)) {
+            return Err(Error::Invalid(format!(
+                "{} and {} are the same file: refusing to write one output over another",
+                b.display(),
+                a.display()
+            )));
+        }
+    }
+    let mut staged = Vec::with_capacity(files.len());
+    for (path, bytes) in files {
+        match Staged::new(path, bytes) {
+            Ok(s) => staged.push(s),
+            Err(e) => {
+                staged.into_iter().for_each(Staged::discard);
+                return Err(e);
+            }
+        }
+    }
+    let mut staged = staged.into_iter();
+    while let Some(s) = staged.next() {
+        if let Err(e) = s.commit() {
+            staged.for_each(Staged::discard);
+            return Err(e);
+        }
+    }
+    Ok(())
+}
+
+/// Whether two output paths name the same file: the same path, or the same file once
+/// resolved (symbolic links, `.` and `..`; for a file that does not exist yet, its
+/// folder resolved and its name). Paths that cannot be resolved compare as written.
+pub fn same_destination(a: &Path, b: &Path) -> bool {
+    fn resolved(p: &Path) -> Option<std::path::PathBuf> {
+        if let Ok(full) = p.canonicalize() {
+            return Some(full);
+        }
+        let dir = match p.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        Some(dir.canonicalize().ok()?.join(p.file_name()?))
+    }
+    a == b || matches!((resolved(a), resolved(b)), (Some(x), Some(y)) if x == y)
+}
+
+/// A temporary file written in full and synced, waiting to be renamed over `dest`.
+struct Staged<'a> {
+    dest: &'a Path,
+    tmp: std::path::PathBuf,
+    dir: &'a Path,
+}
+
+impl<'a> Staged<'a> {
+    /// Creates `.NAME.tmp-PID-N` beside `dest`, writes, flushes and syncs it; on
+    /// failure removes it and returns an error naming `dest`.
+    fn new(dest: &'a Path, bytes: &[u8]) -> Result<Staged<'a>> {
+        use std::sync::atomic::{AtomicU64, Ordering};
+        static COUNTER: AtomicU64 = AtomicU64::new(0);
+
+        let name = dest.file_name().ok_or_else(|| {
+            io_error(dest, std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name"))
+        })?;
+        let dir = match dest.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        // The rename would refuse it, but only after the whole write (and, in
+        // `write_atomic_all`, after earlier files were renamed): refuse it now.
+        if dest.is_dir() {
+            return Err(io_error(dest, std::io::Error::other("is a folder, not a file")));
+        }
+        let (tmp, mut file) = loop {
+            let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+            let mut tmp_name = std::ffi::OsString::from(".");
+            tmp_name.push(name);
+            tmp_name.push(format!(".tmp-{}-{n}", std::process::id()));
+            let tmp = dir.join(tmp_name);
+            match std::fs::OpenOptions::new().write(true).create_new(true).open(&tmp) {
+                Ok(f) => break (tmp, f),
+                // A leftover of a killed process that had our id: take the next number.
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+                Err(e) => return Err(io_error(dest, e)),
+            }
+        };
+        // Keep the mode of the file we replace (a new file gets the usual default).
+        if let Ok(meta) = std::fs::metadata(dest) {
+            let _ = file.set_permissions(meta.permissions());
+        }
+        let written = file.write_all(bytes).and_then(|()| file.flush()).and_then(|()| file.sync_all());
+        drop(file);
+        let staged = Staged { dest, tmp, dir };
+        match written {
+            Ok(()) => Ok(staged),
+            Err(e) => {
+                staged.discard();
+                Err(io_error(dest, e))
+            }
+        }
+    }
+
+    /// Renames the temporary file over the destination (removing it if that fails),
+    /// then syncs the folder where the platform allows, ignoring errors of that sync.
+    fn commit(self) -> Result<()> {
+        if let Err(e) = std::fs::rename(&self.tmp, self.dest) {
+            let dest = self.dest;
+            self.discard();
+            return Err(io_error(dest, e));
+        }
+        #[cfg(unix)]
+        if let Ok(d) = std::fs::File::open(self.dir) {
+            let _ = d.sync_all();
+        }
+        Ok(())
+    }
+
+    fn discard(self) {
+        let _ = std::fs::remove_file(&self.tmp);
     }
 }
 
@@ -253,6 +424,169 @@ mod tests {
         let text = b"\xEF\xBB\xBFOFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
         let mesh = read_bytes(Path::new("bom.off"), Format::Off, text).unwrap();
         assert_eq!((mesh.vertex_count(), mesh.face_count()), (3, 1));
+    }
+
+    fn scratch(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("stripkit-atomic-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    fn entries(dir: &Path) -> Vec<String> {
+        let mut names: Vec<String> =
+            std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+        names.sort();
+        names
+    }
+
+    #[test]
+    fn write_atomic_creates_and_replaces_leaving_no_temporary_file() {
+        let dir = scratch("replace");
+        let dest = dir.join("out.obj");
+        write_atomic(&dest, b"first").unwrap();
+        assert_eq!(std::fs::read(&dest).unwrap(), b"first");
+        write_atomic(&dest, b"second, longer than the first").unwrap();
+        assert_eq!(std::fs::read(&dest).unwrap(), b"second, longer than the first");
+        write_atomic(&dest, b"").unwrap();
+        assert_eq!(std::fs::read(&dest).unwrap(), b"");
+        assert_eq!(entries(&dir), ["out.obj"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn write_atomic_keeps_the_replaced_files_permissions() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = scratch("mode");
+        let dest = dir.join("out.ply");
+        std::fs::write(&dest, b"old").unwrap();
+        std::fs::set_permissions(&dest, std::fs::Permissions::from_mode(0o640)).unwrap();
+        write_atomic(&dest, b"new").unwrap();
+        assert_eq!(std::fs::metadata(&dest).unwrap().permissions().mode() & 0o777, 0o640);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn write_atomic_into_a_missing_folder_fails_naming_the_destination() {
+        let dir = scratch("missing");
+        let dest = dir.join("no-such-folder").join("out.obj");
+        let e = write_atomic(&dest, b"bytes").unwrap_err();
+        assert!(matches!(e, Error::Io { .. }), "{e:?}");
+        assert!(e.to_string().contains(&dest.display().to_string()), "{e}");
+        assert!(entries(&dir).is_empty(), "{:?}", entries(&dir));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A rename that fails after the temporary file was written in full (a folder
+    /// appeared at the destination meanwhile): the temporary file must go.
+    #[test]
+    fn a_failed_rename_removes_the_temporary_file() {
+        let dir = scratch("rename");
+        let dest = dir.join("out.obj");
+        let staged = Staged::new(&dest, b"complete bytes").unwrap();
+        assert_eq!(entries(&dir).len(), 1, "{:?}", entries(&dir));
+        assert!(entries(&dir)[0].starts_with(".out.obj.tmp-"), "{:?}", entries(&dir));
+        std::fs::create_dir(&dest).unwrap();
+        std::fs::write(dest.join("inside"), b"kept").unwrap();
+        let e = staged.commit().unwrap_err();
+        assert!(e.to_string().contains(&dest.display().to_string()), "{e}");
+        assert_eq!(std::fs::read(dest.join("inside")).unwrap(), b"kept");
+        assert_eq!(entries(&dir), ["out.obj"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn write_atomic_over_a_folder_fails_and_leaves_it_and_no_temporary_file() {
+        let dir = scratch("isdir");
+        let dest = dir.join("out.obj");
+        std::fs::create_dir(&dest).unwrap();
+        std::fs::write(dest.join("inside"), b"kept").unwrap();
+        let e = write_atomic(&dest, b"bytes").unwrap_err();
+        assert!(e.to_string().contains(&dest.display().to_string()), "{e}");
+        assert!(dest.is_dir());
+        assert_eq!(std::fs::read(dest.join("inside")).unwrap(), b"kept");
+        assert_eq!(entries(&dir), ["out.obj"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A read-only folder: the temporary file cannot even be created.
+    #[cfg(unix)]
+    #[test]
+    fn write_atomic_in_a_read_only_folder_leaves_the_old_file_unchanged() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = scratch("readonly");
+        let dest = dir.join("out.off");
+        std::fs::write(&dest, b"the old, good file").unwrap();
+        std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o555)).unwrap();
+        let probe = dir.join("probe");
+        let root = std::fs::write(&probe, b"").is_ok(); // root ignores folder permissions
+        let _ = std::fs::remove_file(&probe);
+        let result = write_atomic(&dest, b"new bytes");
+        std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o755)).unwrap();
+        if !root {
+            let e = result.unwrap_err();
+            assert!(e.to_string().contains(&dest.display().to_string()), "{e}");
+            assert_eq!(std::fs::read(&dest).unwrap(), b"the old, good file");
+            assert_eq!(entries(&dir), ["out.off"]);
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn write_atomic_all_writes_nothing_when_a_later_file_fails() {
+        let dir = scratch("all");
+        let first = dir.join("mesh.obj");
+        let second = dir.join("sequence.bin");
+        std::fs::write(&first, b"old mesh").unwrap();
+        std::fs::create_dir(&second).unwrap(); // the second cannot be written
+        let e = write_atomic_all(&[(&first, b"new mesh"), (&second, b"new sequence")]).unwrap_err();
+        assert!(e.to_string().contains(&second.display().to_string()), "{e}");
+        // The first was staged before the second failed: it must not have been renamed.
+        assert_eq!(std::fs::read(&first).unwrap(), b"old mesh");
+        assert_eq!(entries(&dir), ["mesh.obj", "sequence.bin"]);
+        let missing = dir.join("no-such-folder").join("s.bin");
+        let e = write_atomic_all(&[(&first, b"new mesh"), (&missing, b"new sequence")]).unwrap_err();
+        assert!(e.to_string().contains(&missing.display().to_string()), "{e}");
+        assert_eq!(std::fs::read(&first).unwrap(), b"old mesh");
+        assert_eq!(entries(&dir), ["mesh.obj", "sequence.bin"]);
+        std::fs::remove_dir(&second).unwrap();
+        write_atomic_all(&[(&first, b"new mesh"), (&second, b"new sequence")]).unwrap();
+        assert_eq!(std::fs::read(&first).unwrap(), b"new mesh");
+        assert_eq!(std::fs::read(&second).unwrap(), b"new sequence");
+        assert_eq!(entries(&dir), ["mesh.obj", "sequence.bin"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn write_atomic_all_refuses_two_outputs_that_are_one_file() {
+        let dir = scratch("same");
+        let a = dir.join("x.obj");
+        let b = dir.join(".").join("x.obj"); // not yet existing, same file once resolved
+        std::fs::create_dir(dir.join("sub")).unwrap();
+        let c = dir.join("sub").join("..").join("x.obj");
+        assert!(same_destination(&a, &b) && same_destination(&a, &c));
+        assert!(!same_destination(&a, &dir.join("y.obj")));
+        let e = write_atomic_all(&[(&a, b"1"), (&c, b"2")]).unwrap_err();
+        assert!(matches!(e, Error::Invalid(_)), "{e:?}");
+        assert!(!a.exists());
+        assert_eq!(entries(&dir), ["sub"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn write_encoded_goes_through_write_atomic() {
+        let dir = scratch("encoded");
+        let dest = dir.join("m.obj.gz");
+        std::fs::create_dir(&dest).unwrap();
+        assert!(write_encoded(&dest, b"v 0 0 0\n").is_err());
+        assert_eq!(entries(&dir), ["m.obj.gz"]);
+        std::fs::remove_dir(&dest).unwrap();
+        let mesh = Mesh::from_triangles(vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], &[[0, 1, 2]]);
+        write(&dest, &mesh, None).unwrap();
+        assert_eq!(read(&dest).unwrap().face_count(), 1);
+        assert_eq!(entries(&dir), ["m.obj.gz"]);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
