@@ -268,3 +268,41 @@ fn a_quad_that_repeats_a_vertex_is_fanned_from_its_first_corner() {
         }
     }
 }
+
+#[test]
+fn a_quad_listed_twice_is_stripped_twice() {
+    // `qstrip` once refused a quad listed twice ("quad faces 0 and 3 give coincident
+    // triangles"): the coincidence is the input's. Every algorithm draws both copies.
+    let mut meshes = Vec::new();
+    let one = Mesh::from_polygons(positions(4), &[vec![0u32, 1, 2, 3], vec![0, 1, 2, 3]]);
+    meshes.push(("one quad twice", one));
+    let mut row = gen::grid_quads(3, 1);
+    let first = row.face(0).to_vec();
+    row.push_face(&first);
+    meshes.push(("a row with face 0 again as face 3", row));
+    let mut grid = gen::grid_quads(4, 3);
+    for f in [0usize, 5, 5, 11] {
+        let face = grid.face(f).to_vec();
+        grid.push_face(&face);
+    }
+    // Also listed again in another rotation.
+    let face = grid.face(7).to_vec();
+    grid.push_face(&[face[2], face[3], face[0], face[1]]);
+    meshes.push(("a grid with duplicates", gen::shuffle_faces(&grid, 4)));
+    let mut torus = gen::torus_quads(8, 6, 2.0, 0.5);
+    for f in [0usize, 1, 17] {
+        let face = torus.face(f).to_vec();
+        torus.push_face(&face);
+    }
+    meshes.push(("a closed torus with duplicates", torus));
+    for (name, mesh) in &meshes {
+        let want = fan_triangles(mesh);
+        for options in every_setting() {
+            let what = format!("{name}: {} split {:?}", options.algorithm.name(), options.split);
+            let s = stripify(mesh, &options).unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!(s.figures.verified, "{what}");
+            assert_eq!(s.figures.triangles, want, "{what}");
+            assert_eq!(decode(&s.strips).len(), want, "{what}");
+        }
+    }
+}
