@@ -276,6 +276,13 @@ fn a_quad_listed_twice_is_stripped_twice() {
     let mut meshes = Vec::new();
     let one = Mesh::from_polygons(positions(4), &[vec![0u32, 1, 2, 3], vec![0, 1, 2, 3]]);
     meshes.push(("one quad twice", one));
+    // A pillow (a quad and its reverse: their diagonals must differ) with the first
+    // side listed again: forcing the copies apart too left no choice.
+    let pillow = Mesh::from_polygons(
+        positions(6),
+        &[vec![0u32, 1, 2, 3], vec![3, 2, 1, 0], vec![1, 4, 5, 2], vec![0, 1, 2, 3]],
+    );
+    meshes.push(("a pillow with a side listed twice", pillow));
     let mut row = gen::grid_quads(3, 1);
     let first = row.face(0).to_vec();
     row.push_face(&first);
