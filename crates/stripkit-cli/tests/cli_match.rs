@@ -118,3 +118,23 @@ fn bad_input_exits_2_with_the_place() {
         assert!(out.contains(opt), "help lacks {opt}");
     }
 }
+
+#[test]
+fn weights_beyond_the_range_exit_2_naming_the_file_and_line() {
+    // -9223372036854775808 once passed a wrapping `abs()` check and came out as a
+    // "certified" maximum of -9223372036854775808, exit 0 (the optimum is 0).
+    for (name, w) in [("min.dimacs", i64::MIN), ("max.dimacs", i64::MAX)] {
+        let f = tmp(name);
+        std::fs::write(&f, format!("c one edge\np edge 2 1\ne 1 2 {w}\n")).unwrap();
+        let (code, out, err) = stripkit(&["match", f.to_str().unwrap(), "--json"]);
+        assert_eq!(code, 2, "{out}{err}");
+        assert!(out.is_empty(), "{out}");
+        assert!(err.contains(&format!("{name}: line 3: weight {w} beyond the supported range")), "{err}");
+    }
+    // The largest allowed magnitude is accepted.
+    let f = tmp("limit.dimacs");
+    std::fs::write(&f, "p edge 2 1\ne 1 2 -1099511627776\n").unwrap();
+    let v = json(&["match", f.to_str().unwrap(), "--json"]);
+    assert_eq!(v["total_weight"], -1_099_511_627_776i64);
+    assert_eq!(v["certified"], true);
+}

@@ -15,6 +15,13 @@ use std::path::Path;
 /// dual drift of the search, every intermediate value stays far inside `i64`.
 pub const MAX_WEIGHT: i64 = 1 << 40;
 
+/// Whether `w` lies in `-MAX_WEIGHT..=MAX_WEIGHT`. Compares magnitudes with
+/// `unsigned_abs`, which cannot overflow (`i64::MIN.abs()` wraps to `i64::MIN` in
+/// release builds and would pass a `w.abs() > MAX_WEIGHT` test).
+pub(crate) fn weight_in_range(w: i64) -> bool {
+    w.unsigned_abs() <= MAX_WEIGHT.unsigned_abs()
+}
+
 /// An undirected graph with `i64` edge weights, stored as an edge list and a CSR
 /// adjacency (`adjacency(v)` lists the ids of the edges at `v`).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -48,7 +55,7 @@ impl Graph {
                     e[0], e[1]
                 )));
             }
-            if weights[i].abs() > MAX_WEIGHT {
+            if !weight_in_range(weights[i]) {
                 return Err(Error::Invalid(format!(
                     "edge {i} has weight {} beyond the supported range +-2^40",
                     weights[i]
@@ -179,7 +186,7 @@ impl Graph {
                     let w: i64 = fields[2].parse().map_err(|_| {
                         err(lno, format!("weight `{}` is not an integer", fields[2]))
                     })?;
-                    if w.abs() > MAX_WEIGHT {
+                    if !weight_in_range(w) {
                         return Err(err(lno, format!("weight {w} beyond the supported range +-2^40")));
                     }
                     if edges.len() == m {

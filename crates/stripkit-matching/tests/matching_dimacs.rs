@@ -86,3 +86,25 @@ fn graph_new_checks_its_input() {
     assert_eq!(g.adjacency(1), &[0, 1, 2]);
     assert_eq!(g.adjacency(2), &[2]);
 }
+
+#[test]
+fn weights_beyond_the_range_are_refused_without_overflow() {
+    // i64::MIN: `abs()` wraps to itself (negative) in release builds, so a check
+    // written as `w.abs() > MAX_WEIGHT` let it through and the solver reported a
+    // "certified" optimum of -9223372036854775808 on a graph whose optimum is 0.
+    for w in [i64::MIN, i64::MIN + 1, i64::MAX, -matching::MAX_WEIGHT - 1, matching::MAX_WEIGHT + 1] {
+        let e = err(&format!("p edge 2 1\ne 1 2 {w}\n"));
+        assert!(e.contains(&format!("g.dimacs: line 2: weight {w} beyond the supported range")), "{e}");
+        let e = Graph::new(2, vec![[0, 1]], vec![w]).unwrap_err();
+        assert!(matches!(e, Error::Invalid(_)), "{e:?}");
+        assert!(e.to_string().contains(&format!("edge 0 has weight {w} beyond the supported range")), "{e}");
+    }
+    // The limits themselves are accepted, and solved exactly.
+    for w in [matching::MAX_WEIGHT, -matching::MAX_WEIGHT] {
+        let g = parse(&format!("p edge 2 1\ne 1 2 {w}\n")).unwrap();
+        assert_eq!(g.weights(), &[w]);
+        assert_eq!(Graph::new(2, vec![[0, 1]], vec![w]).unwrap(), g);
+        let m = matching::max_weight_perfect_matching(&g).unwrap();
+        assert_eq!((m.perfect, m.total_weight), (true, w));
+    }
+}

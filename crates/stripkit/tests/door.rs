@@ -214,3 +214,106 @@ fn bad_input_and_options_that_do_not_apply_are_errors() {
     let s = stripify(&Mesh::new(), &d).unwrap();
     assert!(s.figures.verified && s.strips.is_empty());
 }
+
+/// The algorithms of the door, each with the splits it accepts.
+fn every_setting() -> Vec<StripOptions> {
+    let mut out = Vec::new();
+    for algorithm in [
+        Algorithm::Auto,
+        Algorithm::greedy(),
+        Algorithm::qstrip(),
+        Algorithm::cache(),
+        Algorithm::Cache { refine: true },
+        Algorithm::balanced(0.8),
+    ] {
+        let splits: &[Split] = match algorithm {
+            Algorithm::Greedy(_) => &[Split::Auto, Split::Fan],
+            Algorithm::Qstrip(_) => &[Split::Auto, Split::Qstrip],
+            _ => &[Split::Auto, Split::Fan, Split::Qstrip],
+        };
+        for &split in splits {
+            out.push(StripOptions::default().algorithm(algorithm.clone()).split(split));
+        }
+    }
+    out
+}
+
+/// Non-degenerate triangles of the fan of every face (from its first corner).
+fn fan_triangles(mesh: &Mesh) -> usize {
+    mesh.triangulate().tris.iter().filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]).count()
+}
+
+fn positions(n: usize) -> Vec<[f32; 3]> {
+    (0..n).map(|i| [(i % 5) as f32, (i / 5) as f32, ((i * 7) % 3) as f32]).collect()
+}
+
+#[test]
+fn a_quad_that_repeats_a_vertex_is_fanned_from_its_first_corner() {
+    // From an OBJ: `f 3 4 1 5` then `f 5 1 5 2`. The second face is no quad (vertex 5
+    // twice): its fan from the first corner, (5,1,5) and (5,5,2), is degenerate. The
+    // cache-aware modes on QSTRIP's diagonals once started it at its lowest vertex and
+    // drew (1,5,2) and (1,2,5): two triangles no face has.
+    let small = Mesh::from_polygons(positions(5), &[vec![2u32, 3, 0, 4], vec![4, 0, 4, 1]]);
+    // The same faces (and every other rotation of a repeated-vertex quad) among the
+    // quads of a grid, faces shuffled.
+    let mut grid = gen::grid_quads(3, 3);
+    for f in [[5u32, 6, 5, 9], [6, 5, 9, 5], [1, 1, 2, 6], [10, 11, 14, 14], [13, 9, 9, 14], [2, 3, 2, 3]] {
+        grid.push_face(&f);
+    }
+    let grid = gen::shuffle_faces(&grid, 9);
+    for (name, mesh) in [("two faces", &small), ("grid", &grid)] {
+        let want = fan_triangles(mesh);
+        for options in every_setting() {
+            let what = format!("{name}: {} split {:?}", options.algorithm.name(), options.split);
+            let s = stripify(mesh, &options).unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!(s.figures.verified, "{what}");
+            assert_eq!(s.figures.triangles, want, "{what}");
+            assert_eq!(decode(&s.strips).len(), want, "{what}");
+        }
+    }
+}
+
+#[test]
+fn a_quad_listed_twice_is_stripped_twice() {
+    // `qstrip` once refused a quad listed twice ("quad faces 0 and 3 give coincident
+    // triangles"): the coincidence is the input's. Every algorithm draws both copies.
+    let mut meshes = Vec::new();
+    let one = Mesh::from_polygons(positions(4), &[vec![0u32, 1, 2, 3], vec![0, 1, 2, 3]]);
+    meshes.push(("one quad twice", one));
+    // A pillow (a quad and its reverse: their diagonals must differ) with the first
+    // side listed again: forcing the copies apart too left no choice.
+    let pillow = Mesh::from_polygons(
+        positions(6),
+        &[vec![0u32, 1, 2, 3], vec![3, 2, 1, 0], vec![1, 4, 5, 2], vec![0, 1, 2, 3]],
+    );
+    meshes.push(("a pillow with a side listed twice", pillow));
+    let mut row = gen::grid_quads(3, 1);
+    let first = row.face(0).to_vec();
+    row.push_face(&first);
+    meshes.push(("a row with face 0 again as face 3", row));
+    let mut grid = gen::grid_quads(4, 3);
+    for f in [0usize, 5, 5, 11] {
+        let face = grid.face(f).to_vec();
+        grid.push_face(&face);
+    }
+    // Also listed again in another rotation.
+    let face = grid.face(7).to_vec();
+    grid.push_face(&[face[2], face[3], face[0], face[1]]);
+    meshes.push(("a grid with duplicates", gen::shuffle_faces(&grid, 4)));
+    let mut torus = gen::torus_quads(8, 6, 2.0, 0.5);
+    for f in [0usize, 1, 17] {
+        let face = torus.face(f).to_vec();
+        torus.push_face(&face);
+    }
+    meshes.push(("a closed torus with duplicates", torus));
+    for (name, mesh) in &meshes {
+        let want = fan_triangles(mesh);
+        for options in every_setting() {
+            let what = format!("{name}: {} split {:?}", options.algorithm.name(), options.split);
+            let s = stripify(mesh, &options).unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!(s.figures.verified, "{what}");
+            assert_eq!(s.figures.triangles, want, "{what}");
+            assert_eq!(decode(&s.strips).len(), want, "{what}");
+        }
+    }
+}

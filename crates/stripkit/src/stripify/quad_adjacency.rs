@@ -156,6 +156,14 @@ fn split_sets(v: &[u32], diag: u8) -> [[u32; 3]; 2] {
 }
 
 
+/// True when quads `a` and `b` are the same face: the same four vertices in the same
+/// cyclic order (a face listed twice, perhaps from another corner). Their triangles
+/// may coincide: that is the input's doing, not a wrong split, so no diagonal is
+/// forced between them and the quad-level check accepts it.
+pub(super) fn same_quad(a: &[u32], b: &[u32]) -> bool {
+    a.len() == 4 && b.len() == 4 && (0..4).any(|r| (0..4).all(|i| a[i] == b[(i + r) % 4]))
+}
+
 pub(super) fn coincide(a: &[u32], da: u8, b: &[u32], db: u8) -> bool {
     let ta = split_sets(a, da);
     let tb = split_sets(b, db);
@@ -167,6 +175,11 @@ pub(super) fn coincide(a: &[u32], da: u8, b: &[u32], db: u8) -> bool {
 fn force_pair(verts: &[u32], forced: &mut [u8], q1: usize, q2: usize) -> bool {
     let a = &verts[4 * q1..4 * q1 + 4];
     let b = &verts[4 * q2..4 * q2 + 4];
+    if same_quad(a, b) {
+        // A quad listed twice: forcing its copies apart would gain nothing (their
+        // triangles may coincide) and could force a clash with a real neighbour.
+        return false;
+    }
     let options = |f: u8| if f == FREE { vec![0u8, 1] } else { vec![f] };
     let bad = |d1: u8, d2: u8| coincide(a, d1, b, d2);
     if options(forced[q1])

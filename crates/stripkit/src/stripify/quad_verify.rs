@@ -11,12 +11,14 @@
 //! * no output triangle is left over;
 //! * no two triangles that come from quads lie on the same three vertices (the
 //!   "incorrect triangle" two quads sharing two edges can produce), unless every
-//!   choice of diagonals for that pair of quads clashes (the input forces it).
+//!   choice of diagonals for that pair of quads clashes (the input forces it) or the
+//!   two quads are one face listed twice (same vertices in the same cyclic order: the
+//!   duplicate is the input's, and each copy is covered on its own).
 //!
 //! Independent of how the strips were built: it only decodes them by the METRICS.md
 //! rule. O(T) expected time with hashing.
 
-use super::quad_adjacency::{coincide, is_quad, split};
+use super::quad_adjacency::{coincide, is_quad, same_quad, split};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::strip::{canonical, for_each_triangle, StripSet};
@@ -166,7 +168,8 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
     quad_sets.sort_unstable();
     for w in quad_sets.windows(2) {
         let ((t, f1), (u, f2)) = (w[0], w[1]);
-        if t == u && f1 != f2 && avoidable(mesh.face(f1 as usize), mesh.face(f2 as usize)) {
+        let (a, b) = (mesh.face(f1 as usize), mesh.face(f2 as usize));
+        if t == u && f1 != f2 && !same_quad(a, b) && avoidable(a, b) {
             return Err(Error::Verification(format!(
                 "quad faces {f1} and {f2} give coincident triangles on vertices ({}, {}, {}); \
                  another choice of diagonals avoids it",

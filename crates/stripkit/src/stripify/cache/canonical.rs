@@ -3,6 +3,7 @@
 //! the order of the faces or the vertex ids.
 
 use crate::strip::StripSet;
+use crate::stripify::quad_adjacency::is_quad;
 use crate::topology::{sort_bucket, Csr};
 
 /// A mesh's vertices renumbered in an order that depends only on the geometry, so that
@@ -83,8 +84,11 @@ impl Canonical {
     }
 
     /// The mesh in new ids, faces sorted, triangles and quads starting at their lowest
-    /// id (for QSTRIP, which splits the quads itself); a larger polygon keeps its own
-    /// first corner, since its fan is part of the input.
+    /// id (for QSTRIP, which splits the quads itself); any other face keeps its own
+    /// first corner, since its fan is part of the input: a larger polygon, and a face
+    /// of four corners that repeats a vertex (no quad to QSTRIP or to the quad-level
+    /// check, which fan it: `(5, 1, 5, 2)` fans to two degenerate triangles, while
+    /// from its lowest corner, `(1, 5, 2, 5)`, it would fan to two real ones).
     pub(super) fn rotated(&self, mesh: &crate::Mesh) -> crate::Mesh {
         let mut ids: Vec<u32> = mesh.face_indices.iter().map(|&v| self.new[v as usize]).collect();
         let range = |f: usize| mesh.face_offsets[f] as usize..mesh.face_offsets[f + 1] as usize;
@@ -104,7 +108,7 @@ impl Canonical {
         out.face_indices.reserve(ids.len());
         for &f in &order {
             let face = &ids[range(f as usize)];
-            if face.len() <= 4 {
+            if face.len() <= 3 || is_quad(face) {
                 out.face_indices.extend_from_slice(face);
             } else {
                 // Back to the input's first corner.
