@@ -29,6 +29,76 @@ fn refused(name: &str, bytes: &[u8]) -> (String, String) {
     }
 }
 
+const OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
+const OFF: &str = "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+const PLY: &str = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n\
+    element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+const STL: &str = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\nendfacet\n\
+    facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+
+fn utf16(text: &str, big: bool) -> Vec<u8> {
+    let mut out = if big { vec![0xFE, 0xFF] } else { vec![0xFF, 0xFE] };
+    for u in text.encode_utf16() {
+        out.extend_from_slice(&if big { u.to_be_bytes() } else { u.to_le_bytes() });
+    }
+    out
+}
+
+#[test]
+fn utf16_text_is_refused_by_name() {
+    for (name, text) in [("u16.obj", OBJ), ("u16.off", OFF), ("u16.ply", PLY), ("u16.stl", STL)] {
+        for big in [false, true] {
+            let (_, what) = refused(name, &utf16(text, big));
+            assert!(what.contains("UTF-16") && what.contains("save it as UTF-8"), "{name}: {what}");
+        }
+    }
+    // Without a byte order mark, an OBJ would read as nothing: it is named too.
+    let bytes: Vec<u8> = OBJ.encode_utf16().flat_map(|u| u.to_le_bytes()).collect();
+    let (_, what) = refused("u16-nobom.obj", &bytes);
+    assert!(what.contains("UTF-16"), "{what}");
+}
+
+#[test]
+fn a_utf8_byte_order_mark_is_skipped_in_every_text_format() {
+    for (name, text) in [("bom.obj", OBJ), ("bom.off", OFF), ("bom.ply", PLY), ("bom.stl", STL)] {
+        let mut bytes = b"\xEF\xBB\xBF".to_vec();
+        bytes.extend_from_slice(text.as_bytes());
+        assert_eq!(counts(name, &bytes), (4, 2), "{name}");
+    }
+}
+
+#[test]
+fn content_that_is_not_obj_is_refused_not_read_as_empty() {
+    let (_, what) = refused("really-ply.obj", PLY.as_bytes());
+    assert!(what.contains("starts with 'ply'") && what.contains("not OBJ"), "{what}");
+    let mesh = read("a.ply", PLY.as_bytes()).unwrap();
+    let binary_ply = io::write_bytes(Format::Ply, &mesh, None, &Default::default()).unwrap();
+    let (_, what) = refused("binply.obj", &binary_ply);
+    assert!(what.contains("PLY"), "{what}");
+    let (_, what) = refused("off.obj", OFF.as_bytes());
+    assert!(what.contains("OFF file"), "{what}");
+    let garbage: Vec<u8> = (0..2000u32).map(|i| (i.wrapping_mul(2654435761) >> 13) as u8).collect();
+    let (_, what) = refused("garbage.obj", &garbage);
+    assert!(what.contains("binary data"), "{what}");
+    let (_, what) = refused("gz.obj", &[0x1f, 0x8b, 8, 0, 0, 0, 0, 0, 0, 3]);
+    assert!(what.contains("gzip"), "{what}");
+    let (_, what) = refused("prose.obj", b"Dear reader,\nthis is a letter.\n");
+    assert!(what.contains("no OBJ statement") && what.contains("Dear reader"), "{what}");
+    // Legitimate files stay legitimate: empty, comments only, statements without
+    // geometry, and unknown statements next to vertices.
+    for ok in ["", "\n\n", "# nothing yet\n", "mtllib a.mtl\no empty\n", "# c\nfoo bar\nv 0 0 0\n"] {
+        read("ok.obj", ok.as_bytes()).unwrap_or_else(|e| panic!("{ok:?}: {e}"));
+    }
+    assert_eq!(counts("ok.obj", b"weird 1 2\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), (3, 1));
+}
+
+#[test]
+fn a_nul_byte_in_an_obj_is_shown_visibly() {
+    let (at, what) = refused("nul.obj", b"v 0 0 0\nv 1 0 0\nv 0 1\x00 0\nf 1 2 3\n");
+    assert_eq!(at, "line 3");
+    assert!(what.contains("'1\\0'"), "{what}");
+}
+
 /// A glTF with one buffer (embedded) holding three positions and `indices`.
 fn gltf(indices: &[u8], stride: Option<u64>) -> Vec<u8> {
     let mut bin = Vec::new();
