@@ -45,6 +45,24 @@ fn utf16(text: &str, big: bool) -> Vec<u8> {
 }
 
 #[test]
+fn cr_only_line_ends_read_like_lf() {
+    for (name, text) in [("mac.obj", OBJ), ("mac.off", OFF), ("mac.ply", PLY), ("mac.stl", STL)] {
+        let expected = read(name, text.as_bytes()).unwrap();
+        assert_eq!((expected.vertex_count(), expected.face_count()), (4, 2), "{name}");
+        for end in ["\r", "\r\n"] {
+            let bytes = text.replace('\n', end);
+            assert_eq!(read(name, bytes.as_bytes()).unwrap(), expected, "{name} with {end:?}");
+        }
+    }
+    // Line numbers count lone CRs as line ends.
+    let (at, what) = refused("mac.obj", b"v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 9\r");
+    assert_eq!(at, "line 4");
+    assert!(what.contains("vertex 9"), "{what}");
+    let (at, _) = refused("mac.off", b"OFF\r3 1 0\r0 0 0\r1 0 0\r0 1 0\r3 0 1 7\r");
+    assert_eq!(at, "line 6");
+}
+
+#[test]
 fn utf16_text_is_refused_by_name() {
     for (name, text) in [("u16.obj", OBJ), ("u16.off", OFF), ("u16.ply", PLY), ("u16.stl", STL)] {
         for big in [false, true] {
@@ -90,6 +108,79 @@ fn content_that_is_not_obj_is_refused_not_read_as_empty() {
         read("ok.obj", ok.as_bytes()).unwrap_or_else(|e| panic!("{ok:?}: {e}"));
     }
     assert_eq!(counts("ok.obj", b"weird 1 2\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), (3, 1));
+}
+
+#[test]
+fn other_readers_say_what_the_content_looks_like() {
+    let (_, what) = refused("ply.off", PLY.as_bytes());
+    assert!(what.contains("OFF keyword") && what.contains("PLY file"), "{what}");
+    let (_, what) = refused("obj.ply", OBJ.as_bytes());
+    assert!(what.contains("first line must be 'ply'"), "{what}");
+    let (_, what) = refused("ply.stl", PLY.as_bytes());
+    assert!(what.contains("PLY file"), "{what}");
+}
+
+#[test]
+fn records_beyond_the_header_counts_are_refused() {
+    let extra_face = format!("{OFF}3 1 2 3\n");
+    let (at, what) = refused("extra.off", extra_face.as_bytes());
+    assert_eq!(at, "line 9");
+    assert!(what.contains("after the 4 vertices and 2 faces") && what.contains("'3 1 2 3'"), "{what}");
+    // Whitespace and comments after the records are fine.
+    assert_eq!(counts("tail.off", format!("{OFF}\n# end\n  \n").as_bytes()), (4, 2));
+
+    let (at, what) = refused("extra.ply", format!("{PLY}3 1 2 3\n").as_bytes());
+    assert_eq!(at, "line 16");
+    assert!(what.contains("after the last record") && what.contains("'3 1 2 3'"), "{what}");
+    assert_eq!(counts("tail.ply", format!("{PLY}\n\n").as_bytes()), (4, 2));
+
+    let mesh = read("a.ply", PLY.as_bytes()).unwrap();
+    let mut binary = io::write_bytes(Format::Ply, &mesh, None, &Default::default()).unwrap();
+    let len = binary.len();
+    binary.extend_from_slice(&[3, 0, 0, 0, 0]);
+    let (at, what) = refused("extra-bin.ply", &binary);
+    assert_eq!(at, format!("byte {len}"));
+    assert!(what.contains("5 bytes"), "{what}");
+    binary.truncate(len);
+    binary.push(b'\n');
+    assert_eq!(counts("tail-bin.ply", &binary), (4, 2));
+}
+
+#[test]
+fn a_ply_vertex_element_without_coordinates_is_refused() {
+    let no_props = "ply\nformat ascii 1.0\nelement vertex 3\nelement face 1\n\
+        property list uchar int vertex_indices\nend_header\n3 0 1 2\n";
+    let (at, what) = refused("noxyz.ply", no_props.as_bytes());
+    assert_eq!(at, "header");
+    assert!(what.contains("no 'x' property"), "{what}");
+    let no_z = PLY.replace("property float z\n", "property float w\n");
+    let (_, what) = refused("noz.ply", no_z.as_bytes());
+    assert!(what.contains("the vertex element has no 'z' property"), "{what}");
+    // Faces pointing past the vertices are refused.
+    let (_, what) = refused("past.ply", PLY.replace("3 0 2 3\n", "3 0 2 4\n").as_bytes());
+    assert!(what.contains("vertex 4") && what.contains("4 vertices"), "{what}");
+}
+
+#[test]
+fn homogeneous_off_coordinates_must_stay_finite_after_the_division() {
+    let text = "4OFF\n3 1 0\n0 0 0 1\n1 0 0 1\n0 1 0 1e-45\n3 0 1 2\n";
+    let (at, what) = refused("w.off", text.as_bytes());
+    assert_eq!(at, "line 5");
+    assert!(what.contains("vertex 2") && what.contains("NaN or infinite"), "{what}");
+}
+
+#[test]
+fn a_ply_cut_inside_its_header_says_so() {
+    let full = PLY.as_bytes();
+    let end = PLY.find("end_header").unwrap() + "end_header".len();
+    for cut in 4..end - 1 {
+        let (_, what) = refused("cut.ply", &full[..cut]);
+        assert!(what.contains("the header ends before end_header"), "cut at {cut}: {what}");
+    }
+    // A keyword that is wrong in a complete header is still named as such.
+    let (at, what) = refused("kw.ply", PLY.replace("element face", "elemant face").as_bytes());
+    assert_eq!(at, "line 7");
+    assert!(what.contains("unknown header keyword 'elemant'"), "{what}");
 }
 
 #[test]

@@ -68,6 +68,13 @@ pub(crate) fn line_end(data: &[u8]) -> Option<(usize, usize)> {
     Some((i, if data[i] == b'\r' && data.get(i + 1) == Some(&b'\n') { 2 } else { 1 }))
 }
 
+/// True when `data[i]` ends a line: `\n`, or a `\r` not followed by `\n` (the `\n`
+/// of `\r\n` ends it). For counting lines while scanning bytes one by one.
+#[inline]
+pub(crate) fn ends_line(data: &[u8], i: usize) -> bool {
+    data[i] == b'\n' || (data[i] == b'\r' && data.get(i + 1) != Some(&b'\n'))
+}
+
 /// What the start of `data` looks like when it is not the text a reader expected,
 /// for refusing it by name: a UTF-16 byte order mark or layout, another mesh format's
 /// signature, compressed or binary data. `None` when nothing stands out.
