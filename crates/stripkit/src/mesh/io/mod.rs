@@ -8,6 +8,12 @@
 //! unreferenced vertices are kept (STL, which has no shared vertices, welds identical
 //! positions in first-seen order).
 //!
+//! Text is UTF-8 (a byte order mark is skipped; UTF-16 is refused by name) with lines
+//! ending in `\n`, `\r\n` or a lone `\r`. Records after the counts an OFF or PLY
+//! header announces are an error (trailing whitespace and OFF comments excepted). An
+//! OBJ file with content that gives no vertex and no face is refused, saying what the
+//! content looks like (another format, binary data), rather than read as an empty mesh.
+//!
 //! | format | read | write |
 //! |---|---|---|
 //! | OBJ | `v`, `f` (all `v/vt/vn` forms, negative indices), polygons kept | `v`, `f` |
