@@ -23,8 +23,8 @@ pub(crate) fn line_at(line: usize) -> String {
     format!("line {line}")
 }
 
-/// Iterates over the lines of a text buffer with 1-based line numbers; `\r` before
-/// `\n` is dropped. No allocation.
+/// Iterates over the lines of a text buffer with 1-based line numbers. A line ends at
+/// `\n`, `\r\n` or a lone `\r` (old Mac files). No allocation.
 pub(crate) struct Lines<'a> {
     data: &'a [u8],
     pos: usize,
@@ -50,16 +50,84 @@ impl<'a> Iterator for Lines<'a> {
             return None;
         }
         let rest = &self.data[self.pos..];
-        let (mut line, advance) = match rest.iter().position(|&b| b == b'\n') {
-            Some(i) => (&rest[..i], i + 1),
+        let (line, advance) = match line_end(rest) {
+            Some((i, n)) => (&rest[..i], i + n),
             None => (rest, rest.len()),
         };
-        if let [head @ .., b'\r'] = line {
-            line = head;
-        }
         self.pos += advance;
         self.line += 1;
         Some((self.line, line))
+    }
+}
+
+/// The first line end in `data`: its position and length (1 for `\n` or a lone `\r`,
+/// 2 for `\r\n`).
+#[inline]
+pub(crate) fn line_end(data: &[u8]) -> Option<(usize, usize)> {
+    let i = data.iter().position(|&b| b == b'\n' || b == b'\r')?;
+    Some((i, if data[i] == b'\r' && data.get(i + 1) == Some(&b'\n') { 2 } else { 1 }))
+}
+
+/// True when `data[i]` ends a line: `\n`, or a `\r` not followed by `\n` (the `\n`
+/// of `\r\n` ends it). For counting lines while scanning bytes one by one.
+#[inline]
+pub(crate) fn ends_line(data: &[u8], i: usize) -> bool {
+    data[i] == b'\n' || (data[i] == b'\r' && data.get(i + 1) != Some(&b'\n'))
+}
+
+/// What the start of `data` looks like when it is not the text a reader expected,
+/// for refusing it by name: a UTF-16 byte order mark or layout, another mesh format's
+/// signature, compressed or binary data. `None` when nothing stands out.
+pub(crate) fn sniff(data: &[u8]) -> Option<String> {
+    if let Some(bom) = utf16_bom(data) {
+        return Some(format!("the file is UTF-16 ({bom}); save it as UTF-8"));
+    }
+    let head = &data[..data.len().min(1024)];
+    // UTF-16 without a byte order mark: ASCII text with every other byte 0.
+    if head.len() >= 8 {
+        let pairs = head.len() / 2;
+        let zero_odd = head.chunks_exact(2).filter(|p| p[1] == 0 && p[0] != 0).count();
+        let zero_even = head.chunks_exact(2).filter(|p| p[0] == 0 && p[1] != 0).count();
+        if zero_odd * 10 >= pairs * 9 || zero_even * 10 >= pairs * 9 {
+            let order = if zero_odd > zero_even { "little-endian" } else { "big-endian" };
+            return Some(format!("the file looks like UTF-16 ({order}, every other byte is 0); save it as UTF-8"));
+        }
+    }
+    if head.starts_with(b"\x1f\x8b") {
+        return Some("the file starts with the gzip signature: it is compressed (name it with a .gz suffix)".into());
+    }
+    if head.starts_with(b"glTF") {
+        return Some("the file starts with 'glTF': this is a binary glTF (.glb) file".into());
+    }
+    let text = head.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(head);
+    let start = text.iter().position(|&b| !is_space(b) && b != b'\n').unwrap_or(text.len());
+    let first = text[start..].split(|&b| is_space(b) || b == b'\n').next().unwrap_or_default();
+    if first == b"ply" {
+        return Some("the file starts with 'ply': this is a PLY file".into());
+    }
+    if first.ends_with(b"OFF") && first.len() <= 6 && first.iter().all(|b| b"STCN4OF".contains(b)) {
+        return Some(format!("the file starts with '{}': this is an OFF file", show(first)));
+    }
+    if first == b"solid" {
+        return Some("the file starts with 'solid': this looks like an ASCII STL file".into());
+    }
+    if text[start..].starts_with(b"{") {
+        return Some("the file starts with '{': this looks like JSON (a .gltf file?)".into());
+    }
+    if let Some(i) = head.iter().position(|&b| b == 0 || (b < 0x20 && !is_space(b) && b != b'\n')) {
+        return Some(format!("the file looks like binary data (byte {i} is 0x{:02x}), not text", head[i]));
+    }
+    None
+}
+
+/// "byte order mark FF FE" when `data` starts with a UTF-16 byte order mark.
+pub(crate) fn utf16_bom(data: &[u8]) -> Option<&'static str> {
+    if data.starts_with(b"\xFF\xFE") {
+        Some("little-endian, byte order mark FF FE")
+    } else if data.starts_with(b"\xFE\xFF") {
+        Some("big-endian, byte order mark FE FF")
+    } else {
+        None
     }
 }
 
@@ -74,9 +142,17 @@ pub(crate) fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
     line.split(|&b| is_space(b)).filter(|t| !t.is_empty())
 }
 
-/// Shows a token in an error message (lossy, shortened).
+/// Shows a token in an error message (lossy, shortened, control characters such as
+/// NUL escaped so that they are visible: `\0`, `\u{1}`).
 pub(crate) fn show(tok: &[u8]) -> String {
-    let s = String::from_utf8_lossy(&tok[..tok.len().min(40)]).into_owned();
+    let s: String = String::from_utf8_lossy(&tok[..tok.len().min(40)])
+        .chars()
+        .flat_map(|c| {
+            let escaped = c.is_control().then(|| c.escape_debug());
+            let plain = (!c.is_control()).then_some(c);
+            escaped.into_iter().flatten().chain(plain)
+        })
+        .collect();
     if tok.len() > 40 {
         format!("{s}...")
     } else {
@@ -233,6 +309,15 @@ mod tests {
     fn lines_number_from_one_and_drop_carriage_returns() {
         let v: Vec<_> = Lines::new(b"a\r\nb\n\nc").collect();
         assert_eq!(v, vec![(1, &b"a"[..]), (2, &b"b"[..]), (3, &b""[..]), (4, &b"c"[..])]);
+        let v: Vec<_> = Lines::new(b"a\rb\r\rc\r").collect();
+        assert_eq!(v, vec![(1, &b"a"[..]), (2, &b"b"[..]), (3, &b""[..]), (4, &b"c"[..])]);
+    }
+
+    #[test]
+    fn control_characters_are_shown_escaped() {
+        assert_eq!(show(b"1\x002"), "1\\02");
+        assert_eq!(show(b"a\x01"), "a\\u{1}");
+        assert_eq!(show("x\u{e9}".as_bytes()), "x\u{e9}");
     }
 
     #[test]

@@ -245,6 +245,20 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>) -> Result<Mesh> {
                 }
                 None => indices.extend(0..count as u32),
             }
+            if mode == 4 && indices.len() % 3 != 0 {
+                let source = match uint(src, prim, "indices", &place)? {
+                    Some(acc) => format!("index accessor {acc}"),
+                    None => format!("POSITION accessor {pos} (no indices)"),
+                };
+                return Err(src.err(
+                    place(),
+                    format!(
+                        "TRIANGLES needs a multiple of 3 indices but {source} has {} ({} left over)",
+                        indices.len(),
+                        indices.len() % 3
+                    ),
+                ));
+            }
             let bound = if mode == 4 { indices.len() } else { 3 * indices.len() };
             if mesh.face_indices.len().saturating_add(bound) > budget {
                 return Err(src.err(
@@ -310,6 +324,13 @@ impl Doc<'_> {
             .get(view)
             .ok_or_else(|| src.err(place(), format!("refers to bufferView {view} but the file has {}", self.views.len())))?;
         let elem = acc.component_size() * components;
+        if let Some(s) = v.stride.filter(|&s| s < elem) {
+            // Elements would overlap: the file is wrong, not something to guess around.
+            return Err(src.err(
+                place(),
+                format!("bufferView {view} has byteStride {s}, smaller than this accessor's {elem}-byte elements"),
+            ));
+        }
         let stride = v.stride.unwrap_or(elem);
         // The last element must end inside the view; checked before anything is allocated.
         let end = (acc.offset as u128) + (stride as u128) * (acc.count.saturating_sub(1) as u128) + elem as u128;

@@ -12,6 +12,12 @@
 //! a full disk sees the old file or the complete new one, never a partial file;
 //! [`write_atomic_all`] extends this to the several outputs of one run.
 //!
+//! Text is UTF-8 (a byte order mark is skipped; UTF-16 is refused by name) with lines
+//! ending in `\n`, `\r\n` or a lone `\r`. Records after the counts an OFF or PLY
+//! header announces are an error (trailing whitespace and OFF comments excepted). An
+//! OBJ file with content that gives no vertex and no face is refused, saying what the
+//! content looks like (another format, binary data), rather than read as an empty mesh.
+//!
 //! | format | read | write |
 //! |---|---|---|
 //! | OBJ | `v`, `f` (all `v/vt/vn` forms, negative indices), polygons kept | `v`, `f` |
@@ -113,9 +119,20 @@ pub fn read(path: &Path) -> Result<Mesh> {
 /// Parses a mesh already in memory (uncompressed) as `format`; `path` names the file
 /// in errors and locates external glTF buffers.
 pub fn read_bytes(path: &Path, format: Format, data: &[u8]) -> Result<Mesh> {
-    // A UTF-8 byte order mark before a text format would hide its first keyword.
+    // A UTF-8 byte order mark before a text format would hide its first keyword; a
+    // UTF-16 one means text we do not decode (read as bytes it would give nothing).
+    // STL handles both itself, since it may be binary.
     let data = match format {
-        Format::Obj | Format::Off | Format::Ply | Format::Gltf => data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data),
+        Format::Obj | Format::Off | Format::Ply | Format::Gltf => {
+            if let Some(bom) = common::utf16_bom(data) {
+                return Err(Error::Format {
+                    path: path.to_path_buf(),
+                    at: "byte 0".into(),
+                    what: format!("the file is UTF-16 ({bom}); save it as UTF-8"),
+                });
+            }
+            data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data)
+        }
         Format::Stl | Format::Glb => data,
     };
     match format {

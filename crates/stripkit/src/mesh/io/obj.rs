@@ -2,13 +2,16 @@
 //! 1-based or negative (relative) indices; polygons are kept. Every other statement
 //! (`vt`, `vn`, `o`, `g`, `usemtl`, `l`, ...) is ignored.
 
-use super::common::{close_face, finite, index_message, is_space, line_at, parse_f32, parse_i64, show, Src};
+use super::common::{
+    close_face, finite, index_message, is_space, line_at, line_end, parse_f32, parse_i64, show, sniff, Src,
+};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use std::path::Path;
 
 /// Walks OBJ text line by line and token by token in a single pass, without
-/// allocating; a `#` at the start of a token ends the line's tokens.
+/// allocating; a `#` at the start of a token ends the line's tokens. Lines end at
+/// `\n`, `\r\n` or a lone `\r`.
 struct Cursor<'a> {
     data: &'a [u8],
     pos: usize,
@@ -19,10 +22,10 @@ impl<'a> Cursor<'a> {
     #[inline]
     fn token(&mut self) -> Option<&'a [u8]> {
         let d = self.data;
-        while self.pos < d.len() && is_space(d[self.pos]) {
+        while self.pos < d.len() && is_space(d[self.pos]) && d[self.pos] != b'\r' {
             self.pos += 1;
         }
-        if self.pos >= d.len() || d[self.pos] == b'\n' || d[self.pos] == b'#' {
+        if self.pos >= d.len() || d[self.pos] == b'\n' || d[self.pos] == b'\r' || d[self.pos] == b'#' {
             return None;
         }
         let start = self.pos;
@@ -36,9 +39,22 @@ impl<'a> Cursor<'a> {
     #[inline]
     fn next_line(&mut self) {
         let rest = &self.data[self.pos..];
-        self.pos += rest.iter().position(|&b| b == b'\n').map_or(rest.len(), |i| i + 1);
+        self.pos += line_end(rest).map_or(rest.len(), |(i, n)| i + n);
+    }
+
+    /// True when the cursor stands on a comment.
+    fn at_comment(&self) -> bool {
+        self.data.get(self.pos) == Some(&b'#')
     }
 }
+
+/// Statements of the OBJ specification other than `v` and `f` (read and ignored).
+const OTHER_STATEMENTS: &[&[u8]] = &[
+    b"vt", b"vn", b"vp", b"l", b"p", b"o", b"g", b"s", b"mg", b"usemtl", b"mtllib", b"usemap", b"maplib",
+    b"cstype", b"deg", b"bmat", b"step", b"curv", b"curv2", b"surf", b"parm", b"trim", b"hole", b"scrv",
+    b"sp", b"end", b"con", b"lod", b"shadow_obj", b"trace_obj", b"c_interp", b"d_interp", b"bevel",
+    b"ctech", b"stech", b"call", b"csh",
+];
 
 /// Parses an OBJ file held in memory.
 pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
@@ -49,6 +65,9 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
     let mut max_index: u64 = 0;
     let mut c = Cursor { data, pos: 0 };
     let mut ln = 0;
+    // Whether any comment or known statement was seen: a file without one that gives
+    // an empty mesh is not OBJ at all.
+    let mut recognised = false;
     while c.pos < data.len() {
         ln += 1;
         match c.token() {
@@ -110,9 +129,13 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
                 }
                 close_face(&mut mesh).map_err(|w| src.err(line_at(ln), w))?;
             }
-            _ => {}
+            Some(tok) => recognised |= OTHER_STATEMENTS.contains(&tok),
+            None => recognised |= c.at_comment(),
         }
         c.next_line();
+    }
+    if mesh.positions.is_empty() && mesh.face_count() == 0 {
+        refuse_if_not_obj(src, data, recognised)?;
     }
     let nv = mesh.positions.len();
     if mesh.face_count() > 0 && max_index as usize >= nv {
@@ -123,6 +146,27 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
         return Err(src.err(line_at(line), index_message(face as u64, bad as i64 + 1, nv)));
     }
     Ok(mesh)
+}
+
+/// An empty result from a file with content: refused when the content looks like
+/// something else (another format, UTF-16, binary data) or holds no OBJ statement,
+/// instead of reading as an empty mesh. Comments and known statements alone (an OBJ
+/// with no geometry) are accepted.
+fn refuse_if_not_obj(src: Src, data: &[u8], recognised: bool) -> Result<()> {
+    let Some(start) = data.iter().position(|&b| !is_space(b) && b != b'\n') else {
+        return Ok(()); // empty or blank
+    };
+    if let Some(what) = sniff(data) {
+        return Err(src.err("line 1", format!("{what}, not OBJ")));
+    }
+    if !recognised {
+        let first = data[start..].split(|&b| b == b'\n' || b == b'\r').next().unwrap_or_default();
+        return Err(src.err(
+            "line 1",
+            format!("no OBJ statement (v, f, ...) in the file, which starts with '{}': not an OBJ file", show(first)),
+        ));
+    }
+    Ok(())
 }
 
 /// The line number of the `face`-th `f` statement.

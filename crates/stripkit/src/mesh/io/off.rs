@@ -6,15 +6,17 @@
 //! colour / normal / texture variant without knowing how many numbers each carries.
 
 use super::common::{
-    capped, close_face, finite, index_message, is_space, line_at, parse_count, parse_f32, show, Src,
+    capped, close_face, ends_line, finite, index_message, is_space, line_at, line_end, parse_count, parse_f32, show,
+    sniff, Src,
 };
 use super::obj::{push_face_lines, push_position_lines};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use std::path::Path;
 
-/// A token cursor over OFF text: skips whitespace, line ends and `#` comments, and
-/// can drop the rest of the current line (where optional colours and normals live).
+/// A token cursor over OFF text: skips whitespace, line ends (`\n`, `\r\n` or a lone
+/// `\r`) and `#` comments, and can drop the rest of the current line (where optional
+/// colours and normals live).
 struct Cursor<'a> {
     data: &'a [u8],
     pos: usize,
@@ -28,7 +30,7 @@ impl<'a> Cursor<'a> {
         let d = self.data;
         while self.pos < d.len() {
             match d[self.pos] {
-                b'\n' => self.line += 1,
+                b'\n' | b'\r' => self.line += ends_line(d, self.pos) as usize,
                 b'#' => {
                     self.skip_line();
                     continue;
@@ -50,10 +52,16 @@ impl<'a> Cursor<'a> {
         Some(&d[start..self.pos])
     }
 
-    /// Moves to the line end (the newline itself is consumed by the next `token`).
+    /// Moves to the line end (the line end itself is consumed by the next `token`).
     fn skip_line(&mut self) {
         let rest = &self.data[self.pos..];
-        self.pos += rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+        self.pos += line_end(rest).map_or(rest.len(), |(i, _)| i);
+    }
+
+    /// The rest of the current line from `start`, for messages.
+    fn line_from(&self, start: usize) -> &'a [u8] {
+        let rest = &self.data[start..];
+        &rest[..line_end(rest).map_or(rest.len(), |(i, _)| i)]
     }
 }
 
@@ -67,7 +75,11 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
     let mut c = Cursor { data, pos: 0, line: 1, token_line: 1 };
     let keyword = c.token().ok_or_else(|| src.err("line 1", "empty file, expected the OFF keyword"))?;
     let homogeneous = parse_keyword(keyword).ok_or_else(|| {
-        src.err(line_at(c.line), format!("expected an OFF keyword such as OFF or COFF, found '{}'", show(keyword)))
+        let looks = sniff(data).map(|w| format!(" ({w})")).unwrap_or_default();
+        src.err(
+            line_at(c.line),
+            format!("expected an OFF keyword such as OFF or COFF, found '{}'{looks}", show(keyword)),
+        )
     })?;
     let mut count = |what: &str| {
         let tok = c.token().ok_or_else(|| src.err(line_at(c.line), format!("file ends before the {what} count")))?;
@@ -103,6 +115,16 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
             for k in 0..3 {
                 p[k] /= p[3];
             }
+            // The division can overflow (w = 1e-45) even though every input was finite.
+            if !p[..3].iter().all(|x| x.is_finite()) {
+                return Err(src.err(
+                    line_at(c.line),
+                    format!(
+                        "vertex {v}: dividing by its homogeneous coordinate {:e} gives a NaN or infinite coordinate",
+                        p[3]
+                    ),
+                ));
+            }
         }
         mesh.positions.push([p[0], p[1], p[2]]);
     }
@@ -128,6 +150,17 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
         }
         c.skip_line();
         close_face(&mut mesh).map_err(|w| src.err(line_at(c.line), w))?;
+    }
+    // Only whitespace and comments may follow the announced records.
+    if let Some(tok) = c.token() {
+        let start = tok.as_ptr() as usize - data.as_ptr() as usize;
+        return Err(src.err(
+            line_at(c.line),
+            format!(
+                "a record after the {nv} vertices and {nf} faces the header announces: '{}'",
+                show(c.line_from(start))
+            ),
+        ));
     }
     Ok(mesh)
 }

@@ -14,8 +14,8 @@
 //! with `-1`.
 
 use super::common::{
-    capped, close_face, index_message, is_space, line_at, parse_count, parse_f32, parse_i64,
-    push_strip_triangles, show, tokens, Lines, Src,
+    capped, close_face, ends_line, index_message, is_space, line_at, line_end, parse_count, parse_f32, parse_i64,
+    push_strip_triangles, show, sniff, tokens, Lines, Src,
 };
 use super::obj::{push_face_lines, push_position_lines, push_u64};
 use crate::error::{Error, Result};
@@ -105,24 +105,47 @@ struct Header {
     elements: Vec<Element>,
     /// Byte offset of the body.
     body: usize,
+    /// Number of the header's last line (`end_header`).
+    lines: usize,
 }
 
 fn parse_header(src: Src, data: &[u8]) -> Result<Header> {
     let mut lines = Lines::new(data);
     match lines.next() {
         Some((_, l)) if l.strip_suffix(b" ").unwrap_or(l) == b"ply" => {}
-        _ => return Err(src.err("line 1", "not a PLY file: the first line must be 'ply'")),
+        _ => {
+            let looks = sniff(data).map(|w| format!(" ({w})")).unwrap_or_default();
+            return Err(src.err("line 1", format!("not a PLY file: the first line must be 'ply'{looks}")));
+        }
     }
     let mut encoding = None;
     let mut elements: Vec<Element> = Vec::new();
+    let mut last = 1;
+    let end_line;
     loop {
         let Some((ln, line)) = lines.next() else {
-            return Err(src.err("header", "the header has no 'end_header' line"));
+            return Err(src.err(
+                "header",
+                format!("the header ends before end_header (the file stops after line {last}; truncated?)"),
+            ));
         };
+        last = ln;
         let mut toks = tokens(line);
         let Some(keyword) = toks.next() else { continue };
+        // A last line without a line end, other than end_header, is a header cut short
+        // (its keyword may be cut too, so say that rather than "unknown keyword").
+        let cut = lines.offset() == data.len() && !matches!(data.last(), Some(b'\n' | b'\r'));
+        if cut && keyword != b"end_header" {
+            return Err(src.err(
+                line_at(ln),
+                format!("the header ends before end_header: the file stops inside this line ('{}'; truncated?)", show(line)),
+            ));
+        }
         match keyword {
-            b"end_header" => break,
+            b"end_header" => {
+                end_line = ln;
+                break;
+            }
             b"comment" | b"obj_info" => {}
             b"format" => {
                 let kind = toks.next().unwrap_or_default();
@@ -166,7 +189,7 @@ fn parse_header(src: Src, data: &[u8]) -> Result<Header> {
         }
     }
     let encoding = encoding.ok_or_else(|| src.err("header", "the header has no 'format' line"))?;
-    Ok(Header { encoding, elements, body: lines.offset() })
+    Ok(Header { encoding, elements, body: lines.offset(), lines: end_line })
 }
 
 /// The body of a PLY file, read value by value.
@@ -183,6 +206,9 @@ trait Body {
     fn remaining(&self) -> usize;
     /// Checks that `count` values of type `s` can still follow.
     fn check_list(&self, count: u64, s: Scalar) -> Result<(), String>;
+    /// After the last record: where and what the first extra data is, if anything but
+    /// whitespace follows.
+    fn extra(&mut self) -> Option<(String, String)>;
 }
 
 struct Ascii<'a> {
@@ -197,9 +223,7 @@ impl<'a> Ascii<'a> {
     fn token(&mut self) -> Result<&'a [u8], String> {
         let d = self.data;
         while self.pos < d.len() && (is_space(d[self.pos]) || d[self.pos] == b'\n') {
-            if d[self.pos] == b'\n' {
-                self.line += 1;
-            }
+            self.line += ends_line(d, self.pos) as usize;
             self.pos += 1;
         }
         let start = self.pos;
@@ -250,6 +274,13 @@ impl Body for Ascii<'_> {
             return Err(format!("a list of {count} values cannot fit in the {} bytes left", self.remaining()));
         }
         Ok(())
+    }
+    fn extra(&mut self) -> Option<(String, String)> {
+        let tok = self.token().ok()?;
+        let start = tok.as_ptr() as usize - self.data.as_ptr() as usize;
+        let rest = &self.data[start..];
+        let line = &rest[..line_end(rest).map_or(rest.len(), |(i, _)| i)];
+        Some((line_at(self.token_line), format!("'{}'", show(line))))
     }
 }
 
@@ -356,6 +387,14 @@ impl Body for Binary<'_> {
         }
         Ok(())
     }
+    fn extra(&mut self) -> Option<(String, String)> {
+        // A trailing line end (some writers add one) is tolerated.
+        let rest = &self.data[self.pos..];
+        if rest.iter().all(|&b| is_space(b) || b == b'\n') {
+            return None;
+        }
+        Some((format!("byte {}", self.pos), format!("{} bytes", rest.len())))
+    }
 }
 
 /// Parses a PLY file held in memory.
@@ -366,8 +405,8 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
     match header.encoding {
         Encoding::Ascii => {
             // Line numbers continue from the header.
-            let header_lines = data[..header.body].iter().filter(|&&b| b == b'\n').count();
-            let mut r = Ascii { data: body, pos: 0, line: header_lines + 1, token_line: header_lines + 1 };
+            let first = header.lines + 1;
+            let mut r = Ascii { data: body, pos: 0, line: first, token_line: first };
             read_body(src, &header, &mut r)
         }
         Encoding::LittleEndian | Encoding::BigEndian => {
@@ -387,6 +426,15 @@ fn read_body<B: Body>(src: Src, header: &Header, r: &mut B) -> Result<Mesh> {
     let mut mesh = Mesh::new();
     let mut vertices_read = false;
     for element in &header.elements {
+        if element.name == "vertex" && !vertices_read && element.count > 0 {
+            // Checked even when the element has no properties at all: its vertices
+            // would be counted but never read.
+            for name in ["x", "y", "z"] {
+                if !element.props.iter().any(|p| p.name == name) {
+                    return Err(src.err("header", format!("the vertex element has no '{name}' property")));
+                }
+            }
+        }
         if element.props.is_empty() || element.count == 0 {
             continue; // records without properties take no bytes
         }
@@ -515,6 +563,20 @@ fn read_body<B: Body>(src: Src, header: &Header, r: &mut B) -> Result<Mesh> {
                 }
             }
         }
+    }
+    if mesh.positions.len() != nv {
+        // Faces were checked against the announced count, which must be what was read.
+        return Err(src.err("header", format!("{nv} vertices announced but {} read", mesh.positions.len())));
+    }
+    if let Some((at, what)) = r.extra() {
+        let counts: Vec<String> = header.elements.iter().map(|e| format!("{} '{}'", e.count, e.name)).collect();
+        return Err(src.err(
+            at,
+            format!(
+                "data after the last record the header announces ({}): {what}",
+                counts.join(", ")
+            ),
+        ));
     }
     Ok(mesh)
 }

@@ -5,9 +5,10 @@
 //!
 //! A file is binary when its size is exactly `84 + 50 * n` for the triangle count `n`
 //! stored at byte 80, unless it starts with `solid` and its opening bytes read as
-//! ASCII STL text (some binary exporters also start their header with `solid`).
+//! ASCII STL text (some binary exporters also start their header with `solid`). A UTF-8
+//! byte order mark before `solid` is skipped; UTF-16 text is refused by name.
 
-use super::common::{close_face, finite, is_space, line_at, parse_f32, show, tokens, Lines, Src};
+use super::common::{close_face, finite, is_space, line_at, parse_f32, show, sniff, tokens, utf16_bom, Lines, Src};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use std::path::Path;
@@ -86,30 +87,40 @@ impl Welder {
 /// Parses an STL file held in memory.
 pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
     let src = Src { path };
-    let start = data.iter().position(|&b| !is_space(b) && b != b'\n').unwrap_or(data.len());
-    let starts_solid = data[start..].starts_with(b"solid");
     let announced = if data.len() >= 84 {
         Some(u32::from_le_bytes([data[80], data[81], data[82], data[83]]) as u64)
     } else {
         None
     };
     let size_matches = announced.is_some_and(|n| 84 + 50 * n == data.len() as u64);
-    if starts_solid && (!size_matches || looks_ascii(data)) {
-        return read_ascii(src, data);
+    // The size decides for binary; the text checks look past a UTF-8 byte order mark.
+    let text = data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data);
+    let start = text.iter().position(|&b| !is_space(b) && b != b'\n').unwrap_or(text.len());
+    let starts_solid = text[start..].starts_with(b"solid");
+    if starts_solid && (!size_matches || looks_ascii(text)) {
+        return read_ascii(src, text);
     }
+    if !size_matches {
+        if let Some(bom) = utf16_bom(data) {
+            return Err(src.err("byte 0", format!("the file is UTF-16 ({bom}); save it as UTF-8")));
+        }
+    }
+    // Not binary STL by its size and not ASCII STL: say what it looks like, if anything.
+    let looks = || sniff(data).map(|w| format!(" ({w})")).unwrap_or_default();
     let Some(n) = announced else {
         return Err(src.err(
             "byte 0",
-            format!("{} bytes is too short for a binary STL (84-byte header) and it is not ASCII STL", data.len()),
+            format!("{} bytes is too short for a binary STL (84-byte header) and it is not ASCII STL{}", data.len(), looks()),
         ));
     };
     if !size_matches {
         return Err(src.err(
             "byte 80",
             format!(
-                "binary STL announces {n} triangles, which take {} bytes, but the file has {} bytes",
+                "binary STL announces {n} triangles, which take {} bytes, but the file has {} bytes{}",
                 84 + 50 * n,
-                data.len()
+                data.len(),
+                looks()
             ),
         ));
     }
