@@ -310,7 +310,7 @@ fn ascii_ply_counts_beyond_the_file_size_are_refused() {
 }
 
 #[test]
-fn a_missing_external_gltf_buffer_is_an_io_error_naming_it() {
+fn a_missing_external_gltf_buffer_is_an_error_naming_the_gltf_and_the_buffer() {
     let path = tmp("external_missing.gltf");
     std::fs::write(
         &path,
@@ -318,7 +318,11 @@ fn a_missing_external_gltf_buffer_is_an_io_error_naming_it() {
     )
     .unwrap();
     match io::read(&path) {
-        Err(e @ Error::Io { .. }) => assert!(e.to_string().contains("no such.bin"), "{e}"),
-        other => panic!("expected an I/O error, got {other:?}"),
+        Err(e @ Error::Format { .. }) => {
+            let msg = e.to_string();
+            assert!(msg.contains("external_missing.gltf") && msg.contains("buffers[0].uri"), "{msg}");
+            assert!(msg.contains("no such.bin"), "{msg}");
+        }
+        other => panic!("expected a format error naming the glTF and the buffer, got {other:?}"),
     }
 }

@@ -1,6 +1,10 @@
 //! glTF 2.0: `.gltf` (JSON with buffers as base64 `data:` URIs or external files
 //! beside it) and `.glb` (binary container, buffer 0 in the BIN chunk).
 //!
+//! External buffer files must lie inside the asset's folder or an allowed root, be
+//! regular files, and are read once each up to their `byteLength`, within a byte
+//! budget: see [`ReadOptions`] for the rules.
+//!
 //! Read: every primitive of every mesh is merged into one mesh (node transforms are
 //! not applied). Primitives that share a POSITION accessor share vertices, so vertex
 //! ids survive a write and read. TRIANGLES (mode 4) give one face per triangle;
@@ -16,26 +20,31 @@
 //! POINTS primitive so that its vertices are kept.
 
 use super::common::{close_face, push_fan_triangles, push_strip_triangles, Src};
+use super::ReadOptions;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::strip::StripSet;
 use serde_json::{json, Value};
-use std::collections::HashMap;
-use std::path::Path;
+use std::collections::{HashMap, HashSet};
+use std::io::Read;
+use std::path::{Component, Path, PathBuf};
+use std::rc::Rc;
 
 const GLB_MAGIC: &[u8; 4] = b"glTF";
 const CHUNK_JSON: u32 = 0x4E4F_534A;
 const CHUNK_BIN: u32 = 0x004E_4942;
 
-/// Parses a `.gltf` file held in memory; external buffers are read beside `path`.
-pub(crate) fn read_gltf(path: &Path, data: &[u8]) -> Result<Mesh> {
+/// Parses a `.gltf` file held in memory; external buffers are read beside `path`,
+/// following `options` (see [`ReadOptions`]).
+pub(crate) fn read_gltf(path: &Path, data: &[u8], options: &ReadOptions) -> Result<Mesh> {
     let src = Src { path };
     let json = parse_json(src, data, 0)?;
-    load(src, &json, None)
+    load(src, &json, None, options)
 }
 
-/// Parses a `.glb` file held in memory.
-pub(crate) fn read_glb(path: &Path, data: &[u8]) -> Result<Mesh> {
+/// Parses a `.glb` file held in memory; buffers other than the binary chunk follow
+/// `options` as in [`read_gltf`].
+pub(crate) fn read_glb(path: &Path, data: &[u8], options: &ReadOptions) -> Result<Mesh> {
     let src = Src { path };
     let u32_at = |o: usize| -> Option<u32> { Some(u32::from_le_bytes(data.get(o..o + 4)?.try_into().ok()?)) };
     if data.len() < 12 {
@@ -73,7 +82,7 @@ pub(crate) fn read_glb(path: &Path, data: &[u8]) -> Result<Mesh> {
     }
     let (offset, json) = json.ok_or_else(|| src.err("byte 12", "the GLB file has no JSON chunk"))?;
     let json = parse_json(src, json, offset)?;
-    load(src, &json, bin)
+    load(src, &json, bin, options)
 }
 
 fn parse_json(src: Src, bytes: &[u8], offset: usize) -> Result<Value> {
@@ -136,14 +145,28 @@ impl Accessor {
     }
 }
 
+/// A buffer's bytes: the first `len` bytes of `bytes`, which several buffers share
+/// when they name the same external file.
+struct Buffer {
+    bytes: Rc<[u8]>,
+    len: usize,
+}
+
+impl std::ops::Deref for Buffer {
+    type Target = [u8];
+    fn deref(&self) -> &[u8] {
+        &self.bytes[..self.len]
+    }
+}
+
 struct Doc<'a> {
     src: Src<'a>,
-    buffers: Vec<Vec<u8>>,
+    buffers: Vec<Buffer>,
     views: Vec<View>,
     accessors: &'a [Value],
 }
 
-fn load(src: Src, json: &Value, bin: Option<&[u8]>) -> Result<Mesh> {
+fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Mesh> {
     let version = json.pointer("/asset/version").and_then(Value::as_str).unwrap_or("");
     if !version.starts_with('2') {
         return Err(src.err("asset.version", format!("glTF version '{version}', only 2.x is supported")));
@@ -156,20 +179,7 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>) -> Result<Mesh> {
             format!("the file requires extension {ext}, which stripkit does not read"),
         ));
     }
-    let mut buffers = Vec::new();
-    for (i, b) in array(src, json, "buffers")?.iter().enumerate() {
-        let place = || at("buffers", i);
-        let length = required(src, b, "byteLength", &place)? as usize;
-        let bytes = match b.get("uri").and_then(Value::as_str) {
-            None if i == 0 && bin.is_some() => bin.unwrap_or_default().to_vec(),
-            None => return Err(src.err(place(), "buffer without a 'uri' (only GLB buffer 0 may omit it)")),
-            Some(uri) => resolve_uri(src, uri, &place)?,
-        };
-        if bytes.len() < length {
-            return Err(src.err(place(), format!("byteLength is {length} but the data holds {} bytes (truncated)", bytes.len())));
-        }
-        buffers.push(bytes);
-    }
+    let buffers = load_buffers(src, json, bin, options)?;
     let mut views = Vec::new();
     for (i, v) in array(src, json, "bufferViews")?.iter().enumerate() {
         let place = || at("bufferViews", i);
@@ -199,7 +209,9 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>) -> Result<Mesh> {
     // legitimate file gives at most three face indices per byte of its buffers (a
     // strip of u8 indices); anything beyond a generous multiple of that is refused
     // before it is allocated.
-    let buffer_bytes: usize = doc.buffers.iter().map(Vec::len).sum();
+    let mut distinct = HashSet::new();
+    let buffer_bytes: usize =
+        doc.buffers.iter().filter(|b| distinct.insert(b.bytes.as_ptr())).map(|b| b.bytes.len()).sum();
     let budget = buffer_bytes.saturating_mul(12).saturating_add(1 << 16);
     for (m, jm) in array(src, json, "meshes")?.iter().enumerate() {
         let prims = match jm.get("primitives") {
@@ -393,24 +405,239 @@ impl Doc<'_> {
     }
 }
 
-/// The bytes a buffer URI names: a base64 `data:` URI or a file beside the glTF.
-fn resolve_uri(src: Src, uri: &str, place: &dyn Fn() -> String) -> Result<Vec<u8>> {
-    if let Some(rest) = uri.strip_prefix("data:") {
-        let (_, payload) = rest
-            .split_once(";base64,")
-            .ok_or_else(|| src.err(place(), "only base64 data URIs are supported"))?;
-        return base64_decode(payload.as_bytes())
-            .map_err(|k| src.err(place(), format!("invalid base64 character at position {k} of the data URI")));
+/// Reads every buffer of the document: the GLB binary chunk, `data:` URIs, and
+/// external files under the rules of [`ReadOptions`]. External files are resolved
+/// first (every URI checked before anything is read), each distinct file is then read
+/// once, up to the largest `byteLength` that names it, and the buffers naming it share
+/// those bytes.
+fn load_buffers(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Vec<Buffer>> {
+    enum Source {
+        Bytes(Rc<[u8]>),
+        File(usize),
     }
-    if uri.contains("://") {
-        return Err(src.err(place(), format!("buffer URI '{uri}' is not a local file")));
+    struct External {
+        path: PathBuf,
+        /// The largest byteLength naming the file, and the first buffer asking for it.
+        len: u64,
+        buffer: usize,
+        uri: String,
     }
-    let name = percent_decode(uri);
-    let file = src.path.parent().unwrap_or(Path::new("")).join(name);
-    std::fs::read(&file).map_err(|e| Error::Io { path: file, source: e })
+    let list = array(src, json, "buffers")?;
+    let mut sources = Vec::with_capacity(list.len());
+    let mut files: Vec<External> = Vec::new();
+    let mut file_of: HashMap<PathBuf, usize> = HashMap::new();
+    let mut folders: Option<Folders> = None;
+    for (i, b) in list.iter().enumerate() {
+        let place = || at("buffers", i);
+        let length = required(src, b, "byteLength", &place)?;
+        let source = match b.get("uri") {
+            None if i == 0 && bin.is_some() => Source::Bytes(Rc::from(bin.unwrap_or_default())),
+            None => return Err(src.err(place(), "buffer without a 'uri' (only GLB buffer 0 may omit it)")),
+            Some(Value::String(uri)) => match uri.strip_prefix("data:") {
+                Some(rest) => Source::Bytes(Rc::from(decode_data_uri(src, rest, &place)?)),
+                None => {
+                    if length > options.max_external_bytes {
+                        return Err(src.err(
+                            place(),
+                            format!(
+                                "byteLength {length} exceeds the limit of {} bytes for external buffers \
+                                 (ReadOptions::max_external_bytes)",
+                                options.max_external_bytes
+                            ),
+                        ));
+                    }
+                    let dirs = match folders.take() {
+                        Some(f) => f,
+                        None => Folders::new(src, options, i)?,
+                    };
+                    let path = dirs.resolve(src, uri, i);
+                    folders = Some(dirs);
+                    let path = path?;
+                    let k = *file_of.entry(path.clone()).or_insert_with(|| {
+                        files.push(External { path, len: 0, buffer: i, uri: uri.clone() });
+                        files.len() - 1
+                    });
+                    if length > files[k].len {
+                        files[k].len = length;
+                        files[k].buffer = i;
+                        files[k].uri = uri.clone();
+                    }
+                    Source::File(k)
+                }
+            },
+            Some(_) => return Err(src.err(format!("buffers[{i}].uri"), "must be a string")),
+        };
+        sources.push((source, length));
+    }
+    let total = files.iter().fold(0u64, |t, f| t.saturating_add(f.len));
+    if total > options.max_external_bytes {
+        return Err(src.err(
+            "buffers",
+            format!(
+                "the external buffer files hold {total} bytes in all, more than the limit of {} bytes \
+                 (ReadOptions::max_external_bytes)",
+                options.max_external_bytes
+            ),
+        ));
+    }
+    let mut read = Vec::with_capacity(files.len());
+    for f in &files {
+        read.push(read_external(src, f.path.as_path(), f.len, f.buffer, &f.uri)?);
+    }
+    let mut buffers = Vec::with_capacity(sources.len());
+    for (i, (source, length)) in sources.into_iter().enumerate() {
+        let bytes = match source {
+            Source::Bytes(b) => b,
+            Source::File(k) => Rc::clone(&read[k]),
+        };
+        if (bytes.len() as u64) < length {
+            return Err(src.err(
+                at("buffers", i),
+                format!("byteLength is {length} but the data holds {} bytes (truncated)", bytes.len()),
+            ));
+        }
+        buffers.push(Buffer { bytes, len: length as usize });
+    }
+    Ok(buffers)
 }
 
+/// The bytes of a base64 `data:` URI (`rest` follows the `data:`).
+fn decode_data_uri(src: Src, rest: &str, place: &dyn Fn() -> String) -> Result<Vec<u8>> {
+    let (_, payload) =
+        rest.split_once(";base64,").ok_or_else(|| src.err(place(), "only base64 data URIs are supported"))?;
+    base64_decode(payload.as_bytes())
+        .map_err(|k| src.err(place(), format!("invalid base64 character at position {k} of the data URI")))
+}
+
+/// The folders external buffers may come from, resolved (symbolic links followed).
+struct Folders {
+    /// The asset's own folder.
+    asset: PathBuf,
+    /// The asset's folder and [`ReadOptions::allowed_roots`].
+    roots: Vec<PathBuf>,
+}
+
+impl Folders {
+    fn new(src: Src, options: &ReadOptions, i: usize) -> Result<Folders> {
+        let parent = match src.path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        let asset = std::fs::canonicalize(parent).map_err(|e| {
+            src.err(
+                format!("buffers[{i}].uri"),
+                format!("cannot resolve the asset's folder {} to look for external buffers: {e}", parent.display()),
+            )
+        })?;
+        let mut roots = vec![asset.clone()];
+        for root in &options.allowed_roots {
+            roots.push(std::fs::canonicalize(root).map_err(|e| Error::Io { path: root.clone(), source: e })?);
+        }
+        Ok(Folders { asset, roots })
+    }
+
+    fn root_of(&self, path: &Path) -> Option<&Path> {
+        self.roots.iter().map(PathBuf::as_path).find(|r| path.starts_with(r))
+    }
+
+    /// The canonical path of the file `uri` names, or the same refusal whether it is
+    /// outside the allowed folders, absent there or a link leading out of them.
+    fn resolve(&self, src: Src, uri: &str, i: usize) -> Result<PathBuf> {
+        let at = || format!("buffers[{i}].uri");
+        let refuse = || {
+            let roots = if self.roots.len() > 1 { " (or an allowed root)" } else { "" };
+            src.err(
+                at(),
+                format!("must be a relative path inside the asset's folder{roots} or a data: URI, not {uri:?}"),
+            )
+        };
+        // A scheme (`file:`, `http:`, a drive letter `C:`) comes before the first '/'.
+        let first = uri.split('/').next().unwrap_or("");
+        if first.contains(':') {
+            return Err(refuse());
+        }
+        let decoded = String::from_utf8(percent_decode_bytes(uri)).map_err(|_| refuse())?;
+        if decoded.is_empty() || decoded.contains('\0') {
+            return Err(refuse());
+        }
+        // `.` and `..` segments are removed from the path as written (as URI resolution
+        // does), before anything is asked of the file system.
+        let mut lexical = self.asset.clone();
+        for c in Path::new(&decoded).components() {
+            match c {
+                Component::Normal(name) => lexical.push(name),
+                Component::CurDir => {}
+                Component::ParentDir => {
+                    lexical.pop();
+                }
+                Component::RootDir | Component::Prefix(_) => return Err(refuse()),
+            }
+        }
+        let Some(root) = self.root_of(&lexical) else {
+            return Err(refuse());
+        };
+        match std::fs::canonicalize(&lexical) {
+            Ok(real) if self.root_of(&real).is_some() => Ok(real),
+            Ok(_) => Err(refuse()),
+            Err(e) => {
+                // A link on the way may lead outside: say nothing about where it leads.
+                let link = lexical
+                    .ancestors()
+                    .take_while(|a| a.starts_with(root) && *a != root)
+                    .any(|a| std::fs::symlink_metadata(a).is_ok_and(|m| m.file_type().is_symlink()));
+                if link {
+                    Err(refuse())
+                } else {
+                    Err(src.err(at(), format!("cannot open {decoded:?} in the asset's folder: {e}")))
+                }
+            }
+        }
+    }
+}
+
+/// Reads exactly `len` bytes from the start of the regular file `path` (canonical,
+/// inside an allowed folder), for `buffers[i]` whose URI is `uri`.
+fn read_external(src: Src, path: &Path, len: u64, i: usize, uri: &str) -> Result<Rc<[u8]>> {
+    let at = || format!("buffers[{i}].uri");
+    let fail = |e: std::io::Error| src.err(at(), format!("cannot read {uri:?}: {e}"));
+    let not_regular = || src.err(at(), format!("{uri:?} is not a regular file (a directory, device or pipe is not read)"));
+    let meta = std::fs::metadata(path).map_err(fail)?;
+    if !meta.is_file() {
+        return Err(not_regular());
+    }
+    if meta.len() < len {
+        return Err(src.err(at(), format!("byteLength is {len} but {uri:?} holds {} bytes (truncated)", meta.len())));
+    }
+    let mut open = std::fs::OpenOptions::new();
+    open.read(true);
+    // Should the file be swapped for a pipe after the check above, opening it must
+    // not wait for a writer (O_NONBLOCK; no effect on regular files).
+    #[cfg(all(
+        target_os = "linux",
+        any(target_arch = "x86_64", target_arch = "x86", target_arch = "aarch64", target_arch = "arm", target_arch = "riscv64")
+    ))]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        open.custom_flags(0o4000);
+    }
+    let file = open.open(path).map_err(fail)?;
+    if !file.metadata().map_err(fail)?.is_file() {
+        return Err(not_regular());
+    }
+    let mut bytes = Vec::with_capacity(len as usize);
+    file.take(len).read_to_end(&mut bytes).map_err(fail)?;
+    if (bytes.len() as u64) < len {
+        return Err(src.err(at(), format!("byteLength is {len} but {uri:?} holds {} bytes (truncated)", bytes.len())));
+    }
+    Ok(Rc::from(bytes))
+}
+
+#[cfg(test)]
 fn percent_decode(s: &str) -> String {
+    String::from_utf8_lossy(&percent_decode_bytes(s)).into_owned()
+}
+
+fn percent_decode_bytes(s: &str) -> Vec<u8> {
     let b = s.as_bytes();
     let mut out = Vec::with_capacity(b.len());
     let mut i = 0;
@@ -426,7 +653,7 @@ fn percent_decode(s: &str) -> String {
         out.push(b[i]);
         i += 1;
     }
-    String::from_utf8_lossy(&out).into_owned()
+    out
 }
 
 const B64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -638,7 +865,7 @@ mod tests {
                 {"attributes": {"POSITION": 0}, "mode": 1}
             ]}]
         });
-        let m = read_gltf(Path::new("t.gltf"), json.to_string().as_bytes()).unwrap();
+        let m = read_gltf(Path::new("t.gltf"), json.to_string().as_bytes(), &ReadOptions::default()).unwrap();
         assert_eq!(m.positions, positions);
         let faces: Vec<&[u32]> = m.faces().collect();
         // strip 0 1 2 3 3 4: (0,1,2) (2,1,3), rest degenerate; fan 0 1 2 3: (0,1,2) (0,2,3)

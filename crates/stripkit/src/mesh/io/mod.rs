@@ -37,7 +37,7 @@ use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::strip::StripSet;
 use std::io::{Read, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The extensions [`read`] and [`write()`] understand, as shown in error messages.
 pub const SUPPORTED_EXTENSIONS: &str =
@@ -58,6 +58,43 @@ pub fn supported_write_extensions() -> &'static str {
 pub struct WriteOptions {
     /// Write PLY as ASCII text instead of binary little-endian (the default).
     pub ply_ascii: bool,
+}
+
+/// The default of [`ReadOptions::max_external_bytes`]: 1 GiB.
+pub const DEFAULT_MAX_EXTERNAL_BYTES: u64 = 1 << 30;
+
+/// Options for [`read_with`] and [`read_bytes_with`]: where a `.gltf` may load its
+/// external buffers from, and how much it may load.
+///
+/// A `.gltf` buffer's `uri` is accepted only when it is a base64 `data:` URI, or a
+/// relative reference (no scheme, not absolute; `%XX` escapes decoded first) that,
+/// after removing `.` and `..` segments and then resolving symbolic links, names a
+/// regular file inside the asset's own folder or inside one of
+/// [`allowed_roots`](Self::allowed_roots). Anything else is refused with the same
+/// message whether or not the file exists, so a hostile asset learns nothing about
+/// files outside those folders. Directories, devices and pipes are refused without
+/// being opened for reading; at most the buffer's declared `byteLength` is read, and a
+/// file shorter than that is refused. A file named by several buffers is read once.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ReadOptions {
+    /// Folders besides the asset's own from which external glTF buffers may be read
+    /// (reached through relative URIs such as `../shared/scene.bin`). Each is resolved
+    /// (symbolic links followed) when a `.gltf` with external buffers is read; a root
+    /// that cannot be resolved is an [`Error::Io`]. Empty by default: only the asset's
+    /// own folder (and its subfolders).
+    pub allowed_roots: Vec<PathBuf>,
+    /// The most bytes read from external glTF buffer files for one asset, counting a
+    /// file named by several buffers once; a buffer whose `byteLength` alone exceeds
+    /// it is refused before anything is read or allocated. Default
+    /// [`DEFAULT_MAX_EXTERNAL_BYTES`] (1 GiB). `data:` URIs and the GLB binary chunk
+    /// are part of the input and do not count.
+    pub max_external_bytes: u64,
+}
+
+impl Default for ReadOptions {
+    fn default() -> Self {
+        ReadOptions { allowed_roots: Vec::new(), max_external_bytes: DEFAULT_MAX_EXTERNAL_BYTES }
+    }
 }
 
 /// A mesh file format.
@@ -108,16 +145,33 @@ fn io_error(path: &Path, source: std::io::Error) -> Error {
     Error::Io { path: path.to_path_buf(), source }
 }
 
-/// Reads a mesh, choosing the format by the file's extension.
+/// Reads a mesh, choosing the format by the file's extension, with the default
+/// [`ReadOptions`] (external glTF buffers only from the asset's own folder).
 pub fn read(path: &Path) -> Result<Mesh> {
+    read_with(path, &ReadOptions::default())
+}
+
+/// [`read`] with options (see [`ReadOptions`] for the rules on external glTF buffers).
+pub fn read_with(path: &Path, options: &ReadOptions) -> Result<Mesh> {
     let (format, gz) = Format::from_path(path).ok_or_else(|| unknown(path))?;
     let raw = std::fs::read(path).map_err(|e| io_error(path, e))?;
     let data = if gz { gunzip(path, &raw)? } else { raw };
-    read_bytes(path, format, &data)
+    read_bytes_with(path, format, &data, options)
+}
+
+/// [`read_bytes`] with options: external glTF buffers follow `options` (see
+/// [`ReadOptions`]); other formats read exactly as [`read_bytes`] does.
+pub fn read_bytes_with(path: &Path, format: Format, data: &[u8], options: &ReadOptions) -> Result<Mesh> {
+    match format {
+        Format::Gltf => gltf::read_gltf(path, data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data), options),
+        Format::Glb => gltf::read_glb(path, data, options),
+        _ => read_bytes(path, format, data),
+    }
 }
 
 /// Parses a mesh already in memory (uncompressed) as `format`; `path` names the file
-/// in errors and locates external glTF buffers.
+/// in errors and locates external glTF buffers (with the default [`ReadOptions`]; see
+/// [`read_bytes_with`]).
 pub fn read_bytes(path: &Path, format: Format, data: &[u8]) -> Result<Mesh> {
     // A UTF-8 byte order mark before a text format would hide its first keyword; a
     // UTF-16 one means text we do not decode (read as bytes it would give nothing).
@@ -140,8 +194,8 @@ pub fn read_bytes(path: &Path, format: Format, data: &[u8]) -> Result<Mesh> {
         Format::Ply => ply::read(path, data),
         Format::Off => off::read(path, data),
         Format::Stl => stl::read(path, data),
-        Format::Gltf => gltf::read_gltf(path, data),
-        Format::Glb => gltf::read_glb(path, data),
+        Format::Gltf => gltf::read_gltf(path, data, &ReadOptions::default()),
+        Format::Glb => gltf::read_glb(path, data, &ReadOptions::default()),
     }
 }
 
