@@ -159,20 +159,16 @@ pub fn read_with(path: &Path, options: &ReadOptions) -> Result<Mesh> {
     read_bytes_with(path, format, &data, options)
 }
 
-/// [`read_bytes`] with options: external glTF buffers follow `options` (see
-/// [`ReadOptions`]); other formats read exactly as [`read_bytes`] does.
-pub fn read_bytes_with(path: &Path, format: Format, data: &[u8], options: &ReadOptions) -> Result<Mesh> {
-    match format {
-        Format::Gltf => gltf::read_gltf(path, data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data), options),
-        Format::Glb => gltf::read_glb(path, data, options),
-        _ => read_bytes(path, format, data),
-    }
-}
-
 /// Parses a mesh already in memory (uncompressed) as `format`; `path` names the file
 /// in errors and locates external glTF buffers (with the default [`ReadOptions`]; see
 /// [`read_bytes_with`]).
 pub fn read_bytes(path: &Path, format: Format, data: &[u8]) -> Result<Mesh> {
+    read_bytes_with(path, format, data, &ReadOptions::default())
+}
+
+/// [`read_bytes`] with options: external glTF buffers follow `options` (see
+/// [`ReadOptions`]); other formats do not use them.
+pub fn read_bytes_with(path: &Path, format: Format, data: &[u8], options: &ReadOptions) -> Result<Mesh> {
     // A UTF-8 byte order mark before a text format would hide its first keyword; a
     // UTF-16 one means text we do not decode (read as bytes it would give nothing).
     // STL handles both itself, since it may be binary.
@@ -194,8 +190,8 @@ pub fn read_bytes(path: &Path, format: Format, data: &[u8]) -> Result<Mesh> {
         Format::Ply => ply::read(path, data),
         Format::Off => off::read(path, data),
         Format::Stl => stl::read(path, data),
-        Format::Gltf => gltf::read_gltf(path, data, &ReadOptions::default()),
-        Format::Glb => gltf::read_glb(path, data, &ReadOptions::default()),
+        Format::Gltf => gltf::read_gltf(path, data, options),
+        Format::Glb => gltf::read_glb(path, data, options),
     }
 }
 
