@@ -22,6 +22,14 @@ pub(crate) fn weight_in_range(w: i64) -> bool {
     w.unsigned_abs() <= MAX_WEIGHT.unsigned_abs()
 }
 
+/// How many nodes a DIMACS file may declare beyond those its edges can touch: a file
+/// of `M` edge lines may announce at most `2 * M + DIMACS_SPARE_NODES` nodes
+/// (2^20 = 1,048,576 spare, isolated nodes). The node count sizes every per-node array
+/// of the graph and the solvers, so without this bound a 28-byte `p edge 2000000000 1`
+/// would ask for gigabytes; with it, memory stays proportional to the file plus a few
+/// megabytes. A graph with more isolated nodes can still be built with [`Graph::new`].
+pub const DIMACS_SPARE_NODES: usize = 1 << 20;
+
 /// An undirected graph with `i64` edge weights, stored as an edge list and a CSR
 /// adjacency (`adjacency(v)` lists the ids of the edges at `v`).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -121,7 +129,8 @@ impl Graph {
     /// `p edge N M` (or `p N M`-style `p <word> N M`) before any edge, then exactly `M`
     /// lines `e U V W` with 1-based vertices and integer weights. `path` only names
     /// the file in errors. Counts are checked against the lines, never trusted for
-    /// allocation beyond what the text itself can hold.
+    /// allocation beyond what the text itself can hold: the node count `N` may be at
+    /// most `2 * M + DIMACS_SPARE_NODES` (see [`DIMACS_SPARE_NODES`]).
     pub fn parse_dimacs(text: &str, path: &Path) -> Result<Graph> {
         let err = |line: usize, what: String| Error::Format {
             path: path.to_path_buf(),
@@ -212,6 +221,16 @@ impl Graph {
             return Err(err(
                 hline,
                 format!("problem line announces {m} edges but the file has {}", edges.len()),
+            ));
+        }
+        let node_limit = m.saturating_mul(2).saturating_add(DIMACS_SPARE_NODES);
+        if n > node_limit {
+            return Err(err(
+                hline,
+                format!(
+                    "node count {n} is more than the {m} edge lines can use: at most 2 x {m} + \
+                     {DIMACS_SPARE_NODES} isolated nodes = {node_limit} (this bounds memory by the file's size)"
+                ),
             ));
         }
         Graph::new(n, edges, weights)

@@ -91,7 +91,7 @@ mod unweighted;
 pub use blossom::Stats;
 pub use certificate::{check_certificate, Certificate, CheckReport, DualBlossom};
 pub use error::{Error, Result};
-pub use graph::{scale_f64_weights, Graph, MAX_WEIGHT};
+pub use graph::{scale_f64_weights, Graph, DIMACS_SPARE_NODES, MAX_WEIGHT};
 pub use solve::{
     max_weight_perfect_matching, min_cost_perfect_matching, solve, verify, Matching, Objective, UNMATCHED,
 };

@@ -108,3 +108,19 @@ fn weights_beyond_the_range_are_refused_without_overflow() {
         assert_eq!((m.perfect, m.total_weight), (true, w));
     }
 }
+
+#[test]
+fn node_count_is_bounded_by_the_edge_lines() {
+    // 2 * M + DIMACS_SPARE_NODES nodes at most: memory follows the file's size.
+    let limit = 2 + matching::DIMACS_SPARE_NODES;
+    let g = parse(&format!("p edge {limit} 1\ne 1 2 5\n")).unwrap();
+    assert_eq!(g.node_count(), limit);
+    let e = err(&format!("p edge {} 1\ne 1 2 5\n", limit + 1));
+    assert!(e.starts_with("g.dimacs: line 1: node count"), "{e}");
+    assert!(e.contains(&format!("= {limit}")), "{e}");
+    // The 28-byte reproducer of issue #16: refused quickly, nothing allocated for 2e9.
+    let start = std::time::Instant::now();
+    let e = err("p edge 2000000000 1\ne 1 2 5\n");
+    assert!(e.contains("line 1: node count 2000000000 is more than the 1 edge lines can use"), "{e}");
+    assert!(start.elapsed().as_secs_f64() < 1.0);
+}

@@ -41,3 +41,20 @@ pub fn write_mesh(path: &std::path::Path, mesh: &stripkit::Mesh) {
 mod dirs;
 #[allow(unused_imports)]
 pub use dirs::{assets_dir, models_dir};
+
+/// Runs the built `stripkit` binary with `args` under a 1 GiB address-space limit
+/// (`ulimit -v`, through `sh`), so that a run which tries to allocate from an
+/// absurd count fails fast instead of exhausting the machine. Returns the output
+/// and the seconds it took.
+#[allow(dead_code)]
+pub fn stripkit_1gib(args: &[&str]) -> (Output, f64) {
+    let start = std::time::Instant::now();
+    let out = Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 1048576 && exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_stripkit"))
+        .args(args)
+        .output()
+        .expect("runs");
+    (out, start.elapsed().as_secs_f64())
+}
