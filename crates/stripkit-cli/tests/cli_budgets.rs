@@ -28,3 +28,25 @@ fn dimacs_node_count_beyond_the_file_is_refused() {
         &[&format!("{name}: line 1: node count 2000000000"), "1048578"],
     );
 }
+
+#[test]
+fn gen_sizes_are_checked_without_overflow() {
+    let out = tmp("budgets", "never.obj");
+    let out = out.to_str().unwrap();
+    // 24 * 4^31 wrapped to 0 and got past the size check.
+    for levels in ["31", "32", "40", "4294967295"] {
+        refused(&["gen", "cube", "--levels", levels, "-o", out], &["the requested mesh is too large", "limit 1073741824"]);
+    }
+    refused(&["gen", "cube", "--levels", "31", "-o", out], &["24 face indices x 4^31"]);
+    refused(&["gen", "cube", "--levels", "14", "-o", out], &["(6442450944 face indices"]);
+    refused(&["gen", "grid", "4294967295", "4294967295", "-o", out], &["the requested mesh is too large"]);
+    refused(&["gen", "torus", "--major", "4294967295", "--minor", "4294967295", "-o", out], &["too large"]);
+    let sub = tmp("budgets", "tri.obj");
+    std::fs::write(&sub, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let sub = sub.to_str().unwrap();
+    refused(
+        &["gen", "subdivide", sub, "--scheme", "loop", "--levels", "33", "-o", out],
+        &[&format!("{sub}: 3 face indices x 4^33")],
+    );
+    assert!(!std::path::Path::new(out).exists());
+}
