@@ -50,3 +50,17 @@ fn gen_sizes_are_checked_without_overflow() {
     );
     assert!(!std::path::Path::new(out).exists());
 }
+
+#[test]
+fn distance_samples_are_range_checked() {
+    let f = tmp("budgets", "quad.obj");
+    std::fs::write(&f, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+    let f = f.to_str().unwrap();
+    // 10^11 samples asked for 2.4 TB.
+    for n in ["100000000000", "100000001", "0"] {
+        refused(
+            &["distance", f, f, "--samples", n],
+            &[&format!("--samples {n} is out of range: 1 to 100000000")],
+        );
+    }
+}

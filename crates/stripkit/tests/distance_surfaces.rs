@@ -76,3 +76,15 @@ fn sampling_is_area_weighted_and_deterministic() {
 fn empty_mesh_is_an_error() {
     assert!(distance(&Mesh::new(), &grid(2, 2, |_, _| 0.0), 10).is_err());
 }
+
+#[test]
+fn sample_counts_out_of_range_are_refused_before_allocating() {
+    use stripkit::distance::MAX_SAMPLES;
+    let m = grid(2, 2, |_, _| 0.0);
+    // 10^11 samples once asked for 2.4 TB; 0 gave NaN figures.
+    for n in [0, MAX_SAMPLES + 1, 100_000_000_000, usize::MAX] {
+        let e = distance(&m, &m, n).unwrap_err().to_string();
+        assert!(e.contains(&format!("{n} samples per surface is out of range: 1 to {MAX_SAMPLES}")), "{e}");
+    }
+    assert!(distance(&m, &m, 1).is_ok());
+}

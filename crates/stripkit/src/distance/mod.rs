@@ -38,6 +38,11 @@ pub struct Distance {
 /// Samples used when none are asked for.
 pub const DEFAULT_SAMPLES: usize = 100_000;
 
+/// Most points [`distance`] samples on each surface: 10^8, about 2.4 GB of sample
+/// points for the two surfaces (24 bytes each). Larger requests are refused before
+/// anything is allocated (`--samples 100000000000` once asked for 2.4 TB).
+pub const MAX_SAMPLES: usize = 100_000_000;
+
 /// `n` points on the surface of `mesh`, area-weighted: stratified along the
 /// cumulative area (point `i` falls in the `i`-th of `n` equal slices), uniform inside
 /// its triangle. Deterministic for a given `seed`. Empty when the mesh has no area.
@@ -142,7 +147,15 @@ fn check(mesh: &Mesh, name: &str) -> Result<()> {
 /// Symmetric Hausdorff and RMS distance between the surfaces of `a` and `b`:
 /// `samples` points on each surface (see [`sample_surface`]), each measured exactly
 /// against the other surface through a BVH. O((samples + n) log n), multi-threaded.
+///
+/// Fails when `samples` is 0 or above [`MAX_SAMPLES`].
 pub fn distance(a: &Mesh, b: &Mesh, samples: usize) -> Result<Distance> {
+    if samples == 0 || samples > MAX_SAMPLES {
+        return Err(Error::Invalid(format!(
+            "{samples} samples per surface is out of range: 1 to {MAX_SAMPLES} \
+             (each sample takes 24 bytes, on both surfaces)"
+        )));
+    }
     check(a, "first mesh")?;
     check(b, "second mesh")?;
     let threads = std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1).min(16);
