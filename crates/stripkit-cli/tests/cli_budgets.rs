@@ -64,3 +64,28 @@ fn distance_samples_are_range_checked() {
         );
     }
 }
+
+#[test]
+fn strip_cache_sizes_are_range_checked() {
+    let f = tmp("budgets", "strip_quad.obj");
+    std::fs::write(&f, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+    let out = tmp("budgets", "strip_never.ply");
+    let (f, o) = (f.to_str().unwrap(), out.to_str().unwrap());
+    // 4294967296 once tried 17 GB; 4294967295 panicked in `cache` and `balanced`
+    // (`cache_size * 5 / 8` overflowed u32, then the FIFO's own 2^30 assertion).
+    for cache in ["4294967296", "4294967295", "858993460", "65537"] {
+        for algo in ["cache", "balanced", "greedy", "qstrip"] {
+            refused(
+                &["strip", f, "-o", o, "--cache", cache, "--algo", algo],
+                &[&format!("--cache {cache} is too large (at most 65536 entries)")],
+            );
+        }
+    }
+    assert!(!out.exists());
+    // The largest size accepted runs in bounded memory with every mode.
+    for algo in ["cache", "balanced", "greedy", "qstrip"] {
+        let (run, secs) = stripkit_1gib(&["strip", f, "-o", o, "--cache", "65536", "--algo", algo]);
+        assert!(run.status.success(), "{algo}: {}", String::from_utf8_lossy(&run.stderr));
+        assert!(secs < 2.0, "{algo}: {secs:.1} s");
+    }
+}

@@ -148,6 +148,12 @@ impl Join {
     }
 }
 
+/// Largest vertex cache [`StripOptions`] accepts: 65,536 entries (hardware caches hold
+/// 16 to 128). The cache-aware stripifiers keep a ring of this many entries and tune
+/// their walks to it, so a size read from the command line (`--cache 4294967295`)
+/// must not size an allocation unchecked.
+pub const MAX_CACHE_SIZE: usize = 1 << 16;
+
 /// Everything [`stripify`] needs to know. Build it from [`StripOptions::default`]
 /// with the builder methods; fields that do not apply to the chosen algorithm are
 /// rejected by [`stripify`] with [`Error::Invalid`].
@@ -196,7 +202,8 @@ impl StripOptions {
         self.algorithm = algorithm;
         self
     }
-    /// Sets the size of the FIFO the strips are tuned for and measured with.
+    /// Sets the size of the FIFO the strips are tuned for and measured with: 1 to
+    /// [`MAX_CACHE_SIZE`] entries (checked when stripifying).
     pub fn cache_size(mut self, entries: usize) -> Self {
         self.cache.size = entries;
         self
@@ -228,8 +235,11 @@ impl StripOptions {
         if self.cache.size == 0 {
             return bad("the cache size must be at least 1 (a cache of 0 entries misses every vertex)".into());
         }
-        if self.cache.size > u32::MAX as usize {
-            return bad(format!("a cache of {} entries does not fit 32 bits", self.cache.size));
+        if self.cache.size > MAX_CACHE_SIZE {
+            return bad(format!(
+                "the cache size {} is too large (at most {MAX_CACHE_SIZE} entries)",
+                self.cache.size
+            ));
         }
         match &self.algorithm {
             Algorithm::Balanced { max_acmr } if !(max_acmr.is_finite() && *max_acmr > 0.0) => {

@@ -185,6 +185,17 @@ fn bad_input_and_options_that_do_not_apply_are_errors() {
     invalid(stripify_indices(&quad, 4, 2, &d), "restart index 2");
     invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().join(Join::Separate)), "separate");
     invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().cache_size(0)), "cache");
+    // Above MAX_CACHE_SIZE the cache-aware stripifiers' ring would follow the request
+    // (u32::MAX once panicked; 2^32 tried 17 GB).
+    for size in [stripkit::MAX_CACHE_SIZE + 1, u32::MAX as usize, usize::MAX] {
+        for algo in [Algorithm::cache(), Algorithm::balanced(0.8), Algorithm::greedy()] {
+            invalid(
+                stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(algo).cache_size(size)),
+                &format!("the cache size {size} is too large (at most 65536 entries)"),
+            );
+        }
+    }
+    assert!(stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::cache()).cache_size(stripkit::MAX_CACHE_SIZE)).is_ok());
     invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::balanced(f64::NAN))), "positive");
     invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::balanced(0.0))), "positive");
     invalid(

@@ -90,7 +90,8 @@ impl CacheOptions {
             start_penalty: 1.0,
             max_swaps: 8,
             min_cached: 2,
-            scan_entries: cache_size * 5 / 8,
+            // In u64: `cache_size * 5` overflows u32 above 858,993,459 entries.
+            scan_entries: (cache_size as u64 * 5 / 8) as u32,
             join: true,
             finish_bonus: 1.0,
             refine: false,
