@@ -63,8 +63,11 @@ pub struct WriteOptions {
 /// The default of [`ReadOptions::max_external_bytes`]: 1 GiB.
 pub const DEFAULT_MAX_EXTERNAL_BYTES: u64 = 1 << 30;
 
+/// The default of [`ReadOptions::max_decompressed_bytes`]: 4 GiB.
+pub const DEFAULT_MAX_DECOMPRESSED_BYTES: u64 = 4 << 30;
+
 /// Options for [`read_with`] and [`read_bytes_with`]: where a `.gltf` may load its
-/// external buffers from, and how much it may load.
+/// external buffers from, how much it may load, and how far a `.gz` file may expand.
 ///
 /// A `.gltf` buffer's `uri` is accepted only when it is a base64 `data:` URI, or a
 /// relative reference (no scheme, not absolute; `%XX` escapes decoded first) that,
@@ -89,11 +92,22 @@ pub struct ReadOptions {
     /// [`DEFAULT_MAX_EXTERNAL_BYTES`] (1 GiB). `data:` URIs and the GLB binary chunk
     /// are part of the input and do not count.
     pub max_external_bytes: u64,
+    /// The most bytes a gzip-compressed file (`.obj.gz`, `.ply.gz`, ...) may
+    /// decompress to; decompression stops one byte past it and the file is refused
+    /// ("decompresses to more than N bytes"), so a small file of compressed zeros
+    /// cannot exhaust memory. Default [`DEFAULT_MAX_DECOMPRESSED_BYTES`] (4 GiB).
+    /// Only [`read_with`] (and [`read`]) decompress; [`read_bytes_with`] takes
+    /// uncompressed data and ignores it.
+    pub max_decompressed_bytes: u64,
 }
 
 impl Default for ReadOptions {
     fn default() -> Self {
-        ReadOptions { allowed_roots: Vec::new(), max_external_bytes: DEFAULT_MAX_EXTERNAL_BYTES }
+        ReadOptions {
+            allowed_roots: Vec::new(),
+            max_external_bytes: DEFAULT_MAX_EXTERNAL_BYTES,
+            max_decompressed_bytes: DEFAULT_MAX_DECOMPRESSED_BYTES,
+        }
     }
 }
 
@@ -151,11 +165,12 @@ pub fn read(path: &Path) -> Result<Mesh> {
     read_with(path, &ReadOptions::default())
 }
 
-/// [`read`] with options (see [`ReadOptions`] for the rules on external glTF buffers).
+/// [`read`] with options (see [`ReadOptions`] for the rules on external glTF buffers
+/// and the cap on gzip decompression).
 pub fn read_with(path: &Path, options: &ReadOptions) -> Result<Mesh> {
     let (format, gz) = Format::from_path(path).ok_or_else(|| unknown(path))?;
     let raw = std::fs::read(path).map_err(|e| io_error(path, e))?;
-    let data = if gz { gunzip(path, &raw)? } else { raw };
+    let data = if gz { gunzip(path, &raw, options.max_decompressed_bytes)? } else { raw };
     read_bytes_with(path, format, &data, options)
 }
 
@@ -195,13 +210,28 @@ pub fn read_bytes_with(path: &Path, format: Format, data: &[u8], options: &ReadO
     }
 }
 
-fn gunzip(path: &Path, raw: &[u8]) -> Result<Vec<u8>> {
-    let mut out = Vec::with_capacity(raw.len().saturating_mul(3));
-    flate2::read::MultiGzDecoder::new(raw).read_to_end(&mut out).map_err(|e| Error::Format {
-        path: path.to_path_buf(),
-        at: format!("gzip stream (after {} decompressed bytes)", out.len()),
-        what: format!("cannot decompress: {e}"),
-    })?;
+/// Decompresses `raw`, reading at most `cap + 1` bytes: one past the cap proves the
+/// stream is too large without holding more than the cap.
+fn gunzip(path: &Path, raw: &[u8], cap: u64) -> Result<Vec<u8>> {
+    let start = raw.len().saturating_mul(3).min(usize::try_from(cap).unwrap_or(usize::MAX));
+    let mut out = Vec::with_capacity(start);
+    flate2::read::MultiGzDecoder::new(raw)
+        .take(cap.saturating_add(1))
+        .read_to_end(&mut out)
+        .map_err(|e| Error::Format {
+            path: path.to_path_buf(),
+            at: format!("gzip stream (after {} decompressed bytes)", out.len()),
+            what: format!("cannot decompress: {e}"),
+        })?;
+    if out.len() as u64 > cap {
+        return Err(Error::Format {
+            path: path.to_path_buf(),
+            at: "gzip stream".into(),
+            what: format!(
+                "decompresses to more than {cap} bytes, the limit (ReadOptions::max_decompressed_bytes)"
+            ),
+        });
+    }
     Ok(out)
 }
 

@@ -1,0 +1,49 @@
+//! Gzip decompression is capped (issue #16, item 6: a 5 MB gzip of 5 GB of zeros
+//! used 5.3 GB of RAM, then read as a valid empty mesh). The cap is
+//! `ReadOptions::max_decompressed_bytes`; the error gives it.
+
+use flate2::write::GzEncoder;
+use flate2::Compression;
+use std::io::Write;
+use std::path::PathBuf;
+use stripkit::io::{self, ReadOptions, DEFAULT_MAX_DECOMPRESSED_BYTES};
+use stripkit::Error;
+
+fn gz_file(name: &str, content: &[u8]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stripkit-gzip-cap-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    let mut enc = GzEncoder::new(Vec::new(), Compression::best());
+    enc.write_all(content).unwrap();
+    std::fs::write(&path, enc.finish().unwrap()).unwrap();
+    path
+}
+
+#[test]
+fn decompression_stops_at_the_cap_and_says_so() {
+    // 1 MiB of zeros compresses to about 1 KB.
+    let path = gz_file("zeros.obj.gz", &vec![0u8; 1 << 20]);
+    assert!(std::fs::metadata(&path).unwrap().len() < 10_000);
+    let options = ReadOptions { max_decompressed_bytes: 4096, ..ReadOptions::default() };
+    let e = io::read_with(&path, &options).unwrap_err();
+    assert!(matches!(e, Error::Format { .. }), "{e:?}");
+    let text = e.to_string();
+    assert!(text.contains("zeros.obj.gz"), "{text}");
+    assert!(text.contains("decompresses to more than 4096 bytes"), "{text}");
+}
+
+#[test]
+fn a_file_at_the_cap_is_read() {
+    let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let path = gz_file("tri.obj.gz", obj);
+    let exact = ReadOptions { max_decompressed_bytes: obj.len() as u64, ..ReadOptions::default() };
+    let m = io::read_with(&path, &exact).unwrap();
+    assert_eq!((m.vertex_count(), m.face_count()), (3, 1));
+    let short = ReadOptions { max_decompressed_bytes: obj.len() as u64 - 1, ..ReadOptions::default() };
+    let e = io::read_with(&path, &short).unwrap_err().to_string();
+    assert!(e.contains(&format!("decompresses to more than {} bytes", obj.len() - 1)), "{e}");
+    // `read` uses the default cap, 4 GiB.
+    assert_eq!(DEFAULT_MAX_DECOMPRESSED_BYTES, 4 << 30);
+    assert_eq!(ReadOptions::default().max_decompressed_bytes, DEFAULT_MAX_DECOMPRESSED_BYTES);
+    assert_eq!(io::read(&path).unwrap().face_count(), 1);
+}
