@@ -128,7 +128,7 @@ pub struct Args {
     #[arg(long, value_name = "N", default_value_t = DEFAULT_RESTART)]
     pub restart_index: u32,
     /// Vertex-cache size: the FIFO `--algo cache|balanced` tune for, and the cache of the
-    /// `acmr` figure (acmr16 and acmr32 are always printed).
+    /// `acmr` figure (acmr16 and acmr32 are always printed). 1 to 65,536.
     #[arg(long, value_name = "N", default_value_t = 16)]
     pub cache: usize,
     /// `--algo balanced`: the most cache misses per triangle (FIFO of `--cache`
