@@ -1,0 +1,56 @@
+#![no_main]
+//! The front door on a small index list: the first byte picks the algorithm and the
+//! join, every further byte gives two indices (its nibbles, so below 16) for 16
+//! vertices. `stripify_indices` then `unstripify` must give back the same multiset of
+//! oriented non-degenerate triangles, within `stripify_bound`.
+
+use libfuzzer_sys::fuzz_target;
+use stripkit::{stripify_bound, stripify_indices, unstripify, Algorithm, Error, Join, StripOptions};
+
+const VERTICES: usize = 16;
+
+/// Oriented triangles up to rotation, degenerate ones dropped, sorted (as in
+/// crates/stripkit/tests/door.rs).
+fn oriented(flat: &[u32]) -> Vec<[u32; 3]> {
+    let mut out: Vec<[u32; 3]> = flat
+        .chunks_exact(3)
+        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .map(|t| {
+            let r = (0..3).min_by_key(|&i| t[i]).unwrap();
+            [t[r], t[(r + 1) % 3], t[(r + 2) % 3]]
+        })
+        .collect();
+    out.sort_unstable();
+    out
+}
+
+fuzz_target!(|data: &[u8]| {
+    let Some((&first, rest)) = data.split_first() else { return };
+    let algorithm = match first % 6 {
+        0 => Algorithm::Auto,
+        1 => Algorithm::greedy(),
+        2 => Algorithm::qstrip(),
+        3 => Algorithm::cache(),
+        4 => Algorithm::Cache { refine: true },
+        _ => Algorithm::balanced(0.8),
+    };
+    let join = if (first / 6) % 2 == 0 { Join::Restart } else { Join::Degenerate };
+    let mut indices: Vec<u32> =
+        rest.iter().take(300).flat_map(|&b| [u32::from(b & 15), u32::from(b >> 4)]).collect();
+    indices.truncate(indices.len() / 3 * 3);
+    if indices.is_empty() {
+        return;
+    }
+    let want = oriented(&indices);
+    let restart = VERTICES as u32;
+    let options = StripOptions::default().algorithm(algorithm.clone()).join(join);
+    let buf = match stripify_indices(&indices, VERTICES, restart, &options) {
+        Ok(buf) => buf,
+        // Only a list of nothing but degenerate triangles may be refused.
+        Err(Error::Invalid(_)) if want.is_empty() => return,
+        Err(e) => panic!("{} {join:?}: {e}", algorithm.name()),
+    };
+    assert!(buf.len() <= stripify_bound(indices.len()), "{} {join:?}: over the bound", algorithm.name());
+    let back = unstripify(&buf, if join == Join::Restart { restart } else { u32::MAX });
+    assert_eq!(oriented(&back), want, "{} {join:?}: triangles differ", algorithm.name());
+});

@@ -1,0 +1,9 @@
+#![no_main]
+//! `stripkit::io::read_bytes` as Glb, then `stripify` on small meshes.
+
+use libfuzzer_sys::fuzz_target;
+use stripkit::io::Format;
+
+fuzz_target!(|data: &[u8]| {
+    stripkit_fuzz::read_and_stripify("glb", Format::Glb, data);
+});

@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Fills fuzz/corpus/<target>/ with small seed inputs. The corpus is git-ignored.
+#   fuzz/seed.sh            # from the repository root or from fuzz/
+# Sources: assets/*.obj (public domain Spot meshes), small meshes written by
+# `stripkit gen` in every format, hand-written DIMACS graphs and door lists, and,
+# when present, small files from ../shared/models (read at run time only: they are
+# research data and never enter the repository).
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(cd "$here/.." && pwd)"
+corpus="$here/corpus"
+cd "$root"
+for t in read_obj read_ply read_off read_stl read_gltf read_glb dimacs door; do
+    mkdir -p "$corpus/$t"
+done
+
+# 1. The Spot meshes in the repository.
+for f in assets/*.obj; do
+    cp "$f" "$corpus/read_obj/asset_$(basename "$f")"
+done
+
+# 2. Small generated meshes in every format.
+cargo build --quiet -p stripkit-cli
+cli="$root/target/debug/stripkit"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+for ext in obj ply off stl gltf glb; do
+    out="$corpus/read_$ext"
+    "$cli" gen grid 2 2 -o "$tmp/grid.$ext"
+    "$cli" gen grid 3 2 --quads -o "$tmp/grid_quads.$ext" 2>/dev/null || true
+    "$cli" gen icosphere 0 -o "$tmp/ico0.$ext"
+    "$cli" gen icosphere 1 -o "$tmp/ico1.$ext"
+    "$cli" gen torus --major 6 --minor 4 -o "$tmp/torus.$ext"
+    "$cli" gen torus --major 5 --minor 3 --quads -o "$tmp/torus_quads.$ext" 2>/dev/null || true
+    "$cli" gen cube -o "$tmp/cube.$ext" 2>/dev/null || true
+    for f in "$tmp"/*."$ext"; do
+        [ -f "$f" ] && cp "$f" "$out/gen_$(basename "$f")"
+    done
+done
+
+# 3. Small research models, when the shared folder is there (not copied into git).
+models="$root/../shared/models"
+if [ -d "$models" ]; then
+    while IFS= read -r -d '' f; do
+        ext="${f##*.}"
+        ext="${ext,,}"
+        case "$ext" in
+            obj|ply|off|stl|gltf|glb) cp "$f" "$corpus/read_$ext/shared_$(basename "$f")" ;;
+        esac
+    done < <(find "$models" -type f -size -64k -print0)
+fi
+
+# 4. DIMACS graphs.
+d="$corpus/dimacs"
+printf 'c a triangle plus a pendant\np edge 4 4\ne 1 2 3\ne 2 3 4\ne 3 1 5\ne 3 4 1\n' > "$d/pendant.txt"
+printf 'p edge 2 1\ne 1 2 7\n' > "$d/edge.txt"
+printf 'c odd cycle, no perfect matching\np edge 5 5\ne 1 2 1\ne 2 3 2\ne 3 4 3\ne 4 5 4\ne 5 1 5\n' > "$d/c5.txt"
+printf 'p edge 6 9\ne 1 2 4\ne 2 3 1\ne 3 1 6\ne 4 5 2\ne 5 6 8\ne 6 4 3\ne 1 4 -2\ne 2 5 5\ne 3 6 0\n' > "$d/prism.txt"
+printf 'p edge 4 5\ne 1 2 1\ne 1 2 9\ne 2 2 3\ne 3 4 1\ne 1 3 1\n' > "$d/parallel_loop.txt"
+printf 'p edge 3 0\n' > "$d/empty.txt"
+
+# 5. Door: first byte = algorithm and join, then two indices per byte (nibbles).
+p="$corpus/door"
+for a in 0 1 2 3 4 5 6 7 8 9 10 11; do
+    # a 2x1 quad strip and a fan: (0,1,2) (2,1,3) (2,3,4) (4,3,5)
+    printf "\\x$(printf %02x "$a")\\x10\\x12\\x31\\x32\\x44\\x53" > "$p/strip_$a"
+done
+printf '\x01\x10\x02\x32\x03\x43\x00\x54\x06\x71\x08\x98' > "$p/fan"
+printf '\x04\x11\x11\x10\x21\x21\x10' > "$p/degenerate_dupes"
+echo "seeded: $(find "$corpus" -type f | wc -l) files in $corpus"

@@ -1,0 +1,26 @@
+//! Shared body of the mesh-reader targets: read the bytes as one format and, for a
+//! small mesh, stripify it; a verification failure is a finding.
+
+use std::path::Path;
+use stripkit::io::Format;
+use stripkit::{stripify, Error, StripOptions};
+
+/// Meshes with at most this many faces are also stripified.
+pub const MAX_FACES: usize = 4000;
+
+/// Reads `data` as `format` (file name `fuzz.EXT`) and, on success with a small mesh,
+/// runs the default stripifier; panics on an [`Error::Verification`] or any error
+/// other than [`Error::Invalid`].
+pub fn read_and_stripify(ext: &str, format: Format, data: &[u8]) {
+    let name = format!("fuzz.{ext}");
+    let Ok(mesh) = stripkit::io::read_bytes(Path::new(&name), format, data) else {
+        return;
+    };
+    if mesh.face_count() == 0 || mesh.face_count() > MAX_FACES || mesh.vertex_count() > 4 * MAX_FACES + 64 {
+        return;
+    }
+    match stripify(&mesh, &StripOptions::default()) {
+        Ok(_) | Err(Error::Invalid(_)) => {}
+        Err(e) => panic!("stripify of a {}-face mesh read from {ext}: {e}", mesh.face_count()),
+    }
+}
