@@ -258,6 +258,24 @@ fn positions(n: usize) -> Vec<[f32; 3]> {
     (0..n).map(|i| [(i % 5) as f32, (i / 5) as f32, ((i * 7) % 3) as f32]).collect()
 }
 
+/// Every algorithm with every split it takes gives verified strips drawing the fan's
+/// non-degenerate triangles (auto with the fan on a quad-dominant mesh is refused:
+/// auto takes QSTRIP there, which takes no fan).
+fn strips_every_face_with_every_setting(name: &str, mesh: &Mesh) {
+    let want = fan_triangles(mesh);
+    for options in every_setting() {
+        let what = format!("{name}: {} split {:?}", options.algorithm.name(), options.split);
+        if options.algorithm == Algorithm::Auto && options.split == Split::Fan && stripkit::is_quad_dominant(mesh) {
+            assert!(matches!(stripify(mesh, &options), Err(Error::Invalid(_))), "{what}");
+            continue;
+        }
+        let s = stripify(mesh, &options).unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert!(s.figures.verified, "{what}");
+        assert_eq!(s.figures.triangles, want, "{what}");
+        assert_eq!(decode(&s.strips).len(), want, "{what}");
+    }
+}
+
 #[test]
 fn a_quad_that_repeats_a_vertex_is_fanned_from_its_first_corner() {
     // From an OBJ: `f 3 4 1 5` then `f 5 1 5 2`. The second face is no quad (vertex 5
@@ -273,19 +291,7 @@ fn a_quad_that_repeats_a_vertex_is_fanned_from_its_first_corner() {
     }
     let grid = gen::shuffle_faces(&grid, 9);
     for (name, mesh) in [("two faces", &small), ("grid", &grid)] {
-        let want = fan_triangles(mesh);
-        for options in every_setting() {
-            let what = format!("{name}: {} split {:?}", options.algorithm.name(), options.split);
-            if options.algorithm == Algorithm::Auto && options.split == Split::Fan && stripkit::is_quad_dominant(mesh) {
-                // Auto takes QSTRIP here, which takes no fan.
-                assert!(matches!(stripify(mesh, &options), Err(Error::Invalid(_))), "{what}");
-                continue;
-            }
-            let s = stripify(mesh, &options).unwrap_or_else(|e| panic!("{what}: {e}"));
-            assert!(s.figures.verified, "{what}");
-            assert_eq!(s.figures.triangles, want, "{what}");
-            assert_eq!(decode(&s.strips).len(), want, "{what}");
-        }
+        strips_every_face_with_every_setting(name, mesh);
     }
 }
 
@@ -323,19 +329,7 @@ fn a_quad_listed_twice_is_stripped_twice() {
     }
     meshes.push(("a closed torus with duplicates", torus));
     for (name, mesh) in &meshes {
-        let want = fan_triangles(mesh);
-        for options in every_setting() {
-            let what = format!("{name}: {} split {:?}", options.algorithm.name(), options.split);
-            if options.algorithm == Algorithm::Auto && options.split == Split::Fan && stripkit::is_quad_dominant(mesh) {
-                // Auto takes QSTRIP here, which takes no fan.
-                assert!(matches!(stripify(mesh, &options), Err(Error::Invalid(_))), "{what}");
-                continue;
-            }
-            let s = stripify(mesh, &options).unwrap_or_else(|e| panic!("{what}: {e}"));
-            assert!(s.figures.verified, "{what}");
-            assert_eq!(s.figures.triangles, want, "{what}");
-            assert_eq!(decode(&s.strips).len(), want, "{what}");
-        }
+        strips_every_face_with_every_setting(name, mesh);
     }
 }
 
