@@ -30,6 +30,20 @@ fn is_temporary_of(file: &str, name: &str) -> bool {
     !pid.is_empty() && !n.is_empty() && pid.bytes().all(|b| b.is_ascii_digit()) && n.bytes().all(|b| b.is_ascii_digit())
 }
 
+/// `stripkit simplify INPUT --ratio 0.5 -o OUT --sequence SEQ`.
+fn simplify_to(input: &Path, out: &Path, seq: &Path) -> std::process::Output {
+    stripkit(&[
+        "simplify",
+        input.to_str().unwrap(),
+        "--ratio",
+        "0.5",
+        "-o",
+        out.to_str().unwrap(),
+        "--sequence",
+        seq.to_str().unwrap(),
+    ])
+}
+
 fn gen_icosphere(level: &str, out: &Path) {
     let o = stripkit(&["gen", "icosphere", level, "-o", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -45,16 +59,7 @@ fn simplify_refuses_a_sequence_over_its_own_output_before_any_work() {
     std::fs::create_dir(dir.join("sub")).unwrap();
     let spellings = [out.clone(), dir.join(".").join("out.obj"), dir.join("sub").join("..").join("out.obj")];
     for seq in &spellings {
-        let o = stripkit(&[
-            "simplify",
-            input.to_str().unwrap(),
-            "--ratio",
-            "0.5",
-            "-o",
-            out.to_str().unwrap(),
-            "--sequence",
-            seq.to_str().unwrap(),
-        ]);
+        let o = simplify_to(&input, &out, &seq);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{}: {err}", seq.display());
         assert!(err.contains("-o") && err.contains("--sequence"), "{err}");
@@ -62,16 +67,7 @@ fn simplify_refuses_a_sequence_over_its_own_output_before_any_work() {
     }
     // A file that does not exist yet, spelled two ways: refused, and still absent.
     let new = dir.join("new.obj");
-    let o = stripkit(&[
-        "simplify",
-        input.to_str().unwrap(),
-        "--ratio",
-        "0.5",
-        "-o",
-        new.to_str().unwrap(),
-        "--sequence",
-        dir.join(".").join("new.obj").to_str().unwrap(),
-    ]);
+    let o = simplify_to(&input, &new, &dir.join(".").join("new.obj"));
     assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(!new.exists());
     assert_eq!(names(&dir), ["in.obj", "out.obj", "sub"]);
@@ -91,16 +87,7 @@ fn a_failed_sequence_write_leaves_the_previous_mesh_output() {
     // A sequence that cannot be written: its folder is missing, or it is a folder.
     std::fs::create_dir(dir.join("seq.bin")).unwrap();
     for seq in [dir.join("missing").join("seq.bin"), dir.join("seq.bin")] {
-        let o = stripkit(&[
-            "simplify",
-            input.to_str().unwrap(),
-            "--ratio",
-            "0.5",
-            "-o",
-            out.to_str().unwrap(),
-            "--sequence",
-            seq.to_str().unwrap(),
-        ]);
+        let o = simplify_to(&input, &out, &seq);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{err}");
         assert!(err.contains(seq.to_str().unwrap()), "{err}");
@@ -109,16 +96,7 @@ fn a_failed_sequence_write_leaves_the_previous_mesh_output() {
     }
     // And when both can be written, both are.
     let seq = dir.join("seq.json");
-    let o = stripkit(&[
-        "simplify",
-        input.to_str().unwrap(),
-        "--ratio",
-        "0.5",
-        "-o",
-        out.to_str().unwrap(),
-        "--sequence",
-        seq.to_str().unwrap(),
-    ]);
+    let o = simplify_to(&input, &out, &seq);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_ne!(std::fs::read(&out).unwrap(), b"old mesh");
     assert!(std::fs::read(&seq).unwrap().starts_with(b"{"));
