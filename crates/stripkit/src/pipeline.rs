@@ -278,8 +278,6 @@ pub struct Strips {
     pub quads: Option<usize>,
     /// Every figure of METRICS.md, measured against [`Strips::triangles`].
     pub figures: Figures,
-    /// The strips as [`StripOptions::join`] joins them (checked too).
-    pub joined: StripSet,
     /// The join used.
     pub join: Join,
     /// The restart index of [`Join::Restart`].
@@ -289,6 +287,14 @@ pub struct Strips {
 }
 
 impl Strips {
+    /// The strips as [`Strips::join`] joins them, read back from the encoded form
+    /// (the door checked this form too): the strips themselves for
+    /// [`Join::Restart`] and [`Join::Separate`], one stitched strip for
+    /// [`Join::Degenerate`].
+    pub fn joined(&self) -> StripSet {
+        joined(&self.strips, self.join, self.restart_index)
+    }
+
     /// One buffer with [`Strips::restart_index`] between strips.
     pub fn restart_buffer(&self) -> Vec<u32> {
         strip::encode_restart(&self.strips, self.restart_index)
@@ -310,7 +316,7 @@ impl Strips {
     pub fn for_format(&self, format: Format) -> Option<StripSet> {
         match (format, self.join) {
             (Format::Ply, Join::Degenerate) | (Format::Gltf | Format::Glb, Join::Separate) => {
-                Some(self.joined.clone())
+                Some(self.joined())
             }
             (Format::Ply, _) => Some(self.strips.clone()),
             (Format::Gltf | Format::Glb, _) => Some(joined(&self.strips, Join::Degenerate, self.restart_index)),
@@ -343,7 +349,7 @@ impl Strips {
         let mut obj = serde_json::Map::new();
         obj.insert("join".into(), self.join.name().into());
         let strips: Vec<serde_json::Value> =
-            self.joined.iter().map(|s| s.iter().map(|&i| serde_json::Value::from(i)).collect()).collect();
+            self.joined().iter().map(|s| s.iter().map(|&i| serde_json::Value::from(i)).collect()).collect();
         obj.insert("strips".into(), strips.into());
         if self.join == Join::Restart {
             obj.insert("restart_index".into(), self.restart_index.into());
@@ -519,8 +525,9 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     if !figures.verified {
         return Err(fail("the strips", &strip::verify(&triangles, &strips)));
     }
-    let joined = joined(&strips, options.join, options.restart_index);
-    let v = strip::verify(&triangles, &joined);
+    // The joined form is checked here and rebuilt on demand (`Strips::joined`): for
+    // two of the three joins it is the strips themselves.
+    let v = strip::verify(&triangles, &joined(&strips, options.join, options.restart_index));
     if !v.ok() {
         return Err(fail(&format!("the strips joined by {}", options.join.name()), &v));
     }
@@ -531,7 +538,6 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
         split,
         quads,
         figures,
-        joined,
         join: options.join,
         restart_index: options.restart_index,
         stripify_time,
@@ -629,7 +635,7 @@ pub fn stripify_indices(
     let mesh = Mesh::from_triangles(vec![[0.0; 3]; used], &tris);
     let strips = run(&mesh, &options)?;
     let out = match options.join {
-        Join::Degenerate => strips.joined.indices,
+        Join::Degenerate => strips.stitched(),
         _ => strips.restart_buffer(),
     };
     if out.len() > stripify_bound(indices.len()) {

@@ -153,7 +153,7 @@ fn the_joined_form_and_files_hold_the_same_triangles() {
     let mesh = gen::shuffle_faces(&gen::torus(10, 6, 2.0, 0.5), 1);
     for join in [Join::Restart, Join::Degenerate, Join::Separate] {
         let s = stripify(&mesh, &StripOptions::default().algorithm(Algorithm::cache()).join(join)).unwrap();
-        assert_eq!(decode(&s.joined).len(), s.figures.triangles);
+        assert_eq!(decode(&s.joined()).len(), s.figures.triangles);
         for format in [io::Format::Ply, io::Format::Glb, io::Format::Gltf] {
             let bytes = s.to_file_bytes(&mesh, format).unwrap();
             let back = io::read_bytes(std::path::Path::new("x"), format, &bytes).unwrap();
