@@ -421,39 +421,13 @@ pub fn stripify(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     run(mesh, options)
 }
 
-/// Checks that the mesh can be stripped at all: faces well formed and in range.
-fn check_mesh(mesh: &Mesh) -> Result<()> {
-    let n = mesh.vertex_count();
-    if n > u32::MAX as usize {
-        return Err(Error::Invalid(format!("{n} vertices do not fit 32-bit indices")));
-    }
-    let offsets = &mesh.face_offsets;
-    if offsets.first().is_some_and(|&o| o != 0)
-        || offsets.last().is_some_and(|&o| o as usize != mesh.face_indices.len())
-        || offsets.windows(2).any(|w| w[1] < w[0])
-    {
-        return Err(Error::Invalid("the mesh's face offsets are malformed".into()));
-    }
-    for (f, face) in mesh.faces().enumerate() {
-        if face.len() < 3 {
-            return Err(Error::Invalid(format!("face {f} has {} corners; a face needs at least 3", face.len())));
-        }
-        if let Some(&v) = face.iter().find(|&&v| v as usize >= n) {
-            return Err(Error::Invalid(format!(
-                "face {f} refers to vertex {v} but the mesh has {n} vertices"
-            )));
-        }
-    }
-    Ok(())
-}
-
 fn fail(what: &str, v: &strip::Verification) -> Error {
     Error::Verification(format!("{what}: {v}"))
 }
 
 /// The door's body, with the options already checked.
 fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
-    check_mesh(mesh)?;
+    mesh.check_faces()?;
     let vertex_count = mesh.vertex_count();
     if options.join == Join::Restart && (options.restart_index as usize) < vertex_count {
         return Err(Error::Invalid(format!(

@@ -78,6 +78,36 @@ impl Mesh {
         self.face_offsets.push(self.face_indices.len() as u32);
     }
 
+    /// Checks that the faces are well formed: offsets from 0 to the end of
+    /// `face_indices`, never decreasing; every face of at least 3 corners; every index
+    /// below the vertex count, which fits 32 bits. [`Error::Invalid`] names the first
+    /// face at fault. (Coordinates are not checked.) O(faces + indices).
+    ///
+    /// [`Error::Invalid`]: crate::Error::Invalid
+    pub fn check_faces(&self) -> crate::Result<()> {
+        use crate::Error;
+        let n = self.vertex_count();
+        if n > u32::MAX as usize {
+            return Err(Error::Invalid(format!("{n} vertices do not fit 32-bit indices")));
+        }
+        let offsets = &self.face_offsets;
+        if offsets.first().is_some_and(|&o| o != 0)
+            || offsets.last().is_some_and(|&o| o as usize != self.face_indices.len())
+            || offsets.windows(2).any(|w| w[1] < w[0])
+        {
+            return Err(Error::Invalid("the mesh's face offsets are malformed".into()));
+        }
+        for (f, face) in self.faces().enumerate() {
+            if face.len() < 3 {
+                return Err(Error::Invalid(format!("face {f} has {} corners; a face needs at least 3", face.len())));
+            }
+            if let Some(&v) = face.iter().find(|&&v| v as usize >= n) {
+                return Err(Error::Invalid(format!("face {f} refers to vertex {v} but the mesh has {n} vertices")));
+            }
+        }
+        Ok(())
+    }
+
     /// Number of vertex records (referenced or not).
     pub fn vertex_count(&self) -> usize {
         self.positions.len()

@@ -458,23 +458,11 @@ pub fn write_bytes(
 }
 
 fn check_indices(mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> {
+    mesh.check_faces()?;
     let n = mesh.positions.len();
-    if n > u32::MAX as usize {
-        return Err(Error::Invalid(format!("{n} vertices do not fit 32-bit indices")));
-    }
-    if mesh.face_offsets.first().is_some_and(|&o| o != 0)
-        || mesh.face_offsets.last().is_some_and(|&o| o as usize != mesh.face_indices.len())
-        || mesh.face_offsets.windows(2).any(|w| w[1].saturating_sub(w[0]) < 3)
-    {
-        return Err(Error::Invalid("mesh faces are malformed (offsets, or a face with fewer than 3 vertices)".into()));
-    }
     if let Some(v) = mesh.positions.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
         // Every reader refuses these, so writing them would make a file we cannot read.
         return Err(Error::Invalid(format!("vertex {v} has a NaN or infinite coordinate: {:?}", mesh.positions[v])));
-    }
-    if let Some(f) = mesh.faces().position(|f| f.iter().any(|&i| i as usize >= n)) {
-        let bad = mesh.face(f).iter().find(|&&i| i as usize >= n).copied().unwrap_or(0);
-        return Err(Error::Invalid(format!("face {f} refers to vertex {bad} but the mesh has {n} vertices")));
     }
     if let Some(s) = strips {
         if s.offsets.first().is_some_and(|&o| o != 0)
