@@ -334,13 +334,12 @@ fn a_quad_listed_twice_is_stripped_twice() {
 }
 
 /// Found by the `read_ply` fuzz target: 13 quads in which the edge 7-8 has three
-/// quads, two of them running it the same way. QSTRIP's sequence programme assumes
-/// every sequence it is given can be walked (a `debug_assert!` in debug builds), and
-/// in release the door's quad-level check catches the wrong strips and returns
-/// `Error::Verification`: nothing wrong comes out, but nothing comes out at all.
-/// Greedy strips the same mesh. To do: keep such quads out of QSTRIP's sequences.
+/// quads, so two quads share three vertices and one of them gets a forced diagonal.
+/// QSTRIP's backward walk left its start quad through an edge that, with the forward
+/// walk's exit, made a turn the forced diagonal forbids: the joined sequence had no
+/// way through that quad (a `debug_assert!` in debug, `Error::Verification` in
+/// release). The backward walk now only takes exits the start quad can turn to.
 #[test]
-#[ignore = "known defect (issue #16, fuzzing): QSTRIP on an edge with three quads fails its own check"]
 fn qstrip_on_an_edge_with_three_quads_gives_verified_strips() {
     let faces: Vec<Vec<u32>> = [
         [1, 4, 5, 2],

@@ -387,6 +387,12 @@ impl<'a, 'm> Builder<'a, 'm> {
                 if cost >= INF {
                     continue;
                 }
+                // Going backward, `start` will be crossed from `k` to the forward
+                // walk's first exit `avoid`: a turn that its forced diagonal forbids
+                // would leave the joined sequence with no way through `start`.
+                if cur == start && avoid != NO_EDGE && step([0, 0], k, avoid, forced)[0] >= INF {
+                    continue;
+                }
                 let degree = self.degree[(l >> 2) as usize];
                 let key = match self.policy {
                     Policy::FewestSwaps => (cost as i64, degree),
