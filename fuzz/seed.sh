@@ -10,7 +10,7 @@ here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/.." && pwd)"
 corpus="$here/corpus"
 cd "$root"
-for t in read_obj read_ply read_off read_stl read_gltf read_glb dimacs door; do
+for t in read_obj read_ply read_off read_stl read_gltf read_glb dimacs door door_quads; do
     mkdir -p "$corpus/$t"
 done
 
@@ -67,4 +67,12 @@ for a in 0 1 2 3 4 5 6 7 8 9 10 11; do
 done
 printf '\x01\x10\x02\x32\x03\x43\x00\x54\x06\x71\x08\x98' > "$p/fan"
 printf '\x04\x11\x11\x10\x21\x21\x10' > "$p/degenerate_dupes"
+# 6. Door on quads: first byte = algorithm, then one face per two bytes (four
+# nibbles; a last nibble of 15 makes a triangle). A 3x3 quad grid on the 4x4 points,
+# a quad fan, and a mixed quad-triangle patch.
+q="$corpus/door_quads"
+for a in 0 1 2 3 4 5 6 7; do
+    printf "\\x$(printf %02x "$a")\\x40\\x15\\x51\\x26\\x62\\x37\\x84\\x59\\x95\\x6a\\xa6\\x7b\\xc8\\x9d\\xd9\\xae\\xea\\xbf" > "$q/grid_$a"
+done
+printf '\x02\x10\x32\x30\x54\x50\x76\x21\xf3' > "$q/fan_mixed"
 echo "seeded: $(find "$corpus" -type f | wc -l) files in $corpus"
