@@ -238,3 +238,52 @@ enum Kill {
     /// This many milliseconds after the first change in the destination's folder.
     OnChangeThen(f64),
 }
+
+/// Runs `stripkit args` with a file-size limit of `kib` KiB and SIGXFSZ ignored, so a
+/// write past it fails with "File too large" the way a full disk fails with "No space
+/// left": the error surfaces mid-write.
+#[cfg(unix)]
+fn stripkit_with_file_limit(kib: u32, args: &[&str]) -> std::process::Output {
+    Command::new("bash")
+        .arg("-c")
+        .arg(format!("trap '' XFSZ; ulimit -f {kib}; exec \"$0\" \"$@\""))
+        .arg(env!("CARGO_BIN_EXE_stripkit"))
+        .args(args)
+        .output()
+        .expect("runs bash")
+}
+
+/// A disk that fills up mid-write (simulated by a file-size limit): exit 2 naming the
+/// destination, the user's old file byte for byte, no temporary file left; and with a
+/// mesh and a sequence, neither old file is replaced.
+#[cfg(unix)]
+#[test]
+fn a_disk_full_mid_write_keeps_the_old_files() {
+    let dir = fresh_dir("full");
+    let good = dir.join("good.ply");
+    gen_icosphere("1", &good);
+    let before = std::fs::read(&good).unwrap();
+    // Level 6 is about 2 MB in PLY; the limit is 64 KiB.
+    let o = stripkit_with_file_limit(64, &["gen", "icosphere", "6", "-o", good.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains(good.to_str().unwrap()), "{err}");
+    assert_eq!(std::fs::read(&good).unwrap(), before);
+    assert_eq!(names(&dir), ["good.ply"]);
+
+    let input = dir.join("in.obj");
+    gen_icosphere("5", &input);
+    let out = dir.join("out.obj");
+    let seq = dir.join("seq.json");
+    std::fs::write(&out, b"old mesh").unwrap();
+    std::fs::write(&seq, b"old sequence").unwrap();
+    let o = stripkit_with_file_limit(
+        64,
+        &["simplify", input.to_str().unwrap(), "--ratio", "0.5", "-o", out.to_str().unwrap(), "--sequence", seq.to_str().unwrap()],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read(&out).unwrap(), b"old mesh");
+    assert_eq!(std::fs::read(&seq).unwrap(), b"old sequence");
+    assert_eq!(names(&dir), ["good.ply", "in.obj", "out.obj", "seq.json"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
