@@ -10,7 +10,7 @@ here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/.." && pwd)"
 corpus="$here/corpus"
 cd "$root"
-for t in read_obj read_ply read_off read_stl read_gltf read_glb dimacs door door_quads; do
+for t in read_obj read_ply read_off read_stl read_gltf read_glb dimacs door door_quads read_sequence; do
     mkdir -p "$corpus/$t"
 done
 
@@ -75,4 +75,15 @@ for a in 0 1 2 3 4 5 6 7; do
     printf "\\x$(printf %02x "$a")\\x40\\x15\\x51\\x26\\x62\\x37\\x84\\x59\\x95\\x6a\\xa6\\x7b\\xc8\\x9d\\xd9\\xae\\xea\\xbf" > "$q/grid_$a"
 done
 printf '\x02\x10\x32\x30\x54\x50\x76\x21\xf3' > "$q/fan_mixed"
+# 7. Collapse sequences, binary (first byte 0) and JSON (first byte 1), of small
+# generated meshes.
+r="$corpus/read_sequence"
+"$cli" gen icosphere 1 -o "$tmp/ico.obj"
+"$cli" gen grid 3 3 -o "$tmp/grid.obj"
+for m in ico grid; do
+    "$cli" simplify "$tmp/$m.obj" --ratio 0.3 -o "$tmp/${m}_s.obj" --sequence "$tmp/$m.bin" >/dev/null
+    "$cli" simplify "$tmp/$m.obj" --ratio 0.3 -o "$tmp/${m}_s.obj" --sequence "$tmp/$m.json" >/dev/null
+    { printf '\x00'; cat "$tmp/$m.bin"; } > "$r/$m.bin"
+    { printf '\x01'; cat "$tmp/$m.json"; } > "$r/$m.json"
+done
 echo "seeded: $(find "$corpus" -type f | wc -l) files in $corpus"

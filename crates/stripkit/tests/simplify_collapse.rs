@@ -230,3 +230,64 @@ fn pair_contraction_joins_close_pieces_only_when_asked() {
     assert!(joined(&on), "no pair across the gap was contracted");
     assert!(on.sequence.replay(&mesh, on.sequence.len()).unwrap().to_mesh() == on.mesh);
 }
+
+/// A hostile or damaged sequence file is refused by name and place, in both formats;
+/// a header announcing billions of collapses in a short file allocates nothing for them.
+#[test]
+fn damaged_sequence_files_are_refused_with_the_place() {
+    use std::path::Path;
+    let mesh = bumpy_sphere(2);
+    let s = run(&mesh, Placement::Optimal, Target::Ratio(0.5), None).sequence;
+    assert!(s.len() > 10);
+    let refused = |name: &str, bytes: &[u8]| -> String {
+        let e = CollapseSequence::read_bytes(Path::new(name), bytes).expect_err(name).to_string();
+        assert!(e.contains(name), "{e}");
+        e
+    };
+    let good = s.to_bytes();
+    assert!(CollapseSequence::read_bytes(Path::new("s.bin"), &good).unwrap() == s);
+    let json = serde_json::to_vec(&s).unwrap();
+    assert!(CollapseSequence::read_bytes(Path::new("s.json"), &json).unwrap() == s);
+
+    // Bytes after the last collapse.
+    let e = refused("tail.bin", &[&good[..], b"xyz"].concat());
+    assert!(e.contains("3 bytes follow the last"), "{e}");
+    // A header announcing 4 billion collapses in a short file.
+    let mut huge = good[..20].to_vec();
+    huge[16..20].copy_from_slice(&u32::MAX.to_le_bytes());
+    let e = refused("huge.bin", &huge);
+    assert!(e.contains("file ends inside collapse 0 of 4294967295"), "{e}");
+    // Each field of a collapse, edited in a copy of the sequence.
+    let edits: [(&str, fn(&mut CollapseSequence), &str); 5] = [
+        ("past.bin", |q| q.collapses[3].removed = q.vertex_count, "past the"),
+        ("self.bin", |q| q.collapses[3].kept = q.collapses[3].removed, "into itself"),
+        ("nan.bin", |q| q.collapses[3].position[1] = f32::NAN, "NaN or infinite"),
+        ("inf.bin", |q| q.collapses[3].error = f64::INFINITY, "NaN or infinite"),
+        ("tri.bin", |q| {
+            let o = q.removed_offsets[3] as usize;
+            q.removed_triangles[o] = q.triangle_count;
+        }, "removes triangle"),
+    ];
+    for (name, edit, want) in edits {
+        let mut q = s.clone();
+        edit(&mut q);
+        let e = refused(name, &q.to_bytes());
+        assert!(e.contains("collapse 3") && e.contains(want), "{e}");
+        let json_name = name.replace(".bin", ".json");
+        if name != "nan.bin" && name != "inf.bin" {
+            // (JSON has no NaN or infinity: serde writes null, refused as a type error.)
+            let e = refused(&json_name, &serde_json::to_vec(&q).unwrap());
+            assert!(e.contains("collapse 3") && e.contains(want), "{e}");
+        }
+    }
+    // More collapses than vertices can give.
+    let mut q = s.clone();
+    q.vertex_count = s.len() as u32;
+    let e = refused("many.bin", &q.to_bytes());
+    assert!(e.contains("collapses for"), "{e}");
+    // JSON offsets that do not match.
+    let mut q = s.clone();
+    q.removed_offsets[0] = 1;
+    let e = refused("offsets.json", &serde_json::to_vec(&q).unwrap());
+    assert!(e.contains("offsets do not match"), "{e}");
+}

@@ -157,29 +157,53 @@ impl CollapseSequence {
         }
     }
 
-    /// Reads a sequence written by [`CollapseSequence::write`].
+    /// Reads a sequence written by [`CollapseSequence::write`]: JSON for a `.json`
+    /// path, the binary layout below otherwise. See [`CollapseSequence::read_bytes`]
+    /// for what is checked.
     ///
     /// Binary layout (little-endian): magic `SKCOLSQ1`, `u32` vertex count, `u32`
     /// triangle count, `u32` collapse count, then per collapse `u32 removed, u32 kept,
     /// 3 x f32 position, f64 error, u32 n, n x u32 removed triangle ids`.
     pub fn read(path: &Path) -> Result<CollapseSequence> {
         let bytes = std::fs::read(path).map_err(|source| Error::Io { path: path.to_path_buf(), source })?;
+        Self::read_bytes(path, &bytes)
+    }
+
+    /// Decodes the bytes of a sequence file; `path` picks the format (JSON for
+    /// `.json`) and names the file in errors. Nothing is allocated beyond what the
+    /// bytes hold. Every collapse must name two different vertices below the vertex
+    /// count, with a finite position and error, and remove triangle ids below the
+    /// triangle count; there are fewer collapses than vertices, and nothing follows
+    /// the last collapse. Whether the collapses can happen in that order on a given
+    /// mesh is [`CollapseSequence::replay`]'s check.
+    pub fn read_bytes(path: &Path, bytes: &[u8]) -> Result<CollapseSequence> {
         let fmt = |at: String, what: &str| Error::Format { path: path.to_path_buf(), at, what: what.to_string() };
-        if is_json(path) {
-            let seq: CollapseSequence = serde_json::from_slice(&bytes).map_err(|e| {
+        let seq = if is_json(path) {
+            let seq: CollapseSequence = serde_json::from_slice(bytes).map_err(|e| {
                 Error::Format { path: path.to_path_buf(), at: format!("line {}", e.line()), what: e.to_string() }
             })?;
             if seq.removed_offsets.len() != seq.collapses.len() + 1
+                || seq.removed_offsets.first() != Some(&0)
                 || seq.removed_offsets.windows(2).any(|w| w[0] > w[1])
                 || seq.removed_offsets.last().map(|&x| x as usize) != Some(seq.removed_triangles.len())
             {
                 return Err(fmt("removed_offsets".into(), "offsets do not match the collapses and removed triangles"));
             }
-            return Ok(seq);
-        }
+            seq
+        } else {
+            Self::decode_binary(bytes, &fmt)?
+        };
+        seq.check(&fmt)?;
+        Ok(seq)
+    }
+
+    fn decode_binary(bytes: &[u8], fmt: &dyn Fn(String, &str) -> Error) -> Result<CollapseSequence> {
         let mut at = 0usize;
         let mut take = |n: usize, what: &str| -> Result<&[u8]> {
-            let s = bytes.get(at..at + n).ok_or_else(|| fmt(format!("byte {at}"), &format!("file ends inside {what}")))?;
+            let s = at
+                .checked_add(n)
+                .and_then(|end| bytes.get(at..end))
+                .ok_or_else(|| fmt(format!("byte {at}"), &format!("file ends inside {what}")))?;
             at += n;
             Ok(s)
         };
@@ -192,7 +216,7 @@ impl CollapseSequence {
         let count = u32_at(take(4, "the header")?);
         let mut seq = CollapseSequence::new(vertex_count, triangle_count);
         for i in 0..count {
-            let what = format!("collapse {i}");
+            let what = format!("collapse {i} of {count}");
             let r = take(32, &what)?;
             let f = |o: usize| f32::from_le_bytes([r[o], r[o + 1], r[o + 2], r[o + 3]]);
             let mut e = [0u8; 8];
@@ -209,7 +233,38 @@ impl CollapseSequence {
             seq.removed_triangles.extend(ids.chunks_exact(4).map(u32_at));
             seq.removed_offsets.push(seq.removed_triangles.len() as u32);
         }
+        if at != bytes.len() {
+            return Err(fmt(
+                format!("byte {at}"),
+                &format!("{} bytes follow the last of the {count} collapses", bytes.len() - at),
+            ));
+        }
         Ok(seq)
+    }
+
+    /// The per-collapse checks of [`CollapseSequence::read_bytes`].
+    fn check(&self, fmt: &dyn Fn(String, &str) -> Error) -> Result<()> {
+        if self.collapses.len() >= (self.vertex_count as usize).max(1) {
+            return Err(fmt(
+                "collapses".into(),
+                &format!("{} collapses for {} vertices (each removes one)", self.collapses.len(), self.vertex_count),
+            ));
+        }
+        for (i, c) in self.collapses.iter().enumerate() {
+            let what = if c.removed >= self.vertex_count || c.kept >= self.vertex_count {
+                format!("merges vertex {} into {}, past the {} vertices", c.removed, c.kept, self.vertex_count)
+            } else if c.removed == c.kept {
+                format!("merges vertex {} into itself", c.removed)
+            } else if !c.position.iter().all(|x| x.is_finite()) || !c.error.is_finite() {
+                "has a NaN or infinite position or error".to_string()
+            } else if let Some(t) = self.removed_by(i).iter().find(|&&t| t >= self.triangle_count) {
+                format!("removes triangle {t}, past the {} triangles", self.triangle_count)
+            } else {
+                continue;
+            };
+            return Err(fmt(format!("collapse {i}"), &what));
+        }
+        Ok(())
     }
 
     /// The binary encoding described at [`CollapseSequence::read`].
