@@ -366,3 +366,32 @@ fn qstrip_on_an_edge_with_three_quads_gives_verified_strips() {
         assert_eq!(s.figures.triangles, 26);
     }
 }
+
+/// Found by the `read_obj` fuzz target (63 faces, shrunk to these 4): quad 2 and its
+/// flipped copy 3 must take opposite diagonals, and quad 0 shares three vertices with
+/// both and one with quad 1's diagonal. Forcing pair by pair fixed quad 0's diagonal
+/// for the pair (0, 1) first and left quads 2 and 3 no way apart: a coincident
+/// triangle and `Error::Verification`. QSTRIP now solves such a cluster as a whole
+/// (2-SAT). The strips must hold no two triangles on the same three vertices.
+#[test]
+fn qstrip_solves_a_cluster_of_quads_that_pairwise_forcing_gets_wrong() {
+    let faces = [[2, 1, 7, 3], [0, 2, 3, 1], [2, 6, 7, 3], [2, 3, 7, 6]];
+    let mesh = Mesh::from_polygons(positions(8), &faces);
+    for algorithm in [Algorithm::Auto, Algorithm::qstrip()] {
+        let s = stripify(&mesh, &StripOptions::default().algorithm(algorithm.clone()))
+            .unwrap_or_else(|e| panic!("{}: {e}", algorithm.name()));
+        let mut sets: Vec<[u32; 3]> = unstripify(&s.restart_buffer(), s.restart_index)
+            .chunks_exact(3)
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+            .map(|t| {
+                let mut t = [t[0], t[1], t[2]];
+                t.sort_unstable();
+                t
+            })
+            .collect();
+        assert_eq!(sets.len(), 8, "{}", algorithm.name());
+        sets.sort_unstable();
+        sets.dedup();
+        assert_eq!(sets.len(), 8, "{}: coincident triangles", algorithm.name());
+    }
+}

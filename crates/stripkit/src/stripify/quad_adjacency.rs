@@ -89,6 +89,10 @@ impl QuadAdjacency<'_> {
         // vertices are known, so it takes a third: one of the other quad's far corners.
         let mut forced = vec![FREE; qcount];
         let mut forced_pairs = 0;
+        // Every pair that could give coincident triangles, and whether the pairwise
+        // forcing below painted itself into a corner.
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        let mut clash = false;
         for q1 in 0..qcount {
             for k in 0..4 {
                 let l = link[4 * q1 + k];
@@ -99,10 +103,13 @@ impl QuadAdjacency<'_> {
                 let k2 = (l & 3) as usize;
                 let far = [verts[4 * q2 + (k2 + 2) % 4], verts[4 * q2 + (k2 + 3) % 4]];
                 let mine = &verts[4 * q1..4 * q1 + 4];
-                if (mine.contains(&far[0]) || mine.contains(&far[1]))
-                    && force_pair(&verts, &mut forced, q1, q2)
-                {
-                    forced_pairs += 1;
+                if mine.contains(&far[0]) || mine.contains(&far[1]) {
+                    pairs.push((q1 as u32, q2 as u32));
+                    match force_pair(&verts, &mut forced, q1, q2) {
+                        Forcing::Forced => forced_pairs += 1,
+                        Forcing::Clash => clash = true,
+                        Forcing::Nothing => {}
+                    }
                 }
             }
         }
@@ -119,10 +126,29 @@ impl QuadAdjacency<'_> {
                     let a = &verts[4 * q1..4 * q1 + 4];
                     let b = &verts[4 * q2..4 * q2 + 4];
                     let common = a.iter().filter(|v| b.contains(v)).count();
-                    if common >= 3 && force_pair(&verts, &mut forced, q1, q2) {
-                        forced_pairs += 1;
+                    if common >= 3 {
+                        pairs.push((q1 as u32, q2 as u32));
+                        match force_pair(&verts, &mut forced, q1, q2) {
+                            Forcing::Forced => forced_pairs += 1,
+                            Forcing::Clash => clash = true,
+                            Forcing::Nothing => {}
+                        }
                     }
                 }
+            }
+        }
+        if clash {
+            // Forcing pair by pair chose a diagonal that a later pair could not live
+            // with (a cluster of quads on a few shared vertices). Solve the whole
+            // cluster at once; if even that has no answer, the input forces a
+            // coincidence and the pairwise choice stands.
+            let quads: Vec<&[u32]> = (0..qcount).map(|q| &verts[4 * q..4 * q + 4]).collect();
+            if let Some(d) = solve_diagonals(&quads, &pairs) {
+                for &(a, b) in &pairs {
+                    forced[a as usize] = d[a as usize];
+                    forced[b as usize] = d[b as usize];
+                }
+                forced_pairs = pairs.len();
             }
         }
         QuadAdjacency {
@@ -170,15 +196,25 @@ pub(super) fn coincide(a: &[u32], da: u8, b: &[u32], db: u8) -> bool {
     ta.iter().any(|t| tb.contains(t))
 }
 
+/// What [`force_pair`] did.
+enum Forcing {
+    /// The pair was fine as it was.
+    Nothing,
+    /// One or both diagonals were forced.
+    Forced,
+    /// Both were already forced into a clash.
+    Clash,
+}
+
 /// Forces diagonals of `q1`, `q2` so that no triangle of one lies on the same three
-/// vertices as a triangle of the other. Returns whether anything was forced.
-fn force_pair(verts: &[u32], forced: &mut [u8], q1: usize, q2: usize) -> bool {
+/// vertices as a triangle of the other.
+fn force_pair(verts: &[u32], forced: &mut [u8], q1: usize, q2: usize) -> Forcing {
     let a = &verts[4 * q1..4 * q1 + 4];
     let b = &verts[4 * q2..4 * q2 + 4];
     if same_quad(a, b) {
         // A quad listed twice: forcing its copies apart would gain nothing (their
         // triangles may coincide) and could force a clash with a real neighbour.
-        return false;
+        return Forcing::Nothing;
     }
     let options = |f: u8| if f == FREE { vec![0u8, 1] } else { vec![f] };
     let bad = |d1: u8, d2: u8| coincide(a, d1, b, d2);
@@ -186,19 +222,19 @@ fn force_pair(verts: &[u32], forced: &mut [u8], q1: usize, q2: usize) -> bool {
         .iter()
         .all(|&d1| options(forced[q2]).iter().all(|&d2| !bad(d1, d2)))
     {
-        return false;
+        return Forcing::Nothing;
     }
     // Prefer forcing one quad only: a diagonal of q1 that suits every choice of q2.
     for d1 in options(forced[q1]) {
         if options(forced[q2]).iter().all(|&d2| !bad(d1, d2)) {
             forced[q1] = d1;
-            return true;
+            return Forcing::Forced;
         }
     }
     for d2 in options(forced[q2]) {
         if options(forced[q1]).iter().all(|&d1| !bad(d1, d2)) {
             forced[q2] = d2;
-            return true;
+            return Forcing::Forced;
         }
     }
     for d1 in options(forced[q1]) {
@@ -206,10 +242,179 @@ fn force_pair(verts: &[u32], forced: &mut [u8], q1: usize, q2: usize) -> bool {
             if !bad(d1, d2) {
                 forced[q1] = d1;
                 forced[q2] = d2;
-                return true;
+                return Forcing::Forced;
             }
         }
     }
-    // Both already forced into a clash (a pathological cluster); verification reports it.
-    false
+    // Both already forced into a clash: a cluster that `build` solves as a whole.
+    Forcing::Clash
+}
+
+/// A diagonal for every quad of `pairs` such that no pair gives two triangles on the
+/// same three vertices, or `None` when there is none (the input then forces a
+/// coincidence). Pairs that are one face listed twice, or that clash under every
+/// choice, are left out: no choice helps them. `quads[q]` are quad `q`'s four vertices; the answer is indexed like
+/// `quads` (0: v0-v2, 1: v1-v3; quads in no pair get 0).
+///
+/// One boolean per quad (its diagonal) and one two-literal clause per clashing
+/// combination of a pair: 2-SAT, solved in time linear in the pairs by the strongly
+/// connected components of the implication graph (Tarjan, iterative).
+pub(super) fn solve_diagonals(quads: &[&[u32]], pairs: &[(u32, u32)]) -> Option<Vec<u8>> {
+    let n = quads.len();
+    // Literal 2q + d: "quad q uses diagonal d"; its negation is 2q + 1 - d.
+    let mut implications: Vec<(u32, u32)> = Vec::new();
+    for &(a, b) in pairs {
+        let (qa, qb) = (quads[a as usize], quads[b as usize]);
+        let clashes = |da, db| coincide(qa, da, qb, db);
+        if same_quad(qa, qb) || (0..2).all(|da| (0..2).all(|db| clashes(da, db))) {
+            // One face listed twice, or a pair that clashes whatever the diagonals:
+            // the input's coincidence, which no choice removes.
+            continue;
+        }
+        for da in 0..2u8 {
+            for db in 0..2u8 {
+                if coincide(qa, da, qb, db) {
+                    // Not both: a=da implies b!=db, and b=db implies a!=da.
+                    let (la, lb) = (2 * a + da as u32, 2 * b + db as u32);
+                    implications.push((la, lb ^ 1));
+                    implications.push((lb, la ^ 1));
+                }
+            }
+        }
+    }
+    let nodes = 2 * n;
+    let mut start = vec![0u32; nodes + 1];
+    for &(from, _) in &implications {
+        start[from as usize + 1] += 1;
+    }
+    for i in 0..nodes {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut next = vec![0u32; implications.len()];
+    for &(from, to) in &implications {
+        next[fill[from as usize] as usize] = to;
+        fill[from as usize] += 1;
+    }
+    // Tarjan: components numbered in the order they complete (sinks first).
+    const UNSEEN: u32 = u32::MAX;
+    let mut index = vec![UNSEEN; nodes];
+    let mut low = vec![0u32; nodes];
+    let mut comp = vec![UNSEEN; nodes];
+    let mut on_stack = vec![false; nodes];
+    let mut stack: Vec<u32> = Vec::new();
+    let mut calls: Vec<(u32, u32)> = Vec::new();
+    let (mut counter, mut comps) = (0u32, 0u32);
+    for root in 0..nodes as u32 {
+        if index[root as usize] != UNSEEN {
+            continue;
+        }
+        calls.push((root, start[root as usize]));
+        index[root as usize] = counter;
+        low[root as usize] = counter;
+        counter += 1;
+        stack.push(root);
+        on_stack[root as usize] = true;
+        while let Some(&mut (v, ref mut e)) = calls.last_mut() {
+            if *e < start[v as usize + 1] {
+                let w = next[*e as usize];
+                *e += 1;
+                if index[w as usize] == UNSEEN {
+                    index[w as usize] = counter;
+                    low[w as usize] = counter;
+                    counter += 1;
+                    stack.push(w);
+                    on_stack[w as usize] = true;
+                    calls.push((w, start[w as usize]));
+                } else if on_stack[w as usize] {
+                    low[v as usize] = low[v as usize].min(index[w as usize]);
+                }
+                continue;
+            }
+            calls.pop();
+            if let Some(&(parent, _)) = calls.last() {
+                low[parent as usize] = low[parent as usize].min(low[v as usize]);
+            }
+            if low[v as usize] == index[v as usize] {
+                while let Some(w) = stack.pop() {
+                    on_stack[w as usize] = false;
+                    comp[w as usize] = comps;
+                    if w == v {
+                        break;
+                    }
+                }
+                comps += 1;
+            }
+        }
+    }
+    // A literal whose component completes first (nearer a sink) is the one to make
+    // true; a quad whose two literals share a component has no consistent diagonal.
+    (0..n)
+        .map(|q| {
+            let (c0, c1) = (comp[2 * q], comp[2 * q + 1]);
+            (c0 != c1).then_some(u8::from(c1 < c0))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Brute force over every choice of diagonals: some choice leaves no pair (other
+    /// than copies and pairs that clash whatever the choice) with coincident triangles.
+    fn brute(quads: &[&[u32]], pairs: &[(u32, u32)]) -> bool {
+        let counted: Vec<(usize, usize)> = pairs
+            .iter()
+            .map(|&(a, b)| (a as usize, b as usize))
+            .filter(|&(a, b)| {
+                !same_quad(quads[a], quads[b])
+                    && !(0..2).all(|da| (0..2).all(|db| coincide(quads[a], da, quads[b], db)))
+            })
+            .collect();
+        (0..1u32 << quads.len()).any(|bits| {
+            let d = |q: usize| (bits >> q & 1) as u8;
+            counted.iter().all(|&(a, b)| !coincide(quads[a], d(a), quads[b], d(b)))
+        })
+    }
+
+    #[test]
+    fn solve_diagonals_agrees_with_brute_force_on_random_clusters() {
+        let mut x = 0x9E37_79B9u32;
+        let mut rnd = |n: u32| {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x % n
+        };
+        let (mut sat, mut unsat) = (0, 0);
+        for _ in 0..3000 {
+            let k = 2 + rnd(7) as usize;
+            let flat: Vec<[u32; 4]> = (0..k)
+                .map(|_| loop {
+                    let q = [rnd(6), rnd(6), rnd(6), rnd(6)];
+                    if is_quad(&q) {
+                        break q;
+                    }
+                })
+                .collect();
+            let quads: Vec<&[u32]> = flat.iter().map(|q| &q[..]).collect();
+            let pairs: Vec<(u32, u32)> =
+                (0..k as u32).flat_map(|a| (a + 1..k as u32).map(move |b| (a, b))).collect();
+            let got = solve_diagonals(&quads, &pairs);
+            assert_eq!(got.is_some(), brute(&quads, &pairs), "{flat:?}");
+            if let Some(d) = got {
+                sat += 1;
+                for &(a, b) in &pairs {
+                    let (qa, qb) = (quads[a as usize], quads[b as usize]);
+                    let hopeless = same_quad(qa, qb) || (0..2).all(|da| (0..2).all(|db| coincide(qa, da, qb, db)));
+                    assert!(hopeless || !coincide(qa, d[a as usize], qb, d[b as usize]), "{flat:?} {d:?}");
+                }
+            } else {
+                unsat += 1;
+            }
+        }
+        // Both answers occur, so both branches were compared.
+        assert!(sat > 100 && unsat > 100, "{sat} solvable, {unsat} not");
+    }
 }

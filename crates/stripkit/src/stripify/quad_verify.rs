@@ -11,14 +11,16 @@
 //! * no output triangle is left over;
 //! * no two triangles that come from quads lie on the same three vertices (the
 //!   "incorrect triangle" two quads sharing two edges can produce), unless every
-//!   choice of diagonals for that pair of quads clashes (the input forces it) or the
+//!   choice of diagonals for that pair of quads clashes (the input forces it), the
 //!   two quads are one face listed twice (same vertices in the same cyclic order: the
-//!   duplicate is the input's, and each copy is covered on its own).
+//!   duplicate is the input's, and each copy is covered on its own), or no choice of
+//!   diagonals for all the quads at once avoids every coincidence (a cluster of quads
+//!   on a few vertices, checked only when a coincidence is found).
 //!
 //! Independent of how the strips were built: it only decodes them by the METRICS.md
 //! rule. O(T) expected time with hashing.
 
-use super::quad_adjacency::{coincide, is_quad, same_quad, split};
+use super::quad_adjacency::{coincide, is_quad, same_quad, solve_diagonals, split};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::strip::{canonical, for_each_triangle, StripSet};
@@ -169,7 +171,7 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
     for w in quad_sets.windows(2) {
         let ((t, f1), (u, f2)) = (w[0], w[1]);
         let (a, b) = (mesh.face(f1 as usize), mesh.face(f2 as usize));
-        if t == u && f1 != f2 && !same_quad(a, b) && avoidable(a, b) {
+        if t == u && f1 != f2 && !same_quad(a, b) && avoidable(a, b) && solvable(mesh) {
             return Err(Error::Verification(format!(
                 "quad faces {f1} and {f2} give coincident triangles on vertices ({}, {}, {}); \
                  another choice of diagonals avoids it",
@@ -178,6 +180,33 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
         }
     }
     Ok(check)
+}
+
+/// True when some choice of diagonals for all quads of `mesh` at once gives no
+/// avoidable coincidence: the pairs are the quads that share one of their four
+/// possible triangles (so three vertices).
+fn solvable(mesh: &Mesh) -> bool {
+    let quads: Vec<(usize, &[u32])> = mesh.faces().enumerate().filter(|(_, f)| is_quad(f)).collect();
+    let mut by_triangle: HashMap<[u32; 3], Vec<u32>> = HashMap::new();
+    for (i, (_, v)) in quads.iter().enumerate() {
+        for d in 0..2 {
+            for mut t in split(v, d) {
+                t.sort_unstable();
+                let list = by_triangle.entry(t).or_default();
+                if list.last() != Some(&(i as u32)) {
+                    list.push(i as u32);
+                }
+            }
+        }
+    }
+    let mut pairs: Vec<(u32, u32)> = by_triangle
+        .values()
+        .flat_map(|list| (0..list.len()).flat_map(move |i| list[i + 1..].iter().map(move |&b| (list[i], b))))
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    let verts: Vec<&[u32]> = quads.iter().map(|&(_, v)| v).collect();
+    solve_diagonals(&verts, &pairs).is_some()
 }
 
 /// True when some choice of diagonals for quads `a` and `b` gives no two triangles on
