@@ -3,9 +3,10 @@
 //! QSTRIP and quad-single included. Byte 0 picks the algorithm; every further pair of
 //! bytes is one face of 16 vertices: four nibbles, a quad, or a triangle when the last
 //! nibble is 15. `stripify` must give Ok (its own verification passed) or
-//! `Error::Invalid`; every non-degenerate triangle of the restart buffer must then lie
-//! on one input face, in that face's cyclic order (a quad's triangles come from one
-//! of its two diagonals), and there are no more of them than the faces hold.
+//! `Error::Invalid`; every non-degenerate triangle of the restart buffer must then be
+//! one a face may give (a quad of four distinct vertices: a triangle of either
+//! diagonal; any other face: a fan triangle), with its orientation, and there are no
+//! more of them than the faces hold.
 
 use libfuzzer_sys::fuzz_target;
 use stripkit::{stripify, unstripify, Algorithm, Error, Mesh, StripOptions};
@@ -42,18 +43,26 @@ fuzz_target!(|data: &[u8]| {
         Err(Error::Invalid(_)) => return,
         Err(e) => panic!("{}: {e}", algorithm.name()),
     };
-    let on_a_face = |t: &[u32; 3]| {
-        faces.iter().any(|f| {
-            let n = f.len();
-            (0..n).any(|i| {
-                f[i] == t[0] && {
-                    let j = (1..n).find(|&d| f[(i + d) % n] == t[1]);
-                    let k = (1..n).find(|&d| f[(i + d) % n] == t[2]);
-                    matches!((j, k), (Some(j), Some(k)) if j < k)
-                }
-            })
-        })
+    // The triangles a face may give, up to rotation: a quad of four distinct
+    // vertices either diagonal's pair, any other face its fan (v0, vi, vi+1).
+    let rot = |t: [u32; 3]| {
+        let r = (0..3).min_by_key(|&i| t[i]).unwrap();
+        [t[r], t[(r + 1) % 3], t[(r + 2) % 3]]
     };
+    let mut allowed: Vec<[u32; 3]> = Vec::new();
+    for f in &faces {
+        let distinct = f.len() == 4 && (0..4).all(|i| (i + 1..4).all(|j| f[i] != f[j]));
+        if distinct {
+            for d in 0..2 {
+                allowed.push(rot([f[d], f[d + 1], f[(d + 2) % 4]]));
+                allowed.push(rot([f[d], f[(d + 2) % 4], f[(d + 3) % 4]]));
+            }
+        } else {
+            allowed.extend((1..f.len() - 1).map(|i| rot([f[0], f[i], f[i + 1]])));
+        }
+    }
+    allowed.sort_unstable();
+    let on_a_face = |t: &[u32; 3]| allowed.binary_search(&rot(*t)).is_ok();
     let drawn: Vec<[u32; 3]> = unstripify(&strips.restart_buffer(), strips.restart_index)
         .chunks_exact(3)
         .map(|t| [t[0], t[1], t[2]])
