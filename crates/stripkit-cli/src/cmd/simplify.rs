@@ -61,6 +61,8 @@ pub struct Args {
     /// Print one JSON object (triangles_in, triangles_out, collapses, max_error, ms) on stdout.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub read: super::ReadArgs,
 }
 
 /// Runs the command.
@@ -85,7 +87,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .into());
         }
     }
-    let mesh = stripkit::io::read(&args.file)?;
+    let mesh = args.read.read(&args.file)?;
     let options = Options {
         target,
         placement,
