@@ -181,3 +181,25 @@ fn max_memory_takes_sizes_and_leaves_valid_files_alone() {
         assert!(String::from_utf8_lossy(&run.stderr).contains("--max-memory"), "{bad}");
     }
 }
+
+#[test]
+fn simplify_pair_distances_are_range_checked_before_reading() {
+    // NaN, negative and infinite distances were accepted and silently found no pair.
+    let f = tmp("budgets", "pairs_quad.obj");
+    std::fs::write(&f, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+    let out = tmp("budgets", "pairs_never.obj");
+    let (f, o) = (f.to_str().unwrap(), out.to_str().unwrap());
+    for d in ["NaN", "-1", "inf", "-inf", "1e400"] {
+        let arg = format!("--pair-distance={d}");
+        let shown = d.parse::<f64>().unwrap();
+        refused(
+            &["simplify", f, "--ratio", "0.5", "-o", o, &arg],
+            &[&format!("--pair-distance {shown} is out of range: a finite distance, 0 or more")],
+        );
+        // Before the mesh is read: a missing file is not what the message says.
+        refused(&["simplify", "no-such-mesh.obj", "--ratio", "0.5", "-o", o, &arg], &["--pair-distance"]);
+    }
+    assert!(!out.exists());
+    let (run, _) = stripkit_1gib(&["simplify", f, "--ratio", "0.5", "-o", o, "--pair-distance", "0"]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+}

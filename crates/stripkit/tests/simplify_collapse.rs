@@ -230,3 +230,19 @@ fn pair_contraction_joins_close_pieces_only_when_asked() {
     assert!(joined(&on), "no pair across the gap was contracted");
     assert!(on.sequence.replay(&mesh, on.sequence.len()).unwrap().to_mesh() == on.mesh);
 }
+
+#[test]
+fn pair_distances_that_are_not_finite_non_negative_numbers_are_refused() {
+    // NaN, negative and infinite distances were taken silently as "no pairs".
+    let mesh = bumpy_sphere(1);
+    for d in [f64::NAN, -0.5, f64::INFINITY, f64::NEG_INFINITY] {
+        let opts = Options { pair_distance: Some(d), ..Options::default() };
+        let e = simplify(&mesh, &opts, &mut |_| {}).unwrap_err();
+        assert!(matches!(e, stripkit::Error::Invalid(_)), "{d}: {e:?}");
+        assert!(e.to_string().contains(&format!("pair distance {d} is not a finite non-negative number")), "{e}");
+    }
+    // 0 finds no pair: the same result as without pairs.
+    let off = run(&mesh, Placement::Endpoint, Target::Ratio(0.5), None);
+    let opts = Options { target: Target::Ratio(0.5), pair_distance: Some(0.0), ..Options::default() };
+    assert_eq!(simplify(&mesh, &opts, &mut |_| {}).unwrap().mesh, off.mesh);
+}

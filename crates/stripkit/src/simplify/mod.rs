@@ -75,7 +75,8 @@ pub struct Options {
     pub boundary_weight: f64,
     /// QSlim's pair contraction: also consider vertex pairs closer than this distance
     /// that share no edge (joins separate pieces; may create non-manifold vertices).
-    /// `None` (the default) contracts edges only.
+    /// `None` (the default) contracts edges only. Must be finite and not negative
+    /// (0 finds no pair); anything else is [`Error::Invalid`].
     pub pair_distance: Option<f64>,
     /// Stop after this many collapses in any case.
     pub max_collapses: Option<usize>,
@@ -132,6 +133,11 @@ pub fn simplify(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64)) -
     }
     if !(options.boundary_weight >= 0.0 && options.boundary_weight.is_finite()) {
         return Err(Error::Invalid(format!("boundary weight {} is not a finite non-negative number", options.boundary_weight)));
+    }
+    if let Some(d) = options.pair_distance {
+        if !(d >= 0.0 && d.is_finite()) {
+            return Err(Error::Invalid(format!("pair distance {d} is not a finite non-negative number")));
+        }
     }
     let n = mesh.positions.len();
     if mesh.face_indices.iter().any(|&v| v as usize >= n) {
