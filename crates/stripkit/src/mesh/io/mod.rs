@@ -124,7 +124,9 @@ pub struct ReadOptions {
     /// sets the limit to `n` bytes instead, to raise it for an asset that
     /// legitimately reuses its data many times or to lower it. The other formats need
     /// bytes in the file for every vertex and face index, so their meshes are bounded
-    /// by the (decompressed) file's size and this option does not apply to them.
+    /// by the (decompressed) file's size and this option does not apply to them. The
+    /// limit counts the mesh's content; its vectors grow by doubling, so the memory
+    /// they reserve can reach twice that while reading.
     pub max_decoded_bytes: Option<u64>,
 }
 
