@@ -220,3 +220,32 @@ fn simplify_pair_distances_that_pair_everything_are_refused() {
     );
     assert!(!out.exists());
 }
+
+#[test]
+fn a_sibling_file_listed_by_100_buffers_is_read_once_and_decoded_within_the_budget() {
+    // "One sibling file listed 100 times as a buffer used 4.9 GB": each buffer read its
+    // own copy. Now the file is read once (4.8 MB here) and 100 accessors decoding it
+    // whole are charged against its bytes counted once: refused at the 33rd, 164 MB
+    // peak, where --max-memory 8G decodes all 480 MB (790 MB peak).
+    let dir = tmp("budgets", "sibling");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (n, len) = (400_000usize, 4_800_000usize);
+    std::fs::write(dir.join("big.bin"), vec![0u8; len]).unwrap();
+    let list = |f: &dyn Fn(usize) -> String| (0..100).map(f).collect::<Vec<_>>().join(",");
+    let gltf = format!(
+        r#"{{"asset":{{"version":"2.0"}},"buffers":[{}],"bufferViews":[{}],"accessors":[{}],"meshes":[{{"primitives":[{}]}}]}}"#,
+        list(&|_| format!(r#"{{"byteLength":{len},"uri":"big.bin"}}"#)),
+        list(&|b| format!(r#"{{"buffer":{b},"byteLength":{len}}}"#)),
+        list(&|v| format!(r#"{{"bufferView":{v},"componentType":5126,"count":{n},"type":"VEC3"}}"#)),
+        list(&|k| format!(r#"{{"attributes":{{"POSITION":{k}}},"mode":0}}"#)),
+    );
+    let path = dir.join("many.gltf");
+    std::fs::write(&path, gltf).unwrap();
+    let name = path.to_str().unwrap();
+    refused(
+        &["stats", name],
+        &[&format!("{name}: meshes[0].primitives[32]: decoding accessors[32]: 400000 vertices"), "32 x the file's 4800000 buffer bytes"],
+    );
+    // A ceiling below the file itself refuses the external buffer before reading it.
+    refused(&["stats", name, "--max-memory", "4M"], &["buffers[0]", "exceeds the limit of 4194304 bytes", "--max-memory"]);
+}
