@@ -138,3 +138,17 @@ fn weights_beyond_the_range_exit_2_naming_the_file_and_line() {
     assert_eq!(v["total_weight"], -1_099_511_627_776i64);
     assert_eq!(v["certified"], true);
 }
+
+#[test]
+fn a_byte_order_mark_is_read_and_other_bytes_are_placed() {
+    let f = tmp("bom.dimacs");
+    std::fs::write(&f, b"\xEF\xBB\xBFp edge 2 1\ne 1 2 5\n").unwrap();
+    let v = json(&["match", f.to_str().unwrap(), "--json"]);
+    assert_eq!(v["total_weight"], 5, "{v}");
+    let f = tmp("latin1.dimacs");
+    std::fs::write(&f, b"p edge 2 1\nc Jos\xE9\ne 1 2 5\n").unwrap();
+    let (code, out, err) = stripkit(&["match", f.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(out.is_empty());
+    assert!(err.contains("latin1.dimacs: line 2: byte 0xE9 at column 6"), "{err}");
+}

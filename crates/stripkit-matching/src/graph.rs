@@ -118,11 +118,14 @@ impl Graph {
         &self.adj[self.offsets[v] as usize..self.offsets[v + 1] as usize]
     }
 
-    /// Reads a DIMACS-style graph file (see [`Graph::parse_dimacs`]).
+    /// Reads a DIMACS-style graph file (see [`Graph::parse_dimacs`]). The file must be
+    /// UTF-8 text (a leading byte order mark is skipped); other bytes are an
+    /// [`Error::Format`] naming the line that holds them, and UTF-16 is refused by
+    /// name.
     pub fn read_dimacs(path: &Path) -> Result<Graph> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|source| Error::Io { path: path.to_path_buf(), source })?;
-        Graph::parse_dimacs(&text, path)
+        let bytes = std::fs::read(path).map_err(|source| Error::Io { path: path.to_path_buf(), source })?;
+        let text = dimacs_text(&bytes, path)?;
+        Graph::parse_dimacs(text, path)
     }
 
     /// Parses DIMACS-style text: comment lines `c ...`, blank lines, one problem line
@@ -130,8 +133,10 @@ impl Graph {
     /// lines `e U V W` with 1-based vertices and integer weights. `path` only names
     /// the file in errors. Counts are checked against the lines, never trusted for
     /// allocation beyond what the text itself can hold: the node count `N` may be at
-    /// most `2 * M + DIMACS_SPARE_NODES` (see [`DIMACS_SPARE_NODES`]).
+    /// most `2 * M + DIMACS_SPARE_NODES` (see [`DIMACS_SPARE_NODES`]). A leading
+    /// byte order mark (U+FEFF) is skipped.
     pub fn parse_dimacs(text: &str, path: &Path) -> Result<Graph> {
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let err = |line: usize, what: String| Error::Format {
             path: path.to_path_buf(),
             at: format!("line {line}"),
@@ -246,6 +251,28 @@ impl Graph {
         }
         s
     }
+}
+
+/// The text of a DIMACS file's bytes: UTF-8 (a byte order mark is left for
+/// [`Graph::parse_dimacs`] to skip), or an error naming the line of the first bytes
+/// that are not, or saying the file is UTF-16.
+fn dimacs_text<'a>(bytes: &'a [u8], path: &Path) -> Result<&'a str> {
+    let format = |at: String, what: String| Error::Format { path: path.to_path_buf(), at, what };
+    if let Some(kind) = [(&[0xFF, 0xFE], "UTF-16 little-endian"), (&[0xFE, 0xFF], "UTF-16 big-endian")]
+        .iter()
+        .find_map(|(bom, kind)| bytes.starts_with(*bom).then_some(*kind))
+    {
+        return Err(format("line 1".into(), format!("the file is {kind} text; save it as UTF-8 (or ASCII)")));
+    }
+    std::str::from_utf8(bytes).map_err(|e| {
+        let at = e.valid_up_to();
+        let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
+        let column = 1 + at - bytes[..at].iter().rposition(|&b| b == b'\n').map_or(0, |p| p + 1);
+        format(
+            format!("line {line}"),
+            format!("byte 0x{:02X} at column {column} (file offset {at}) is not UTF-8 text", bytes[at]),
+        )
+    })
 }
 
 /// Scales floating-point weights to the integers the solvers work with: each weight

@@ -124,3 +124,43 @@ fn node_count_is_bounded_by_the_edge_lines() {
     assert!(e.contains("line 1: node count 2000000000 is more than the 1 edge lines can use"), "{e}");
     assert!(start.elapsed().as_secs_f64() < 1.0);
 }
+
+/// Writes `bytes` to a fresh file and reads it as a graph file.
+fn read_bytes(name: &str, bytes: &[u8]) -> Result<Graph, Error> {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("matching_dimacs");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    Graph::read_dimacs(&path)
+}
+
+#[test]
+fn a_utf8_byte_order_mark_is_skipped() {
+    // It used to hide the problem line: "line 1: unknown line type `\u{feff}p`".
+    let plain = parse("p edge 2 1\ne 1 2 5\n").unwrap();
+    assert_eq!(parse("\u{feff}p edge 2 1\ne 1 2 5\n").unwrap(), plain);
+    assert_eq!(read_bytes("bom.dimacs", b"\xEF\xBB\xBFp edge 2 1\ne 1 2 5\n").unwrap(), plain);
+    assert_eq!(read_bytes("bom_comment.dimacs", b"\xEF\xBB\xBFc first\np edge 2 1\ne 1 2 5\n").unwrap(), plain);
+    // Only at the start: elsewhere it is still an unknown line.
+    assert!(err("p edge 2 1\n\u{feff}e 1 2 5\n").contains("line 2: unknown line type"));
+}
+
+#[test]
+fn bytes_that_are_not_utf8_are_refused_naming_their_line() {
+    // read_to_string's "stream did not contain valid UTF-8" named no line.
+    let e = read_bytes("latin1.dimacs", b"c caf\xE9\np edge 2 1\ne 1 2 5\n").unwrap_err();
+    let msg = e.to_string();
+    assert!(matches!(e, Error::Format { .. }), "{e:?}");
+    assert!(msg.contains("latin1.dimacs: line 1: byte 0xE9 at column 6 (file offset 5) is not UTF-8 text"), "{msg}");
+    let e = read_bytes("late.dimacs", b"p edge 2 1\r\ne 1 2 5\n\xFF\n").unwrap_err().to_string();
+    assert!(e.contains("late.dimacs: line 3: byte 0xFF at column 1 (file offset 20)"), "{e}");
+    // A multi-byte sequence cut short by the end of the file.
+    let e = read_bytes("cut.dimacs", b"p edge 2 1\ne 1 2 5\nc \xE2\x82").unwrap_err().to_string();
+    assert!(e.contains("cut.dimacs: line 3: byte 0xE2 at column 3"), "{e}");
+    for (bom, kind) in [(&[0xFFu8, 0xFE], "UTF-16 little-endian"), (&[0xFE, 0xFF], "UTF-16 big-endian")] {
+        let mut bytes = bom.to_vec();
+        bytes.extend("p edge 2 1\n".bytes().flat_map(|b| [b, 0]));
+        let e = read_bytes("wide.dimacs", &bytes).unwrap_err().to_string();
+        assert!(e.contains(&format!("wide.dimacs: line 1: the file is {kind} text")), "{e}");
+    }
+}

@@ -291,3 +291,33 @@ fn damaged_sequence_files_are_refused_with_the_place() {
     let e = refused("offsets.json", &serde_json::to_vec(&q).unwrap());
     assert!(e.contains("offsets do not match"), "{e}");
 }
+
+#[test]
+fn pair_distances_that_are_not_finite_non_negative_numbers_are_refused() {
+    // NaN, negative and infinite distances were taken silently as "no pairs".
+    let mesh = bumpy_sphere(1);
+    for d in [f64::NAN, -0.5, f64::INFINITY, f64::NEG_INFINITY] {
+        let opts = Options { pair_distance: Some(d), ..Options::default() };
+        let e = simplify(&mesh, &opts, &mut |_| {}).unwrap_err();
+        assert!(matches!(e, stripkit::Error::Invalid(_)), "{d}: {e:?}");
+        assert!(e.to_string().contains(&format!("pair distance {d} is not a finite non-negative number")), "{e}");
+    }
+    // 0 finds no pair: the same result as without pairs.
+    let off = run(&mesh, Placement::Endpoint, Target::Ratio(0.5), None);
+    let opts = Options { target: Target::Ratio(0.5), pair_distance: Some(0.0), ..Options::default() };
+    assert_eq!(simplify(&mesh, &opts, &mut |_| {}).unwrap().mesh, off.mesh);
+}
+
+#[test]
+fn a_pair_distance_that_pairs_everything_is_refused_before_queueing() {
+    // A distance as large as the mesh paired every vertex with every other:
+    // `--pair-distance 0.05` on the 35,000-vertex bunny asked for 1 GiB at once.
+    let mesh = bumpy_sphere(5);
+    let used = mesh.positions.len();
+    assert!(used * used / 2 > 128 * used + (1 << 20), "{used} vertices are too few for the test");
+    let opts = Options { pair_distance: Some(1e30), ..Options::default() };
+    let e = simplify(&mesh, &opts, &mut |_| {}).unwrap_err();
+    assert!(matches!(e, stripkit::Error::Invalid(_)), "{e:?}");
+    let limit = 128 * used + (1 << 20);
+    assert!(e.to_string().contains(&format!("finds more than {limit} vertex pairs")), "{e}");
+}

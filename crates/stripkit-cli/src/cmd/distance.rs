@@ -18,6 +18,8 @@ pub struct Args {
     /// one-sided figures, ms) on stdout.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub read: super::ReadArgs,
 }
 
 /// Runs the command.
@@ -29,8 +31,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "--samples {} is out of range: 1 to {max} (each sample takes 24 bytes, on both surfaces)",
         args.samples
     );
-    let a = stripkit::io::read(&args.a)?;
-    let b = stripkit::io::read(&args.b)?;
+    let a = args.read.read(&args.a)?;
+    let b = args.read.read(&args.b)?;
     let start = Instant::now();
     let d = stripkit::distance::distance(&a, &b, args.samples)?;
     let ms = start.elapsed().as_secs_f64() * 1e3;

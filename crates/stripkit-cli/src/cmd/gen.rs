@@ -96,6 +96,8 @@ enum What {
         /// Output file; the extension picks the format.
         #[arg(short, long)]
         output: PathBuf,
+        #[command(flatten)]
+        read: super::ReadArgs,
     },
 }
 
@@ -143,8 +145,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let mesh = subdivide(gen::cube(), Scheme::CatmullClark, levels)?;
             (mesh, output, format!("cube, {levels} Catmull-Clark levels"))
         }
-        What::Subdivide { file, scheme, levels, output } => {
-            let mesh = stripkit::io::read(&file)?;
+        What::Subdivide { file, scheme, levels, output, read } => {
+            let mesh = read.read(&file)?;
             check_size(grown(mesh.face_indices.len() as u64, levels, &file.display().to_string())?, 0)?;
             let name = match scheme {
                 Scheme::Loop => "Loop",

@@ -50,13 +50,15 @@ pub struct Args {
     /// Also write the matched edges, one `U V W` line each (1-based), to this file.
     #[arg(long, short, value_name = "FILE")]
     pub output: Option<PathBuf>,
+    #[command(flatten)]
+    pub read: super::ReadArgs,
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let t0 = Instant::now();
     let (graph, source) = if let Some(mesh_path) = &args.dual {
-        let mesh = stripkit::io::read(mesh_path)?;
+        let mesh = args.read.read(mesh_path)?;
         let w = match args.weights {
             WeightKind::Uniform => DualWeights::Uniform,
             WeightKind::Random => DualWeights::Random { seed: args.seed },

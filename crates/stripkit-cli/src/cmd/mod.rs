@@ -7,7 +7,60 @@ pub mod simplify;
 pub mod stats;
 pub mod strip;
 
+use std::path::Path;
 use std::process::ExitCode;
+
+/// The memory ceiling for reading meshes, shared by every command that reads one.
+#[derive(clap::Args, Clone, Debug, Default)]
+pub struct ReadArgs {
+    /// Memory ceiling for reading each input mesh, in bytes or with a binary suffix
+    /// (K, M, G, T: 512M, 8G). It sets three limits at once: how far a .gz input may
+    /// decompress (default 4 GiB), how many bytes of external buffer files a .gltf may
+    /// load (default 1 GiB), and how large a mesh (12 bytes per vertex, 4 per face
+    /// index and per face) a glTF asset may decode to (default 32 x its buffer bytes +
+    /// 1 MiB, since its accessors may reuse the same data any number of times). OBJ,
+    /// PLY, OFF and STL need file bytes for every vertex and face, so their size
+    /// bounds their memory. A refusal names the limit; raise it with this flag.
+    #[arg(long, value_name = "SIZE", value_parser = parse_size)]
+    pub max_memory: Option<u64>,
+}
+
+impl ReadArgs {
+    /// The library's read options for these arguments.
+    pub fn options(&self) -> stripkit::io::ReadOptions {
+        let mut options = stripkit::io::ReadOptions::default();
+        if let Some(n) = self.max_memory {
+            options.max_decompressed_bytes = n;
+            options.max_external_bytes = n;
+            options.max_decoded_bytes = Some(n);
+        }
+        options
+    }
+
+    /// Reads a mesh under these limits.
+    pub fn read(&self, path: &Path) -> stripkit::Result<stripkit::Mesh> {
+        stripkit::io::read_with(path, &self.options())
+    }
+}
+
+/// Parses a size such as `1048576`, `512K`, `64M`, `8G`, `1T` (binary multiples; an
+/// optional `iB` or `B` after the letter; case-insensitive).
+pub fn parse_size(text: &str) -> Result<u64, String> {
+    let t = text.trim().to_ascii_uppercase();
+    let t = t.strip_suffix("IB").or_else(|| t.strip_suffix('B')).unwrap_or(&t);
+    let (digits, shift) = match t.char_indices().last() {
+        Some((i, 'K')) => (&t[..i], 10),
+        Some((i, 'M')) => (&t[..i], 20),
+        Some((i, 'G')) => (&t[..i], 30),
+        Some((i, 'T')) => (&t[..i], 40),
+        _ => (t, 0),
+    };
+    let n: u64 = digits
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{text}` is not a size: a whole number of bytes, optionally followed by K, M, G or T"))?;
+    n.checked_mul(1u64 << shift).ok_or_else(|| format!("`{text}` is too large (more than 2^64 bytes)"))
+}
 
 /// Exit status for an error: 1 for a failed verification, 2 for bad input.
 pub fn exit_code(err: &anyhow::Error) -> ExitCode {
@@ -40,4 +93,23 @@ pub fn describe(err: &anyhow::Error) -> String {
         message.push_str(&text);
     }
     message
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_size;
+
+    #[test]
+    fn sizes_take_binary_suffixes() {
+        assert_eq!(parse_size("1048576"), Ok(1 << 20));
+        assert_eq!(parse_size("512K"), Ok(512 << 10));
+        assert_eq!(parse_size("64m"), Ok(64 << 20));
+        assert_eq!(parse_size("8GiB"), Ok(8 << 30));
+        assert_eq!(parse_size("2GB"), Ok(2 << 30));
+        assert_eq!(parse_size("1T"), Ok(1 << 40));
+        assert_eq!(parse_size("0"), Ok(0));
+        assert!(parse_size("").is_err() && parse_size("G").is_err() && parse_size("-1").is_err());
+        assert!(parse_size("1.5G").is_err() && parse_size("3X").is_err());
+        assert!(parse_size("16777216T").unwrap_err().contains("too large"));
+    }
 }

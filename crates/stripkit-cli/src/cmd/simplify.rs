@@ -45,7 +45,9 @@ pub struct Args {
     #[arg(long, default_value_t = 100.0)]
     pub boundary_weight: f64,
     /// Also contract vertex pairs closer than this distance that share no edge
-    /// (QSlim's pair contraction; may join pieces). Off by default.
+    /// (QSlim's pair contraction; may join pieces). Off by default. A finite
+    /// distance, 0 or more, that finds at most 128 pairs per vertex plus 2^20 (a
+    /// larger one pairs almost everything and is refused).
     #[arg(long)]
     pub pair_distance: Option<f64>,
     /// Output mesh; vertex ids are kept (removed vertices stay, unreferenced).
@@ -61,6 +63,8 @@ pub struct Args {
     /// Print one JSON object (triangles_in, triangles_out, collapses, max_error, ms) on stdout.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub read: super::ReadArgs,
 }
 
 /// Runs the command.
@@ -85,7 +89,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .into());
         }
     }
-    let mesh = stripkit::io::read(&args.file)?;
+    // Checked before reading the mesh, so a typo fails at once (NaN, negative and
+    // infinite distances were silently taken as "no pairs").
+    if let Some(d) = args.pair_distance {
+        anyhow::ensure!(
+            d >= 0.0 && d.is_finite(),
+            "--pair-distance {d} is out of range: a finite distance, 0 or more"
+        );
+    }
+    let mesh = args.read.read(&args.file)?;
     let options = Options {
         target,
         placement,

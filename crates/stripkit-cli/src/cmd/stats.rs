@@ -27,12 +27,14 @@ pub struct Args {
     /// load and analysis times in milliseconds).
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub read: super::ReadArgs,
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let start = Instant::now();
-    let mesh = stripkit::io::read(&args.file)?;
+    let mesh = args.read.read(&args.file)?;
     let loaded = Instant::now();
     let facts = MeshFacts::of(&mesh).with_context(|| format!("{}: malformed mesh", args.file.display()))?;
     let done = Instant::now();

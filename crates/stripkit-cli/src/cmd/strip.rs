@@ -156,6 +156,8 @@ pub struct Args {
     /// Print one JSON object with every figure on stdout instead of the text summary.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub read: super::ReadArgs,
 }
 
 /// The JSON object printed by `--json` (and embedded in `.json` outputs).
@@ -282,7 +284,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let progress = indicatif::ProgressBar::new_spinner();
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
-    let mesh = io::read(&args.input)?;
+    let mesh = args.read.read(&args.input)?;
     let mut stripifier = Stripifier::new(options(&args, Some(&mesh))).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));

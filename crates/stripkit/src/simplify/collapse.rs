@@ -665,7 +665,7 @@ fn round(p: V3) -> V3 {
     p.map(|x| x as f32 as f64)
 }
 
-pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64)) -> Simplified {
+pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64)) -> crate::Result<Simplified> {
     let n = mesh.positions.len();
     let all = mesh.triangulate().tris;
     let triangle_count = all.len();
@@ -816,7 +816,7 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
         }
     }
     if let Some(d) = options.pair_distance {
-        push_close_pairs(&mut st, d);
+        push_close_pairs(&mut st, d)?;
     }
 
     let (target, max_cost) = match options.target {
@@ -925,23 +925,31 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
         }
     }
     let positions = st.pos.iter().map(|p| p.map(|x| x as f32)).collect();
-    Simplified {
+    Ok(Simplified {
         mesh: Mesh::from_triangles(positions, &out_tris),
         triangle_ids,
         sequence,
         triangles_in,
         max_error,
-    }
+    })
 }
 
+/// How many close pairs per used vertex [`push_close_pairs`] may queue (beyond
+/// [`PAIR_ALLOWANCE`]): a distance that finds more is refused.
+const PAIRS_PER_VERTEX: usize = 128;
+/// Close pairs any mesh may queue besides [`PAIRS_PER_VERTEX`] per used vertex.
+const PAIR_ALLOWANCE: usize = 1 << 20;
+
 /// QSlim's pair contraction: vertex pairs closer than `d` that share no edge become
-/// candidates too (found through a uniform grid of cell size `d`).
-fn push_close_pairs(st: &mut State, d: f64) {
+/// candidates too (found through a uniform grid of cell size `d`).; more than
+/// [`PAIRS_PER_VERTEX`] per used vertex plus [`PAIR_ALLOWANCE`] is an error.
+fn push_close_pairs(st: &mut State, d: f64) -> crate::Result<()> {
     if !(d > 0.0 && d.is_finite()) {
-        return;
+        return Ok(());
     }
     let n = st.pos.len();
     let used: Vec<u32> = (0..n as u32).filter(|&v| st.len[v as usize] > 0).collect();
+    let limit = used.len().saturating_mul(PAIRS_PER_VERTEX).saturating_add(PAIR_ALLOWANCE);
     let cell = |p: V3| p.map(|x| (x / d).floor() as i64);
     let mut keyed: Vec<([i64; 3], u32)> = used.iter().map(|&v| (cell(st.pos[v as usize]), v)).collect();
     keyed.sort_unstable();
@@ -957,6 +965,14 @@ fn push_close_pairs(st: &mut State, d: f64) {
                         let u = keyed[i].1;
                         i += 1;
                         if u > v && norm(sub(st.pos[u as usize], st.pos[v as usize])) < d {
+                            if pairs.len() == limit {
+                                return Err(crate::Error::Invalid(format!(
+                                    "pair distance {d} finds more than {limit} vertex pairs \
+                                     ({PAIRS_PER_VERTEX} per each of the {} used vertices + {PAIR_ALLOWANCE}); \
+                                     choose a smaller distance",
+                                    used.len()
+                                )));
+                            }
                             pairs.push((v, u));
                         }
                     }
@@ -975,6 +991,7 @@ fn push_close_pairs(st: &mut State, d: f64) {
     for (v, u) in pairs {
         st.push(v, u, KIND_PAIR);
     }
+    Ok(())
 }
 
 

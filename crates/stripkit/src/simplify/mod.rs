@@ -75,7 +75,11 @@ pub struct Options {
     pub boundary_weight: f64,
     /// QSlim's pair contraction: also consider vertex pairs closer than this distance
     /// that share no edge (joins separate pieces; may create non-manifold vertices).
-    /// `None` (the default) contracts edges only.
+    /// `None` (the default) contracts edges only. Must be finite and not negative
+    /// (0 finds no pair); anything else is [`Error::Invalid`]. A distance that finds
+    /// more than 128 pairs per used vertex plus 2^20 is refused ([`Error::Invalid`])
+    /// before the pairs are queued, since a distance near the mesh's size pairs every
+    /// vertex with every other (gigabytes on a 35,000-vertex mesh).
     pub pair_distance: Option<f64>,
     /// Stop after this many collapses in any case.
     pub max_collapses: Option<usize>,
@@ -133,6 +137,11 @@ pub fn simplify(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64)) -
     if !(options.boundary_weight >= 0.0 && options.boundary_weight.is_finite()) {
         return Err(Error::Invalid(format!("boundary weight {} is not a finite non-negative number", options.boundary_weight)));
     }
+    if let Some(d) = options.pair_distance {
+        if !(d >= 0.0 && d.is_finite()) {
+            return Err(Error::Invalid(format!("pair distance {d} is not a finite non-negative number")));
+        }
+    }
     let n = mesh.positions.len();
     if mesh.face_indices.iter().any(|&v| v as usize >= n) {
         return Err(Error::Invalid(format!("a face refers to a vertex beyond the mesh's {n} vertices")));
@@ -140,5 +149,5 @@ pub fn simplify(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64)) -
     if mesh.positions.iter().flatten().any(|x| !x.is_finite()) {
         return Err(Error::Invalid("a vertex position is not a finite number".into()));
     }
-    Ok(collapse::run(mesh, options, progress))
+    collapse::run(mesh, options, progress)
 }

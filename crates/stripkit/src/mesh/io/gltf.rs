@@ -12,6 +12,10 @@
 //! winding the modes define, degenerate ones skipped; points and lines (0 to 3) only
 //! contribute their vertices. Primitives without indices use their vertices in order.
 //! Sparse accessors and accessors without a buffer view are refused.
+//! The decoded mesh is bounded: every accessor is charged to
+//! [`ReadOptions::max_decoded_bytes`] (by default 32 times the asset's buffer bytes
+//! plus 1 MiB) before anything is allocated for it, since accessors and primitives may
+//! read the same bytes any number of times.
 //!
 //! Write: one buffer with the positions (VEC3 float, with min / max) and the indices
 //! (u16 when there are fewer than 65535 vertices, else u32); without strips one
@@ -205,14 +209,13 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
     // POSITION accessor -> (first vertex id, vertex count).
     let mut vertex_base: HashMap<usize, (u32, usize)> = HashMap::new();
     let mut indices: Vec<u32> = Vec::new();
-    // Primitives may reuse accessors, so a small file could describe a huge mesh. A
-    // legitimate file gives at most three face indices per byte of its buffers (a
-    // strip of u8 indices); anything beyond a generous multiple of that is refused
-    // before it is allocated.
+    // Primitives may reuse accessors, so a small file could describe a huge mesh:
+    // every accessor is charged to the budget before it is decoded (see
+    // ReadOptions::max_decoded_bytes).
     let mut distinct = HashSet::new();
-    let buffer_bytes: usize =
-        doc.buffers.iter().filter(|b| distinct.insert(b.bytes.as_ptr())).map(|b| b.bytes.len()).sum();
-    let budget = buffer_bytes.saturating_mul(12).saturating_add(1 << 16);
+    let buffer_bytes: u64 =
+        doc.buffers.iter().filter(|b| distinct.insert(b.bytes.as_ptr())).map(|b| b.bytes.len() as u64).sum();
+    let mut budget = Budget::new(options, buffer_bytes);
     for (m, jm) in array(src, json, "meshes")?.iter().enumerate() {
         let prims = match jm.get("primitives") {
             Some(Value::Array(a)) => a.as_slice(),
@@ -232,7 +235,10 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
                 Some(&bc) => bc,
                 None => {
                     let base = mesh.positions.len();
-                    doc.read_positions(pos, &mut mesh.positions)?;
+                    let mut charge = |count: usize| {
+                        budget.charge(src, &place(), 12 * count as u64, || format!("accessors[{pos}]: {count} vertices"))
+                    };
+                    doc.read_positions(pos, &mut mesh.positions, &mut charge)?;
                     let count = mesh.positions.len() - base;
                     if mesh.positions.len() > u32::MAX as usize {
                         return Err(src.err(place(), "more than 4294967295 vertices in all"));
@@ -245,9 +251,18 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
                 continue; // points and lines: their vertices are kept, nothing to draw
             }
             indices.clear();
+            // A face per 3 indices (TRIANGLES) or up to one per index (strips and fans),
+            // 4 bytes per face index and 4 per face offset.
+            let face_bytes = |n: usize| -> u64 {
+                let n = n as u64;
+                if mode == 4 { 4 * n + 4 * (n / 3) } else { 16 * n.saturating_sub(2) }
+            };
             match uint(src, prim, "indices", &place)? {
                 Some(acc) => {
-                    doc.read_indices(acc as usize, &mut indices)?;
+                    let mut charge = |count: usize| {
+                        budget.charge(src, &place(), face_bytes(count), || format!("accessors[{acc}]: {count} indices"))
+                    };
+                    doc.read_indices(acc as usize, &mut indices, &mut charge)?;
                     if let Some((k, &i)) = indices.iter().enumerate().find(|(_, &i)| i as usize >= count) {
                         return Err(src.err(
                             place(),
@@ -255,7 +270,12 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
                         ));
                     }
                 }
-                None => indices.extend(0..count as u32),
+                None => {
+                    budget.charge(src, &place(), face_bytes(count), || {
+                        format!("POSITION accessors[{pos}] drawn without indices: {count} vertices")
+                    })?;
+                    indices.extend(0..count as u32)
+                }
             }
             if mode == 4 && indices.len() % 3 != 0 {
                 let source = match uint(src, prim, "indices", &place)? {
@@ -268,16 +288,6 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
                         "TRIANGLES needs a multiple of 3 indices but {source} has {} ({} left over)",
                         indices.len(),
                         indices.len() % 3
-                    ),
-                ));
-            }
-            let bound = if mode == 4 { indices.len() } else { 3 * indices.len() };
-            if mesh.face_indices.len().saturating_add(bound) > budget {
-                return Err(src.err(
-                    place(),
-                    format!(
-                        "the primitives reuse accessors into more than {budget} face indices, \
-                         far more than the file's {buffer_bytes} buffer bytes can describe"
                     ),
                 ));
             }
@@ -296,6 +306,60 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
         }
     }
     Ok(mesh)
+}
+
+/// The bytes of mesh decoded so far, against [`ReadOptions::max_decoded_bytes`] (or,
+/// by default, the limit relative to the asset's buffer bytes).
+struct Budget {
+    used: u64,
+    limit: u64,
+    /// How the limit came about, for the message.
+    rule: String,
+}
+
+impl Budget {
+    fn new(options: &ReadOptions, buffer_bytes: u64) -> Budget {
+        use super::{DECODED_BYTES_ALLOWANCE, DECODED_BYTES_PER_BUFFER_BYTE};
+        match options.max_decoded_bytes {
+            Some(limit) => Budget {
+                used: 0,
+                limit,
+                rule: format!("the limit of {limit} bytes"),
+            },
+            None => {
+                let limit =
+                    buffer_bytes.saturating_mul(DECODED_BYTES_PER_BUFFER_BYTE).saturating_add(DECODED_BYTES_ALLOWANCE);
+                Budget {
+                    used: 0,
+                    limit,
+                    rule: format!(
+                        "the limit of {limit} bytes ({DECODED_BYTES_PER_BUFFER_BYTE} x the file's {buffer_bytes} \
+                         buffer bytes + {DECODED_BYTES_ALLOWANCE}: the primitives reuse accessors far beyond \
+                         what the data holds)"
+                    ),
+                }
+            }
+        }
+    }
+
+    /// Adds `bytes` of mesh to decode, or refuses at `place` when the total would
+    /// exceed the limit; `what` names the data (called only for the message).
+    fn charge(&mut self, src: Src, place: &str, bytes: u64, what: impl FnOnce() -> String) -> Result<()> {
+        let total = self.used.saturating_add(bytes);
+        if total > self.limit {
+            return Err(src.err(
+                place,
+                format!(
+                    "decoding {} would bring the mesh to {total} bytes, more than {}; \
+                     ReadOptions::max_decoded_bytes (--max-memory on the command line) raises it",
+                    what(),
+                    self.rule
+                ),
+            ));
+        }
+        self.used = total;
+        Ok(())
+    }
 }
 
 impl Doc<'_> {
@@ -359,11 +423,14 @@ impl Doc<'_> {
         Ok((acc, bytes, stride))
     }
 
-    fn read_positions(&self, i: usize, out: &mut Vec<[f32; 3]>) -> Result<()> {
+    /// Appends the positions of accessor `i`, calling `charge` with their count
+    /// (checked against the accessor's view) before anything is allocated.
+    fn read_positions(&self, i: usize, out: &mut Vec<[f32; 3]>, charge: &mut dyn FnMut(usize) -> Result<()>) -> Result<()> {
         let (acc, bytes, stride) = self.accessor(i)?;
         if acc.component != 5126 || acc.components != 3 {
             return Err(self.src.err(at("accessors", i), "POSITION must be a VEC3 of FLOAT (componentType 5126)"));
         }
+        charge(acc.count)?;
         out.reserve(acc.count);
         for k in 0..acc.count {
             let o = acc.offset + k * stride;
@@ -384,7 +451,9 @@ impl Doc<'_> {
         Ok(())
     }
 
-    fn read_indices(&self, i: usize, out: &mut Vec<u32>) -> Result<()> {
+    /// Appends the indices of accessor `i`, calling `charge` with their count first,
+    /// as [`Doc::read_positions`] does.
+    fn read_indices(&self, i: usize, out: &mut Vec<u32>, charge: &mut dyn FnMut(usize) -> Result<()>) -> Result<()> {
         let (acc, bytes, stride) = self.accessor(i)?;
         if acc.components != 1 || ![5121, 5123, 5125].contains(&acc.component) {
             return Err(self.src.err(
@@ -392,6 +461,7 @@ impl Doc<'_> {
                 "indices must be a SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
             ));
         }
+        charge(acc.count)?;
         out.reserve(acc.count);
         for k in 0..acc.count {
             let o = acc.offset + k * stride;
@@ -441,7 +511,7 @@ fn load_buffers(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOption
                             place(),
                             format!(
                                 "byteLength {length} exceeds the limit of {} bytes for external buffers \
-                                 (ReadOptions::max_external_bytes)",
+                                 (ReadOptions::max_external_bytes; --max-memory on the command line raises it)",
                                 options.max_external_bytes
                             ),
                         ));
@@ -475,7 +545,7 @@ fn load_buffers(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOption
             "buffers",
             format!(
                 "the external buffer files hold {total} bytes in all, more than the limit of {} bytes \
-                 (ReadOptions::max_external_bytes)",
+                 (ReadOptions::max_external_bytes; --max-memory on the command line raises it)",
                 options.max_external_bytes
             ),
         ));

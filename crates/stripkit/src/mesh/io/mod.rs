@@ -66,8 +66,21 @@ pub const DEFAULT_MAX_EXTERNAL_BYTES: u64 = 1 << 30;
 /// The default of [`ReadOptions::max_decompressed_bytes`]: 4 GiB.
 pub const DEFAULT_MAX_DECOMPRESSED_BYTES: u64 = 4 << 30;
 
+/// How many bytes of decoded mesh a glTF asset may describe per byte of its buffers
+/// when [`ReadOptions::max_decoded_bytes`] is `None`: 32. A file whose accessors do not
+/// overlap stays within 16 (the worst case, a strip of one-byte indices, gives a
+/// 12-byte triangle and a 4-byte face offset per byte); more comes only from many
+/// accessors or primitives reading the same bytes again.
+pub const DECODED_BYTES_PER_BUFFER_BYTE: u64 = 32;
+
+/// The allowance added to the buffer-relative budget when
+/// [`ReadOptions::max_decoded_bytes`] is `None`: 1 MiB, so that small assets that
+/// reuse a few accessors are never refused.
+pub const DECODED_BYTES_ALLOWANCE: u64 = 1 << 20;
+
 /// Options for [`read_with`] and [`read_bytes_with`]: where a `.gltf` may load its
-/// external buffers from, how much it may load, and how far a `.gz` file may expand.
+/// external buffers from, how much it may load, how far a `.gz` file may expand and
+/// how large a mesh a glTF asset may decode to.
 ///
 /// A `.gltf` buffer's `uri` is accepted only when it is a base64 `data:` URI, or a
 /// relative reference (no scheme, not absolute; `%XX` escapes decoded first) that,
@@ -99,6 +112,22 @@ pub struct ReadOptions {
     /// Only [`read_with`] (and [`read`]) decompress; [`read_bytes_with`] takes
     /// uncompressed data and ignores it.
     pub max_decompressed_bytes: u64,
+    /// The most bytes the mesh decoded from a glTF asset (`.gltf`, `.glb`) may take,
+    /// counting 12 bytes per vertex, 4 per face index and 4 per face. glTF lets any
+    /// number of accessors and primitives read the same buffer bytes, so a few
+    /// kilobytes of JSON over one buffer could otherwise describe gigabytes of
+    /// vertices and faces; each accessor is charged before it is decoded, and the
+    /// asset is refused ("the primitives reuse accessors into ...") before the
+    /// allocation that would cross the limit. `None` (the default) bounds the mesh by
+    /// the input: [`DECODED_BYTES_PER_BUFFER_BYTE`] (32) times the bytes of the
+    /// asset's distinct buffers, plus [`DECODED_BYTES_ALLOWANCE`] (1 MiB). `Some(n)`
+    /// sets the limit to `n` bytes instead, to raise it for an asset that
+    /// legitimately reuses its data many times or to lower it. The other formats need
+    /// bytes in the file for every vertex and face index, so their meshes are bounded
+    /// by the (decompressed) file's size and this option does not apply to them. The
+    /// limit counts the mesh's content; its vectors grow by doubling, so the memory
+    /// they reserve can reach twice that while reading.
+    pub max_decoded_bytes: Option<u64>,
 }
 
 impl Default for ReadOptions {
@@ -107,6 +136,7 @@ impl Default for ReadOptions {
             allowed_roots: Vec::new(),
             max_external_bytes: DEFAULT_MAX_EXTERNAL_BYTES,
             max_decompressed_bytes: DEFAULT_MAX_DECOMPRESSED_BYTES,
+            max_decoded_bytes: None,
         }
     }
 }
@@ -228,7 +258,8 @@ fn gunzip(path: &Path, raw: &[u8], cap: u64) -> Result<Vec<u8>> {
             path: path.to_path_buf(),
             at: "gzip stream".into(),
             what: format!(
-                "decompresses to more than {cap} bytes, the limit (ReadOptions::max_decompressed_bytes)"
+                "decompresses to more than {cap} bytes, the limit (ReadOptions::max_decompressed_bytes; \
+                 --max-memory on the command line raises it)"
             ),
         });
     }
