@@ -21,14 +21,14 @@ fn gz_file(name: &str, content: &[u8]) -> PathBuf {
 
 #[test]
 fn decompression_stops_at_the_cap_and_says_so() {
-    // 1 MiB of zeros compresses to about 1 KB.
-    let path = gz_file("zeros.obj.gz", &vec![0u8; 1 << 20]);
+    // 1 MiB of zeros compresses to about 1 KB (PLY may be binary: no early refusal).
+    let path = gz_file("zeros.ply.gz", &vec![0u8; 1 << 20]);
     assert!(std::fs::metadata(&path).unwrap().len() < 10_000);
     let options = ReadOptions { max_decompressed_bytes: 4096, ..ReadOptions::default() };
     let e = io::read_with(&path, &options).unwrap_err();
     assert!(matches!(e, Error::Format { .. }), "{e:?}");
     let text = e.to_string();
-    assert!(text.contains("zeros.obj.gz"), "{text}");
+    assert!(text.contains("zeros.ply.gz"), "{text}");
     assert!(text.contains("decompresses to more than 4096 bytes"), "{text}");
 }
 
@@ -45,5 +45,23 @@ fn a_file_at_the_cap_is_read() {
     // `read` uses the default cap, 4 GiB.
     assert_eq!(DEFAULT_MAX_DECOMPRESSED_BYTES, 4 << 30);
     assert_eq!(ReadOptions::default().max_decompressed_bytes, DEFAULT_MAX_DECOMPRESSED_BYTES);
+    assert_eq!(io::read(&path).unwrap().face_count(), 1);
+}
+
+#[test]
+fn a_compressed_text_format_of_zeros_is_refused_at_its_first_bytes() {
+    // Refused from the first 4 KiB, before the rest is decompressed (the issue's
+    // 5 GB of zeros took 5.3 GB): the refusal names the NUL byte, not the cap,
+    // although the content is 1,000 times the cap.
+    let zeros = vec![0u8; 8 << 20];
+    let small_cap = ReadOptions { max_decompressed_bytes: 8192, ..ReadOptions::default() };
+    for name in ["zeros.obj.gz", "zeros.off.gz", "zeros.gltf.gz"] {
+        let path = gz_file(name, &zeros);
+        let text = io::read_with(&path, &small_cap).unwrap_err().to_string();
+        assert!(text.contains(name) && text.contains("decompressed byte 0"), "{text}");
+        assert!(text.contains("NUL byte") && !text.contains("more than"), "{text}");
+    }
+    // Text with no NUL in its first 4 KiB is read as before.
+    let path = gz_file("tri.off.gz", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
     assert_eq!(io::read(&path).unwrap().face_count(), 1);
 }

@@ -200,8 +200,32 @@ pub fn read(path: &Path) -> Result<Mesh> {
 pub fn read_with(path: &Path, options: &ReadOptions) -> Result<Mesh> {
     let (format, gz) = Format::from_path(path).ok_or_else(|| unknown(path))?;
     let raw = std::fs::read(path).map_err(|e| io_error(path, e))?;
-    let data = if gz { gunzip(path, &raw, options.max_decompressed_bytes)? } else { raw };
+    let data = if gz {
+        if matches!(format, Format::Obj | Format::Off | Format::Gltf) {
+            text_head(path, &raw)?;
+        }
+        gunzip(path, &raw, options.max_decompressed_bytes)?
+    } else {
+        raw
+    };
     read_bytes_with(path, format, &data, options)
+}
+
+/// For a compressed text format: refuses a stream whose first 4 KiB decompressed
+/// hold a NUL byte (never text) before decompressing the rest, so that a small gzip
+/// of gigabytes of zeros costs neither the time nor the memory up to the cap.
+/// Errors in the stream are left to [`gunzip`], which reports them with their place.
+fn text_head(path: &Path, raw: &[u8]) -> Result<()> {
+    let mut head = Vec::with_capacity(4096);
+    let _ = flate2::read::MultiGzDecoder::new(raw).take(4096).read_to_end(&mut head);
+    match head.iter().position(|&b| b == 0) {
+        Some(i) => Err(Error::Format {
+            path: path.to_path_buf(),
+            at: format!("decompressed byte {i}"),
+            what: "a NUL byte: the content is binary data, not text".into(),
+        }),
+        None => Ok(()),
+    }
 }
 
 /// Parses a mesh already in memory (uncompressed) as `format`; `path` names the file
