@@ -5,7 +5,7 @@
 //! in docs/experiments/valence.md. Before the fix, cache and balanced took
 //! O(valence^2) walks on these meshes.)
 
-use stripkit::{stripify, Algorithm, GreedyOptions, Heuristic, Mesh, StripOptions};
+use stripkit::{stripify, Algorithm, Error, GreedyOptions, Heuristic, Mesh, StripOptions, MAX_TUNNEL_CUTS};
 
 const N: u32 = 20_000;
 
@@ -39,6 +39,7 @@ fn algorithms() -> Vec<Algorithm> {
         Algorithm::greedy(),
         Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Strips, tunnel_cuts: Some(2) }),
         Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: None }),
+        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: Some(MAX_TUNNEL_CUTS) }),
         Algorithm::qstrip(),
         Algorithm::cache(),
         Algorithm::Cache { refine: true },
@@ -80,5 +81,17 @@ fn twenty_thousand_triangles_on_one_edge() {
         // indices and a restart per triangle.
         assert!(strips <= N as usize, "{a}: {strips} strips");
         assert!(indices < 4 * N as usize, "{a}: {indices} indices");
+    }
+}
+
+#[test]
+fn tunnel_depth_beyond_the_maximum_is_refused() {
+    let mesh = star(100);
+    for cuts in [MAX_TUNNEL_CUTS + 1, usize::MAX] {
+        let a = Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: Some(cuts) });
+        match stripify(&mesh, &StripOptions::default().algorithm(a)) {
+            Err(Error::Invalid(m)) => assert!(m.contains(&format!("at most {MAX_TUNNEL_CUTS}")), "{m}"),
+            other => panic!("{cuts} cuts: {other:?}"),
+        }
     }
 }
