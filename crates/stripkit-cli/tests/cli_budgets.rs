@@ -249,3 +249,24 @@ fn a_sibling_file_listed_by_100_buffers_is_read_once_and_decoded_within_the_budg
     // A ceiling below the file itself refuses the external buffer before reading it.
     refused(&["stats", name, "--max-memory", "4M"], &["buffers[0]", "exceeds the limit of 4194304 bytes", "--max-memory"]);
 }
+
+#[test]
+fn strip_tunnel_depth_is_range_checked() {
+    let spot = support::assets_dir().join("spot.obj");
+    let spot = spot.to_str().unwrap();
+    let out = tmp("budgets", "strip_tunnel.ply");
+    let o = out.to_str().unwrap();
+    // The tunnel search is exponential in its depth: `--tunnel 32` on cow ran for
+    // minutes before each search's work was bounded; past 32 the depth is refused.
+    for n in ["33", "4294967296", "18446744073709551616"] {
+        refused(&["strip", spot, "-o", o, "--algo", "greedy", "--tunnel", n], &["--tunnel"]);
+    }
+    refused(&["strip", spot, "-o", o, "--tunnel", "33"], &["0..=32"]);
+    assert!(!out.exists());
+    for n in ["0", "4", "32"] {
+        let (run, _) = stripkit_1gib(&["strip", spot, "-o", o, "--algo", "greedy", "--tunnel", n, "--json"]);
+        assert!(run.status.success(), "--tunnel {n}: {}", String::from_utf8_lossy(&run.stderr));
+        let v = support::json(&run);
+        assert_eq!((&v["verified"], &v["triangles"]), (&true.into(), &5856.into()), "--tunnel {n}: {v}");
+    }
+}

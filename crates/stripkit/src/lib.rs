@@ -88,7 +88,7 @@ pub use mesh::{io, Mesh, Triangles};
 pub use metrics::{acmr, cache_misses, figures, swaps, CacheKind, CacheModel, Figures};
 pub use pipeline::{
     is_quad_dominant, stripify, stripify_bound, stripify_indices, unstripify, Algorithm, Join, Split,
-    StripOptions, Stripifier, Strips, MAX_CACHE_SIZE, QUAD_DOMINANT,
+    StripOptions, Stripifier, Strips, MAX_CACHE_SIZE, MAX_TUNNEL_CUTS, QUAD_DOMINANT,
 };
 pub use strip::{
     decode, decode_restart, encode_restart, encode_separate, encode_stitched, for_each_triangle,

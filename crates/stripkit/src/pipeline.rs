@@ -154,6 +154,13 @@ impl Join {
 /// must not size an allocation unchecked.
 pub const MAX_CACHE_SIZE: usize = 1 << 16;
 
+/// Most strip links one tunnel may cut ([`GreedyOptions::tunnel_cuts`]) that
+/// [`StripOptions`] accepts. Each search from a strip end scores at most a fixed number
+/// of relinkings (searches of four cuts or fewer never reach it), so a deeper search
+/// costs no more time, but a depth read from the command line (`--tunnel 4294967295`)
+/// must still be a sensible one.
+pub const MAX_TUNNEL_CUTS: usize = 32;
+
 /// Everything [`stripify`] needs to know. Build it from [`StripOptions::default`]
 /// with the builder methods; fields that do not apply to the chosen algorithm are
 /// rejected by [`stripify`] with [`Error::Invalid`].
@@ -245,6 +252,10 @@ impl StripOptions {
             Algorithm::Balanced { max_acmr } if !(max_acmr.is_finite() && *max_acmr > 0.0) => {
                 bad(format!("balanced needs a positive number of misses per triangle as its bound (got {max_acmr})"))
             }
+            Algorithm::Greedy(g) if g.tunnel_cuts.is_some_and(|n| n > MAX_TUNNEL_CUTS) => bad(format!(
+                "greedy's tunnels may cut at most {MAX_TUNNEL_CUTS} strip links (got {})",
+                g.tunnel_cuts.unwrap_or(0)
+            )),
             Algorithm::Greedy(_) if self.split == Split::Qstrip => bad(
                 "greedy strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced".into(),
             ),

@@ -17,8 +17,10 @@
 //! touches (swaps added minus three) and applied only when that is negative; the same
 //! search also accepts a relinking that keeps the strip count but removes swaps (it
 //! stops at an inner triangle and cuts one of its links). Searches are depth-first from
-//! every strip end, bounded in length, so the pass is O(triangles) with a small
-//! constant; the strip ends' start-of-strip swap is settled by the encoder.
+//! every strip end, bounded in length and in the relinkings each may score
+//! ([`SEARCH_BUDGET`]: never reached at three cuts or fewer), so the pass is
+//! O(triangles) with a small constant whatever the depth; the strip ends'
+//! start-of-strip swap is settled by the encoder.
 //!
 //! **Why this is not the search of `tunnels.rs`.** The refinement's tunnels
 //! (`super::tunnels`) look for the same alternating paths, but the two searches
@@ -66,7 +68,24 @@ pub struct TunnelOptions {
     /// Index cost of one strip (3 with a restart index: two start indices and the
     /// restart); a swap costs 1.
     pub strip_cost: i32,
+    /// Most work one search from a strip end may do before it gives up, counted in
+    /// undo-log entries scored (see [`SEARCH_BUDGET`]).
+    pub max_work: usize,
 }
+
+/// The default [`TunnelOptions::max_work`]: the most work a search of up to three cuts
+/// can do, so that searches of three cuts or fewer (the greedy default is one) are
+/// never cut short and give exactly the strips of an unbounded search.
+///
+/// Scoring a candidate reads the undo-log entries of its path: `4k + 2` for a close
+/// after `k` cuts, `4k + 4` for a cut. A search at `k` of `m` cuts scores, for each of
+/// the three neighbours of its triangle, either one close or, below `m` cuts, each of
+/// the two links of the neighbour (a cut and a search at `k + 1`):
+/// `W(m) <= 3 (4m + 2)`, `W(k) <= 6 (4k + 4 + W(k + 1))`, so `W(0)` is 132, 1,392
+/// and 11,976 for one to three cuts. Unbounded, deeper searches branch up to six ways
+/// per cut (cow: 0.3 s at 8 cuts, 2.2 s at 12; `--tunnel 32` did not finish); with the
+/// budget every search is O(1), the pass O(strip ends), whatever the depth.
+pub const SEARCH_BUDGET: usize = 11_976;
 
 impl Default for TunnelOptions {
     fn default() -> Self {
@@ -74,6 +93,7 @@ impl Default for TunnelOptions {
             max_cuts: 4,
             passes: 3,
             strip_cost: 3,
+            max_work: SEARCH_BUDGET,
         }
     }
 }
@@ -99,6 +119,9 @@ struct State<'a> {
     now: u32,
     /// Scratch: links and pivots of the touched triangles after the change.
     redo: Vec<(u32, [u32; 2], u32)>,
+    /// Work of the current search: undo-log entries scored (it stops past
+    /// `options.max_work`).
+    work: usize,
 }
 
 impl State<'_> {
@@ -227,6 +250,7 @@ impl State<'_> {
     /// Scores the tentative change made since `mark` (links now in place): the index
     /// change it brings, or None when it closes a cycle.
     fn score(&mut self, mark: usize, strips_saved: i32, new_links: &[(u32, u32)]) -> Option<i32> {
+        self.work += self.log.len() - mark;
         self.touched.clear();
         self.now = self.now.wrapping_add(1);
         if self.now == 0 {
@@ -269,9 +293,14 @@ impl State<'_> {
     }
 
     /// Depth-first search for an improving alternating path from `c`, which has a free
-    /// link slot. Returns true when one was applied (links left changed).
+    /// link slot. Returns true when one was applied (links left changed). Gives up
+    /// (false) once its work reaches `options.max_work`: each iteration below scores
+    /// at most one candidate before it recurses.
     fn search(&mut self, c: u32, cuts: usize, new_links: &mut Vec<(u32, u32)>, mark: usize) -> bool {
         for j in 0..3 {
+            if self.work >= self.options.max_work {
+                return false;
+            }
             let x = self.nbr[c as usize][j];
             if x == NO_NEIGHBOR
                 || x == c
@@ -300,7 +329,7 @@ impl State<'_> {
             }
             let lx = self.links[x as usize];
             for y in lx {
-                if self.path.contains(&y) {
+                if self.path.contains(&y) || self.work >= self.options.max_work {
                     continue;
                 }
                 let m = self.log.len();
@@ -341,6 +370,11 @@ pub fn tunnel(tris: &[[u32; 3]], graph: &DualGraph, walks: &StripSet, options: &
 /// result, and every walk is a path through `graph`, so encoding keeps every
 /// triangle's winding.
 pub fn tunnel_walks(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, options: &TunnelOptions) -> Walks {
+    tunnel_walks_peak(tris, graph, walks, options).0
+}
+
+/// [`tunnel_walks`], and the most work one search did (see [`SEARCH_BUDGET`]).
+fn tunnel_walks_peak(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, options: &TunnelOptions) -> (Walks, usize) {
     let n = tris.len();
     let mut links = vec![[NONE; 2]; n];
     let mut member = vec![false; n];
@@ -373,6 +407,7 @@ pub fn tunnel_walks(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, options
         stamp: vec![0; n],
         now: 0,
         redo: Vec::new(),
+        work: 0,
     };
     // Every strip end is searched once; a change puts the ends it touched (and the
     // ends next to them) back on the work list, up to `passes` times each.
@@ -381,6 +416,7 @@ pub fn tunnel_walks(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, options
         (0..n as u32).filter(|&t| member[t as usize] && st.deg(t) < 2).collect();
     let mut visits = vec![0u8; n];
     let mut queued = vec![false; n];
+    let mut peak = 0;
     for &t in &queue {
         queued[t as usize] = true;
     }
@@ -392,9 +428,12 @@ pub fn tunnel_walks(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, options
         visits[t as usize] += 1;
         st.log.clear();
         st.path.clear();
+        st.work = 0;
         st.path.push(t);
         new_links.clear();
-        if !st.search(t, 0, &mut new_links, 0) {
+        let found = st.search(t, 0, &mut new_links, 0);
+        peak = peak.max(st.work);
+        if !found {
             st.undo_to(0);
             continue;
         }
@@ -437,9 +476,9 @@ pub fn tunnel_walks(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, options
         // A cycle would lose its triangles here; the searches never close one, but
         // should that ever fail, the input walks are still a correct answer.
         debug_assert!(false, "tunnelling lost or added triangles");
-        return walks.clone();
+        return (walks.clone(), peak);
     }
-    out
+    (out, peak)
 }
 
 #[cfg(test)]
@@ -476,6 +515,71 @@ mod tests {
         check_walks(&graph, &out, &(0..tris.len() as u32).collect::<Vec<_>>());
         // 96 single triangles: adjacent ends join directly, so very few walks remain.
         assert!(out.len() <= 12, "{} walks", out.len());
+    }
+
+    /// A grid of quads each split along a diagonal picked by a small LCG (valences 3
+    /// to 9, many swaps), with the walks of the plain greedy stripifier (no tunnels).
+    fn random_diagonals(w: u32, h: u32, mut seed: u64) -> (Vec<[u32; 3]>, DualGraph, Walks) {
+        let id = |x: u32, y: u32| y * (w + 1) + x;
+        let mut tris = Vec::new();
+        for y in 0..h {
+            for x in 0..w {
+                seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                let (a, b, c, d) = (id(x, y), id(x + 1, y), id(x + 1, y + 1), id(x, y + 1));
+                if seed >> 63 == 0 {
+                    tris.extend([[a, b, c], [a, c, d]]);
+                } else {
+                    tris.extend([[a, b, d], [b, c, d]]);
+                }
+            }
+        }
+        let vc = ((w + 1) * (h + 1)) as usize;
+        let graph = DualGraph::from_triangles(&tris, vc);
+        let plain = crate::stripify::greedy::GreedyOptions { tunnel_cuts: None, ..Default::default() };
+        let walks = crate::stripify::greedy::walks_with_graph(&tris, &graph, &plain);
+        (tris, graph, walks)
+    }
+
+    #[test]
+    fn the_work_budget_never_cuts_searches_of_three_cuts_or_fewer() {
+        // SEARCH_BUDGET is the worst-case work of a search of three cuts: up to three
+        // cuts the bounded search gives exactly the walks of the unbounded one; deeper,
+        // the budget applies and the walks stay valid.
+        for seed in [1, 7, 12345] {
+            let (tris, graph, walks) = random_diagonals(24, 16, seed);
+            let all: Vec<u32> = (0..tris.len() as u32).collect();
+            // The worst-case work of one search of m cuts, by the recurrence of
+            // SEARCH_BUDGET.
+            let worst = |m: usize| {
+                let mut w = 3 * (4 * m + 2);
+                for k in (0..m).rev() {
+                    w = (3 * (4 * k + 2)).max(6 * (4 * k + 4 + w));
+                }
+                w
+            };
+            assert_eq!([worst(1), worst(2), worst(3)], [132, 1392, SEARCH_BUDGET]);
+            for max_cuts in 1..=3 {
+                let bounded = TunnelOptions { max_cuts, ..TunnelOptions::default() };
+                let unbounded = TunnelOptions { max_work: usize::MAX, ..bounded };
+                let (a, _) = tunnel_walks_peak(&tris, &graph, &walks, &bounded);
+                let (b, peak) = tunnel_walks_peak(&tris, &graph, &walks, &unbounded);
+                assert!(peak <= worst(max_cuts), "seed {seed}, {max_cuts} cuts: {peak}");
+                assert_eq!(a, b, "seed {seed}, {max_cuts} cuts");
+                check_walks(&graph, &a, &all);
+            }
+            for max_cuts in [8, 32] {
+                let o = TunnelOptions { max_cuts, ..TunnelOptions::default() };
+                let (out, peak) = tunnel_walks_peak(&tris, &graph, &walks, &o);
+                // A search stops at the first check past the budget: at most one more
+                // candidate's log (4 * max_cuts + 4 entries) past it.
+                assert!(peak < SEARCH_BUDGET + 4 * max_cuts + 4, "seed {seed}, {max_cuts} cuts: {peak}");
+                check_walks(&graph, &out, &all);
+            }
+            // Deep searches do reach the budget (else it would bound nothing here).
+            let deep = TunnelOptions { max_cuts: 32, ..TunnelOptions::default() };
+            let (_, peak) = tunnel_walks_peak(&tris, &graph, &walks, &deep);
+            assert!(peak >= SEARCH_BUDGET, "seed {seed}: {peak}");
+        }
     }
 
     #[test]

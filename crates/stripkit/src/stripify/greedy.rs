@@ -69,7 +69,10 @@ pub struct GreedyOptions {
     /// through the dual graph, where that saves indices): the most strip links one
     /// relinking may cut, or `None` for the plain greedy of the paper. Default 1 (on
     /// bunny about 2% fewer indices for a few ms; 2 cuts save a little more for twice
-    /// that).
+    /// that). At most [`crate::MAX_TUNNEL_CUTS`] (the door refuses more); each search
+    /// does bounded work (`SEARCH_BUDGET` of `improve/tunnel.rs`, never reached at
+    /// three cuts or fewer), so depth costs little time, but past about eight cuts the
+    /// strips get more indices, not fewer.
     pub tunnel_cuts: Option<usize>,
 }
 
@@ -229,7 +232,7 @@ pub fn stripify_with_graph(
 }
 
 /// The strips of [`stripify_with_graph`] as walks, before they are encoded.
-fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOptions) -> Walks {
+pub(crate) fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &GreedyOptions) -> Walks {
     let n = tris.len();
     let mut g = Greedy {
         tris,

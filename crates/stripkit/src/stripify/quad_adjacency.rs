@@ -113,13 +113,15 @@ impl QuadAdjacency<'_> {
                 }
             }
         }
+        // The quads on each odd edge, in half-edge order (the faces that are not quads
+        // left out first: an edge of k triangles and a quad or two is O(k), not O(k^2)).
+        let mut on_edge: Vec<u32> = Vec::new();
         for e in odd_edges {
-            let hs = edges.halfedges(e);
-            for (i, &ha) in hs.iter().enumerate() {
-                for &hb in &hs[i + 1..] {
-                    let (qa, _) = local(ha);
-                    let (qb, _) = local(hb);
-                    if qa == NONE || qb == NONE || qa == qb {
+            on_edge.clear();
+            on_edge.extend(edges.halfedges(e).iter().map(|&h| local(h).0).filter(|&q| q != NONE));
+            for (i, &qa) in on_edge.iter().enumerate() {
+                for &qb in &on_edge[i + 1..] {
+                    if qa == qb {
                         continue;
                     }
                     let (q1, q2) = (qa.min(qb) as usize, qa.max(qb) as usize);

@@ -11,7 +11,10 @@
 //!   the free triangle of lowest free degree (a corner of the free region, as in the
 //!   greedy stripifier). A jump costs three misses at once and starts a region with a
 //!   cold cache, so the wider scans pay on meshes whose free region falls apart into
-//!   pockets (measured on bunny_res3, cow and bunny).
+//!   pockets (measured on bunny_res3, cow and bunny). Around one entry only its first
+//!   [`FAN_CANDIDATES`] free triangles are offered (all of them on the shared models),
+//!   found without rereading its taken ones: a vertex of very high valence costs
+//!   O(1) per strip, not O(valence).
 //! * **Walks.** From a candidate the strip follows its line through free triangles;
 //!   it swaps (one repeated index) where the line is blocked, or where the line's next
 //!   vertex would miss the cache while the swap's would hit: that keeps the strip
@@ -26,7 +29,8 @@
 //!   is abandoned as soon as no longer prefix can beat the best one found.
 //!
 //! Cost: O(T * c * L) for c candidates per strip (the free triangles around the
-//! cache) and walks of at most L triangles; flat arrays, nothing allocated per step.
+//! cache, at most `cache_size * FAN_CANDIDATES`) and walks of at most L triangles,
+//! whatever the valences; flat arrays, nothing allocated per step.
 //! A step reads one neighbour record (neighbours, their new vertices, the twin slots)
 //! and the records of four vertices; the walk that found the chosen strip is kept, not
 //! walked again.
@@ -205,6 +209,15 @@ pub(super) fn start_of(tri: [u32; 3], slot: usize) -> [u32; 3] {
     [tri[PREV[slot]], tri[slot], tri[NEXT[slot]]]
 }
 
+/// Most free triangles around one FIFO entry offered per scan (the first ones in the
+/// order of the vertex's list). Without a bound a vertex of valence V offers V
+/// candidates for every strip while it stays cached: O(V^2) walks around it (a star of
+/// 20,000 triangles around one vertex, or 20,000 triangles on one edge, took minutes).
+/// 16 is above the highest valence of the shared models (14, cow; 8 to 13 on the
+/// others), where a vertex's free triangles are all offered as before; 32 took `balanced`
+/// on the star 1.3 s against 0.57 s.
+pub(super) const FAN_CANDIDATES: u32 = 16;
+
 /// `Best::slot` of a walk that goes on from the end of the last strip.
 pub(super) const CONTINUE: usize = 3;
 
@@ -236,6 +249,10 @@ pub(super) struct State<'a> {
     pub(super) b: Buckets,
     /// Vertex -> its triangles.
     pub(super) vtris: Csr<u32>,
+    /// Per position of `vtris.values()`: itself while its triangle may be free, else
+    /// a later position of the same bucket (or the bucket's end) before which every
+    /// triangle is taken (see [`State::next_free`]).
+    pub(super) skip: Vec<u32>,
     /// Per vertex, in one record: `[0]` the epoch of the walk that pushed it in its
     /// private copy of the FIFO and `[1]` that walk's push count then; `[2]` the epoch
     /// of the walk that counted `[3]` of its free triangles as covered; `[4]` its free
@@ -309,6 +326,7 @@ impl<'a> State<'a> {
             opt,
             b,
             vs: (0..vcount).map(|v| [0, 0, 0, 0, vtris.bucket(v).len() as u32]).collect(),
+            skip: (0..vtris.values().len() as u32).collect(),
             vtris,
             fifo: Fifo::new(opt.cache_size, vcount),
             // The sentinel triangle `n` is TAKEN.
@@ -601,7 +619,8 @@ impl<'a> State<'a> {
     }
 
     /// Offers the free triangles around the oldest `entries` entries of the FIFO
-    /// (see [`State::consider`]), oldest first.
+    /// (see [`State::consider`]), oldest first: around each entry, its first
+    /// [`FAN_CANDIDATES`] free triangles in the order of its list.
     fn scan(&mut self, entries: u32, min_cached: u32, best: &mut Best) {
         let live = self.fifo.len();
         for i in (live.saturating_sub(entries)..live).rev() {
@@ -610,13 +629,46 @@ impl<'a> State<'a> {
                 continue;
             }
             let offsets = self.vtris.offsets();
-            for idx in offsets[v as usize]..offsets[v as usize + 1] {
+            let end = offsets[v as usize + 1];
+            let mut idx = self.next_free(offsets[v as usize], end);
+            let mut offered = 0;
+            while idx < end && offered < FAN_CANDIDATES {
                 let t = self.vtris.values()[idx as usize];
-                if self.mark[t as usize] != TAKEN {
-                    self.consider(t, min_cached, best);
-                }
+                self.consider(t, min_cached, best);
+                offered += 1;
+                idx = self.next_free(idx + 1, end);
             }
         }
+    }
+
+    /// The first position from `i` on, before `end` (the end of `i`'s bucket of
+    /// `vtris`), whose triangle is free, or `end`. Triangles are only ever taken, so
+    /// a taken position points past itself for good (`skip`, compressed along the path
+    /// followed): every taken position is stepped over O(1) times amortised, and a
+    /// vertex's free triangles are found without rescanning its taken ones.
+    #[inline]
+    fn next_free(&mut self, start: u32, end: u32) -> u32 {
+        let mut i = start;
+        while i < end {
+            let s = self.skip[i as usize];
+            if s != i {
+                i = s;
+                continue;
+            }
+            if self.mark[self.vtris.values()[i as usize] as usize] != TAKEN {
+                break;
+            }
+            self.skip[i as usize] = i + 1;
+            i += 1;
+        }
+        // Path compression: every position followed from `start` is taken.
+        let mut j = start;
+        while j < i {
+            let next = self.skip[j as usize];
+            self.skip[j as usize] = i;
+            j = next;
+        }
+        i
     }
 
     /// Emits the chosen prefix as a new strip (or as more of the last one) and feeds

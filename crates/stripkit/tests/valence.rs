@@ -1,0 +1,97 @@
+//! Valid meshes with one vertex or one edge of very high valence (issue #16): every
+//! algorithm through the door on a star of 20,000 triangles around one vertex and on
+//! 20,000 triangles sharing one edge. The strips must verify and keep the figures a
+//! fan allows. (Times are not asserted here; they are measured with the release CLI
+//! in docs/experiments/valence.md. Before the fix, cache and balanced took
+//! O(valence^2) walks on these meshes.)
+
+use stripkit::{stripify, Algorithm, Error, GreedyOptions, Heuristic, Mesh, StripOptions, MAX_TUNNEL_CUTS};
+
+const N: u32 = 20_000;
+
+/// Vertex 0 at the centre, `n` rim vertices on a circle, triangles (0, 1 + i, 1 + (i + 1) % n):
+/// a closed fan, the centre in every triangle.
+fn star(n: u32) -> Mesh {
+    let mut positions = vec![[0.0f32; 3]];
+    positions.extend((0..n).map(|i| {
+        let a = std::f32::consts::TAU * i as f32 / n as f32;
+        [a.cos(), a.sin(), 0.0]
+    }));
+    let tris: Vec<[u32; 3]> = (0..n).map(|i| [0, 1 + i, 1 + (i + 1) % n]).collect();
+    Mesh::from_triangles(positions, &tris)
+}
+
+/// Vertices 0 and 1 on an axis, `n` vertices on a circle between them, triangles
+/// (0, 1, 2 + i): every triangle on the one edge {0, 1} (non-manifold).
+fn edge_fan(n: u32) -> Mesh {
+    let mut positions = vec![[0.0f32, 0.0, 0.0], [0.0, 0.0, 1.0]];
+    positions.extend((0..n).map(|i| {
+        let a = std::f32::consts::TAU * i as f32 / n as f32;
+        [a.cos(), a.sin(), 0.5]
+    }));
+    let tris: Vec<[u32; 3]> = (0..n).map(|i| [0, 1, 2 + i]).collect();
+    Mesh::from_triangles(positions, &tris)
+}
+
+fn algorithms() -> Vec<Algorithm> {
+    vec![
+        Algorithm::Auto,
+        Algorithm::greedy(),
+        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Strips, tunnel_cuts: Some(2) }),
+        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: None }),
+        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: Some(MAX_TUNNEL_CUTS) }),
+        Algorithm::qstrip(),
+        Algorithm::cache(),
+        Algorithm::Cache { refine: true },
+        Algorithm::balanced(0.8),
+    ]
+}
+
+/// Strips `mesh` with every algorithm; checks the verification and returns, per
+/// algorithm, its name, strips and restart-joined index count.
+fn every_algorithm(mesh: &Mesh, n: u32) -> Vec<(String, usize, usize)> {
+    let mut out = Vec::new();
+    for a in algorithms() {
+        let s = stripify(mesh, &StripOptions::default().algorithm(a.clone()))
+            .unwrap_or_else(|e| panic!("{a:?}: {e}"));
+        let f = &s.figures;
+        assert!(f.verified && f.winding_preserved, "{a:?}: {f:?}");
+        assert_eq!((f.triangles, f.lost, f.added, f.flipped), (n as usize, 0, 0, 0), "{a:?}");
+        out.push((format!("{a:?}"), f.strips, f.indices_restart));
+    }
+    out
+}
+
+#[test]
+fn star_of_20k_triangles_around_one_vertex() {
+    let mesh = star(N);
+    for (a, strips, indices) in every_algorithm(&mesh, N) {
+        // A fan is one strip with a swap per triangle: two indices per triangle; every
+        // algorithm gets there within a few strips.
+        assert!(strips <= 4, "{a}: {strips} strips");
+        assert!(indices <= 2 * N as usize + 8, "{a}: {indices} indices");
+    }
+}
+
+#[test]
+fn twenty_thousand_triangles_on_one_edge() {
+    let mesh = edge_fan(N);
+    for (a, strips, indices) in every_algorithm(&mesh, N) {
+        // However the triangles on the edge are paired, no strip costs more than three
+        // indices and a restart per triangle.
+        assert!(strips <= N as usize, "{a}: {strips} strips");
+        assert!(indices < 4 * N as usize, "{a}: {indices} indices");
+    }
+}
+
+#[test]
+fn tunnel_depth_beyond_the_maximum_is_refused() {
+    let mesh = star(100);
+    for cuts in [MAX_TUNNEL_CUTS + 1, usize::MAX] {
+        let a = Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: Some(cuts) });
+        match stripify(&mesh, &StripOptions::default().algorithm(a)) {
+            Err(Error::Invalid(m)) => assert!(m.contains(&format!("at most {MAX_TUNNEL_CUTS}")), "{m}"),
+            other => panic!("{cuts} cuts: {other:?}"),
+        }
+    }
+}
