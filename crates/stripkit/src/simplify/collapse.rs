@@ -188,8 +188,8 @@ struct State {
     mark: Vec<u32>,
     stamp: u32,
     placement: Placement,
-    neighbors_removed: Vec<(u32, u32)>,
-    neighbors_kept: Vec<(u32, u32)>,
+    neighbors_removed: NeighborSet,
+    neighbors_kept: NeighborSet,
     removed_now: Vec<u32>,
     heap: QuadHeap,
     /// Pair contraction only (empty otherwise): close non-edge partners of each
@@ -205,15 +205,44 @@ struct State {
 
 const NONE: u32 = u32::MAX;
 
-fn add_neighbor(list: &mut Vec<(u32, u32)>, u: u32) {
-    match list.iter_mut().find(|(x, _)| *x == u) {
-        Some(e) => e.1 += 1,
-        None => list.push((u, 1)),
-    }
+/// The neighbours of a vertex with the number of live triangles each shares with it,
+/// in first-seen order: a sparse set (`at[u]` is u's index in `list` when that entry
+/// names u; stale values need no clearing), so adding and testing are O(1) however
+/// high the valence (a list search made a check around a vertex of valence 10^5
+/// cost 10^10 steps).
+#[derive(Default)]
+struct NeighborSet {
+    list: Vec<(u32, u32)>,
+    at: Vec<u32>,
 }
 
-fn has(list: &[(u32, u32)], u: u32) -> bool {
-    list.iter().any(|&(x, _)| x == u)
+impl NeighborSet {
+    fn new(n: usize) -> Self {
+        NeighborSet { list: Vec::new(), at: vec![0; n] }
+    }
+
+    fn clear(&mut self) {
+        self.list.clear();
+    }
+
+    fn index(&self, u: u32) -> Option<usize> {
+        let i = self.at[u as usize] as usize;
+        (i < self.list.len() && self.list[i].0 == u).then_some(i)
+    }
+
+    fn add(&mut self, u: u32) {
+        match self.index(u) {
+            Some(i) => self.list[i].1 += 1,
+            None => {
+                self.at[u as usize] = self.list.len() as u32;
+                self.list.push((u, 1));
+            }
+        }
+    }
+
+    fn has(&self, u: u32) -> bool {
+        self.index(u).is_some()
+    }
 }
 
 impl State {
@@ -400,7 +429,7 @@ impl State {
             }
             for v in tri {
                 if v != r {
-                    add_neighbor(&mut na, v);
+                    na.add(v);
                 }
             }
         }
@@ -409,7 +438,7 @@ impl State {
             if self.tri_alive[t] {
                 for v in self.tris[t] {
                     if v != k {
-                        add_neighbor(&mut nb, v);
+                        nb.add(v);
                     }
                 }
             }
@@ -421,7 +450,7 @@ impl State {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn check_with(&self, r: u32, k: u32, p: V3, pair: bool, shared: usize, na: &[(u32, u32)], nb: &[(u32, u32)]) -> Verdict {
+    fn check_with(&self, r: u32, k: u32, p: V3, pair: bool, shared: usize, na: &NeighborSet, nb: &NeighborSet) -> Verdict {
         if shared == 0 && !pair {
             return Verdict::Stale;
         }
@@ -431,12 +460,12 @@ impl State {
         if shared > 0 {
             // Link condition on vertices: the only common neighbours are the vertices
             // opposite the edge.
-            let common = na.iter().filter(|&&(u, _)| u != k && has(nb, u)).count();
+            let common = na.list.iter().filter(|&&(u, _)| u != k && nb.has(u)).count();
             if common != shared {
                 return Verdict::Refused;
             }
             // An interior edge between two boundary vertices would pinch the surface.
-            let boundary = |l: &[(u32, u32)]| l.iter().any(|&(_, c)| c == 1);
+            let boundary = |l: &NeighborSet| l.list.iter().any(|&(_, c)| c == 1);
             if shared == 2 && boundary(na) && boundary(nb) {
                 return Verdict::Refused;
             }
@@ -456,7 +485,7 @@ impl State {
             }
             // Would this triangle duplicate one of k's (link condition on edges)?
             let others: Vec2 = others_of(tri, r);
-            if has(nb, others.0) && has(nb, others.1) {
+            if nb.has(others.0) && nb.has(others.1) {
                 let dup = self.tris_of(k).filter_map(alive).any(|t2| {
                     let t2 = self.tris[t2];
                     t2.contains(&others.0) && t2.contains(&others.1)
@@ -720,8 +749,8 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
         mark: vec![0; n],
         stamp: 0,
         placement: options.placement,
-        neighbors_removed: Vec::new(),
-        neighbors_kept: Vec::new(),
+        neighbors_removed: NeighborSet::new(n),
+        neighbors_kept: NeighborSet::new(n),
         removed_now: Vec::new(),
         heap: QuadHeap::default(),
         pair_start: Vec::new(),
@@ -735,19 +764,24 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
     // through each crease edge, perpendicular to each of its two faces: these keep
     // borders and the rims of folds (fins, ears) in place, which the face planes
     // alone do not (a fin's faces are nearly parallel).
+    // (Neighbour, triangles, first and last triangle) of each edge (v, u > v), in
+    // first-seen order; `count_at[u]` is u's index in `counts` (a sparse set, O(1) a
+    // lookup however high v's valence).
     let mut counts: Vec<(u32, u32, u32, u32)> = Vec::new();
+    let mut count_at = vec![0u32; n];
     for v in 0..n as u32 {
         counts.clear();
         for i in st.tris_of(v) {
             let t = st.refs[i];
             for u in st.tris[t as usize] {
                 if u > v {
-                    match counts.iter_mut().find(|e| e.0 == u) {
-                        Some(e) => {
-                            e.1 += 1;
-                            e.3 = t;
-                        }
-                        None => counts.push((u, 1, t, t)),
+                    let j = count_at[u as usize] as usize;
+                    if j < counts.len() && counts[j].0 == u {
+                        counts[j].1 += 1;
+                        counts[j].3 = t;
+                    } else {
+                        count_at[u as usize] = counts.len() as u32;
+                        counts.push((u, 1, t, t));
                     }
                 }
             }
