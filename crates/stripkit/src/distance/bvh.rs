@@ -68,10 +68,27 @@ pub fn point_triangle_distance2(p: V3, t: &[V3; 3]) -> f64 {
 struct Node {
     lo: V3,
     hi: V3,
+    /// 1 + the index of the node's oriented box in `Bvh::oriented`, 0 for none.
+    oriented: u32,
     /// Leaf: first triangle; inner: index of the left child (right is left + 1).
     first: u32,
     /// Triangles in a leaf; 0 for an inner node.
     count: u32,
+}
+
+/// An oriented box: three orthonormal axes and the range of a node's corners along
+/// each. A node of long thin triangles that share a vertex or an edge (a star, a
+/// fanned polygon, a book of pages on one edge) is a thin wedge whose axis-aligned
+/// box holds much of the other wedges' space: queries visited most triangles of such
+/// meshes (issue #16). Built only for meshes with such a vertex (in more than
+/// `HUB_TRIANGLES` triangles; other meshes keep the plain hierarchy and its speed),
+/// and kept only where it is much tighter than the axis-aligned box (its box
+/// surface, or its thinnest extent, under a quarter of the other's).
+#[derive(Clone, Copy, Debug)]
+struct Obb {
+    axes: [V3; 3],
+    lo: V3,
+    hi: V3,
 }
 
 /// A binary BVH (median split on the widest centroid axis, leaves of up to 4
@@ -79,10 +96,72 @@ struct Node {
 #[derive(Clone, Debug)]
 pub struct Bvh {
     nodes: Vec<Node>,
+    oriented: Vec<Obb>,
     tris: Vec<[V3; 3]>,
 }
 
 const LEAF: usize = 4;
+
+/// A mesh with a vertex in more triangles than this gets oriented boxes (see `Obb`).
+const HUB_TRIANGLES: u32 = 256;
+
+fn cross(a: V3, b: V3) -> V3 {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+fn unit(a: V3) -> Option<V3> {
+    let l = dot(a, a).sqrt();
+    (l > 0.0 && l.is_finite()).then(|| a.map(|x| x / l))
+}
+
+/// Axes of an oriented box around `corners`: the direction of an approximate
+/// diameter (farthest from a corner, then farthest from that), the direction to the
+/// corner farthest from that line, and their cross product (three linear passes).
+/// The world axes when the corners are too degenerate for that.
+fn oriented_axes(corners: impl Iterator<Item = V3> + Clone) -> [V3; 3] {
+    let world = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let Some(p0) = corners.clone().next() else { return world };
+    let farthest = |from: V3| {
+        corners.clone().fold((from, 0.0), |(b, bd), q| {
+            let d = dot(sub(q, from), sub(q, from));
+            if d > bd {
+                (q, d)
+            } else {
+                (b, bd)
+            }
+        })
+    };
+    let p1 = farthest(p0).0;
+    let p2 = farthest(p1).0;
+    let Some(a) = unit(sub(p2, p1)) else { return world };
+    let off = |q: V3| {
+        let w = sub(q, p1);
+        add_scaled(w, a, -dot(w, a))
+    };
+    let (q, _) = corners.clone().fold((p1, 0.0), |(b, bd), q| {
+        let d = dot(off(q), off(q));
+        if d > bd {
+            (q, d)
+        } else {
+            (b, bd)
+        }
+    });
+    let b = unit(off(q)).or_else(|| {
+        // All on a line: any perpendicular.
+        let t = if a[0].abs() < 0.9 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+        unit(cross(a, t))
+    });
+    let Some(b) = b else { return world };
+    let Some(c) = unit(cross(a, b)) else { return world };
+    // b again from c and a, for orthogonality to rounding.
+    let Some(b) = unit(cross(c, a)) else { return world };
+    [a, b, c]
+}
+
+/// Surface of a box of these extents (up to a factor 2).
+fn box_surface(e: V3) -> f64 {
+    e[0] * e[1] + e[1] * e[2] + e[2] * e[0]
+}
 
 fn box_distance2(p: V3, lo: V3, hi: V3) -> f64 {
     let mut d = 0.0;
@@ -106,7 +185,13 @@ impl Bvh {
             })
             .collect();
         let mut nodes = Vec::with_capacity(2 * tris.len() / LEAF + 2);
-        nodes.push(Node { lo: [0.0; 3], hi: [0.0; 3], first: 0, count: 0 });
+        let blank = Node { lo: [0.0; 3], hi: [0.0; 3], oriented: 0, first: 0, count: 0 };
+        nodes.push(blank);
+        let mut oriented = Vec::new();
+        let mut valence = vec![0u32; positions.len()];
+        tris.iter().flatten().for_each(|&v| valence[v as usize] += 1);
+        let hubs = valence.iter().any(|&c| c > HUB_TRIANGLES);
+        drop(valence);
         // Explicit stack of (node, start, end).
         let mut stack = vec![(0usize, 0usize, items.len())];
         while let Some((node, start, end)) = stack.pop() {
@@ -129,6 +214,9 @@ impl Bvh {
             }
             nodes[node].lo = lo;
             nodes[node].hi = hi;
+            if hubs {
+                Self::orient(slice, lo, hi, &mut oriented, &mut nodes[node]);
+            }
             if slice.len() <= LEAF {
                 nodes[node].first = start as u32;
                 nodes[node].count = slice.len() as u32;
@@ -138,14 +226,67 @@ impl Bvh {
             let mid = slice.len() / 2;
             slice.select_nth_unstable_by(mid, |x, y| x.1[axis].total_cmp(&y.1[axis]));
             let left = nodes.len();
-            nodes.push(Node { lo, hi, first: 0, count: 0 });
-            nodes.push(Node { lo, hi, first: 0, count: 0 });
+            nodes.push(Node { lo, hi, ..blank });
+            nodes.push(Node { lo, hi, ..blank });
             nodes[node].first = left as u32;
             nodes[node].count = 0;
             stack.push((left + 1, start + mid, end));
             stack.push((left, start, start + mid));
         }
-        Bvh { nodes, tris: items.into_iter().map(|(c, _)| c).collect() }
+        Bvh { nodes, oriented, tris: items.into_iter().map(|(c, _)| c).collect() }
+    }
+
+    /// Gives `node` an oriented box when it is much tighter than (lo, hi).
+    fn orient(slice: &[([V3; 3], V3)], lo: V3, hi: V3, oriented: &mut Vec<Obb>, node: &mut Node) {
+        // Axes from at most 64 of the node's triangles (spread over it): the box
+        // is exact whatever the axes, and the build stays about one more pass.
+        let step = slice.len().div_ceil(64).max(1);
+        let axes = oriented_axes(slice.iter().step_by(step).flat_map(|(c, _)| c.iter().copied()));
+        let (mut olo, mut ohi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for (c, _) in slice.iter() {
+            for p in c {
+                for k in 0..3 {
+                    let x = dot(*p, axes[k]);
+                    olo[k] = olo[k].min(x);
+                    ohi[k] = ohi[k].max(x);
+                }
+            }
+        }
+        // Padding against rounding: a millionth of the extent plus a little of the
+        // coordinates' size.
+        let size = (0..3).map(|k| hi[k].abs().max(lo[k].abs())).fold(0.0, f64::max);
+        for k in 0..3 {
+            let pad = 1e-6 * (ohi[k] - olo[k]) + 1e-12 * size;
+            olo[k] -= pad;
+            ohi[k] += pad;
+        }
+        let extent = |lo: V3, hi: V3| [0, 1, 2].map(|k| hi[k] - lo[k]);
+        let (eo, ea) = (extent(olo, ohi), extent(lo, hi));
+        let thinnest = |e: V3| e[0].min(e[1]).min(e[2]);
+        if box_surface(eo) < 0.25 * box_surface(ea) || thinnest(eo) < 0.25 * thinnest(ea) {
+            oriented.push(Obb { axes, lo: olo, hi: ohi });
+            node.oriented = oriented.len() as u32;
+        }
+    }
+
+    /// A lower bound of the squared distance from `p` to anything in `node`: its
+    /// axis-aligned box's distance, or where that is under `best` and the node has
+    /// an oriented box, the larger of that and the oriented box's (shrunk by a
+    /// millionth against rounding in the projections). A lower bound is all pruning
+    /// needs: a query's result is the same, only fewer nodes are visited.
+    fn bound(&self, p: V3, node: &Node, best: f64) -> f64 {
+        let aabb = box_distance2(p, node.lo, node.hi);
+        if aabb >= best || node.oriented == 0 {
+            return aabb;
+        }
+        let o = &self.oriented[node.oriented as usize - 1];
+        let mut d = 0.0;
+        for k in 0..3 {
+            let x = dot(p, o.axes[k]);
+            let e = (o.lo[k] - x).max(0.0).max(x - o.hi[k]);
+            d += e * e;
+        }
+        aabb.max(d * 0.999_999)
     }
 
     /// True when there are no triangles.
@@ -167,7 +308,7 @@ impl Bvh {
         stack.push(0);
         while let Some(n) = stack.pop() {
             let node = &self.nodes[n as usize];
-            if box_distance2(p, node.lo, node.hi) >= best {
+            if self.bound(p, node, best) >= best {
                 continue;
             }
             if node.count > 0 {
@@ -181,8 +322,8 @@ impl Bvh {
                 }
             } else {
                 let l = node.first;
-                let dl = box_distance2(p, self.nodes[l as usize].lo, self.nodes[l as usize].hi);
-                let dr = box_distance2(p, self.nodes[l as usize + 1].lo, self.nodes[l as usize + 1].hi);
+                let dl = self.bound(p, &self.nodes[l as usize], best);
+                let dr = self.bound(p, &self.nodes[l as usize + 1], best);
                 // Visit the nearer child first: push it last.
                 let (near, far, dfar) = if dl <= dr { (l, l + 1, dr) } else { (l + 1, l, dl) };
                 if dfar < best {

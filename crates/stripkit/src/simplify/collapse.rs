@@ -12,6 +12,8 @@ use super::quadric::{dot, norm, sub, tri_normal, Quadric, V3};
 use super::{CollapseSequence, Collapse, Options, Placement, Simplified, Target};
 use crate::distance::bvh::point_triangle_distance2;
 use crate::mesh::Mesh;
+use std::collections::HashMap;
+use std::hash::BuildHasherDefault;
 
 /// Cosine of the largest normal change one collapse may cause in a triangle; 0.5
 /// (60 degrees) measured best against 0.0 and 0.25 on bunny, horse and dragon.
@@ -31,6 +33,15 @@ const CREASE_COS: f64 = -0.3;
 /// `CREASE_WEIGHT * sharpness * length^2` (sharpness 0 at `CREASE_COS`, 1 for a
 /// complete fold).
 const CREASE_WEIGHT: f64 = 10.0;
+
+/// A vertex in more live triangles than this is a *hub* (the centre of a star of
+/// 10^5 triangles, the ends of an edge shared by 10^4 triangles, the first corner of
+/// a fanned polygon of 10^6 corners). A hub is never removed nor moved; a collapse
+/// into it does work in the other end's triangles only (no re-planning of all the
+/// hub's edges, which made such meshes quadratic or worse); see `State::hubs`.
+/// Meshes without a hub at the start never take these paths: their output is
+/// unchanged. 256 is far above the valence of any vertex of the real models.
+const HUB_TRIANGLES: u32 = 256;
 
 /// Candidate kinds kept in the heap.
 const KIND_EDGE: u8 = 0;
@@ -188,8 +199,8 @@ struct State {
     mark: Vec<u32>,
     stamp: u32,
     placement: Placement,
-    neighbors_removed: Vec<(u32, u32)>,
-    neighbors_kept: Vec<(u32, u32)>,
+    neighbors_removed: NeighborSet,
+    neighbors_kept: NeighborSet,
     removed_now: Vec<u32>,
     heap: QuadHeap,
     /// Pair contraction only (empty otherwise): close non-edge partners of each
@@ -201,22 +212,150 @@ struct State {
     root: Vec<u32>,
     member_next: Vec<u32>,
     member_tail: Vec<u32>,
+    /// Hub mode, on when some input vertex is in more than `HUB_TRIANGLES` live
+    /// triangles (the rest is empty otherwise). In hub mode a hub (see
+    /// `HUB_TRIANGLES`) is only ever the kept vertex, at its own position; a collapse
+    /// into a hub keeps the hub's version (its other edges' entries stay valid, their
+    /// keys possibly stale: they are re-costed when popped) and pushes only the edges
+    /// of the removed vertex's triangles; the fan distance of such a collapse uses
+    /// only the hub's triangles that share a vertex (not itself a hub) with the
+    /// removed vertex's triangles (fewer triangles: a larger or equal distance,
+    /// except where none is found); the link and pinch checks read the live
+    /// triangle count of each edge and the boundary-edge count of each vertex, kept
+    /// up to date in a hash map, instead of gathering the hub's neighbours. A hub's
+    /// triangle list has spare room (`cap`), doubled when full, so appending to it
+    /// is amortised O(1).
+    hubs: bool,
+    live_tris: Vec<u32>,
+    edge_count: EdgeMap,
+    boundary_edges: Vec<u32>,
+    cap: Vec<u32>,
+    tri_mark: Vec<u32>,
+    tri_stamp: u32,
+    /// Scratch buffer of the hub paths.
+    hub_tris: Vec<u32>,
 }
 
 const NONE: u32 = u32::MAX;
 
-fn add_neighbor(list: &mut Vec<(u32, u32)>, u: u32) {
-    match list.iter_mut().find(|(x, _)| *x == u) {
-        Some(e) => e.1 += 1,
-        None => list.push((u, 1)),
+/// A multiplicative hasher for edge keys (two vertex ids in one u64).
+#[derive(Default, Clone, Copy)]
+struct EdgeHasher(u64);
+
+impl std::hash::Hasher for EdgeHasher {
+    fn finish(&self) -> u64 {
+        self.0 ^ (self.0 >> 29)
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0 ^ x).wrapping_mul(0x9E37_79B9_7F4A_7C15);
     }
 }
 
-fn has(list: &[(u32, u32)], u: u32) -> bool {
-    list.iter().any(|&(x, _)| x == u)
+type EdgeMap = HashMap<u64, u32, BuildHasherDefault<EdgeHasher>>;
+
+fn edge_key(a: u32, b: u32) -> u64 {
+    (u64::from(a.min(b)) << 32) | u64::from(a.max(b))
+}
+
+/// The neighbours of a vertex with the number of live triangles each shares with it,
+/// in first-seen order: a sparse set (`at[u]` is u's index in `list` when that entry
+/// names u; stale values need no clearing), so adding and testing are O(1) however
+/// high the valence (a list search made a check around a vertex of valence 10^5
+/// cost 10^10 steps).
+#[derive(Default)]
+struct NeighborSet {
+    list: Vec<(u32, u32)>,
+    at: Vec<u32>,
+}
+
+impl NeighborSet {
+    fn new(n: usize) -> Self {
+        NeighborSet { list: Vec::new(), at: vec![0; n] }
+    }
+
+    fn clear(&mut self) {
+        self.list.clear();
+    }
+
+    fn index(&self, u: u32) -> Option<usize> {
+        let i = self.at[u as usize] as usize;
+        (i < self.list.len() && self.list[i].0 == u).then_some(i)
+    }
+
+    fn add(&mut self, u: u32) {
+        match self.index(u) {
+            Some(i) => self.list[i].1 += 1,
+            None => {
+                self.at[u as usize] = self.list.len() as u32;
+                self.list.push((u, 1));
+            }
+        }
+    }
+
+    fn has(&self, u: u32) -> bool {
+        self.index(u).is_some()
+    }
 }
 
 impl State {
+    /// In hub mode, is `v` a hub (see `HUB_TRIANGLES`)?
+    fn is_hub(&self, v: u32) -> bool {
+        self.hubs && self.live_tris[v as usize] > HUB_TRIANGLES
+    }
+
+    /// Hub mode: the live triangles of edge (a, b) go up or down by one.
+    fn edge_step(&mut self, a: u32, b: u32, up: bool) {
+        let key = edge_key(a, b);
+        let c = self.edge_count.get(&key).copied().unwrap_or(0);
+        let nc = if up { c + 1 } else { c.saturating_sub(1) };
+        if c == 1 {
+            self.boundary_edges[a as usize] -= 1;
+            self.boundary_edges[b as usize] -= 1;
+        }
+        if nc == 1 {
+            self.boundary_edges[a as usize] += 1;
+            self.boundary_edges[b as usize] += 1;
+        }
+        if nc == 0 {
+            self.edge_count.remove(&key);
+        } else {
+            self.edge_count.insert(key, nc);
+        }
+    }
+
+    /// Hub mode: edge counts, boundary-edge counts and live triangle counts after the
+    /// collapse r -> k (called before it rewrites the triangles).
+    fn count_collapse(&mut self, r: u32, k: u32) {
+        for i in self.tris_of(r) {
+            let t = self.refs[i] as usize;
+            if !self.tri_alive[t] {
+                continue;
+            }
+            let tri = self.tris[t];
+            if tri.contains(&k) {
+                for e in 0..3 {
+                    self.edge_step(tri[e], tri[(e + 1) % 3], false);
+                }
+                for v in tri {
+                    self.live_tris[v as usize] -= 1;
+                }
+            } else {
+                let (a, b) = others_of(tri, r);
+                self.edge_step(r, a, false);
+                self.edge_step(r, b, false);
+                self.edge_step(k, a, true);
+                self.edge_step(k, b, true);
+                self.live_tris[k as usize] += 1;
+            }
+        }
+        self.live_tris[r as usize] = 0;
+    }
+
     fn tris_of(&self, v: u32) -> std::ops::Range<usize> {
         let s = self.start[v as usize] as usize;
         s..s + self.len[v as usize] as usize
@@ -245,6 +384,20 @@ impl State {
         let (pu, pv) = (self.pos[u as usize], self.pos[v as usize]);
         let scale = self.scale(u, v);
         let (cu, cv) = (q.eval(pu) * scale, q.eval(pv) * scale);
+        if self.hubs && (self.is_hub(u) || self.is_hub(v)) {
+            // A hub stays where it is and is never removed: one placement, or none
+            // between two hubs.
+            if self.is_hub(u) && self.is_hub(v) {
+                return (f64::INFINITY, u, v, pv, CHOICE_END);
+            }
+            let (mut c, r, k, p) = if self.is_hub(u) { (cu, v, u, pu) } else { (cv, u, v, pv) };
+            if exact {
+                let ring = self.gather_ring(u, v);
+                c += self.fan_weight * fan_distance2(&ring, [pu, pv], p, f64::INFINITY);
+                self.ring = ring;
+            }
+            return (c, r, k, p, CHOICE_END);
+        }
         let mut cands: [(f64, u32, u32, V3); 4] = [(f64::INFINITY, u, v, pv); 4];
         let mut nc = 0;
         let mut add = |c: (f64, u32, u32, V3)| {
@@ -320,6 +473,9 @@ impl State {
     /// The triangles around u and v (the new fan is those the collapse keeps, with u
     /// and v moved to the new position), in `self.ring`'s buffer, taken out of it.
     fn gather_ring(&mut self, u: u32, v: u32) -> Vec<RingTri> {
+        if self.hubs && (self.is_hub(u) || self.is_hub(v)) {
+            return self.gather_ring_hub(u, v);
+        }
         let mut ring = std::mem::take(&mut self.ring);
         ring.clear();
         for (w, other, centre) in [(u, v, 0u8), (v, u, 1)] {
@@ -339,6 +495,64 @@ impl State {
         ring
     }
 
+    /// `gather_ring` when one of u and v is a hub: the hub's side holds only the
+    /// triangles the collapse removes and the hub's triangles that share a vertex
+    /// (not a hub) with the other end's triangles, found through that vertex's list:
+    /// O(the other end's valence times its neighbours'), not O(the hub's valence).
+    fn gather_ring_hub(&mut self, u: u32, v: u32) -> Vec<RingTri> {
+        let (h, o) = if self.is_hub(u) { (u, v) } else { (v, u) };
+        let mut hub_tris = std::mem::take(&mut self.hub_tris);
+        hub_tris.clear();
+        self.tri_stamp = self.tri_stamp.wrapping_add(1);
+        let ts = self.tri_stamp;
+        for i in self.tris_of(o) {
+            let t = self.refs[i] as usize;
+            if self.tri_alive[t] && self.tris[t].contains(&h) {
+                self.tri_mark[t] = ts;
+                hub_tris.push(t as u32);
+            }
+        }
+        for i in self.tris_of(o) {
+            let t = self.refs[i] as usize;
+            if !self.tri_alive[t] {
+                continue;
+            }
+            for w in self.tris[t] {
+                if w == o || w == h || self.is_hub(w) {
+                    continue;
+                }
+                for j in self.tris_of(w) {
+                    let t2 = self.refs[j] as usize;
+                    let tri2 = self.tris[t2];
+                    if self.tri_alive[t2] && self.tri_mark[t2] != ts && tri2.contains(&h) && !tri2.contains(&o) {
+                        self.tri_mark[t2] = ts;
+                        hub_tris.push(t2 as u32);
+                    }
+                }
+            }
+        }
+        let mut ring = std::mem::take(&mut self.ring);
+        ring.clear();
+        for (w, other, centre) in [(u, v, 0u8), (v, u, 1)] {
+            let own = self.start[w as usize] as usize;
+            let list: &[u32] = if w == h { &hub_tris } else { &self.refs[own..own + self.len[w as usize] as usize] };
+            for &t in list {
+                let t = t as usize;
+                if !self.tri_alive[t] {
+                    continue;
+                }
+                let removed = self.tris[t].contains(&other);
+                if removed && centre == 1 {
+                    continue;
+                }
+                let (a, b) = others_of(self.tris[t], w);
+                ring.push(RingTri { a: self.pos[a as usize], b: self.pos[b as usize], centre, removed });
+            }
+        }
+        self.hub_tris = hub_tris;
+        ring
+    }
+
     /// 1 / the face area in the quadrics of u and v.
     fn scale(&self, u: u32, v: u32) -> f64 {
         1.0 / (self.area[u as usize] + self.area[v as usize]).max(f64::MIN_POSITIVE)
@@ -346,6 +560,9 @@ impl State {
 
     fn push(&mut self, u: u32, v: u32, kind: u8) {
         let (cost, removed, kept, _, _) = self.plan(u, v, false);
+        if cost == f64::INFINITY && self.hubs {
+            return; // between two hubs
+        }
         self.push_planned(cost, removed, kept, kind, 0);
     }
 
@@ -384,6 +601,10 @@ impl State {
     }
 
     fn check(&mut self, r: u32, k: u32, p: V3, pair: bool) -> Verdict {
+        let hub = self.hubs && self.is_hub(k);
+        if self.hubs && (self.is_hub(r) || (hub && p != self.pos[k as usize])) {
+            return Verdict::Refused;
+        }
         let mut na = std::mem::take(&mut self.neighbors_removed);
         let mut nb = std::mem::take(&mut self.neighbors_kept);
         na.clear();
@@ -400,28 +621,46 @@ impl State {
             }
             for v in tri {
                 if v != r {
-                    add_neighbor(&mut na, v);
+                    na.add(v);
                 }
             }
         }
-        for i in self.tris_of(k) {
-            let t = self.refs[i] as usize;
-            if self.tri_alive[t] {
-                for v in self.tris[t] {
-                    if v != k {
-                        add_neighbor(&mut nb, v);
+        let verdict = if hub {
+            // The hub's neighbours come from the edge counts, not from its list.
+            let count = |u: u32| self.edge_count.get(&edge_key(k, u)).copied().unwrap_or(0);
+            self.check_with(r, k, p, pair, shared, &na, |u| count(u) > 0, || self.boundary_edges[k as usize] > 0, true)
+        } else {
+            for i in self.tris_of(k) {
+                let t = self.refs[i] as usize;
+                if self.tri_alive[t] {
+                    for v in self.tris[t] {
+                        if v != k {
+                            nb.add(v);
+                        }
                     }
                 }
             }
-        }
-        let verdict = self.check_with(r, k, p, pair, shared, &na, &nb);
+            let boundary = || nb.list.iter().any(|&(_, c)| c == 1);
+            self.check_with(r, k, p, pair, shared, &na, |u| nb.has(u), boundary, false)
+        };
         self.neighbors_removed = na;
         self.neighbors_kept = nb;
         verdict
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn check_with(&self, r: u32, k: u32, p: V3, pair: bool, shared: usize, na: &[(u32, u32)], nb: &[(u32, u32)]) -> Verdict {
+    fn check_with(
+        &self,
+        r: u32,
+        k: u32,
+        p: V3,
+        pair: bool,
+        shared: usize,
+        na: &NeighborSet,
+        nb_has: impl Fn(u32) -> bool,
+        k_boundary: impl Fn() -> bool,
+        hub: bool,
+    ) -> Verdict {
         if shared == 0 && !pair {
             return Verdict::Stale;
         }
@@ -431,13 +670,12 @@ impl State {
         if shared > 0 {
             // Link condition on vertices: the only common neighbours are the vertices
             // opposite the edge.
-            let common = na.iter().filter(|&&(u, _)| u != k && has(nb, u)).count();
+            let common = na.list.iter().filter(|&&(u, _)| u != k && nb_has(u)).count();
             if common != shared {
                 return Verdict::Refused;
             }
             // An interior edge between two boundary vertices would pinch the surface.
-            let boundary = |l: &[(u32, u32)]| l.iter().any(|&(_, c)| c == 1);
-            if shared == 2 && boundary(na) && boundary(nb) {
+            if shared == 2 && na.list.iter().any(|&(_, c)| c == 1) && k_boundary() {
                 return Verdict::Refused;
             }
         }
@@ -456,10 +694,15 @@ impl State {
             }
             // Would this triangle duplicate one of k's (link condition on edges)?
             let others: Vec2 = others_of(tri, r);
-            if has(nb, others.0) && has(nb, others.1) {
-                let dup = self.tris_of(k).filter_map(alive).any(|t2| {
+            if nb_has(others.0) && nb_has(others.1) {
+                // Through the shorter list of the three (a hub's is long).
+                let mut w = k;
+                if hub {
+                    w = if self.len[others.0 as usize] <= self.len[others.1 as usize] { others.0 } else { others.1 };
+                }
+                let dup = self.tris_of(w).filter_map(alive).any(|t2| {
                     let t2 = self.tris[t2];
-                    t2.contains(&others.0) && t2.contains(&others.1)
+                    t2.contains(&k) && t2.contains(&others.0) && t2.contains(&others.1)
                 });
                 if dup {
                     return Verdict::Refused;
@@ -483,6 +726,9 @@ impl State {
     /// (their ids are in `removed_now`).
     fn collapse(&mut self, r: u32, k: u32, p: V3) -> usize {
         self.removed_now.clear();
+        if self.hubs {
+            self.count_collapse(r, k);
+        }
         for i in self.tris_of(r) {
             let t = self.refs[i] as usize;
             if !self.tri_alive[t] {
@@ -499,30 +745,44 @@ impl State {
                 }
             }
         }
-        let new_start = self.refs.len();
-        for list in [self.tris_of(k), self.tris_of(r)] {
-            for i in list {
-                let t = self.refs[i];
-                if self.tri_alive[t as usize] {
-                    self.refs.push(t);
+        let hub = self.is_hub(k);
+        // The triangles new to k's list: all of them, or r's only (hub).
+        let new_tris;
+        if hub {
+            new_tris = self.append_to_hub(r, k);
+        } else {
+            let new_start = self.refs.len();
+            for list in [self.tris_of(k), self.tris_of(r)] {
+                for i in list {
+                    let t = self.refs[i];
+                    if self.tri_alive[t as usize] {
+                        self.refs.push(t);
+                    }
                 }
             }
+            self.start[k as usize] = new_start as u32;
+            self.len[k as usize] = (self.refs.len() - new_start) as u32;
+            if self.hubs {
+                self.cap[k as usize] = self.len[k as usize];
+            }
+            new_tris = self.tris_of(k);
         }
-        self.start[k as usize] = new_start as u32;
-        self.len[k as usize] = (self.refs.len() - new_start) as u32;
         self.len[r as usize] = 0;
         self.alive[r as usize] = false;
         self.version[r as usize] += 1;
-        self.version[k as usize] += 1;
+        if !hub {
+            self.version[k as usize] += 1;
+        }
         let qr = self.quadric[r as usize];
         self.quadric[k as usize].add(&qr);
         self.area[k as usize] += self.area[r as usize];
         self.pos[k as usize] = p;
-        // New candidates: every edge around the survivor.
+        // New candidates: every edge around the survivor (a hub: those of the
+        // triangles it took from r).
         self.stamp += 1;
         let stamp = self.stamp;
         self.mark[k as usize] = stamp;
-        for i in self.tris_of(k) {
+        for i in new_tris {
             let t = self.refs[i] as usize;
             for v in self.tris[t] {
                 if self.mark[v as usize] != stamp {
@@ -532,9 +792,45 @@ impl State {
             }
         }
         if !self.pair_start.is_empty() {
-            self.repush_pairs(r, k, stamp);
+            self.repush_pairs(r, k, stamp, hub);
         }
         self.removed_now.len()
+    }
+
+    /// Appends r's live triangles to hub k's list, in place when its spare room
+    /// allows, otherwise moving k's live triangles to the end of `refs` with room for
+    /// twice as many; returns the range of the appended ones.
+    fn append_to_hub(&mut self, r: u32, k: u32) -> std::ops::Range<usize> {
+        let mut moved = std::mem::take(&mut self.hub_tris);
+        moved.clear();
+        for i in self.tris_of(r) {
+            let t = self.refs[i];
+            if self.tri_alive[t as usize] {
+                moved.push(t);
+            }
+        }
+        let (l, c) = (self.len[k as usize] as usize, self.cap[k as usize] as usize);
+        if l + moved.len() > c {
+            let new_start = self.refs.len();
+            for i in self.tris_of(k) {
+                let t = self.refs[i];
+                if self.tri_alive[t as usize] {
+                    self.refs.push(t);
+                }
+            }
+            let live = self.refs.len() - new_start;
+            let room = 2 * (live + moved.len());
+            self.refs.resize(new_start + room, 0);
+            self.start[k as usize] = new_start as u32;
+            self.len[k as usize] = live as u32;
+            self.cap[k as usize] = room as u32;
+        }
+        let at = self.start[k as usize] as usize + self.len[k as usize] as usize;
+        self.refs[at..at + moved.len()].copy_from_slice(&moved);
+        self.len[k as usize] += moved.len() as u32;
+        let range = at..at + moved.len();
+        self.hub_tris = moved;
+        range
     }
 
     fn find(&mut self, mut v: u32) -> u32 {
@@ -548,12 +844,14 @@ impl State {
 
     /// After r merged into k: k inherits r's pair partners; push k's pairs again
     /// (their entries died with the version bump). `stamp` marks k's neighbours.
-    fn repush_pairs(&mut self, r: u32, k: u32, stamp: u32) {
+    /// A hub's old pairs' entries are still valid (its version stays): only r's
+    /// members' pairs are pushed.
+    fn repush_pairs(&mut self, r: u32, k: u32, stamp: u32, hub: bool) {
         self.root[r as usize] = k;
         let tail = self.member_tail[k as usize];
         self.member_next[tail as usize] = r;
         self.member_tail[k as usize] = self.member_tail[r as usize];
-        let mut m = k;
+        let mut m = if hub { r } else { k };
         while m != NONE {
             for i in self.pair_start[m as usize]..self.pair_start[m as usize + 1] {
                 let q = self.find(self.pair_partner[i as usize]);
@@ -579,6 +877,9 @@ impl State {
             }
             self.start[v] = s as u32;
             self.len[v] = (refs.len() - s) as u32;
+            if self.hubs {
+                self.cap[v] = self.len[v];
+            }
         }
         self.refs = refs;
     }
@@ -720,8 +1021,8 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
         mark: vec![0; n],
         stamp: 0,
         placement: options.placement,
-        neighbors_removed: Vec::new(),
-        neighbors_kept: Vec::new(),
+        neighbors_removed: NeighborSet::new(n),
+        neighbors_kept: NeighborSet::new(n),
         removed_now: Vec::new(),
         heap: QuadHeap::default(),
         pair_start: Vec::new(),
@@ -729,25 +1030,64 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
         root: Vec::new(),
         member_next: Vec::new(),
         member_tail: Vec::new(),
+        hubs: false,
+        live_tris: Vec::new(),
+        edge_count: EdgeMap::default(),
+        boundary_edges: Vec::new(),
+        cap: Vec::new(),
+        tri_mark: Vec::new(),
+        tri_stamp: 0,
+        hub_tris: Vec::new(),
     };
+    let mut live_tris = vec![0u32; n];
+    for (t, tri) in st.tris.iter().enumerate() {
+        if st.tri_alive[t] {
+            tri.iter().for_each(|&v| live_tris[v as usize] += 1);
+        }
+    }
+    if live_tris.iter().any(|&c| c > HUB_TRIANGLES) {
+        st.hubs = true;
+        st.boundary_edges = vec![0; n];
+        for (t, tri) in st.tris.iter().enumerate() {
+            if st.tri_alive[t] {
+                for e in 0..3 {
+                    *st.edge_count.entry(edge_key(tri[e], tri[(e + 1) % 3])).or_insert(0) += 1;
+                }
+            }
+        }
+        for (&key, &c) in &st.edge_count {
+            if c == 1 {
+                st.boundary_edges[(key >> 32) as usize] += 1;
+                st.boundary_edges[(key & 0xFFFF_FFFF) as usize] += 1;
+            }
+        }
+        st.live_tris = live_tris;
+        st.cap = st.len.clone();
+        st.tri_mark = vec![0; triangle_count];
+    }
 
     // Penalty planes through each boundary edge, perpendicular to its face, and
     // through each crease edge, perpendicular to each of its two faces: these keep
     // borders and the rims of folds (fins, ears) in place, which the face planes
     // alone do not (a fin's faces are nearly parallel).
+    // (Neighbour, triangles, first and last triangle) of each edge (v, u > v), in
+    // first-seen order; `count_at[u]` is u's index in `counts` (a sparse set, O(1) a
+    // lookup however high v's valence).
     let mut counts: Vec<(u32, u32, u32, u32)> = Vec::new();
+    let mut count_at = vec![0u32; n];
     for v in 0..n as u32 {
         counts.clear();
         for i in st.tris_of(v) {
             let t = st.refs[i];
             for u in st.tris[t as usize] {
                 if u > v {
-                    match counts.iter_mut().find(|e| e.0 == u) {
-                        Some(e) => {
-                            e.1 += 1;
-                            e.3 = t;
-                        }
-                        None => counts.push((u, 1, t, t)),
+                    let j = count_at[u as usize] as usize;
+                    if j < counts.len() && counts[j].0 == u {
+                        counts[j].1 += 1;
+                        counts[j].3 = t;
+                    } else {
+                        count_at[u as usize] = counts.len() as u32;
+                        counts.push((u, 1, t, t));
                     }
                 }
             }
@@ -878,7 +1218,7 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
         match st.check(r, k, p, kind == KIND_PAIR) {
             Verdict::Stale => continue,
             Verdict::Refused => {
-                if kind == KIND_EDGE && options.placement == Placement::Endpoint {
+                if kind == KIND_EDGE && options.placement == Placement::Endpoint && !st.is_hub(k) {
                     // Try the other direction: k moves onto r.
                     let c = st.cost_at(r, k, st.pos[r as usize]);
                     st.push_planned(c, k, r, KIND_EDGE_REVERSED, CHOICE_END);
@@ -980,7 +1320,11 @@ fn push_close_pairs(st: &mut State, d: f64) -> crate::Result<()> {
             }
         }
     }
-    pairs.retain(|&(v, u)| !st.tris_of(v).any(|i| st.tris[st.refs[i] as usize].contains(&u)));
+    // Through the shorter of the two lists (a hub's is long).
+    pairs.retain(|&(v, u)| {
+        let (a, b) = if st.len[v as usize] <= st.len[u as usize] { (v, u) } else { (u, v) };
+        !st.tris_of(a).any(|i| st.tris[st.refs[i] as usize].contains(&b))
+    });
     let mut both: Vec<(u32, u32)> = pairs.iter().flat_map(|&(v, u)| [(v, u), (u, v)]).collect();
     both.sort_unstable();
     (st.pair_start, st.pair_partner) =

@@ -19,6 +19,10 @@
 //! * A collapse is refused when it would flip a triangle (against its current normal or
 //!   its ancestor's in the input), make it degenerate, break the link condition
 //!   (non-manifold result), pinch a boundary or duplicate a triangle.
+//! * Around a vertex in more than 256 live triangles (a *hub*: a star's centre, a
+//!   fanned polygon's first corner) the work of a collapse is bounded by the other
+//!   end's valence: the hub is only ever kept, in place, and its other edges are not
+//!   re-planned (see `collapse::HUB_TRIANGLES`); meshes without a hub are untouched.
 //! * [`Placement::Endpoint`] is a half-edge collapse: the removed vertex moves onto the
 //!   kept one, no new positions (what LoD strips need). [`Placement::Optimal`] puts the
 //!   survivor at the cheapest (by the cost above) of the quadric's minimiser, both
