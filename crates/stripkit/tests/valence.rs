@@ -95,3 +95,51 @@ fn tunnel_depth_beyond_the_maximum_is_refused() {
         }
     }
 }
+
+/// Quads on one edge {0, 1}: `n` of them with their own two other corners (pairs of
+/// them share only the edge), then `m` more that all share a third vertex 2 (every
+/// pair of those shares three vertices, so their diagonals must keep apart).
+fn quad_book(n: u32, m: u32) -> Mesh {
+    let mut positions = vec![[0.0f32, 0.0, 0.0], [0.0, 0.0, 1.0], [2.0, 0.0, 0.5]];
+    let mut faces: Vec<[u32; 4]> = Vec::new();
+    for i in 0..n + m {
+        let a = std::f32::consts::TAU * i as f32 / (n + m) as f32;
+        let first = positions.len() as u32;
+        positions.push([a.cos(), a.sin(), 0.0]);
+        positions.push([a.cos(), a.sin(), 1.0]);
+        faces.push(if i < n { [0, first, first + 1, 1] } else { [0, first, 2, 1] });
+    }
+    Mesh::from_polygons(positions, &faces)
+}
+
+#[test]
+fn twenty_thousand_quads_on_one_edge() {
+    // QSTRIP once tried every pair of quads on an edge: 2 x 10^8 pairs here. The
+    // last 300 share three vertices: pair by pair they would be 45,000 pairs.
+    let mesh = quad_book(N, 300);
+    for a in [Algorithm::Auto, Algorithm::qstrip(), Algorithm::cache(), Algorithm::balanced(0.8)] {
+        let s = stripify(&mesh, &StripOptions::default().algorithm(a.clone())).unwrap_or_else(|e| panic!("{a:?}: {e}"));
+        let f = &s.figures;
+        assert!(f.verified && f.winding_preserved, "{a:?}: {f:?}");
+        assert_eq!((f.triangles, f.lost, f.added, f.flipped), (2 * (N as usize + 300), 0, 0, 0), "{a:?}");
+        if !matches!(a, Algorithm::Auto | Algorithm::Qstrip(_)) {
+            // cache and balanced split quads along the fan here, so the 300 quads all
+            // give triangle (0, 2, 1): the input's coincidence, not theirs.
+            continue;
+        }
+        // QSTRIP chose the diagonals: no two drawn triangles on the same three vertices.
+        let mut sets: Vec<[u32; 3]> = stripkit::unstripify(&s.restart_buffer(), s.restart_index)
+            .chunks_exact(3)
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+            .map(|t| {
+                let mut t = [t[0], t[1], t[2]];
+                t.sort_unstable();
+                t
+            })
+            .collect();
+        let n = sets.len();
+        sets.sort_unstable();
+        sets.dedup();
+        assert_eq!(sets.len(), n, "{a:?}: coincident triangles");
+    }
+}

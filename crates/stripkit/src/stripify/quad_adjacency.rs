@@ -11,6 +11,9 @@ use crate::topology::EdgeMap;
 pub(super) const NONE: u32 = u32::MAX;
 /// Diagonal not forced.
 pub(super) const FREE: u8 = 2;
+/// Quads on one edge sharing the same third vertex beyond which their diagonals are
+/// forced one by one instead of pair by pair (a pathological, non-manifold input).
+const CLUSTER_CAP: usize = 64;
 
 /// True for a face that QSTRIP takes: four vertices, all distinct.
 pub fn is_quad(face: &[u32]) -> bool {
@@ -115,26 +118,61 @@ impl QuadAdjacency<'_> {
         }
         // The quads on each odd edge, in half-edge order (the faces that are not quads
         // left out first: an edge of k triangles and a quad or two is O(k), not O(k^2)).
+        // Two of them share three vertices when they share one of their two other
+        // corners: bucketing by those corners finds the pairs without trying all k^2.
         let mut on_edge: Vec<u32> = Vec::new();
+        let mut corners: Vec<(u32, u32)> = Vec::new();
+        let mut candidates: Vec<(u32, u32)> = Vec::new();
         for e in odd_edges {
+            let [u, v] = edges.edges[e];
             on_edge.clear();
             on_edge.extend(edges.halfedges(e).iter().map(|&h| local(h).0).filter(|&q| q != NONE));
-            for (i, &qa) in on_edge.iter().enumerate() {
-                for &qb in &on_edge[i + 1..] {
-                    if qa == qb {
-                        continue;
-                    }
-                    let (q1, q2) = (qa.min(qb) as usize, qa.max(qb) as usize);
-                    let a = &verts[4 * q1..4 * q1 + 4];
-                    let b = &verts[4 * q2..4 * q2 + 4];
-                    let common = a.iter().filter(|v| b.contains(v)).count();
-                    if common >= 3 {
-                        pairs.push((q1 as u32, q2 as u32));
-                        match force_pair(&verts, &mut forced, q1, q2) {
-                            Forcing::Forced => forced_pairs += 1,
-                            Forcing::Clash => clash = true,
-                            Forcing::Nothing => {}
+            corners.clear();
+            for (i, &q) in on_edge.iter().enumerate() {
+                let qv = &verts[4 * q as usize..4 * q as usize + 4];
+                corners.extend(qv.iter().filter(|&&w| w != u && w != v).map(|&w| (w, i as u32)));
+            }
+            corners.sort_unstable();
+            candidates.clear();
+            for group in corners.chunk_by(|a, b| a.0 == b.0) {
+                if group.len() > CLUSTER_CAP {
+                    // Hundreds of quads on the same three vertices (u, v, w): each
+                    // takes the diagonal whose triangles avoid (u, v, w), in O(k), in
+                    // place of the k^2 pairs.
+                    let mut uvw = [u, v, group[0].0];
+                    uvw.sort_unstable();
+                    for &(_, i) in group {
+                        let q = on_edge[i as usize] as usize;
+                        let qv = &verts[4 * q..4 * q + 4];
+                        if forced[q] == FREE {
+                            forced[q] = u8::from(split_sets(qv, 0).contains(&uvw));
+                            forced_pairs += 1;
                         }
+                    }
+                    continue;
+                }
+                for (a, &(_, i)) in group.iter().enumerate() {
+                    candidates.extend(group[a + 1..].iter().map(|&(_, j)| (i.min(j), i.max(j))));
+                }
+            }
+            // The pairs in half-edge order, as the all-pairs loop met them.
+            candidates.sort_unstable();
+            candidates.dedup();
+            for &(i, j) in &candidates {
+                let (qa, qb) = (on_edge[i as usize], on_edge[j as usize]);
+                if qa == qb {
+                    continue;
+                }
+                let (q1, q2) = (qa.min(qb) as usize, qa.max(qb) as usize);
+                let a = &verts[4 * q1..4 * q1 + 4];
+                let b = &verts[4 * q2..4 * q2 + 4];
+                let common = a.iter().filter(|v| b.contains(v)).count();
+                if common >= 3 {
+                    pairs.push((q1 as u32, q2 as u32));
+                    match force_pair(&verts, &mut forced, q1, q2) {
+                        Forcing::Forced => forced_pairs += 1,
+                        Forcing::Clash => clash = true,
+                        Forcing::Nothing => {}
                     }
                 }
             }
