@@ -16,9 +16,9 @@ if [ ${#targets[@]} -eq 0 ]; then
     mapfile -t targets < <(cargo +nightly fuzz list)
 fi
 [ -d corpus ] || ./seed.sh
-cargo +nightly fuzz build -O >/dev/null
-bin="$here/target/x86_64-unknown-linux-gnu/release"
 mkdir -p logs
+cargo +nightly fuzz build -O >logs/build.log 2>&1 || { tail -20 logs/build.log; exit 1; }
+bin="$here/target/x86_64-unknown-linux-gnu/release"
 count() { ls "artifacts/$1" | grep -c "^$2-" || true; }
 run_one() {
     local t="$1" k
