@@ -140,3 +140,70 @@ fn every_reproducer_exits_0_or_2_under_1_gib() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     let _ = std::fs::remove_dir_all(tmp("reproducers", "x").parent().unwrap());
 }
+
+/// An OBJ of `n` triangles around vertex 1 (`star`), on the edge 1-2 (`edge`), or one
+/// polygon of `n` corners (`polygon`).
+fn high_valence_obj(kind: &str, n: usize) -> String {
+    let mut s = String::new();
+    let ring = |s: &mut String, z: f32| {
+        for i in 0..n {
+            let a = std::f32::consts::TAU * i as f32 / n as f32;
+            s.push_str(&format!("v {} {} {z}\n", a.cos(), a.sin()));
+        }
+    };
+    match kind {
+        "star" => {
+            s.push_str("v 0 0 0\n");
+            ring(&mut s, 0.0);
+            (0..n).for_each(|i| s.push_str(&format!("f 1 {} {}\n", 2 + i, 2 + (i + 1) % n)));
+        }
+        "edge" => {
+            s.push_str("v 0 0 0\nv 0 0 1\n");
+            ring(&mut s, 0.5);
+            (0..n).for_each(|i| s.push_str(&format!("f 1 2 {}\n", 3 + i)));
+        }
+        _ => {
+            ring(&mut s, 0.0);
+            s.push('f');
+            (1..=n).for_each(|i| s.push_str(&format!(" {i}")));
+            s.push('\n');
+        }
+    }
+    s
+}
+
+/// The high-valence meshes through the commands that were quadratic on them,
+/// under the 1 GiB limit: each must finish with exit 0 and its usual report. Times
+/// are measured with the release build in docs/experiments/valence*.md, not here
+/// (this binary is the test profile's).
+#[test]
+fn high_valence_meshes_finish_under_1_gib() {
+    let star = tmp("reproducers-valence", "star.obj");
+    std::fs::write(&star, high_valence_obj("star", 20_000)).unwrap();
+    let edge = tmp("reproducers-valence", "edge.obj");
+    std::fs::write(&edge, high_valence_obj("edge", 20_000)).unwrap();
+    let big_star = tmp("reproducers-valence", "star100k.obj");
+    std::fs::write(&big_star, high_valence_obj("star", 100_000)).unwrap();
+    let polygon = tmp("reproducers-valence", "polygon.obj");
+    std::fs::write(&polygon, high_valence_obj("polygon", 200_000)).unwrap();
+    let out = tmp("reproducers-valence", "out.ply");
+    let [s, e, b, p, o] = [&star, &edge, &big_star, &polygon, &out].map(|p| p.to_str().unwrap());
+    let runs: [(&[&str], &str); 9] = [
+        (&["strip", s, "--algo", "cache", "-o", o], "verified: 20000 triangles"),
+        (&["strip", s, "--algo", "balanced", "-o", o], "verified: 20000 triangles"),
+        (&["strip", e, "--algo", "cache", "-o", o], "verified: 20000 triangles"),
+        (&["strip", e, "--algo", "balanced", "-o", o], "verified: 20000 triangles"),
+        (&["strip", p, "-o", o], "verified: 199998 triangles"),
+        (&["simplify", b, "--ratio", "0.5", "-o", o], "100000 -> 50000 triangles"),
+        (&["simplify", e, "--ratio", "0.5", "-o", o], "20000 -> 10000 triangles"),
+        (&["simplify", p, "--ratio", "0.5", "-o", o], "199998 -> 99999 triangles"),
+        (&["distance", b, s], "hausdorff"),
+    ];
+    for (args, want) in runs {
+        let (o, secs) = stripkit_1gib(args);
+        let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+        assert_eq!(o.status.code(), Some(0), "{args:?} ({secs:.1} s): {text}");
+        assert!(text.to_lowercase().contains(&want.to_lowercase()), "{args:?}: want `{want}` in {text}");
+    }
+    let _ = std::fs::remove_dir_all(star.parent().unwrap());
+}
