@@ -207,7 +207,7 @@ fn simplify_pair_distances_are_range_checked_before_reading() {
 #[test]
 fn simplify_pair_distances_that_pair_everything_are_refused() {
     // 3,721 vertices all within the distance: 6.9 million pairs, beyond
-    // 128 per vertex + 2^20 = 1,524,864.
+    // 32 per vertex + 2^20 = 1,167,648.
     let grid = tmp("budgets", "pairs_grid.obj");
     let g = grid.to_str().unwrap();
     let (run, _) = stripkit_1gib(&["gen", "grid", "60", "60", "-o", g]);
@@ -216,7 +216,7 @@ fn simplify_pair_distances_that_pair_everything_are_refused() {
     let o = out.to_str().unwrap();
     refused(
         &["simplify", g, "--ratio", "0.5", "-o", o, "--pair-distance", "1e30"],
-        &[&format!("{g}"), "finds more than 1524864 vertex pairs (128 per each of the 3721 used vertices", "smaller distance"],
+        &[&format!("{g}"), "finds more than 1167648 vertex pairs (32 per each of the 3721 used vertices", "smaller distance"],
     );
     assert!(!out.exists());
 }

@@ -46,7 +46,7 @@ pub struct Args {
     pub boundary_weight: f64,
     /// Also contract vertex pairs closer than this distance that share no edge
     /// (QSlim's pair contraction; may join pieces). Off by default. A finite
-    /// distance, 0 or more, that finds at most 128 pairs per vertex plus 2^20 (a
+    /// distance, 0 or more, that finds at most 32 pairs per vertex plus 2^20 (a
     /// larger one pairs almost everything and is refused).
     #[arg(long)]
     pub pair_distance: Option<f64>,

@@ -1276,7 +1276,7 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
 
 /// How many close pairs per used vertex [`push_close_pairs`] may queue (beyond
 /// [`PAIR_ALLOWANCE`]): a distance that finds more is refused.
-const PAIRS_PER_VERTEX: usize = 128;
+const PAIRS_PER_VERTEX: usize = 32;
 /// Close pairs any mesh may queue besides [`PAIRS_PER_VERTEX`] per used vertex.
 const PAIR_ALLOWANCE: usize = 1 << 20;
 
@@ -1312,6 +1312,11 @@ fn push_close_pairs(st: &mut State, d: f64) -> crate::Result<()> {
                                      choose a smaller distance",
                                     used.len()
                                 )));
+                            }
+                            if pairs.len() == pairs.capacity() {
+                                // Grow by doubling, but never past the limit: the
+                                // refusal above then costs at most `limit` pairs.
+                                pairs.reserve_exact(pairs.len().max(1024).min(limit - pairs.len()));
                             }
                             pairs.push((v, u));
                         }

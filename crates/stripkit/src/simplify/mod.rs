@@ -81,7 +81,7 @@ pub struct Options {
     /// that share no edge (joins separate pieces; may create non-manifold vertices).
     /// `None` (the default) contracts edges only. Must be finite and not negative
     /// (0 finds no pair); anything else is [`Error::Invalid`]. A distance that finds
-    /// more than 128 pairs per used vertex plus 2^20 is refused ([`Error::Invalid`])
+    /// more than 32 pairs per used vertex plus 2^20 is refused ([`Error::Invalid`])
     /// before the pairs are queued, since a distance near the mesh's size pairs every
     /// vertex with every other (gigabytes on a 35,000-vertex mesh).
     pub pair_distance: Option<f64>,
