@@ -395,3 +395,43 @@ fn qstrip_solves_a_cluster_of_quads_that_pairwise_forcing_gets_wrong() {
         assert_eq!(sets.len(), 8, "{}: coincident triangles", algorithm.name());
     }
 }
+
+/// Found by the `read_obj` fuzz target: one quad listed 100 times from different
+/// corners and its flip listed 50 times, all on the edge 2-3 with the same third
+/// vertex, more than QSTRIP pairs one by one. The flips must take the other diagonal
+/// than the copies (the same diagonal gives the same triangles turned over), and the
+/// copies must agree whatever corner they start from.
+#[test]
+fn qstrip_keeps_a_face_listed_many_times_apart_from_its_flip() {
+    let quad = [2u32, 3, 7, 6];
+    let flip = [2u32, 6, 7, 3];
+    let faces: Vec<[u32; 4]> = (0..150)
+        .map(|i| {
+            let (q, r) = if i % 3 == 2 { (flip, i % 4) } else { (quad, i % 4) };
+            [q[r], q[(r + 1) % 4], q[(r + 2) % 4], q[(r + 3) % 4]]
+        })
+        .collect();
+    let mesh = Mesh::from_polygons(positions(8), &faces);
+    for algorithm in [Algorithm::Auto, Algorithm::qstrip()] {
+        let s = stripify(&mesh, &StripOptions::default().algorithm(algorithm.clone()))
+            .unwrap_or_else(|e| panic!("{}: {e}", algorithm.name()));
+        let drawn: Vec<[u32; 3]> = unstripify(&s.restart_buffer(), s.restart_index)
+            .chunks_exact(3)
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+            .map(|t| [t[0], t[1], t[2]])
+            .collect();
+        assert_eq!(drawn.len(), 300, "{}", algorithm.name());
+        // No three vertices drawn in both orientations.
+        let canon = |t: [u32; 3]| {
+            let r = (0..3).min_by_key(|&i| t[i]).unwrap();
+            [t[r], t[(r + 1) % 3], t[(r + 2) % 3]]
+        };
+        let mut oriented: Vec<[u32; 3]> = drawn.iter().map(|&t| canon(t)).collect();
+        oriented.sort_unstable();
+        oriented.dedup();
+        for t in &oriented {
+            let back = canon([t[0], t[2], t[1]]);
+            assert!(oriented.binary_search(&back).is_err(), "{}: {t:?} drawn both ways", algorithm.name());
+        }
+    }
+}

@@ -13,7 +13,7 @@ pub(super) const NONE: u32 = u32::MAX;
 pub(super) const FREE: u8 = 2;
 /// Quads on one edge sharing the same third vertex beyond which their diagonals are
 /// forced one by one instead of pair by pair (a pathological, non-manifold input).
-const CLUSTER_CAP: usize = 64;
+pub(super) const CLUSTER_CAP: usize = 64;
 
 /// True for a face that QSTRIP takes: four vertices, all distinct.
 pub fn is_quad(face: &[u32]) -> bool {
@@ -123,6 +123,8 @@ impl QuadAdjacency<'_> {
         let mut on_edge: Vec<u32> = Vec::new();
         let mut corners: Vec<(u32, u32)> = Vec::new();
         let mut candidates: Vec<(u32, u32)> = Vec::new();
+        let mut members: Vec<([u32; 4], [u32; 4], u32)> = Vec::new();
+        let mut copies: Vec<(u32, u32)> = Vec::new();
         for e in odd_edges {
             let [u, v] = edges.edges[e];
             on_edge.clear();
@@ -136,17 +138,50 @@ impl QuadAdjacency<'_> {
             candidates.clear();
             for group in corners.chunk_by(|a, b| a.0 == b.0) {
                 if group.len() > CLUSTER_CAP {
-                    // Hundreds of quads on the same three vertices (u, v, w): each
-                    // takes the diagonal whose triangles avoid (u, v, w), in O(k), in
-                    // place of the k^2 pairs.
+                    // Hundreds of quads on the same three vertices (u, v, w), in
+                    // O(k log k) in place of the k^2 pairs. A quad whose four
+                    // vertices no other quad here has takes the diagonal whose
+                    // triangles avoid (u, v, w). Quads on the same four vertices in
+                    // other cyclic orders (a face and its flip) are paired, one copy
+                    // of each order; further copies of one order follow their first.
                     let mut uvw = [u, v, group[0].0];
                     uvw.sort_unstable();
-                    for &(_, i) in group {
+                    members.clear();
+                    members.extend(group.iter().map(|&(_, i)| {
                         let q = on_edge[i as usize] as usize;
                         let qv = &verts[4 * q..4 * q + 4];
-                        if forced[q] == FREE {
-                            forced[q] = u8::from(split_sets(qv, 0).contains(&uvw));
-                            forced_pairs += 1;
+                        let mut set = [qv[0], qv[1], qv[2], qv[3]];
+                        set.sort_unstable();
+                        let r = (0..4).min_by_key(|&k| qv[k]).unwrap_or(0);
+                        (set, [qv[r], qv[(r + 1) % 4], qv[(r + 2) % 4], qv[(r + 3) % 4]], i)
+                    }));
+                    members.sort_unstable();
+                    for same_set in members.chunk_by(|a, b| a.0 == b.0) {
+                        let orders: Vec<usize> =
+                            (0..same_set.len()).filter(|&m| m == 0 || same_set[m].1 != same_set[m - 1].1).collect();
+                        if orders.len() == 1 {
+                            for &(_, _, i) in same_set {
+                                let q = on_edge[i as usize] as usize;
+                                if forced[q] == FREE {
+                                    forced[q] = u8::from(split_sets(&verts[4 * q..4 * q + 4], 0).contains(&uvw));
+                                    forced_pairs += 1;
+                                }
+                            }
+                            continue;
+                        }
+                        for (a, &ma) in orders.iter().enumerate() {
+                            for &mb in &orders[a + 1..] {
+                                let (i, j) = (same_set[ma].2, same_set[mb].2);
+                                candidates.push((i.min(j), i.max(j)));
+                            }
+                        }
+                        let mut first = 0;
+                        for m in 0..same_set.len() {
+                            if orders.contains(&m) {
+                                first = m;
+                            } else {
+                                copies.push((on_edge[same_set[m].2 as usize], on_edge[same_set[first].2 as usize]));
+                            }
                         }
                     }
                     continue;
@@ -176,6 +211,7 @@ impl QuadAdjacency<'_> {
                     }
                 }
             }
+            follow_firsts(&verts, &mut forced, &copies, false);
         }
         if clash {
             // Forcing pair by pair chose a diagonal that a later pair could not live
@@ -189,6 +225,7 @@ impl QuadAdjacency<'_> {
                     forced[b as usize] = d[b as usize];
                 }
                 forced_pairs = pairs.len();
+                follow_firsts(&verts, &mut forced, &copies, true);
             }
         }
         QuadAdjacency {
@@ -234,6 +271,21 @@ pub(super) fn coincide(a: &[u32], da: u8, b: &[u32], db: u8) -> bool {
     let ta = split_sets(a, da);
     let tb = split_sets(b, db);
     ta.iter().any(|t| tb.contains(t))
+}
+
+/// Gives each copy `c` of a face listed several times (`(c, first)` in `copies`) the
+/// same diagonal as its first copy: the same two vertices, whatever corner each
+/// listing starts from. Only free copies unless `all`.
+fn follow_firsts(verts: &[u32], forced: &mut [u8], copies: &[(u32, u32)], all: bool) {
+    for &(c, first) in copies {
+        let (c, first) = (c as usize, first as usize);
+        if forced[first] == FREE || !(all || forced[c] == FREE) {
+            continue;
+        }
+        // Copy corner 0 is the first's corner k: copy diagonal d is the first's (d + k) % 2.
+        let k = (0..4).position(|k| verts[4 * first + k] == verts[4 * c]).unwrap_or(0) as u8;
+        forced[c] = (forced[first] + k) % 2;
+    }
 }
 
 /// What [`force_pair`] did.

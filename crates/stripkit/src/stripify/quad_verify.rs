@@ -15,7 +15,8 @@
 //!   two quads are one face listed twice (same vertices in the same cyclic order: the
 //!   duplicate is the input's, and each copy is covered on its own), or no choice of
 //!   diagonals for all the quads at once avoids every coincidence (a cluster of quads
-//!   on a few vertices, checked only when a coincidence is found).
+//!   on a few vertices, checked only when a coincidence is found, and taken as so
+//!   beyond 2^22 candidate pairs: thousands of quads on the same three vertices).
 //!
 //! Independent of how the strips were built: it only decodes them by the METRICS.md
 //! rule. O(T) expected time with hashing.
@@ -182,9 +183,12 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
     Ok(check)
 }
 
+/// Pairs of quads [`solvable`] looks at before it gives up (and accepts).
+const SOLVE_BUDGET: usize = 1 << 22;
+
 /// True when some choice of diagonals for all quads of `mesh` at once gives no
 /// avoidable coincidence: the pairs are the quads that share one of their four
-/// possible triangles (so three vertices).
+/// possible triangles (so three vertices). Past [`SOLVE_BUDGET`] pairs, false.
 fn solvable(mesh: &Mesh) -> bool {
     let quads: Vec<(usize, &[u32])> = mesh.faces().enumerate().filter(|(_, f)| is_quad(f)).collect();
     let mut by_triangle: HashMap<[u32; 3], Vec<u32>> = HashMap::new();
@@ -198,6 +202,11 @@ fn solvable(mesh: &Mesh) -> bool {
                 }
             }
         }
+    }
+    // Beyond a budget of pairs (hundreds of quads on the same three vertices) the
+    // answer is not worked out: taken as no, so such a coincidence is accepted.
+    if by_triangle.values().map(|l| l.len() * l.len()).sum::<usize>() > SOLVE_BUDGET {
+        return false;
     }
     let mut pairs: Vec<(u32, u32)> = by_triangle
         .values()
