@@ -435,3 +435,21 @@ fn qstrip_keeps_a_face_listed_many_times_apart_from_its_flip() {
         }
     }
 }
+
+/// Found by the `read_obj` fuzz target: 63 listings of one quad and 2 of another on
+/// the same three vertices (a cluster over the size QSTRIP pairs one by one, so each
+/// takes the diagonal away from the shared triangle), and elsewhere on the same edge
+/// two quads on the same four vertices that clash whatever their diagonals. That
+/// hopeless pair sent QSTRIP to its whole-cluster solver, which did not know the
+/// diagonals already set and undid them.
+#[test]
+fn qstrip_keeps_the_diagonals_of_a_big_cluster_when_it_solves_another() {
+    let mut faces: Vec<[u32; 4]> = vec![[4, 5, 9, 8]; 63];
+    faces.extend([[4, 5, 9, 7], [4, 5, 9, 7], [0, 1, 4, 5], [0, 1, 5, 4]]);
+    let mesh = Mesh::from_polygons(positions(10), &faces);
+    for algorithm in [Algorithm::Auto, Algorithm::qstrip()] {
+        let s = stripify(&mesh, &StripOptions::default().algorithm(algorithm.clone()))
+            .unwrap_or_else(|e| panic!("{}: {e}", algorithm.name()));
+        assert_eq!(s.figures.triangles, 2 * faces.len(), "{}", algorithm.name());
+    }
+}

@@ -125,6 +125,9 @@ impl QuadAdjacency<'_> {
         let mut candidates: Vec<(u32, u32)> = Vec::new();
         let mut members: Vec<([u32; 4], [u32; 4], u32)> = Vec::new();
         let mut copies: Vec<(u32, u32)> = Vec::new();
+        // Quads of big clusters whose diagonal was set directly: fixed for the solver.
+        let mut fixed: Vec<(u32, u8)> = Vec::new();
+        let mut big_cluster = false;
         for e in odd_edges {
             let [u, v] = edges.edges[e];
             on_edge.clear();
@@ -138,6 +141,7 @@ impl QuadAdjacency<'_> {
             candidates.clear();
             for group in corners.chunk_by(|a, b| a.0 == b.0) {
                 if group.len() > CLUSTER_CAP {
+                    big_cluster = true;
                     // Hundreds of quads on the same three vertices (u, v, w), in
                     // O(k log k) in place of the k^2 pairs. A quad whose four
                     // vertices no other quad here has takes the diagonal whose
@@ -164,6 +168,7 @@ impl QuadAdjacency<'_> {
                                 let q = on_edge[i as usize] as usize;
                                 if forced[q] == FREE {
                                     forced[q] = u8::from(split_sets(&verts[4 * q..4 * q + 4], 0).contains(&uvw));
+                                    fixed.push((q as u32, forced[q]));
                                     forced_pairs += 1;
                                 }
                             }
@@ -213,19 +218,30 @@ impl QuadAdjacency<'_> {
             }
             follow_firsts(&verts, &mut forced, &copies, false);
         }
-        if clash {
+        if clash || big_cluster {
             // Forcing pair by pair chose a diagonal that a later pair could not live
-            // with (a cluster of quads on a few shared vertices). Solve the whole
-            // cluster at once; if even that has no answer, the input forces a
-            // coincidence and the pairwise choice stands.
+            // with, or a cluster was too big to pair one by one. Solve every pair of
+            // quads that could coincide at once (the pairs the quad check looks at);
+            // if there is no answer, the input forces a coincidence and the choices
+            // above stand. Past the solver's budget, only the pairs met above.
             let quads: Vec<&[u32]> = (0..qcount).map(|q| &verts[4 * q..4 * q + 4]).collect();
-            if let Some(d) = solve_diagonals(&quads, &pairs) {
-                for &(a, b) in &pairs {
-                    forced[a as usize] = d[a as usize];
-                    forced[b as usize] = d[b as usize];
+            if let Some(all) = candidate_pairs(&quads) {
+                if let Some(d) = solve_diagonals(&quads, &all, &[]) {
+                    for &(a, b) in &all {
+                        forced[a as usize] = d[a as usize];
+                        forced[b as usize] = d[b as usize];
+                    }
+                    forced_pairs = all.len();
                 }
-                forced_pairs = pairs.len();
-                follow_firsts(&verts, &mut forced, &copies, true);
+            } else if clash {
+                if let Some(d) = solve_diagonals(&quads, &pairs, &fixed) {
+                    for &(a, b) in &pairs {
+                        forced[a as usize] = d[a as usize];
+                        forced[b as usize] = d[b as usize];
+                    }
+                    forced_pairs = pairs.len();
+                    follow_firsts(&verts, &mut forced, &copies, true);
+                }
             }
         }
         QuadAdjacency {
@@ -310,6 +326,11 @@ fn force_pair(verts: &[u32], forced: &mut [u8], q1: usize, q2: usize) -> Forcing
     }
     let options = |f: u8| if f == FREE { vec![0u8, 1] } else { vec![f] };
     let bad = |d1: u8, d2: u8| coincide(a, d1, b, d2);
+    if (0..2).all(|d1| (0..2).all(|d2| bad(d1, d2))) {
+        // Every choice clashes (the same four vertices in another order): the
+        // input's coincidence, which no forcing removes.
+        return Forcing::Nothing;
+    }
     if options(forced[q1])
         .iter()
         .all(|&d1| options(forced[q2]).iter().all(|&d2| !bad(d1, d2)))
@@ -345,16 +366,21 @@ fn force_pair(verts: &[u32], forced: &mut [u8], q1: usize, q2: usize) -> Forcing
 /// A diagonal for every quad of `pairs` such that no pair gives two triangles on the
 /// same three vertices, or `None` when there is none (the input then forces a
 /// coincidence). Pairs that are one face listed twice, or that clash under every
-/// choice, are left out: no choice helps them. `quads[q]` are quad `q`'s four vertices; the answer is indexed like
+/// choice, are left out: no choice helps them. Quads in `fixed` keep their diagonal. `quads[q]` are quad `q`'s four vertices; the answer is indexed like
 /// `quads` (0: v0-v2, 1: v1-v3; quads in no pair get 0).
 ///
 /// One boolean per quad (its diagonal) and one two-literal clause per clashing
 /// combination of a pair: 2-SAT, solved in time linear in the pairs by the strongly
 /// connected components of the implication graph (Tarjan, iterative).
-pub(super) fn solve_diagonals(quads: &[&[u32]], pairs: &[(u32, u32)]) -> Option<Vec<u8>> {
+pub(super) fn solve_diagonals(quads: &[&[u32]], pairs: &[(u32, u32)], fixed: &[(u32, u8)]) -> Option<Vec<u8>> {
     let n = quads.len();
     // Literal 2q + d: "quad q uses diagonal d"; its negation is 2q + 1 - d.
     let mut implications: Vec<(u32, u32)> = Vec::new();
+    for &(q, d) in fixed {
+        // A fixed diagonal: its negation implies it.
+        let l = 2 * q + d as u32;
+        implications.push((l ^ 1, l));
+    }
     for &(a, b) in pairs {
         let (qa, qb) = (quads[a as usize], quads[b as usize]);
         let clashes = |da, db| coincide(qa, da, qb, db);
@@ -493,7 +519,7 @@ mod tests {
             let quads: Vec<&[u32]> = flat.iter().map(|q| &q[..]).collect();
             let pairs: Vec<(u32, u32)> =
                 (0..k as u32).flat_map(|a| (a + 1..k as u32).map(move |b| (a, b))).collect();
-            let got = solve_diagonals(&quads, &pairs);
+            let got = solve_diagonals(&quads, &pairs, &[]);
             assert_eq!(got.is_some(), brute(&quads, &pairs), "{flat:?}");
             if let Some(d) = got {
                 sat += 1;
@@ -509,4 +535,33 @@ mod tests {
         // Both answers occur, so both branches were compared.
         assert!(sat > 100 && unsat > 100, "{sat} solvable, {unsat} not");
     }
+}
+
+/// Candidate pairs [`candidate_pairs`] works out before it gives up.
+const SOLVE_BUDGET: usize = 1 << 20;
+
+/// Every pair of `quads` that shares one of its four possible triangles (so three
+/// vertices), sorted; `None` when more than about [`SOLVE_BUDGET`] pairs would be
+/// listed (hundreds of quads on the same three vertices). QSTRIP solves these pairs
+/// when a cluster needs it, and the quad check asks the same question, so the two
+/// agree on which coincidences could have been avoided.
+pub(super) fn candidate_pairs(quads: &[&[u32]]) -> Option<Vec<(u32, u32)>> {
+    let mut by_triangle: Vec<([u32; 3], u32)> = Vec::with_capacity(4 * quads.len());
+    for (i, v) in quads.iter().enumerate() {
+        for d in 0..2 {
+            by_triangle.extend(split_sets(v, d).map(|t| (t, i as u32)));
+        }
+    }
+    by_triangle.sort_unstable();
+    by_triangle.dedup();
+    let groups = || by_triangle.chunk_by(|a, b| a.0 == b.0).filter(|g| g.len() > 1);
+    if groups().map(|g| g.len() * g.len()).sum::<usize>() > 2 * SOLVE_BUDGET {
+        return None;
+    }
+    let mut pairs: Vec<(u32, u32)> = groups()
+        .flat_map(|g| (0..g.len()).flat_map(move |i| g[i + 1..].iter().map(move |b| (g[i].1, b.1))))
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    Some(pairs)
 }

@@ -16,12 +16,13 @@
 //!   duplicate is the input's, and each copy is covered on its own), or no choice of
 //!   diagonals for all the quads at once avoids every coincidence (a cluster of quads
 //!   on a few vertices, checked only when a coincidence is found, and taken as so
-//!   beyond 2^22 candidate pairs: thousands of quads on the same three vertices).
+//!   beyond 2^20 candidate pairs: thousands of quads on the same three vertices;
+//!   QSTRIP solves exactly the same pairs, so the two agree).
 //!
 //! Independent of how the strips were built: it only decodes them by the METRICS.md
 //! rule. O(T) expected time with hashing.
 
-use super::quad_adjacency::{coincide, is_quad, same_quad, solve_diagonals, split};
+use super::quad_adjacency::{candidate_pairs, coincide, is_quad, same_quad, solve_diagonals, split};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::strip::{canonical, for_each_triangle, StripSet};
@@ -183,39 +184,11 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
     Ok(check)
 }
 
-/// Pairs of quads [`solvable`] looks at before it gives up (and accepts).
-const SOLVE_BUDGET: usize = 1 << 22;
-
 /// True when some choice of diagonals for all quads of `mesh` at once gives no
-/// avoidable coincidence: the pairs are the quads that share one of their four
-/// possible triangles (so three vertices). Past [`SOLVE_BUDGET`] pairs, false.
+/// avoidable coincidence (the pairs of [`candidate_pairs`]; past its budget, false).
 fn solvable(mesh: &Mesh) -> bool {
-    let quads: Vec<(usize, &[u32])> = mesh.faces().enumerate().filter(|(_, f)| is_quad(f)).collect();
-    let mut by_triangle: HashMap<[u32; 3], Vec<u32>> = HashMap::new();
-    for (i, (_, v)) in quads.iter().enumerate() {
-        for d in 0..2 {
-            for mut t in split(v, d) {
-                t.sort_unstable();
-                let list = by_triangle.entry(t).or_default();
-                if list.last() != Some(&(i as u32)) {
-                    list.push(i as u32);
-                }
-            }
-        }
-    }
-    // Beyond a budget of pairs (hundreds of quads on the same three vertices) the
-    // answer is not worked out: taken as no, so such a coincidence is accepted.
-    if by_triangle.values().map(|l| l.len() * l.len()).sum::<usize>() > SOLVE_BUDGET {
-        return false;
-    }
-    let mut pairs: Vec<(u32, u32)> = by_triangle
-        .values()
-        .flat_map(|list| (0..list.len()).flat_map(move |i| list[i + 1..].iter().map(move |&b| (list[i], b))))
-        .collect();
-    pairs.sort_unstable();
-    pairs.dedup();
-    let verts: Vec<&[u32]> = quads.iter().map(|&(_, v)| v).collect();
-    solve_diagonals(&verts, &pairs).is_some()
+    let quads: Vec<&[u32]> = mesh.faces().filter(|f| is_quad(f)).collect();
+    candidate_pairs(&quads).is_some_and(|pairs| solve_diagonals(&quads, &pairs, &[]).is_some())
 }
 
 /// True when some choice of diagonals for quads `a` and `b` gives no two triangles on
