@@ -13,7 +13,9 @@
 //!   "incorrect triangle" two quads sharing two edges can produce), unless every
 //!   choice of diagonals for that pair of quads clashes (the input forces it), the
 //!   two quads are one face listed twice (same vertices in the same cyclic order: the
-//!   duplicate is the input's, and each copy is covered on its own), or no choice of
+//!   duplicate is the input's, and each copy is covered on its own; any two quads that
+//!   could give that triangle count, since where quads share all four vertices the
+//!   drawn triangles can be assigned to them in more than one way), or no choice of
 //!   diagonals for all the quads at once avoids every coincidence (a cluster of quads
 //!   on a few vertices, checked only when a coincidence is found, and taken as so
 //!   beyond 2^20 candidate pairs: thousands of quads on the same three vertices;
@@ -123,44 +125,83 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
     }
     // Quads: take the unambiguous ones first (only one diagonal's pair present), then
     // the rest, so that a neighbouring pillow cannot steal a triangle.
+    let not_covered = |f: usize| {
+        let v = mesh.face(f);
+        Error::Verification(format!(
+            "quad face {f} ({}, {}, {}, {}) is not covered by two triangles forming it \
+             with its orientation",
+            v[0], v[1], v[2], v[3]
+        ))
+    };
+    let mut chosen: Vec<(usize, u8)> = Vec::new();
     let mut deferred = Vec::new();
-    let mut quad_sets: Vec<([u32; 3], u32)> = Vec::new();
-    for pass in 0..2 {
-        let faces: Vec<usize> = if pass == 0 {
-            (0..mesh.face_count())
-                .filter(|&f| is_quad(mesh.face(f)))
-                .collect()
-        } else {
-            std::mem::take(&mut deferred)
+    for f in (0..mesh.face_count()).filter(|&f| is_quad(mesh.face(f))) {
+        let v = mesh.face(f);
+        let ok = [0, 1].map(|d| split(v, d).iter().all(|&t| has(&counts, t)));
+        let d = match ok {
+            [true, true] => {
+                deferred.push(f);
+                continue;
+            }
+            [true, false] => 0,
+            [false, true] => 1,
+            [false, false] => return Err(not_covered(f)),
         };
-        for f in faces {
-            let v = mesh.face(f);
-            let ok = [0, 1].map(|d| split(v, d).iter().all(|&t| has(&counts, t)));
-            let d = match (ok[0], ok[1]) {
-                (true, true) if pass == 0 => {
-                    deferred.push(f);
-                    continue;
-                }
-                (true, _) => 0,
-                (false, true) => 1,
-                (false, false) => {
-                    return Err(Error::Verification(format!(
-                        "quad face {f} ({}, {}, {}, {}) is not covered by two triangles forming it \
-                         with its orientation",
-                        v[0], v[1], v[2], v[3]
-                    )))
-                }
-            };
-            for t in split(v, d) {
+        split(v, d).iter().for_each(|&t| {
+            take(&mut counts, t);
+        });
+        chosen.push((f, d));
+    }
+    // The rest could take either diagonal's pair: a depth-first search, diagonal 0
+    // first, so that where taking greedily works (every real mesh) it is what
+    // happens, and where quads share all four vertices (a face, its copies and its
+    // flips) a triangle one quad took too early is given back.
+    let mut pick = vec![0u8; deferred.len()];
+    let (mut i, mut steps, mut deepest) = (0usize, 0usize, 0usize);
+    while i < deferred.len() {
+        steps += 1;
+        if steps > ASSIGN_BUDGET {
+            return Err(Error::Verification(format!(
+                "the triangles of {} quads sharing vertices could not be matched to them within \
+                 {ASSIGN_BUDGET} steps",
+                deferred.len()
+            )));
+        }
+        let v = mesh.face(deferred[i]);
+        let next = (pick[i]..2).find(|&d| split(v, d).iter().all(|&t| has(&counts, t)));
+        if let Some(d) = next {
+            split(v, d).iter().for_each(|&t| {
                 take(&mut counts, t);
-                let mut s = t;
-                s.sort_unstable();
-                quad_sets.push((s, f as u32));
+            });
+            pick[i] = d;
+            i += 1;
+            deepest = deepest.max(i);
+            if i < deferred.len() {
+                pick[i] = 0;
             }
-            check.quads += 1;
-            if d == 0 {
-                check.split_02 += 1;
-            }
+            continue;
+        }
+        // No diagonal left for quad i: give back quad i - 1's and try its next.
+        if i == 0 {
+            return Err(not_covered(deferred[deepest.min(deferred.len() - 1)]));
+        }
+        i -= 1;
+        let u = mesh.face(deferred[i]);
+        for t in split(u, pick[i]) {
+            *counts.entry(canonical(t)).or_insert(0) += 1;
+        }
+        pick[i] += 1;
+    }
+    chosen.extend(deferred.iter().copied().zip(pick));
+    let mut quad_sets: Vec<([u32; 3], u32)> = Vec::with_capacity(2 * chosen.len());
+    for &(f, d) in &chosen {
+        for mut t in split(mesh.face(f), d) {
+            t.sort_unstable();
+            quad_sets.push((t, f as u32));
+        }
+        check.quads += 1;
+        if d == 0 {
+            check.split_02 += 1;
         }
     }
     if let Some((t, _)) = counts.iter().find(|(_, &c)| c > 0) {
@@ -173,7 +214,7 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
     for w in quad_sets.windows(2) {
         let ((t, f1), (u, f2)) = (w[0], w[1]);
         let (a, b) = (mesh.face(f1 as usize), mesh.face(f2 as usize));
-        if t == u && f1 != f2 && !same_quad(a, b) && avoidable(a, b) && solvable(mesh) {
+        if t == u && f1 != f2 && !same_quad(a, b) && avoidable(a, b) && !explained(mesh, t) && solvable(mesh) {
             return Err(Error::Verification(format!(
                 "quad faces {f1} and {f2} give coincident triangles on vertices ({}, {}, {}); \
                  another choice of diagonals avoids it",
@@ -182,6 +223,31 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
         }
     }
     Ok(check)
+}
+
+/// Steps of the search that matches drawn triangles to quads able to take either
+/// diagonal before the check gives up.
+const ASSIGN_BUDGET: usize = 1 << 20;
+
+/// True when two quads that can both give triangle `t` (sorted) are one face listed
+/// twice or clash whatever their diagonals: then `t` may rightly be drawn twice. The
+/// assignment of drawn triangles to quads above is one of several where quads share
+/// their four vertices (a face, its copies and its flips), so the pair it names is not
+/// always the pair that drew them; this looks at every quad that could have.
+fn explained(mesh: &Mesh, t: [u32; 3]) -> bool {
+    let able: Vec<&[u32]> = mesh
+        .faces()
+        .filter(|f| is_quad(f) && (0..2).any(|d| split_sets_of(f, d).contains(&t)))
+        .collect();
+    (0..able.len()).any(|i| able[i + 1..].iter().any(|b| same_quad(able[i], b) || !avoidable(able[i], b)))
+}
+
+/// The two triangles of quad `v` split along `d`, as sorted vertex sets.
+fn split_sets_of(v: &[u32], d: u8) -> [[u32; 3]; 2] {
+    split(v, d).map(|mut t| {
+        t.sort_unstable();
+        t
+    })
 }
 
 /// True when some choice of diagonals for all quads of `mesh` at once gives no
