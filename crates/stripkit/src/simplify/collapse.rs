@@ -1,13 +1,15 @@
-//! The collapse engine: quadrics, a lazily invalidated heap of candidates, the
-//! validity checks and the collapse itself.
+//! The collapse engine: quadrics, the candidates (in `super::heap`), the validity
+//! checks, the collapse itself, hub mode and pair contraction.
 //!
-//! Why one file of about 1,000 lines with a `run` of about 270: the engine's state
-//! (per-vertex quadrics and triangle lists, the heap, the pair union-find) is private
-//! to this file, and `run` is its set-up (lists, face quadrics, boundary and crease
-//! planes, initial candidates) followed by the main loop, in that order; cutting it
-//! would hand most of `State`'s fields from function to function. Left whole until
-//! the simplifier itself changes.
+//! Why one file of about 1,200 lines with a `run` of about 270: the engine's state
+//! (per-vertex quadrics and triangle lists, the heap, the pair union-find, the hub
+//! triangle lists) is private to this file, and `run` is its set-up (lists, face
+//! quadrics, boundary and crease planes, initial candidates) followed by the main
+//! loop, in that order; cutting it would hand most of `State`'s fields from function
+//! to function. Hub mode (issue #16) reads and writes the same lists at every step,
+//! so it stayed here too; the heap, which holds no mesh state, moved out.
 
+use super::heap::{tag, Entry, QuadHeap, CHOICE_END, CHOICE_MASK, CHOICE_MID, CHOICE_MIN, KIND_EDGE, KIND_EDGE_REVERSED, KIND_PAIR};
 use super::quadric::{dot, norm, sub, tri_normal, Quadric, V3};
 use super::{CollapseSequence, Collapse, Options, Placement, Simplified, Target};
 use crate::distance::bvh::point_triangle_distance2;
@@ -42,132 +44,6 @@ const CREASE_WEIGHT: f64 = 10.0;
 /// Meshes without a hub at the start never take these paths: their output is
 /// unchanged. 256 is far above the valence of any vertex of the real models.
 const HUB_TRIANGLES: u32 = 256;
-
-/// Candidate kinds kept in the heap.
-const KIND_EDGE: u8 = 0;
-/// An edge whose cheaper direction was refused; this is the other direction.
-const KIND_EDGE_REVERSED: u8 = 1;
-/// A non-edge vertex pair (pair contraction).
-const KIND_PAIR: u8 = 2;
-
-/// A heap entry, 16 bytes (the heap is the hot spot: smaller entries, fewer cache
-/// misses). Valid while both vertices still have the versions it was made with; the
-/// versions are kept modulo 2^14, and a wrapped stale entry is harmless because the
-/// collapse's position is recomputed and the collapse re-checked when popped.
-/// Its cost is either a lower bound (placement choice 0) or exact for the placement
-/// it names (see `CHOICE_END`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-struct Entry {
-    /// Bits of the non-negative cost as f32: they order like the number.
-    cost: u32,
-    removed: u32,
-    kept: u32,
-    /// Removed vertex's version (14 bits), kept vertex's version (14 bits), placement
-    /// choice (2 bits), kind (2 bits).
-    tag: u32,
-}
-
-const VERSION_MASK: u32 = 0x3FFF;
-/// Tag bits of the placement choice.
-const CHOICE_MASK: u32 = 0b1100;
-
-fn tag(version_removed: u32, version_kept: u32, kind: u8) -> u32 {
-    ((version_removed & VERSION_MASK) << 18) | ((version_kept & VERSION_MASK) << 4) | kind as u32
-}
-
-/// The placement an entry's exact cost was computed for (tag bits 2 and 3): the kept
-/// vertex's position, the midpoint or the quadric's minimiser; 0 for an entry keyed
-/// by a lower bound.
-const CHOICE_END: u32 = 1;
-const CHOICE_MID: u32 = 2;
-const CHOICE_MIN: u32 = 3;
-
-/// A 4-ary min-heap: four 16-byte children fill one cache line, and the tree is half
-/// as deep as a binary heap's.
-#[derive(Default)]
-struct QuadHeap {
-    items: Vec<Entry>,
-    /// Pushes since the last `retain`.
-    pushes: usize,
-}
-
-impl QuadHeap {
-    fn push(&mut self, e: Entry) {
-        self.pushes += 1;
-        let mut i = self.items.len();
-        self.items.push(e);
-        while i > 0 {
-            let parent = (i - 1) / 4;
-            if self.items[parent] <= e {
-                break;
-            }
-            self.items[i] = self.items[parent];
-            i = parent;
-        }
-        self.items[i] = e;
-    }
-
-    /// Keeps only the entries `keep` accepts and restores the heap order in O(n)
-    /// (Floyd's bottom-up construction).
-    fn retain(&mut self, mut keep: impl FnMut(&Entry) -> bool) {
-        self.items.retain(|e| keep(e));
-        let n = self.items.len();
-        if n < 2 {
-            return;
-        }
-        for i in (0..=(n - 2) / 4).rev() {
-            self.sift_down(i);
-        }
-    }
-
-    /// Moves the entry at `i` down until no child is smaller.
-    fn sift_down(&mut self, mut i: usize) {
-        let e = self.items[i];
-        let n = self.items.len();
-        loop {
-            let first = 4 * i + 1;
-            if first >= n {
-                break;
-            }
-            let end = (first + 4).min(n);
-            let mut best = first;
-            for c in first + 1..end {
-                if self.items[c] < self.items[best] {
-                    best = c;
-                }
-            }
-            if self.items[best] >= e {
-                break;
-            }
-            self.items[i] = self.items[best];
-            i = best;
-        }
-        self.items[i] = e;
-    }
-
-    fn pop(&mut self) -> Option<Entry> {
-        let last = self.items.pop()?;
-        if self.items.is_empty() {
-            return Some(last);
-        }
-        let top = self.items[0];
-        self.items[0] = last;
-        self.sift_down(0);
-        Some(top)
-    }
-
-    /// `push(e)` then `pop()`, with one sift-down.
-    fn push_pop(&mut self, e: Entry) -> Entry {
-        match self.items.first() {
-            Some(&top) if top < e => {
-                self.items[0] = e;
-                self.sift_down(0);
-                top
-            }
-            _ => e,
-        }
-    }
-}
 
 enum Verdict {
     Ok,
@@ -1341,43 +1217,4 @@ fn push_close_pairs(st: &mut State, d: f64) -> crate::Result<()> {
         st.push(v, u, KIND_PAIR);
     }
     Ok(())
-}
-
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn entry(x: u64) -> Entry {
-        Entry { cost: (x % 1000) as u32, removed: (x >> 10) as u32 & 0xFFFF, kept: 7, tag: (x >> 30) as u32 & 0xFF }
-    }
-
-    #[test]
-    fn heap_retain_keeps_exactly_the_accepted_entries_in_order() {
-        let mut heap = QuadHeap::default();
-        let mut all = Vec::new();
-        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
-        for _ in 0..5000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            let e = entry(x);
-            heap.push(e);
-            all.push(e);
-        }
-        // Pop some, then drop every entry with an odd removed vertex.
-        all.sort();
-        for e in all.drain(..1000) {
-            assert_eq!(heap.pop(), Some(e));
-        }
-        heap.retain(|e| e.removed % 2 == 0);
-        all.retain(|e| e.removed % 2 == 0);
-        assert!(all.len() > 1500 && all.len() < 2500, "{}", all.len());
-        assert_eq!(heap.items.len(), all.len());
-        let mut popped = Vec::new();
-        while let Some(e) = heap.pop() {
-            popped.push(e);
-        }
-        assert_eq!(popped, all);
-    }
 }

@@ -34,6 +34,7 @@
 //! unreferenced), triangles keep their input order.
 
 mod collapse;
+mod heap;
 pub mod quadric;
 mod sequence;
 
