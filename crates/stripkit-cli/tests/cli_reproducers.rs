@@ -7,20 +7,7 @@
 
 mod support;
 
-use support::{stripkit_1gib, tmp};
-
-/// Standard padding for base64 (the glTF data URIs below).
-fn b64(data: &[u8]) -> String {
-    const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for c in data.chunks(3) {
-        let n = (c[0] as u32) << 16 | (*c.get(1).unwrap_or(&0) as u32) << 8 | *c.get(2).unwrap_or(&0) as u32;
-        for k in 0..4 {
-            out.push(if k <= c.len() { A[(n >> (18 - 6 * k) & 63) as usize] as char } else { '=' });
-        }
-    }
-    out
-}
+use support::{encode_base64, stripkit_1gib, tmp};
 
 /// A glTF whose positions live in buffer 0 at `uri` (`None`: embedded), with u8
 /// `indices` after them in the same buffer, and a position byteStride if given.
@@ -30,7 +17,7 @@ fn gltf(uri: Option<&str>, indices: &[u8], stride: Option<u32>) -> String {
         bin.extend_from_slice(&c.to_le_bytes());
     }
     bin.extend_from_slice(indices);
-    let uri = uri.map_or(format!("data:application/octet-stream;base64,{}", b64(&bin)), str::to_string);
+    let uri = uri.map_or(format!("data:application/octet-stream;base64,{}", encode_base64(&bin)), str::to_string);
     let stride = stride.map_or(String::new(), |s| format!(", \"byteStride\": {s}"));
     format!(
         r#"{{"asset": {{"version": "2.0"}},

@@ -2,6 +2,8 @@
 //! output decoded again by `unstripify` and compared with the input as multisets of
 //! oriented triangles; the bound; the errors a user can cause.
 
+mod support;
+
 use proptest::prelude::*;
 use stripkit::{
     decode, gen, io, stripify, stripify_bound, stripify_indices, unstripify, verify_triangles, Algorithm, Error,
@@ -380,17 +382,8 @@ fn qstrip_solves_a_cluster_of_quads_that_pairwise_forcing_gets_wrong() {
     for algorithm in [Algorithm::Auto, Algorithm::qstrip()] {
         let s = stripify(&mesh, &StripOptions::default().algorithm(algorithm.clone()))
             .unwrap_or_else(|e| panic!("{}: {e}", algorithm.name()));
-        let mut sets: Vec<[u32; 3]> = unstripify(&s.restart_buffer(), s.restart_index)
-            .chunks_exact(3)
-            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
-            .map(|t| {
-                let mut t = [t[0], t[1], t[2]];
-                t.sort_unstable();
-                t
-            })
-            .collect();
+        let mut sets = support::drawn_sets(&s);
         assert_eq!(sets.len(), 8, "{}", algorithm.name());
-        sets.sort_unstable();
         sets.dedup();
         assert_eq!(sets.len(), 8, "{}: coincident triangles", algorithm.name());
     }

@@ -3,7 +3,10 @@
 //! right mesh or an error naming the file and what is wrong, never an empty or
 //! silently shortened mesh.
 
+mod support;
+
 use std::path::Path;
+use support::encode_base64;
 use stripkit::io::{self, Format};
 use stripkit::{Error, Mesh};
 
@@ -205,7 +208,7 @@ fn gltf(indices: &[u8], stride: Option<u64>) -> Vec<u8> {
     }
     let doc = serde_json::json!({
         "asset": {"version": "2.0"},
-        "buffers": [{"byteLength": bin.len(), "uri": format!("data:application/octet-stream;base64,{}", b64(&bin))}],
+        "buffers": [{"byteLength": bin.len(), "uri": format!("data:application/octet-stream;base64,{}", encode_base64(&bin))}],
         "bufferViews": [pos_view, {"buffer": 0, "byteOffset": 36, "byteLength": indices.len()}],
         "accessors": [
             {"bufferView": 0, "componentType": 5126, "count": if stride.is_some() { 2 } else { 3 }, "type": "VEC3"},
@@ -214,18 +217,6 @@ fn gltf(indices: &[u8], stride: Option<u64>) -> Vec<u8> {
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4}]}]
     });
     serde_json::to_vec(&doc).unwrap()
-}
-
-fn b64(data: &[u8]) -> String {
-    const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for c in data.chunks(3) {
-        let n = (c[0] as u32) << 16 | (*c.get(1).unwrap_or(&0) as u32) << 8 | *c.get(2).unwrap_or(&0) as u32;
-        for k in 0..4 {
-            out.push(if k <= c.len() { A[(n >> (18 - 6 * k) & 63) as usize] as char } else { '=' });
-        }
-    }
-    out
 }
 
 #[test]

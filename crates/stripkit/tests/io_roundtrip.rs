@@ -1,7 +1,10 @@
 //! Every format and variant written and read back: positions bit for bit, faces
 //! (polygons kept where the format can hold them) or decoded strips in order.
 
+mod support;
+
 use std::io::Write;
+use support::encode_base64;
 use std::path::PathBuf;
 use stripkit::io::{self, WriteOptions};
 use stripkit::{decode, StripSet};
@@ -268,18 +271,6 @@ fn gltf_non_indexed_primitives_use_vertices_in_order() {
     let m = io::read(&path).unwrap();
     assert_eq!(m.positions, positions);
     assert_eq!(triangle_faces(&m), vec![[0, 1, 2], [3, 4, 5], [0, 1, 2], [2, 1, 3], [2, 3, 4], [4, 3, 5]]);
-}
-
-fn encode_base64(data: &[u8]) -> String {
-    const T: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::new();
-    for c in data.chunks(3) {
-        let n = (c[0] as u32) << 16 | (*c.get(1).unwrap_or(&0) as u32) << 8 | *c.get(2).unwrap_or(&0) as u32;
-        for k in 0..4 {
-            s.push(if k <= c.len() { T[(n >> (18 - 6 * k)) as usize & 63] as char } else { '=' });
-        }
-    }
-    s
 }
 
 #[test]

@@ -5,6 +5,8 @@
 //! in docs/experiments/valence.md. Before the fix, cache and balanced took
 //! O(valence^2) walks on these meshes.)
 
+mod support;
+
 use stripkit::{stripify, Algorithm, Error, GreedyOptions, Heuristic, Mesh, StripOptions, MAX_TUNNEL_CUTS};
 
 const N: u32 = 20_000;
@@ -128,17 +130,8 @@ fn twenty_thousand_quads_on_one_edge() {
             continue;
         }
         // QSTRIP chose the diagonals: no two drawn triangles on the same three vertices.
-        let mut sets: Vec<[u32; 3]> = stripkit::unstripify(&s.restart_buffer(), s.restart_index)
-            .chunks_exact(3)
-            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
-            .map(|t| {
-                let mut t = [t[0], t[1], t[2]];
-                t.sort_unstable();
-                t
-            })
-            .collect();
+        let mut sets = support::drawn_sets(&s);
         let n = sets.len();
-        sets.sort_unstable();
         sets.dedup();
         assert_eq!(sets.len(), n, "{a:?}: coincident triangles");
     }

@@ -37,6 +37,11 @@ pub fn write_mesh(path: &std::path::Path, mesh: &stripkit::Mesh) {
     stripkit::io::write(path, mesh, None).expect("writes the test mesh");
 }
 
+#[path = "../../../stripkit/tests/support/base64.rs"]
+mod base64;
+#[allow(unused_imports)]
+pub use base64::encode_base64;
+
 #[path = "../../../stripkit/tests/support/dirs.rs"]
 mod dirs;
 #[allow(unused_imports)]

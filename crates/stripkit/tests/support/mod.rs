@@ -2,9 +2,28 @@
 //! assets are. Include with `mod support;`.
 #![allow(dead_code)] // each test binary uses a different subset
 
+mod base64;
 mod dirs;
 #[allow(unused_imports)] // each test binary uses a different subset
+pub use base64::encode_base64;
+#[allow(unused_imports)] // each test binary uses a different subset
 pub use dirs::{assets_dir, models_dir};
+
+/// The non-degenerate triangles `strips` draw (its restart buffer decoded), as
+/// vertex sets (sorted), sorted; so that equal neighbours are coincident triangles.
+pub fn drawn_sets(strips: &stripkit::Strips) -> Vec<[u32; 3]> {
+    let mut sets: Vec<[u32; 3]> = stripkit::unstripify(&strips.restart_buffer(), strips.restart_index)
+        .chunks_exact(3)
+        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .map(|t| {
+            let mut t = [t[0], t[1], t[2]];
+            t.sort_unstable();
+            t
+        })
+        .collect();
+    sets.sort_unstable();
+    sets
+}
 
 /// The research mesh `name` from [`models_dir`]; `None` (after printing why) when the
 /// folder or the file is absent or unreadable, so that a test can skip it.
