@@ -5,24 +5,10 @@
 //! oriented non-degenerate triangles, within `stripify_bound`.
 
 use libfuzzer_sys::fuzz_target;
+use stripkit_fuzz::oriented;
 use stripkit::{stripify_bound, stripify_indices, unstripify, Algorithm, Error, Join, StripOptions};
 
 const VERTICES: usize = 16;
-
-/// Oriented triangles up to rotation, degenerate ones dropped, sorted (as in
-/// crates/stripkit/tests/door.rs).
-fn oriented(flat: &[u32]) -> Vec<[u32; 3]> {
-    let mut out: Vec<[u32; 3]> = flat
-        .chunks_exact(3)
-        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
-        .map(|t| {
-            let r = (0..3).min_by_key(|&i| t[i]).unwrap();
-            [t[r], t[(r + 1) % 3], t[(r + 2) % 3]]
-        })
-        .collect();
-    out.sort_unstable();
-    out
-}
 
 fuzz_target!(|data: &[u8]| {
     let Some((&first, rest)) = data.split_first() else { return };

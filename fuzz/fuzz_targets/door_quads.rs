@@ -9,6 +9,7 @@
 //! more of them than the faces hold.
 
 use libfuzzer_sys::fuzz_target;
+use stripkit_fuzz::{oriented, rotate_min};
 use stripkit::{stripify, unstripify, Algorithm, Error, Mesh, StripOptions};
 
 fuzz_target!(|data: &[u8]| {
@@ -45,29 +46,21 @@ fuzz_target!(|data: &[u8]| {
     };
     // The triangles a face may give, up to rotation: a quad of four distinct
     // vertices either diagonal's pair, any other face its fan (v0, vi, vi+1).
-    let rot = |t: [u32; 3]| {
-        let r = (0..3).min_by_key(|&i| t[i]).unwrap();
-        [t[r], t[(r + 1) % 3], t[(r + 2) % 3]]
-    };
     let mut allowed: Vec<[u32; 3]> = Vec::new();
     for f in &faces {
         let distinct = f.len() == 4 && (0..4).all(|i| (i + 1..4).all(|j| f[i] != f[j]));
         if distinct {
             for d in 0..2 {
-                allowed.push(rot([f[d], f[d + 1], f[(d + 2) % 4]]));
-                allowed.push(rot([f[d], f[(d + 2) % 4], f[(d + 3) % 4]]));
+                allowed.push(rotate_min([f[d], f[d + 1], f[(d + 2) % 4]]));
+                allowed.push(rotate_min([f[d], f[(d + 2) % 4], f[(d + 3) % 4]]));
             }
         } else {
-            allowed.extend((1..f.len() - 1).map(|i| rot([f[0], f[i], f[i + 1]])));
+            allowed.extend((1..f.len() - 1).map(|i| rotate_min([f[0], f[i], f[i + 1]])));
         }
     }
     allowed.sort_unstable();
-    let on_a_face = |t: &[u32; 3]| allowed.binary_search(&rot(*t)).is_ok();
-    let drawn: Vec<[u32; 3]> = unstripify(&strips.restart_buffer(), strips.restart_index)
-        .chunks_exact(3)
-        .map(|t| [t[0], t[1], t[2]])
-        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
-        .collect();
+    let on_a_face = |t: &[u32; 3]| allowed.binary_search(t).is_ok();
+    let drawn = oriented(&unstripify(&strips.restart_buffer(), strips.restart_index));
     let budget: usize = faces.iter().map(|f| f.len() - 2).sum();
     assert!(drawn.len() <= budget, "{}: more triangles than the faces hold", algorithm.name());
     for t in &drawn {

@@ -24,3 +24,21 @@ pub fn read_and_stripify(ext: &str, format: Format, data: &[u8]) {
         Err(e) => panic!("stripify of a {}-face mesh read from {ext}: {e}", mesh.face_count()),
     }
 }
+
+/// `t` rotated so that its smallest vertex comes first (the same oriented triangle).
+pub fn rotate_min(t: [u32; 3]) -> [u32; 3] {
+    let r = (0..3).min_by_key(|&i| t[i]).unwrap_or(0);
+    [t[r], t[(r + 1) % 3], t[(r + 2) % 3]]
+}
+
+/// The non-degenerate triangles of a flat index list, each rotated by
+/// [`rotate_min`], sorted: oriented triangles as a comparable multiset.
+pub fn oriented(flat: &[u32]) -> Vec<[u32; 3]> {
+    let mut out: Vec<[u32; 3]> = flat
+        .chunks_exact(3)
+        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .map(|t| rotate_min([t[0], t[1], t[2]]))
+        .collect();
+    out.sort_unstable();
+    out
+}
