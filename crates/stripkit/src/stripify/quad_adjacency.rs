@@ -267,7 +267,7 @@ pub(super) fn split(v: &[u32], diag: u8) -> [[u32; 3]; 2] {
 }
 
 /// The two triangles of quad `v` split along diagonal `diag`, as sorted vertex sets.
-fn split_sets(v: &[u32], diag: u8) -> [[u32; 3]; 2] {
+pub(super) fn split_sets(v: &[u32], diag: u8) -> [[u32; 3]; 2] {
     split(v, diag).map(|mut t| {
         t.sort_unstable();
         t

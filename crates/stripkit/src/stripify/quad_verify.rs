@@ -24,7 +24,7 @@
 //! Independent of how the strips were built: it only decodes them by the METRICS.md
 //! rule. O(T) expected time with hashing.
 
-use super::quad_adjacency::{candidate_pairs, coincide, is_quad, same_quad, solve_diagonals, split};
+use super::quad_adjacency::{candidate_pairs, coincide, is_quad, same_quad, solve_diagonals, split, split_sets};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::strip::{canonical, for_each_triangle, StripSet};
@@ -195,10 +195,7 @@ pub fn verify_quads(mesh: &Mesh, strips: &StripSet) -> Result<QuadCheck> {
     chosen.extend(deferred.iter().copied().zip(pick));
     let mut quad_sets: Vec<([u32; 3], u32)> = Vec::with_capacity(2 * chosen.len());
     for &(f, d) in &chosen {
-        for mut t in split(mesh.face(f), d) {
-            t.sort_unstable();
-            quad_sets.push((t, f as u32));
-        }
+        quad_sets.extend(split_sets(mesh.face(f), d).map(|t| (t, f as u32)));
         check.quads += 1;
         if d == 0 {
             check.split_02 += 1;
@@ -237,17 +234,9 @@ const ASSIGN_BUDGET: usize = 1 << 20;
 fn explained(mesh: &Mesh, t: [u32; 3]) -> bool {
     let able: Vec<&[u32]> = mesh
         .faces()
-        .filter(|f| is_quad(f) && (0..2).any(|d| split_sets_of(f, d).contains(&t)))
+        .filter(|f| is_quad(f) && (0..2).any(|d| split_sets(f, d).contains(&t)))
         .collect();
     (0..able.len()).any(|i| able[i + 1..].iter().any(|b| same_quad(able[i], b) || !avoidable(able[i], b)))
-}
-
-/// The two triangles of quad `v` split along `d`, as sorted vertex sets.
-fn split_sets_of(v: &[u32], d: u8) -> [[u32; 3]; 2] {
-    split(v, d).map(|mut t| {
-        t.sort_unstable();
-        t
-    })
 }
 
 /// True when some choice of diagonals for all quads of `mesh` at once gives no
