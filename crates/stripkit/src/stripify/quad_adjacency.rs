@@ -123,7 +123,6 @@ impl QuadAdjacency<'_> {
         let mut on_edge: Vec<u32> = Vec::new();
         let mut corners: Vec<(u32, u32)> = Vec::new();
         let mut candidates: Vec<(u32, u32)> = Vec::new();
-        let mut members: Vec<([u32; 4], [u32; 4], u32)> = Vec::new();
         let mut copies: Vec<(u32, u32)> = Vec::new();
         // Quads of big clusters whose diagonal was set directly: fixed for the solver.
         let mut fixed: Vec<(u32, u8)> = Vec::new();
@@ -142,53 +141,8 @@ impl QuadAdjacency<'_> {
             for group in corners.chunk_by(|a, b| a.0 == b.0) {
                 if group.len() > CLUSTER_CAP {
                     big_cluster = true;
-                    // Hundreds of quads on the same three vertices (u, v, w), in
-                    // O(k log k) in place of the k^2 pairs. A quad whose four
-                    // vertices no other quad here has takes the diagonal whose
-                    // triangles avoid (u, v, w). Quads on the same four vertices in
-                    // other cyclic orders (a face and its flip) are paired, one copy
-                    // of each order; further copies of one order follow their first.
-                    let mut uvw = [u, v, group[0].0];
-                    uvw.sort_unstable();
-                    members.clear();
-                    members.extend(group.iter().map(|&(_, i)| {
-                        let q = on_edge[i as usize] as usize;
-                        let qv = &verts[4 * q..4 * q + 4];
-                        let mut set = [qv[0], qv[1], qv[2], qv[3]];
-                        set.sort_unstable();
-                        let r = (0..4).min_by_key(|&k| qv[k]).unwrap_or(0);
-                        (set, [qv[r], qv[(r + 1) % 4], qv[(r + 2) % 4], qv[(r + 3) % 4]], i)
-                    }));
-                    members.sort_unstable();
-                    for same_set in members.chunk_by(|a, b| a.0 == b.0) {
-                        let orders: Vec<usize> =
-                            (0..same_set.len()).filter(|&m| m == 0 || same_set[m].1 != same_set[m - 1].1).collect();
-                        if orders.len() == 1 {
-                            for &(_, _, i) in same_set {
-                                let q = on_edge[i as usize] as usize;
-                                if forced[q] == FREE {
-                                    forced[q] = u8::from(split_sets(&verts[4 * q..4 * q + 4], 0).contains(&uvw));
-                                    fixed.push((q as u32, forced[q]));
-                                    forced_pairs += 1;
-                                }
-                            }
-                            continue;
-                        }
-                        for (a, &ma) in orders.iter().enumerate() {
-                            for &mb in &orders[a + 1..] {
-                                let (i, j) = (same_set[ma].2, same_set[mb].2);
-                                candidates.push((i.min(j), i.max(j)));
-                            }
-                        }
-                        let mut first = 0;
-                        for m in 0..same_set.len() {
-                            if orders.contains(&m) {
-                                first = m;
-                            } else {
-                                copies.push((on_edge[same_set[m].2 as usize], on_edge[same_set[first].2 as usize]));
-                            }
-                        }
-                    }
+                    let found = Cluster { on_edge: &on_edge, candidates: &mut candidates, copies: &mut copies, fixed: &mut fixed };
+                    forced_pairs += found.force(&verts, &mut forced, [u, v, group[0].0], group);
                     continue;
                 }
                 for (a, &(_, i)) in group.iter().enumerate() {
@@ -287,6 +241,72 @@ pub(super) fn coincide(a: &[u32], da: u8, b: &[u32], db: u8) -> bool {
     let ta = split_sets(a, da);
     let tb = split_sets(b, db);
     ta.iter().any(|t| tb.contains(t))
+}
+
+/// Where [`QuadAdjacency::build`] records a cluster of more than [`CLUSTER_CAP`] quads
+/// on one odd edge sharing the same third vertex: pairs to force (positions in
+/// `on_edge`), copies that follow their first, and diagonals set directly.
+struct Cluster<'a> {
+    on_edge: &'a [u32],
+    candidates: &'a mut Vec<(u32, u32)>,
+    copies: &'a mut Vec<(u32, u32)>,
+    fixed: &'a mut Vec<(u32, u8)>,
+}
+
+impl Cluster<'_> {
+    /// Hundreds of quads on the same three vertices `uvw` (`group`: their positions
+    /// in `on_edge`), in O(k log k) in place of the k^2 pairs. A quad whose four
+    /// vertices no other quad here has takes the diagonal whose triangles avoid `uvw`.
+    /// Quads on the same four vertices in other cyclic orders (a face and its flip)
+    /// are paired, one copy of each order; further copies of one order follow their
+    /// first. Returns how many diagonals it set.
+    fn force(self, verts: &[u32], forced: &mut [u8], mut uvw: [u32; 3], group: &[(u32, u32)]) -> usize {
+        uvw.sort_unstable();
+        let quad = |i: u32| self.on_edge[i as usize] as usize;
+        // (four vertices sorted, the cyclic order from the smallest, position)
+        let mut members: Vec<([u32; 4], [u32; 4], u32)> = group
+            .iter()
+            .map(|&(_, i)| {
+                let qv = &verts[4 * quad(i)..4 * quad(i) + 4];
+                let mut set = [qv[0], qv[1], qv[2], qv[3]];
+                set.sort_unstable();
+                let r = (0..4).min_by_key(|&k| qv[k]).unwrap_or(0);
+                (set, [qv[r], qv[(r + 1) % 4], qv[(r + 2) % 4], qv[(r + 3) % 4]], i)
+            })
+            .collect();
+        members.sort_unstable();
+        let mut set_here = 0;
+        for same_set in members.chunk_by(|a, b| a.0 == b.0) {
+            let orders: Vec<usize> =
+                (0..same_set.len()).filter(|&m| m == 0 || same_set[m].1 != same_set[m - 1].1).collect();
+            if orders.len() == 1 {
+                for &(_, _, i) in same_set {
+                    let q = quad(i);
+                    if forced[q] == FREE {
+                        forced[q] = u8::from(split_sets(&verts[4 * q..4 * q + 4], 0).contains(&uvw));
+                        self.fixed.push((q as u32, forced[q]));
+                        set_here += 1;
+                    }
+                }
+                continue;
+            }
+            for (a, &ma) in orders.iter().enumerate() {
+                for &mb in &orders[a + 1..] {
+                    let (i, j) = (same_set[ma].2, same_set[mb].2);
+                    self.candidates.push((i.min(j), i.max(j)));
+                }
+            }
+            let mut first = 0;
+            for m in 0..same_set.len() {
+                if orders.contains(&m) {
+                    first = m;
+                } else {
+                    self.copies.push((quad(same_set[m].2) as u32, quad(same_set[first].2) as u32));
+                }
+            }
+        }
+        set_here
+    }
 }
 
 /// Gives each copy `c` of a face listed several times (`(c, first)` in `copies`) the
