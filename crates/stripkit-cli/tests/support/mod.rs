@@ -38,6 +38,7 @@ pub fn write_mesh(path: &std::path::Path, mesh: &stripkit::Mesh) {
 }
 
 #[path = "../../../stripkit/tests/support/base64.rs"]
+#[allow(dead_code)] // not every test binary writes glTF
 mod base64;
 #[allow(unused_imports)]
 pub use base64::encode_base64;
