@@ -1,0 +1,95 @@
+//! Pictures read back from the framebuffer.
+
+use crate::RenderError;
+use std::path::Path;
+
+/// An RGBA8 picture, top row first.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Image {
+    width: u32,
+    height: u32,
+    rgba: Vec<u8>,
+}
+
+impl Image {
+    /// A picture from `width * height * 4` bytes, top row first.
+    ///
+    /// # Panics
+    /// When the byte count does not match the size.
+    pub fn new(width: u32, height: u32, rgba: Vec<u8>) -> Self {
+        assert_eq!(rgba.len(), width as usize * height as usize * 4, "RGBA bytes for {width}x{height}");
+        Image { width, height, rgba }
+    }
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+    /// The RGBA bytes, top row first.
+    pub fn rgba(&self) -> &[u8] {
+        &self.rgba
+    }
+    /// The pixel at column `x`, row `y` (0 at the top).
+    pub fn pixel(&self, x: u32, y: u32) -> [u8; 4] {
+        let i = (y as usize * self.width as usize + x as usize) * 4;
+        [self.rgba[i], self.rgba[i + 1], self.rgba[i + 2], self.rgba[i + 3]]
+    }
+    /// Number of pixels that differ from `other` in any channel (all of them when sizes differ).
+    pub fn differing_pixels(&self, other: &Image) -> usize {
+        if (self.width, self.height) != (other.width, other.height) {
+            return (self.width as usize * self.height as usize).max(other.width as usize * other.height as usize);
+        }
+        self.rgba.chunks_exact(4).zip(other.rgba.chunks_exact(4)).filter(|(a, b)| a != b).count()
+    }
+    /// Number of pixels that differ from `rgb`.
+    pub fn pixels_other_than(&self, rgb: [u8; 3]) -> usize {
+        self.rgba.chunks_exact(4).filter(|p| p[..3] != rgb).count()
+    }
+    /// The picture as PNG bytes.
+    pub fn encode_png(&self) -> Vec<u8> {
+        let mut out = Vec::new();
+        {
+            let mut enc = png::Encoder::new(&mut out, self.width, self.height);
+            enc.set_color(png::ColorType::Rgba);
+            enc.set_depth(png::BitDepth::Eight);
+            enc.set_compression(png::Compression::Best);
+            // Writing into a Vec cannot fail for a well-formed size.
+            let mut w = enc.write_header().expect("PNG header into memory");
+            w.write_image_data(&self.rgba).expect("PNG data into memory");
+        }
+        out
+    }
+    /// Side-by-side composition of pictures of equal height, left to right.
+    pub fn hstack(images: &[Image]) -> Option<Image> {
+        let h = images.first()?.height;
+        if images.iter().any(|i| i.height != h) {
+            return None;
+        }
+        let w: u32 = images.iter().map(|i| i.width).sum();
+        let mut rgba = Vec::with_capacity(w as usize * h as usize * 4);
+        for y in 0..h as usize {
+            for i in images {
+                let row = i.width as usize * 4;
+                rgba.extend_from_slice(&i.rgba[y * row..(y + 1) * row]);
+            }
+        }
+        Some(Image::new(w, h, rgba))
+    }
+    /// Writes a PNG: a temporary file beside `path`, then a rename, so a failed write
+    /// never leaves half a picture where an old one was.
+    pub fn write_png(&self, path: &Path) -> Result<(), RenderError> {
+        let bytes = self.encode_png();
+        let io = |source| RenderError::Io { path: path.to_path_buf(), source };
+        let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "picture".into());
+        let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+        std::fs::write(&tmp, &bytes).map_err(io)?;
+        std::fs::rename(&tmp, path).map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            io(e)
+        })
+    }
+}
