@@ -1,6 +1,7 @@
 //! `stripkit-bench`: stripkit next to other libraries, on a folder of meshes, in one
 //! run; writes markdown tables. One module per comparison.
 
+mod gpu;
 mod strips;
 mod simplify;
 mod matching;
@@ -22,6 +23,8 @@ enum Command {
     Strips(strips::Args),
     /// Simplification: stripkit's QEM next to meshoptimizer's simplify.
     Simplify(simplify::Args),
+    /// Draw times on the GPU (or llvmpipe) of every index buffer: lists, meshoptimizer's strips, stripkit's modes.
+    Gpu(gpu::Args),
     /// Weighted perfect matching: stripkit next to LEMON (when installed).
     Matching(matching::Args),
 }
@@ -41,5 +44,6 @@ fn main() -> anyhow::Result<()> {
         Command::Strips(a) => strips::run(a),
         Command::Simplify(a) => simplify::run(a),
         Command::Matching(a) => matching::run(a),
+        Command::Gpu(a) => gpu::run(a),
     }
 }
