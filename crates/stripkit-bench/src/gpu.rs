@@ -242,6 +242,8 @@ struct RowResult {
     indices: usize,
     /// Vertex-shader invocations for one draw (None where the context cannot count).
     invocations: Option<u64>,
+    /// Invocations predicted by the batch model fitted to the H100 ([`crate::batch::BatchModel::NVIDIA_H100`]).
+    h100_model: u64,
     fifo16_misses: usize,
     fifo32_misses: usize,
     /// ms per draw for each configuration, by configuration name.
@@ -317,6 +319,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                     strips: b.topology == Topology::Strip,
                     indices: b.indices.len(),
                     invocations: None,
+                    h100_model: crate::batch::BatchModel::NVIDIA_H100.invocations(&b.indices, b.topology),
                     fifo16_misses: stripkit::cache_misses(&decoded, n, 16, CacheKind::Fifo),
                     fifo32_misses: stripkit::cache_misses(&decoded, n, 32, CacheKind::Fifo),
                     ms: Vec::new(),
@@ -525,7 +528,7 @@ fn markdown(gpu: &str, configs: &[Config], results: &[MeshResult], probes: &[Pro
         }
         let _ = writeln!(s);
     }
-    header(&mut s, "indices per triangle / vertex-shader invocations per triangle / FIFO-32 misses per triangle");
+    header(&mut s, "per triangle: indices / vertex-shader invocations measured / invocations by the H100 batch model / FIFO-32 misses");
     for label in &all_labels {
         let _ = write!(s, "| {label} |");
         for m in results {
@@ -533,7 +536,13 @@ fn markdown(gpu: &str, configs: &[Config], results: &[MeshResult], probes: &[Pro
                 Some(r) => {
                     let t = m.triangles.max(1) as f64;
                     let inv = r.invocations.map_or("-".to_string(), |i| format!("{:.3}", i as f64 / t));
-                    let _ = write!(s, " {:.3} / {inv} / {:.3} |", r.indices as f64 / t, r.fifo32_misses as f64 / t);
+                    let _ = write!(
+                        s,
+                        " {:.3} / {inv} / {:.3} / {:.3} |",
+                        r.indices as f64 / t,
+                        r.h100_model as f64 / t,
+                        r.fifo32_misses as f64 / t
+                    );
                 }
                 None => {
                     let _ = write!(s, " |");

@@ -1,6 +1,7 @@
 //! `stripkit-bench`: stripkit next to other libraries, on a folder of meshes, in one
 //! run; writes markdown tables. One module per comparison.
 
+mod batch;
 mod gpu;
 mod strips;
 mod simplify;
@@ -25,6 +26,8 @@ enum Command {
     Simplify(simplify::Args),
     /// Draw times on the GPU (or llvmpipe) of every index buffer: lists, meshoptimizer's strips, stripkit's modes.
     Gpu(gpu::Args),
+    /// Fits the GPU batch model to invocation counts measured by `gpu --json`.
+    GpuModel(batch::Args),
     /// Weighted perfect matching: stripkit next to LEMON (when installed).
     Matching(matching::Args),
 }
@@ -45,5 +48,6 @@ fn main() -> anyhow::Result<()> {
         Command::Simplify(a) => simplify::run(a),
         Command::Matching(a) => matching::run(a),
         Command::Gpu(a) => gpu::run(a),
+        Command::GpuModel(a) => batch::run(a),
     }
 }
