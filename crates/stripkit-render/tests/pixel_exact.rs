@@ -18,12 +18,17 @@ mod support;
 
 use stripkit::{gen, stripify, Algorithm, Error, GreedyOptions, Heuristic, Mesh, Split, StripOptions};
 use stripkit_render::{DrawParams, Image, IndexWidth, Shading, Topology};
-use support::{camera, covered, exact, flat, model, renderer, vertex_normals, Scene, RESTART, SIZE};
+use support::{camera, color_difference, covered, exact, flat, model, renderer, vertex_normals, Scene, SIZE};
 
 /// Views from the front-upper-right and from behind-below-left (closed meshes).
 const VIEWS: [[f32; 3]; 2] = [[0.35, 0.45, 1.0], [-0.8, -0.3, -0.6]];
 /// Two views from +z, for open meshes that face +z (grids).
 const FRONT_VIEWS: [[f32; 3]; 2] = [[0.35, 0.45, 1.0], [-0.5, 0.2, 0.8]];
+/// Pictures in per-vertex colours may differ by this much per channel: llvmpipe
+/// interpolates from a triangle's first corner, which strips choose differently (1 is
+/// what bunny shows); a triangle missing, flipped or drawn with other corners differs
+/// by far more.
+const COLOR_TOLERANCE: u8 = 2;
 /// A picture covering fewer pixels than this is too empty to prove anything.
 const MIN_COVERED: usize = 3_000;
 const PIXELS: usize = (SIZE * SIZE) as usize;
@@ -51,6 +56,9 @@ fn quad_algorithms() -> Vec<(&'static str, Algorithm)> {
     ]
 }
 
+/// Draw ranges `(first index, count)`, one draw call each; `None` for the whole buffer.
+type Ranges = Option<Vec<(usize, usize)>>;
+
 fn lit(mvp: [f32; 16], shading: Shading) -> DrawParams {
     DrawParams { shading, cull_back: true, ..DrawParams::new(mvp) }
 }
@@ -58,6 +66,7 @@ fn lit(mvp: [f32; 16], shading: Shading) -> DrawParams {
 /// The pictures of one triangle list from one view: exact (unlit) and lit.
 struct Reference {
     exact: Image,
+    colored: Image,
     smooth: Image,
     flat: Image,
 }
@@ -65,7 +74,9 @@ struct Reference {
 fn reference(scene: &mut Scene, tris: &[[u32; 3]], mvp: [f32; 16]) -> Reference {
     let list = flat(tris);
     let mut draw = |p: &DrawParams| scene.picture(&list, Topology::Triangles, IndexWidth::U32, p);
-    Reference { exact: draw(&exact(mvp)), smooth: draw(&lit(mvp, Shading::Smooth)), flat: draw(&lit(mvp, Shading::Flat)) }
+    let (exact, smooth, flat) = (draw(&exact(mvp)), draw(&lit(mvp, Shading::Smooth)), draw(&lit(mvp, Shading::Flat)));
+    let colored = scene.colored_picture(&list, Topology::Triangles, IndexWidth::U32, &support::exact(mvp));
+    Reference { exact, colored, smooth, flat }
 }
 
 /// Strips of `mesh` by every algorithm, drawn every way, against the list; returns the
@@ -116,7 +127,7 @@ fn check_mesh(name: &str, mesh: &Mesh, algorithms: &[(&str, Algorithm)], views: 
             ranges.push((start, s.len()));
             start += s.len() + 1;
         }
-        let joins: [(&str, &Vec<u32>, Option<Vec<(usize, usize)>>); 3] =
+        let joins: [(&str, &Vec<u32>, Ranges); 3] =
             [("restart", &restart, None), ("stitched", &stitched, None), ("separate", &restart, Some(ranges))];
         for (join, buffer, ranges) in &joins {
             for (v, (&mvp, r)) in mvps.iter().zip(refs).enumerate() {
@@ -136,7 +147,13 @@ fn check_mesh(name: &str, mesh: &Mesh, algorithms: &[(&str, Algorithm)], views: 
                             scene.picture(buffer, Topology::Strip, width, &p).differing_pixels(reference)
                         };
                         let (s, f) = (lit_diff(Shading::Smooth), lit_diff(Shading::Flat));
-                        line += &format!("; lit: {s} smooth, {f} flat differ");
+                        let colored = scene.colored_picture(buffer, Topology::Strip, width, &params);
+                        let (off, max) = color_difference(&colored, &r.colored, 0);
+                        let (far_off, _) = color_difference(&colored, &r.colored, COLOR_TOLERANCE);
+                        line += &format!("; lit: {s} smooth, {f} flat differ; coloured: {off} differ, by at most {max}");
+                        if far_off > 0 {
+                            failures.push(format!("{line} ({far_off} pixels by more than {COLOR_TOLERANCE})"));
+                        }
                     }
                     println!("{line}");
                     if diff != 0 || cov < MIN_COVERED || cov != covered(&r.exact) {
@@ -250,4 +267,140 @@ fn non_manifold_meshes() {
         }
     }
     assert_none(failures);
+}
+
+/// Signed area in pixels of triangle `t` on screen: positive for counter-clockwise
+/// (front-facing, drawn), negative for back-facing (culled).
+fn screen_area(mvp: [f32; 16], positions: &[[f32; 3]], t: [u32; 3]) -> f32 {
+    let m = glam::Mat4::from_cols_array(&mvp);
+    let [a, b, c] = t.map(|i| {
+        let clip = m * glam::Vec3::from(positions[i as usize]).extend(1.0);
+        (clip.truncate() / clip.w).truncate() * (SIZE as f32 * 0.5)
+    });
+    0.5 * (b - a).perp_dot(c - a)
+}
+
+/// The comparison can fail: in the restart buffer of a shuffled icosphere's strips,
+/// dropping a strip's first triangle (its first index replaced by its second, which
+/// keeps the winding of the rest) changes the grey picture exactly when that triangle
+/// faces the camera and covers pixels; flipping a strip's winding (one index inserted in
+/// front of it) changes the coloured picture whenever the strip has a visible triangle;
+/// flipping the whole stitched strip changes the coloured one. (A closed mesh turned
+/// inside out keeps its grey silhouette: that is what the coloured pictures are for.)
+#[test]
+fn mutated_strips_give_other_pictures() {
+    let mesh = gen::renumber_vertices(&gen::shuffle_faces(&gen::icosphere(2), 51), 9);
+    let fan = mesh.triangulate().tris;
+    let strips = stripify(&mesh, &StripOptions::default().algorithm(Algorithm::cache())).expect("strips");
+    let mvp = camera(&mesh.positions, VIEWS[0]);
+    let mut scene = Scene::new(renderer(), &mesh.positions, None);
+    let list = flat(&fan);
+    let grey = scene.picture(&list, Topology::Triangles, IndexWidth::U32, &exact(mvp));
+    let colored = scene.colored_picture(&list, Topology::Triangles, IndexWidth::U32, &exact(mvp));
+    let base = strips.restart_buffer();
+    // (grey pixels differing, coloured pixels differing by more than the tolerance)
+    let mut draw = |buffer: &[u32]| {
+        let g = scene.picture(buffer, Topology::Strip, IndexWidth::U32, &exact(mvp)).differing_pixels(&grey);
+        let c = scene.colored_picture(buffer, Topology::Strip, IndexWidth::U32, &exact(mvp));
+        (g, color_difference(&c, &colored, COLOR_TOLERANCE).0)
+    };
+    assert_eq!(draw(&base), (0, 0), "the unmutated strips");
+    let (mut seen, mut visible, mut culled_changed, mut culled, mut fewest) = (0, 0, 0, 0, usize::MAX);
+    let (mut flips_seen, mut flips_grey, mut flips_visible) = (0, 0, 0);
+    let mut failures = Vec::new();
+    let mut start = 0;
+    for (k, s) in strips.strips.iter().enumerate() {
+        let first = [s[0], s[1], s[2]];
+        let area = screen_area(mvp, &mesh.positions, first);
+        if !stripkit::is_degenerate(&first) && !(-1.0..=4.0).contains(&area) {
+            let mut dropped = base.clone();
+            dropped[start] = s[1];
+            let (diff, color_diff) = draw(&dropped);
+            if area > 4.0 {
+                visible += 1;
+                seen += usize::from(diff > 0);
+                fewest = fewest.min(diff);
+                if diff == 0 {
+                    failures.push(format!("strip {k}: dropping its first triangle ({area:.0} px) changed nothing"));
+                }
+            } else {
+                culled += 1;
+                culled_changed += usize::from(diff + color_diff > 0);
+                if diff + color_diff > 0 {
+                    failures.push(format!("strip {k}: dropping its back-facing first triangle changed {diff} pixels"));
+                }
+            }
+        }
+        let mut t = Vec::new();
+        stripkit::for_each_triangle(s, |tri| t.push(tri));
+        if t.iter().any(|&tri| !stripkit::is_degenerate(&tri) && screen_area(mvp, &mesh.positions, tri) > 4.0) {
+            let mut flipped = base.clone();
+            flipped.insert(start, s[0]);
+            let (diff, color_diff) = draw(&flipped);
+            flips_visible += 1;
+            flips_seen += usize::from(color_diff > 0);
+            flips_grey += usize::from(diff > 0);
+            if color_diff == 0 {
+                failures.push(format!("strip {k}: flipping its winding changed nothing"));
+            }
+        }
+        start += s.len() + 1;
+    }
+    let stitched = strips.stitched();
+    let mut flipped = vec![stitched[0]];
+    flipped.extend_from_slice(&stitched);
+    let (whole_grey, whole) = draw(&flipped);
+    println!(
+        "mutation icosphere2 cache restart u32 ({} strips): dropping a visible first triangle changed the grey picture for \
+         {seen} of {visible} strips (fewest {fewest} pixels), a culled one for {culled_changed} of {culled}; flipping a strip \
+         with a visible triangle changed the coloured picture for {flips_seen} of {flips_visible} (the grey one for {flips_grey}); \
+         flipping the whole stitched strip: {whole} coloured, {whole_grey} grey pixels of {PIXELS} differ",
+        strips.strips.len()
+    );
+    assert!(visible >= 5 && culled >= 5 && flips_visible >= 5, "too few strips to try");
+    assert!(whole > 0, "flipping the whole stitched strip changed nothing");
+    assert_none(failures);
+}
+
+/// On the bunny, whose triangles cover a pixel or two each: flipping the longest strip,
+/// and dropping the largest visible first triangle of a strip, change the picture.
+#[test]
+fn mutated_bunny_strips_give_other_pictures() {
+    let Some(mesh) = model("bunny.obj") else { return };
+    let fan = mesh.triangulate().tris;
+    let strips = stripify(&mesh, &StripOptions::default().algorithm(Algorithm::greedy())).expect("strips");
+    let mvp = camera(&mesh.positions, VIEWS[0]);
+    let mut scene = Scene::new(renderer(), &mesh.positions, None);
+    let list = scene.picture(&flat(&fan), Topology::Triangles, IndexWidth::U32, &exact(mvp));
+    let base = strips.restart_buffer();
+    let mut starts = Vec::new();
+    let mut start = 0;
+    for s in strips.strips.iter() {
+        starts.push(start);
+        start += s.len() + 1;
+    }
+    let longest = (0..strips.strips.len()).max_by_key(|&k| strips.strips.strip(k).len()).expect("strips");
+    let mut flipped = base.clone();
+    flipped.insert(starts[longest], strips.strips.strip(longest)[0]);
+    let largest = (0..strips.strips.len())
+        .max_by(|&a, &b| {
+            let area = |k: usize| {
+                let s = strips.strips.strip(k);
+                screen_area(mvp, &mesh.positions, [s[0], s[1], s[2]])
+            };
+            area(a).total_cmp(&area(b))
+        })
+        .expect("strips");
+    let s = strips.strips.strip(largest);
+    let area = screen_area(mvp, &mesh.positions, [s[0], s[1], s[2]]);
+    let mut dropped = base.clone();
+    dropped[starts[largest]] = s[1];
+    let mut draw = |buffer: &[u32]| scene.picture(buffer, Topology::Strip, IndexWidth::U32, &exact(mvp)).differing_pixels(&list);
+    let (flip, drop) = (draw(&flipped), draw(&dropped));
+    println!(
+        "mutation bunny greedy restart u32: flipping the longest strip ({} indices): {flip} of {PIXELS} differ; \
+         dropping the largest visible first triangle ({area:.1} px): {drop} differ",
+        strips.strips.strip(longest).len()
+    );
+    assert!(flip > 0 && drop > 0);
 }

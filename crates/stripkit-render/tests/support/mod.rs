@@ -63,29 +63,55 @@ pub fn camera(positions: &[[f32; 3]], direction: [f32; 3]) -> [f32; 16] {
             hi[k] = hi[k].max(p[k]);
         }
     }
-    Camera::fit(lo, hi, direction).view_proj(SIZE as f32 / SIZE as f32)
+    Camera::fit(lo, hi, direction).view_proj(1.0) // square pictures
 }
 
-/// One mesh's vertices uploaded, ready for several index buffers and views.
+/// A colour per vertex id, scattered (a multiplicative hash), so that neighbouring
+/// triangles look different and a triangle drawn with other corners or from the other
+/// side shows.
+pub fn vertex_colors(count: usize) -> Vec<[u8; 4]> {
+    (0..count as u32)
+        .map(|i| {
+            let h = i.wrapping_mul(2_654_435_761);
+            [(h >> 24) as u8, (h >> 16) as u8, (h >> 8) as u8, 255]
+        })
+        .collect()
+}
+
+/// One mesh's vertices uploaded twice, light grey (with normals when given) and in
+/// [`vertex_colors`], ready for several index buffers and views.
 pub struct Scene {
     pub renderer: Renderer,
-    geometry: stripkit_render::Geometry,
+    grey: stripkit_render::Geometry,
+    colored: stripkit_render::Geometry,
 }
 
 impl Scene {
     /// Uploads `positions` (and `normals` for the lit pictures).
     pub fn new(mut renderer: Renderer, positions: &[[f32; 3]], normals: Option<&[[f32; 3]]>) -> Scene {
         let v = Vertices { normals, ..Vertices::new(positions) };
-        let geometry = renderer.upload(&v).expect("uploads the vertices");
-        Scene { renderer, geometry }
+        let grey = renderer.upload(&v).expect("uploads the vertices");
+        let colors = vertex_colors(positions.len());
+        let colored = renderer.upload(&Vertices { colors: Some(&colors), ..v }).expect("uploads the vertices");
+        Scene { renderer, grey, colored }
     }
 
-    /// Draws `indices` with `params` on a cleared framebuffer and reads the picture back.
+    /// Draws `indices` of the grey vertices with `params` on a cleared framebuffer and
+    /// reads the picture back.
     pub fn picture(&mut self, indices: &[u32], topology: Topology, width: IndexWidth, params: &DrawParams) -> Image {
+        self.draw(false, indices, topology, width, params)
+    }
+
+    /// [`Scene::picture`] with the vertices in [`vertex_colors`].
+    pub fn colored_picture(&mut self, indices: &[u32], topology: Topology, width: IndexWidth, params: &DrawParams) -> Image {
+        self.draw(true, indices, topology, width, params)
+    }
+
+    fn draw(&mut self, colored: bool, indices: &[u32], topology: Topology, width: IndexWidth, params: &DrawParams) -> Image {
         let r = &mut self.renderer;
         let buf = r.upload_indices(indices, topology, width).expect("uploads the indices");
         r.clear(BACKGROUND);
-        r.draw(&self.geometry, &buf, params);
+        r.draw(if colored { &self.colored } else { &self.grey }, &buf, params);
         let image = r.read_image();
         assert_eq!(r.gl_error(), None, "GL error after drawing {} indices", indices.len());
         r.delete_indices(buf);
@@ -102,6 +128,19 @@ pub fn exact(mvp: [f32; 16]) -> DrawParams {
 /// Pixels other than the background.
 pub fn covered(image: &Image) -> usize {
     image.pixels_other_than([0, 0, 0])
+}
+
+/// Pixels whose colour differs from `b`'s by more than `tolerance` in some channel, and
+/// the largest channel difference.
+pub fn color_difference(a: &Image, b: &Image, tolerance: u8) -> (usize, u8) {
+    let mut count = 0;
+    let mut max = 0;
+    for (p, q) in a.rgba().chunks_exact(4).zip(b.rgba().chunks_exact(4)) {
+        let d = p.iter().zip(q).map(|(x, y)| x.abs_diff(*y)).max().unwrap_or(0);
+        max = max.max(d);
+        count += usize::from(d > tolerance);
+    }
+    (count, max)
 }
 
 /// Triangles as a flat index list.
