@@ -93,6 +93,7 @@ fn check_mesh(name: &str, mesh: &Mesh, algorithms: &[(&str, Algorithm)], views: 
     }
     let mut failures = Vec::new();
     for (algo, algorithm) in algorithms {
+        let started = std::time::Instant::now();
         let strips = match stripify(mesh, &StripOptions::default().algorithm(algorithm.clone())) {
             Ok(s) => s,
             Err(Error::Invalid(why)) if matches!(algorithm, Algorithm::QuadSingle) => {
@@ -104,6 +105,8 @@ fn check_mesh(name: &str, mesh: &Mesh, algorithms: &[(&str, Algorithm)], views: 
                 continue;
             }
         };
+        let stripify_time = started.elapsed();
+        let started = std::time::Instant::now();
         // The list to compare with: the mesh's fan, or the split the strips chose
         // (QSTRIP's diagonals), which is then compared with the fan for the record.
         let split_refs: Vec<Reference>;
@@ -162,6 +165,13 @@ fn check_mesh(name: &str, mesh: &Mesh, algorithms: &[(&str, Algorithm)], views: 
                 }
             }
         }
+        println!(
+            "pixel-exact {name} {algo}: {} strips, {} indices (restart), stripify and check {:.0} ms, pictures {:.0} ms",
+            strips.strips.len(),
+            restart.len(),
+            stripify_time.as_secs_f64() * 1e3,
+            started.elapsed().as_secs_f64() * 1e3
+        );
     }
     failures
 }
