@@ -114,7 +114,7 @@ fn check_mesh(name: &str, mesh: &Mesh, algorithms: &[(&str, Algorithm)], views: 
             split_refs = mvps.iter().map(|&m| reference(&mut scene, &strips.triangles, m)).collect();
             for (v, (s, f)) in split_refs.iter().zip(&fan_refs).enumerate() {
                 println!(
-                    "pixel-exact {name} {algo} split-vs-fan view{v}: {} of {PIXELS} differ (information: the strips chose other diagonals than the fan)",
+                    "pixel-exact {name} {algo} split-vs-fan view{v}: {} of {PIXELS} differ (information only: the list of the strips' diagonals against the fan)",
                     s.exact.differing_pixels(&f.exact)
                 );
             }
