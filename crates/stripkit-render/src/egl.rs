@@ -13,6 +13,7 @@
 use crate::RenderError;
 use khronos_egl as egl;
 use std::ffi::c_void;
+use std::sync::{Mutex, MutexGuard};
 
 type Egl = egl::DynamicInstance<egl::EGL1_4>;
 
@@ -31,6 +32,19 @@ pub(crate) const NO_EGL_HELP: &str = "stripkit renders through EGL and OpenGL ES
 `apt-get install libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri`. A machine with NVIDIA's driver \
 (libEGL_nvidia.so.0 and its glvnd file 10_nvidia.json) but without the glvnd loader needs \
 libEGL.so.1, libGLdispatch.so.0 and libGLESv2.so.2 on LD_LIBRARY_PATH";
+
+/// Renderers alive per EGL display (its handle as an address). EGL gives every caller
+/// of eglGetPlatformDisplay the same display for the same device, and eglInitialize is
+/// not counted, so one renderer's eglTerminate would pull the display from under all
+/// the others in the process: tests on other threads then failed with "EGL is not
+/// initialized", "no OpenGL ES 3 configuration" or a segfault in Mesa. The display is
+/// terminated with its last renderer instead.
+static DISPLAY_USERS: Mutex<Vec<(usize, usize)>> = Mutex::new(Vec::new());
+
+fn display_users() -> MutexGuard<'static, Vec<(usize, usize)>> {
+    // A panic while the list was held cannot leave it half-written: go on with it.
+    DISPLAY_USERS.lock().unwrap_or_else(|e| e.into_inner())
+}
 
 /// An EGL display with a current OpenGL ES context.
 pub(crate) struct EglContext {
@@ -51,40 +65,61 @@ impl EglContext {
         // SAFETY: loading libEGL runs its initialisers; the library is the system's EGL.
         let egl = unsafe { Egl::load_required_from_filename(&name) }
             .map_err(|e| RenderError::NoEgl(format!("{} could not be loaded ({e})", name.to_string_lossy())))?;
+        // Held until the display is counted, so that no other renderer's Drop
+        // terminates it between eglInitialize and the context (see DISPLAY_USERS).
+        let mut users = display_users();
         let mut tried = Vec::new();
         let (display, platform) = open_display(&egl, &mut tried).ok_or_else(|| {
             RenderError::NoEgl(format!("no EGL display could be initialised (tried {})", tried.join(", ")))
         })?;
-        egl.bind_api(egl::OPENGL_ES_API)
-            .map_err(|e| RenderError::NoEgl(format!("OpenGL ES is not offered by EGL ({e})")))?;
-        let attribs = [egl::RENDERABLE_TYPE, OPENGL_ES3_BIT, egl::SURFACE_TYPE, egl::PBUFFER_BIT, egl::NONE];
-        let config = egl
-            .choose_first_config(display, &attribs)
-            .ok()
-            .flatten()
-            .or_else(|| egl.choose_first_config(display, &[egl::RENDERABLE_TYPE, OPENGL_ES3_BIT, egl::NONE]).ok().flatten())
-            .ok_or_else(|| RenderError::NoEgl(format!("the {platform} EGL display has no OpenGL ES 3 configuration")))?;
-        let mut made = None;
-        for minor in [2, 1, 0] {
-            let ctx_attribs = [CONTEXT_MAJOR_VERSION, 3, CONTEXT_MINOR_VERSION, minor, egl::NONE];
-            if let Ok(c) = egl.create_context(display, config, None, &ctx_attribs) {
-                made = Some((c, minor));
-                break;
+        let made = (|| {
+            egl.bind_api(egl::OPENGL_ES_API)
+                .map_err(|e| RenderError::NoEgl(format!("OpenGL ES is not offered by EGL ({e})")))?;
+            let attribs = [egl::RENDERABLE_TYPE, OPENGL_ES3_BIT, egl::SURFACE_TYPE, egl::PBUFFER_BIT, egl::NONE];
+            let config = egl
+                .choose_first_config(display, &attribs)
+                .ok()
+                .flatten()
+                .or_else(|| egl.choose_first_config(display, &[egl::RENDERABLE_TYPE, OPENGL_ES3_BIT, egl::NONE]).ok().flatten())
+                .ok_or_else(|| RenderError::NoEgl(format!("the {platform} EGL display has no OpenGL ES 3 configuration")))?;
+            let mut made = None;
+            for minor in [2, 1, 0] {
+                let ctx_attribs = [CONTEXT_MAJOR_VERSION, 3, CONTEXT_MINOR_VERSION, minor, egl::NONE];
+                if let Ok(c) = egl.create_context(display, config, None, &ctx_attribs) {
+                    made = Some((c, minor));
+                    break;
+                }
+            }
+            let (context, minor) = made
+                .ok_or_else(|| RenderError::NoEgl(format!("no OpenGL ES 3 context on the {platform} EGL display")))?;
+            // Surfaceless first (EGL_KHR_surfaceless_context); a 1x1 pbuffer otherwise.
+            let mut surface = None;
+            if egl.make_current(display, None, None, Some(context)).is_err() {
+                let pb = egl
+                    .create_pbuffer_surface(display, config, &[egl::WIDTH, 1, egl::HEIGHT, 1, egl::NONE])
+                    .map_err(|e| RenderError::NoEgl(format!("no surface for the context ({e})")))?;
+                egl.make_current(display, Some(pb), Some(pb), Some(context))
+                    .map_err(|e| RenderError::NoEgl(format!("the context could not be made current ({e})")))?;
+                surface = Some(pb);
+            }
+            Ok((context, surface, minor))
+        })();
+        let key = display.as_ptr() as usize;
+        match made {
+            Ok((context, surface, minor)) => {
+                match users.iter_mut().find(|(d, _)| *d == key) {
+                    Some((_, n)) => *n += 1,
+                    None => users.push((key, 1)),
+                }
+                Ok(EglContext { egl, display, context, surface, platform, version: (3, minor) })
+            }
+            Err(e) => {
+                if !users.iter().any(|(d, _)| *d == key) {
+                    let _ = egl.terminate(display);
+                }
+                Err(e)
             }
         }
-        let (context, minor) = made
-            .ok_or_else(|| RenderError::NoEgl(format!("no OpenGL ES 3 context on the {platform} EGL display")))?;
-        // Surfaceless first (EGL_KHR_surfaceless_context); a 1x1 pbuffer otherwise.
-        let mut surface = None;
-        if egl.make_current(display, None, None, Some(context)).is_err() {
-            let pb = egl
-                .create_pbuffer_surface(display, config, &[egl::WIDTH, 1, egl::HEIGHT, 1, egl::NONE])
-                .map_err(|e| RenderError::NoEgl(format!("no surface for the context ({e})")))?;
-            egl.make_current(display, Some(pb), Some(pb), Some(context))
-                .map_err(|e| RenderError::NoEgl(format!("the context could not be made current ({e})")))?;
-            surface = Some(pb);
-        }
-        Ok(EglContext { egl, display, context, surface, platform, version: (3, minor) })
     }
 
     /// glow's loader: core and extension GLES entry points through eglGetProcAddress.
@@ -154,6 +189,15 @@ impl Drop for EglContext {
             let _ = self.egl.destroy_surface(self.display, s);
         }
         let _ = self.egl.destroy_context(self.display, self.context);
-        let _ = self.egl.terminate(self.display);
+        // The display goes with the last renderer of the process that uses it.
+        let mut users = display_users();
+        let key = self.display.as_ptr() as usize;
+        if let Some(i) = users.iter().position(|(d, _)| *d == key) {
+            users[i].1 -= 1;
+            if users[i].1 == 0 {
+                users.swap_remove(i);
+                let _ = self.egl.terminate(self.display);
+            }
+        }
     }
 }

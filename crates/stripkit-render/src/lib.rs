@@ -428,7 +428,10 @@ impl Renderer {
                             i as u16
                         } else {
                             gl.delete_buffer(buffer);
-                            return Err(RenderError::Input(format!("index {i} does not fit a u16 index buffer")));
+                            return Err(RenderError::Input(format!(
+                                "index {i} does not fit a u16 index buffer (0xFFFF is its restart index, so \
+                                 vertices 0 to 65534 only); upload u32 indices"
+                            )));
                         };
                         bytes.extend_from_slice(&v.to_le_bytes());
                     }
