@@ -287,16 +287,7 @@ fn options(args: &Args, mesh: Option<&stripkit::Mesh>) -> StripOptions {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let kind = output_kind(&args.output)?;
     // Fail before the work when the output cannot be written at all.
-    if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty()) {
-        if !dir.is_dir() {
-            return Err(Error::Invalid(format!(
-                "cannot write {}: the folder {} does not exist",
-                args.output.display(),
-                dir.display()
-            ))
-            .into());
-        }
-    }
+    super::check_output_folder(&args.output)?;
     // Arguments are checked before the file is read.
     args.strip.check()?;
     Stripifier::new(options(&args, None)).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
