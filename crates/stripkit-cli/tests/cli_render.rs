@@ -27,9 +27,9 @@ impl Picture {
         let mut reader = decoder.read_info().expect("a PNG");
         let mut buf = vec![0; reader.output_buffer_size()];
         let info = reader.next_frame(&mut buf).expect("PNG data");
-        assert_eq!(info.color_type, png::ColorType::Rgba);
+        assert_eq!(info.color_type, png::ColorType::Rgb, "opaque pictures, no alpha channel");
         assert_eq!(info.bit_depth, png::BitDepth::Eight);
-        let pixels = buf[..info.buffer_size()].chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect();
+        let pixels = buf[..info.buffer_size()].chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
         Picture { width: info.width, height: info.height, pixels }
     }
     /// Pixels other than the background.

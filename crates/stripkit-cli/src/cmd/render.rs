@@ -181,8 +181,12 @@ struct Report<'a> {
     pixels: usize,
     /// Milliseconds of the stripify call alone.
     stripify_ms: f64,
-    /// Milliseconds from making the renderer to the pixels read back.
-    render_ms: f64,
+    /// Milliseconds to start the renderer (EGL display, context, shaders).
+    start_ms: f64,
+    /// Milliseconds to upload the triangles, draw them and read the pixels back.
+    draw_ms: f64,
+    /// Milliseconds to encode the PNG and write it.
+    write_ms: f64,
     /// The renderer, as OpenGL names it (e.g. llvmpipe).
     renderer: String,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -258,9 +262,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
     // Fail before the stripifier's work where nothing can draw.
     progress.set_message("starting the renderer");
-    let render_start = Instant::now();
+    let start = Instant::now();
     let mut renderer = Renderer::new(w, h)?;
-    let mut render_time = render_start.elapsed();
+    let start_time = start.elapsed();
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
     let mut stripifier =
@@ -282,7 +286,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if exploded.triangles() == 0 {
         return Err(Error::Invalid(format!("no faces in {} (every triangle is degenerate)", args.input.display())).into());
     }
-    let render_start = Instant::now();
+    let draw_start = Instant::now();
     let positions = exploded.gather(&mesh.positions);
     let morph_target = target.as_ref().map(|o| exploded.gather(&o.positions));
     let normals = (args.shading == ShadingArg::Smooth).then(|| exploded.gather(&paint::vertex_normals(drawn, &exploded.corners)));
@@ -313,10 +317,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         return Err(stripkit_render::RenderError::Gl(format!("drawing failed (GL error {e:#x})")).into());
     }
     let image = renderer.read_image();
-    render_time += render_start.elapsed();
+    let draw_time = draw_start.elapsed();
     let pixels = image.pixels_other_than(bg);
     progress.set_message(format!("writing {}", args.output.display()));
-    stripkit::io::write_atomic(&args.output, &image.encode_png())?;
+    let write_start = Instant::now();
+    stripkit::io::write_atomic(&args.output, &image.encode_png_rgb())?;
+    let write_time = write_start.elapsed();
     progress.finish_and_clear();
 
     let report = Report {
@@ -333,7 +339,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         front: (args.color == ColorArg::Cull).then_some(exploded.front),
         pixels,
         stripify_ms: strips.stripify_time.as_secs_f64() * 1e3,
-        render_ms: render_time.as_secs_f64() * 1e3,
+        start_ms: start_time.as_secs_f64() * 1e3,
+        draw_ms: draw_time.as_secs_f64() * 1e3,
+        write_ms: write_time.as_secs_f64() * 1e3,
         renderer: renderer.info().renderer.clone(),
         morph: args.morph.as_deref(),
         t: target.is_some().then_some(t),
@@ -372,7 +380,9 @@ fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
     let share = 100.0 * r.pixels as f64 / (r.width as f64 * r.height as f64);
     writeln!(out, "  pixels drawn   {:>10} ({share:.1}%)", r.pixels)?;
     writeln!(out, "  stripify ms    {:>10.2}", r.stripify_ms)?;
-    writeln!(out, "  render ms      {:>10.2} ({})", r.render_ms, r.renderer)?;
+    writeln!(out, "  start ms       {:>10.2} ({})", r.start_ms, r.renderer)?;
+    writeln!(out, "  draw ms        {:>10.2}", r.draw_ms)?;
+    writeln!(out, "  write ms       {:>10.2}", r.write_ms)?;
     Ok(())
 }
 
