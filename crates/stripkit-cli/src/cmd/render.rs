@@ -53,7 +53,8 @@ pub enum ShadingArg {
 
 /// Arguments of `stripkit render`.
 #[derive(clap::Args, Debug)]
-#[command(after_help = "Needs EGL and OpenGL ES 3 at run time (libEGL.so.1, libGLESv2.so.2): a GPU driver, or Mesa's \
+#[command(after_help = "The strips are those `stripkit strip` writes with the same --algo and flags, verified as always.\n\
+Needs EGL and OpenGL ES 3 at run time (libEGL.so.1, libGLESv2.so.2): a GPU driver, or Mesa's \
 software renderer (Debian, Ubuntu: apt-get install libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri).\n\
 Exit status: 0 success, 1 the strips failed verification, 2 bad input or argument, or no EGL (nothing written).")]
 pub struct Args {
@@ -64,7 +65,7 @@ pub struct Args {
     pub output: PathBuf,
     #[command(flatten)]
     pub strip: StripArgs,
-    /// What the colours show: `strips`, `order`, `cull`, `none` (see below).
+    /// What the colours show: `strips`, `order`, `cull` or `none`.
     #[arg(long, value_enum, default_value = "strips")]
     pub color: ColorArg,
     /// Direction from the model's centre towards the eye, X,Y,Z (any length).
@@ -97,7 +98,7 @@ pub struct Args {
     /// pair at several `--t` line up as frames.
     #[arg(long, value_name = "OTHER")]
     pub morph: Option<PathBuf>,
-    /// `--morph`: 0 draws MESH, 1 draws OTHER, in between the linear blend.
+    /// `--morph`: 0 draws MESH, 1 draws OTHER, in between the linear blend. Default 0.5.
     #[arg(long, value_name = "T", requires = "morph", value_parser = parse_unit)]
     pub t: Option<f32>,
     /// Print one JSON object (counts, sizes, timings, renderer) on stdout instead of the summary.
