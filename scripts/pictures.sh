@@ -32,6 +32,7 @@ BUNNY=$MODELS/bunny.obj
 for algo in greedy cache balanced; do
     render "bunny-$algo-strips" 320x320 "$BUNNY" --algo "$algo"
     render "bunny-$algo-order" 320x320 "$BUNNY" --algo "$algo" --color order
+    render "bunny-$algo-zoom" 320x320 "$BUNNY" --algo "$algo" --zoom 3
 done
 # What back-face culling skips for the eye of the pictures above, seen from the bunny's front.
 render bunny-cull 240x240 "$BUNNY" --color cull --view -1,0.3,0.4 --cull-view 0.3,0.4,1

@@ -105,6 +105,19 @@ fn every_strip_gets_its_own_colour() {
 }
 
 #[test]
+fn zoom_magnifies_the_middle() {
+    // The 12 x 8 grid fills 94% of each side; twice magnified, it covers the picture.
+    let mesh = grid(12, 8);
+    let png = tmp("render", "grid-zoom.png");
+    let p = png.to_str().unwrap();
+    let Some(j) = render(&[&mesh, "-o", p, "--zoom", "2", "--view", "0,0,1", "--size", "120x80"]) else {
+        return;
+    };
+    assert_eq!(j["pixels"], 120 * 80);
+    assert_eq!(Picture::read(&png).drawn().count(), 120 * 80);
+}
+
+#[test]
 fn order_colours_run_along_the_strips() {
     let mesh = grid(16, 16);
     let png = tmp("render", "grid-order.png");
@@ -236,6 +249,7 @@ fn bad_arguments_and_meshes_are_refused() {
     refused(&[m, "--view", "0,0,0"], &["--view must not be 0,0,0"], None);
     refused(&[m, "--view", "0,1,0", "--up", "0,2,0"], &["parallel"], None);
     refused(&[m, "--fov", "170"], &["field of view"], None);
+    refused(&[m, "--zoom", "0.5"], &["is not a zoom"], None);
     refused(&[m, "--background", "#12345"], &["is not a colour"], None);
     refused(&[m, "--t", "0.5"], &["--morph"], None);
     refused(&[m, "--cull-view", "1,0,0"], &["--cull-view applies to --color cull"], None);
@@ -256,7 +270,8 @@ fn help_explains_the_options() {
     assert!(out.status.success());
     let help = String::from_utf8_lossy(&out.stdout);
     for w in [
-        "--color", "strips", "order", "cull", "issue #18", "--view", "--cull-view", "--up", "--fov", "--size", "--background",
+        "--color", "strips", "order", "cull", "issue #18", "--view", "--cull-view", "--up", "--fov", "--zoom", "--size",
+        "--background",
         "--shading", "--morph", "--t", "--algo", "--max-memory", "--json", "libEGL.so.1",
     ] {
         assert!(help.contains(w), "`{w}` missing from render --help");

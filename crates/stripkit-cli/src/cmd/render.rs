@@ -82,6 +82,10 @@ pub struct Args {
     /// model needs to fill the picture.
     #[arg(long, value_name = "DEGREES", default_value_t = 30.0, value_parser = parse_fov)]
     pub fov: f32,
+    /// Magnify the middle of the picture this many times, 1 to 100 (the camera stays
+    /// where it frames the whole model): a detail, to follow single strips on a large mesh.
+    #[arg(long, value_name = "F", default_value_t = 1.0, value_parser = parse_zoom)]
+    pub zoom: f32,
     /// Picture size in pixels, WIDTHxHEIGHT, each 16 to 4096.
     #[arg(long, value_name = "WxH", default_value = "800x800", value_parser = parse_wh)]
     pub size: (u32, u32),
@@ -120,6 +124,13 @@ fn parse_fov(text: &str) -> Result<f32, String> {
     match text.trim().parse::<f32>() {
         Ok(f) if (1.0..=120.0).contains(&f) => Ok(f),
         _ => Err(format!("`{text}` is not a field of view: degrees from 1 to 120")),
+    }
+}
+
+fn parse_zoom(text: &str) -> Result<f32, String> {
+    match text.trim().parse::<f32>() {
+        Ok(z) if (1.0..=100.0).contains(&z) => Ok(z),
+        _ => Err(format!("`{text}` is not a zoom: a factor from 1 to 100")),
     }
 }
 
@@ -250,7 +261,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(other) = &target {
         points.extend(used_positions(other));
     }
-    let framing = frame::frame(&points, args.view, args.up, args.fov, aspect).map_err(Error::Invalid)?;
+    let framing = frame::frame(&points, args.view, args.up, args.fov, args.zoom, aspect).map_err(Error::Invalid)?;
     drop(points);
     // The positions drawn (for facing and normals): the blend at t when morphing.
     let blended: Vec<[f32; 3]> = match &target {
@@ -407,6 +418,7 @@ mod tests {
         for bad in ["#fff", "256,0,0", "gg0000", "1,2", "é1234"] {
             assert!(parse_rgb(bad).is_err(), "{bad}");
         }
+        assert!(parse_zoom("0.5").is_err() && parse_zoom("101").is_err() && parse_zoom("2.5") == Ok(2.5));
         assert!(parse_fov("0.5").is_err() && parse_fov("121").is_err() && parse_fov("45").is_ok());
         assert!(parse_unit("1.5").is_err() && parse_unit("-0.1").is_err() && parse_unit("0.25") == Ok(0.25));
     }

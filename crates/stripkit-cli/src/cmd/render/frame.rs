@@ -49,8 +49,16 @@ impl Framing {
 
 /// A camera looking from `view` (the direction from the model towards the eye), `up`
 /// pointing up in the picture, `fov_y_degrees` the vertical field of view, placed so that
-/// every point lies inside the middle 94% of a picture of `aspect` = width / height.
-pub fn frame(points: &[[f32; 3]], view: [f32; 3], up: [f32; 3], fov_y_degrees: f32, aspect: f32) -> Result<Framing, String> {
+/// every point lies inside the middle 94% of a picture of `aspect` = width / height;
+/// then its field of view narrowed `zoom` times (1: none), magnifying the middle.
+pub fn frame(
+    points: &[[f32; 3]],
+    view: [f32; 3],
+    up: [f32; 3],
+    fov_y_degrees: f32,
+    zoom: f32,
+    aspect: f32,
+) -> Result<Framing, String> {
     let back = unit(view.map(f64::from)).ok_or("--view must not be 0,0,0")?;
     let right = unit(cross(up.map(f64::from), back)).ok_or("--up must not be 0,0,0 nor parallel to --view")?;
     let top = cross(back, right);
@@ -99,7 +107,8 @@ pub fn frame(points: &[[f32; 3]], view: [f32; 3], up: [f32; 3], fov_y_degrees: f
             eye: f(eye),
             target: f(target),
             up: f(top),
-            fov_y_degrees,
+            fov_y_degrees: (2.0 * (((fov_y_degrees as f64).to_radians() * 0.5).tan() / zoom.max(1.0) as f64).atan())
+                .to_degrees() as f32,
             near: near as f32,
             far: far as f32,
         },
@@ -129,7 +138,7 @@ mod tests {
             pts.push([if i & 1 == 0 { -4.0 } else { 6.0 }, if i & 2 == 0 { -1.0 } else { 1.0 }, if i & 4 == 0 { 0.0 } else { 0.5 }]);
         }
         for aspect in [1.0, 2.0, 0.5] {
-            let fr = frame(&pts, [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 30.0, aspect).unwrap();
+            let fr = frame(&pts, [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 30.0, 1.0, aspect).unwrap();
             let ndc: Vec<_> = pts.iter().map(|&p| project(&fr.camera, aspect, p)).collect();
             let max_x = ndc.iter().map(|p| p[0].abs()).fold(0.0, f32::max);
             let max_y = ndc.iter().map(|p| p[1].abs()).fold(0.0, f32::max);
@@ -145,10 +154,10 @@ mod tests {
     #[test]
     fn up_is_up_in_the_picture() {
         let pts = [[0.0, 0.0, 0.0], [0.0, 10.0, 0.0], [1.0, 0.0, 1.0]];
-        let fr = frame(&pts, [0.3, 0.4, 1.0], [0.0, 1.0, 0.0], 30.0, 1.0).unwrap();
+        let fr = frame(&pts, [0.3, 0.4, 1.0], [0.0, 1.0, 0.0], 30.0, 1.0, 1.0).unwrap();
         let (a, b) = (project(&fr.camera, 1.0, pts[0]), project(&fr.camera, 1.0, pts[1]));
         assert!(b[1] > a[1] + 1.0, "+y up: {a:?} {b:?}");
-        let fr = frame(&pts, [1.0, 0.0, 0.0], [0.0, -1.0, 0.0], 30.0, 1.0).unwrap();
+        let fr = frame(&pts, [1.0, 0.0, 0.0], [0.0, -1.0, 0.0], 30.0, 1.0, 1.0).unwrap();
         let (a, b) = (project(&fr.camera, 1.0, pts[0]), project(&fr.camera, 1.0, pts[1]));
         assert!(b[1] < a[1] - 1.0, "-y up: {a:?} {b:?}");
         let eye = fr.eye_towards([0.0, 0.0, -2.0]).unwrap();
@@ -156,10 +165,20 @@ mod tests {
     }
 
     #[test]
+    fn zoom_magnifies_the_middle() {
+        let pts = [[-1.0, -1.0, 0.0], [1.0, 1.0, 0.0]];
+        let one = frame(&pts, [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 30.0, 1.0, 1.0).unwrap();
+        let three = frame(&pts, [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 30.0, 3.0, 1.0).unwrap();
+        assert_eq!(one.camera.eye, three.camera.eye, "the camera stays");
+        let (a, b) = (project(&one.camera, 1.0, [0.2, 0.1, 0.0]), project(&three.camera, 1.0, [0.2, 0.1, 0.0]));
+        assert!((b[0] - 3.0 * a[0]).abs() < 1e-4 && (b[1] - 3.0 * a[1]).abs() < 1e-4, "{a:?} {b:?}");
+    }
+
+    #[test]
     fn bad_directions_are_refused() {
         let pts = [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]];
-        assert!(frame(&pts, [0.0; 3], [0.0, 1.0, 0.0], 30.0, 1.0).unwrap_err().contains("--view"));
-        assert!(frame(&pts, [0.0, 2.0, 0.0], [0.0, 1.0, 0.0], 30.0, 1.0).unwrap_err().contains("parallel"));
-        assert!(frame(&[], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 30.0, 1.0).is_err());
+        assert!(frame(&pts, [0.0; 3], [0.0, 1.0, 0.0], 30.0, 1.0, 1.0).unwrap_err().contains("--view"));
+        assert!(frame(&pts, [0.0, 2.0, 0.0], [0.0, 1.0, 0.0], 30.0, 1.0, 1.0).unwrap_err().contains("parallel"));
+        assert!(frame(&[], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 30.0, 1.0, 1.0).is_err());
     }
 }
