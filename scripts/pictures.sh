@@ -38,11 +38,12 @@ done
 render bunny-cull 240x240 "$BUNNY" --color cull --view -1,0.3,0.4 --cull-view 0.3,0.4,1
 
 # 2. QSTRIP on quad meshes: rows of quads become long swap-free strips (greedy beside
-# it on the same quads), and the order of fandisk's few strips.
+# it on the same quads), and fandisk's few strips with their edges (each quad's diagonal)
+# and their order.
 SPOT=$MODELS/quads/spot_quadrangulated.obj
 render spot-quads-qstrip 320x320 "$SPOT" --algo qstrip --view 0.8,0.4,-1
 render spot-quads-greedy 320x320 "$SPOT" --algo greedy --view 0.8,0.4,-1
-render fandisk-quads-qstrip 320x320 "$MODELS/quads/fandisk_quads.off" --algo qstrip --view 1,0.6,-0.9
+render fandisk-quads-qstrip 320x320 "$MODELS/quads/fandisk_quads.off" --algo qstrip --view 1,0.6,-0.9 --wireframe
 render fandisk-quads-qstrip-order 320x320 "$MODELS/quads/fandisk_quads.off" --algo qstrip --view 1,0.6,-0.9 \
     --color order
 

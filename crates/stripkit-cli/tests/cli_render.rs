@@ -13,6 +13,8 @@ use support::{json, stripkit, tmp, write_mesh};
 const FRONT: [u8; 3] = [58, 110, 190];
 const BACK: [u8; 3] = [246, 214, 200];
 const WHITE: [u8; 3] = [255, 255, 255];
+/// `--wireframe`'s lines.
+const WIRE: [u8; 3] = [30, 30, 30];
 
 /// A decoded picture.
 struct Picture {
@@ -115,6 +117,24 @@ fn zoom_magnifies_the_middle() {
     };
     assert_eq!(j["pixels"], 120 * 80);
     assert_eq!(Picture::read(&png).drawn().count(), 120 * 80);
+}
+
+#[test]
+fn wireframe_draws_every_edge_once() {
+    // A 4 x 4 grid: 40 sides and 16 diagonals, 2,900 pixels of length on a 200 x 200
+    // picture (47 pixels per unit), a band 1 pixel wide covering one or two pixels
+    // across (4,416 on llvmpipe); none without --wireframe.
+    let mesh = grid(4, 4);
+    let png = tmp("render", "grid-wire.png");
+    let p = png.to_str().unwrap();
+    let args = [mesh.as_str(), "-o", p, "--shading", "unlit", "--view", "0,0,1", "--size", "200x200"];
+    let Some(j) = render(&args) else { return };
+    assert!(j.get("edges").is_none());
+    assert_eq!(Picture::read(&png).count(WIRE), 0);
+    let j = render(&[&args[..], &["--wireframe"]].concat()).unwrap();
+    assert_eq!(j["edges"], 56);
+    let lines = Picture::read(&png).count(WIRE);
+    assert!((2500..6000).contains(&lines), "{lines} line pixels");
 }
 
 #[test]
@@ -272,7 +292,7 @@ fn help_explains_the_options() {
     for w in [
         "--color", "strips", "order", "cull", "issue #18", "--view", "--cull-view", "--up", "--fov", "--zoom", "--size",
         "--background",
-        "--shading", "--morph", "--t", "--algo", "--max-memory", "--json", "libEGL.so.1",
+        "--shading", "--wireframe", "--morph", "--t", "--algo", "--max-memory", "--json", "libEGL.so.1",
     ] {
         assert!(help.contains(w), "`{w}` missing from render --help");
     }

@@ -7,6 +7,7 @@
 
 mod frame;
 mod paint;
+mod wire;
 
 use clap::ValueEnum;
 use serde::Serialize;
@@ -96,6 +97,11 @@ pub struct Args {
     /// `unlit` (exact colours).
     #[arg(long, value_enum, default_value = "flat")]
     pub shading: ShadingArg,
+    /// Also draw every edge of the triangles, a dark line about a pixel wide (wider on
+    /// large pictures), hidden where a face is in front of it: shows how strips split
+    /// quads and where their triangles run.
+    #[arg(long)]
+    pub wireframe: bool,
     /// A second mesh with the same vertices (say, another frame of an animation): the
     /// picture shows the mesh morphed towards it by `--t`, on the GPU; the strips are
     /// those of MESH, and the camera frames both meshes, so that the pictures of one
@@ -191,6 +197,9 @@ struct Report<'a> {
     front: Option<usize>,
     /// Pixels other than the background.
     pixels: usize,
+    /// `--wireframe`: edges drawn.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    edges: Option<usize>,
     /// Milliseconds of the stripify call alone.
     stripify_ms: f64,
     /// Milliseconds to start the renderer (EGL display, context, shaders).
@@ -325,6 +334,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt().max(1e-20);
     params.light = std::array::from_fn(|d| dir[d] / len + 0.5 * framing.up[d] - 0.35 * framing.right[d]);
     renderer.draw(&geometry, &indices, &params);
+    let mut edges = None;
+    if args.wireframe {
+        let fov = (framing.camera.fov_y_degrees as f64).to_radians();
+        let pixel = (2.0 * (fov * 0.5).tan() / h as f64) as f32;
+        let width = (w.min(h) as f32 / 640.0).max(1.0);
+        let band = wire::bands(drawn, &exploded.corners, framing.camera.eye, pixel, width, 1.5);
+        edges = Some(band.len() / 6);
+        let colors = vec![paint::WIRE; band.len()];
+        let lines = renderer.upload(&Vertices { positions: &band, morph_target: None, normals: None, colors: Some(&colors) })?;
+        let order: Vec<u32> = (0..band.len() as u32).collect();
+        let line_indices = renderer.upload_indices(&order, Topology::Triangles, IndexWidth::smallest(order.len()))?;
+        let mut line_params = params.clone();
+        line_params.morph = 0.0;
+        line_params.shading = Shading::Unlit;
+        renderer.draw(&lines, &line_indices, &line_params);
+    }
     if let Some(e) = renderer.gl_error() {
         return Err(stripkit_render::RenderError::Gl(format!("drawing failed (GL error {e:#x})")).into());
     }
@@ -350,6 +375,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         triangles: exploded.triangles(),
         front: (args.color == ColorArg::Cull).then_some(exploded.front),
         pixels,
+        edges,
         stripify_ms: strips.stripify_time.as_secs_f64() * 1e3,
         start_ms: start_time.as_secs_f64() * 1e3,
         draw_ms: draw_time.as_secs_f64() * 1e3,
@@ -386,6 +412,9 @@ fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
     )?;
     writeln!(out, "  strips         {:>10}", r.strips)?;
     writeln!(out, "  triangles      {:>10}", r.triangles)?;
+    if let Some(e) = r.edges {
+        writeln!(out, "  edges          {:>10}", e)?;
+    }
     if let Some(f) = r.front {
         writeln!(out, "  facing the eye {:>10} ({} culled)", f, r.triangles - f)?;
     }

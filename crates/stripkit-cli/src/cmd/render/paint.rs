@@ -27,6 +27,8 @@ pub const FRONT: [u8; 4] = [58, 110, 190, 255];
 pub const BACK: [u8; 4] = [246, 214, 200, 255];
 /// `--color none`.
 pub const GREY: [u8; 4] = [205, 205, 205, 255];
+/// `--wireframe`: the edges.
+pub const WIRE: [u8; 4] = [30, 30, 30, 255];
 
 /// The colour of strip `k`: hues a golden-ratio turn apart (consecutive strips differ
 /// by at least 0.38 of a turn, and no two of the first hundreds come close), with the
