@@ -87,7 +87,9 @@ fn every_strip_gets_its_own_colour() {
     for algo in ["greedy", "cache"] {
         let png = tmp("render", &format!("grid-strips-{algo}.png"));
         let p = png.to_str().unwrap();
-        let Some(j) = render(&[&mesh, "-o", p, "--algo", algo, "--shading", "unlit", "--view", "0,0,1", "--size", "240x160"]) else {
+        let Some(j) =
+            render(&[&mesh, "-o", p, "--algo", algo, "--shading", "unlit", "--view", "0,0,1", "--size", "240x160"])
+        else {
             return;
         };
         let strips = strip_count(&mesh, algo);
@@ -142,7 +144,9 @@ fn order_colours_run_along_the_strips() {
     let mesh = grid(16, 16);
     let png = tmp("render", "grid-order.png");
     let p = png.to_str().unwrap();
-    let Some(j) = render(&[&mesh, "-o", p, "--color", "order", "--shading", "unlit", "--view", "0,0,1", "--size", "256x256"]) else {
+    let Some(j) =
+        render(&[&mesh, "-o", p, "--color", "order", "--shading", "unlit", "--view", "0,0,1", "--size", "256x256"])
+    else {
         return;
     };
     assert_eq!(j["triangles"], 512);
@@ -161,7 +165,8 @@ fn order_colours_run_along_the_strips() {
         .filter(|w| w[0] != WHITE && w[1] != WHITE)
         .filter(|w| (0..3).map(|c| (w[0][c] as i32 - w[1][c] as i32).abs()).sum::<i32>() <= 40)
         .count();
-    let pairs = pic.pixels.chunks_exact(256).flat_map(|row| row.windows(2)).filter(|w| w[0] != WHITE && w[1] != WHITE).count();
+    let pairs =
+        pic.pixels.chunks_exact(256).flat_map(|row| row.windows(2)).filter(|w| w[0] != WHITE && w[1] != WHITE).count();
     assert!(close as f64 >= 0.9 * pairs as f64, "{close} of {pairs} neighbouring pixels close");
 }
 
@@ -242,9 +247,9 @@ fn refused(args: &[&str], want: &[&str], env: Option<(&str, &str)>) {
         assert!(err.contains(w), "{args:?}: want `{w}` in `{err}`");
     }
     assert!(!png.exists(), "{args:?} left a picture");
-    let tmps = std::fs::read_dir(png.parent().unwrap()).unwrap().filter(|e| {
-        e.as_ref().unwrap().file_name().to_string_lossy().starts_with(".refused.png")
-    });
+    let tmps = std::fs::read_dir(png.parent().unwrap())
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().starts_with(".refused.png"));
     assert_eq!(tmps.count(), 0, "{args:?} left a temporary file");
 }
 
@@ -290,9 +295,26 @@ fn help_explains_the_options() {
     assert!(out.status.success());
     let help = String::from_utf8_lossy(&out.stdout);
     for w in [
-        "--color", "strips", "order", "cull", "issue #18", "--view", "--cull-view", "--up", "--fov", "--zoom", "--size",
+        "--color",
+        "strips",
+        "order",
+        "cull",
+        "issue #18",
+        "--view",
+        "--cull-view",
+        "--up",
+        "--fov",
+        "--zoom",
+        "--size",
         "--background",
-        "--shading", "--wireframe", "--morph", "--t", "--algo", "--max-memory", "--json", "libEGL.so.1",
+        "--shading",
+        "--wireframe",
+        "--morph",
+        "--t",
+        "--algo",
+        "--max-memory",
+        "--json",
+        "libEGL.so.1",
     ] {
         assert!(help.contains(w), "`{w}` missing from render --help");
     }

@@ -54,10 +54,12 @@ pub enum ShadingArg {
 
 /// Arguments of `stripkit render`.
 #[derive(clap::Args, Debug)]
-#[command(after_help = "The strips are those `stripkit strip` writes with the same --algo and flags, verified as always.\n\
+#[command(
+    after_help = "The strips are those `stripkit strip` writes with the same --algo and flags, verified as always.\n\
 Needs EGL and OpenGL ES 3 at run time (libEGL.so.1, libGLESv2.so.2): a GPU driver, or Mesa's \
 software renderer (Debian, Ubuntu: apt-get install libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri).\n\
-Exit status: 0 success, 1 the strips failed verification, 2 bad input or argument, or no EGL (nothing written).")]
+Exit status: 0 success, 1 the strips failed verification, 2 bad input or argument, or no EGL (nothing written)."
+)]
 pub struct Args {
     /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz); polygons are fanned into triangles.
     pub input: PathBuf,
@@ -152,7 +154,12 @@ const MAX_SIDE: u32 = 4096;
 
 fn parse_wh(text: &str) -> Result<(u32, u32), String> {
     let bad = || format!("`{text}` is not a picture size: WIDTHxHEIGHT, each 16 to {MAX_SIDE}, e.g. 800x800");
-    let (w, h) = text.trim().to_ascii_lowercase().split_once('x').map(|(w, h)| (w.trim().parse(), h.trim().parse())).ok_or_else(bad)?;
+    let (w, h) = text
+        .trim()
+        .to_ascii_lowercase()
+        .split_once('x')
+        .map(|(w, h)| (w.trim().parse(), h.trim().parse()))
+        .ok_or_else(bad)?;
     match (w, h) {
         (Ok(w), Ok(h)) if (16..=MAX_SIDE).contains(&w) && (16..=MAX_SIDE).contains(&h) => Ok((w, h)),
         _ => Err(bad()),
@@ -225,8 +232,8 @@ fn used_positions(mesh: &stripkit::Mesh) -> Vec<[f32; 3]> {
     mesh.positions.iter().zip(&used).filter(|(_, &u)| u).map(|(p, _)| *p).collect()
 }
 
-/// Runs the command: read -> door -> explode and colour -> draw -> PNG.
-pub fn run(args: Args) -> anyhow::Result<()> {
+/// Arguments that can be refused before any file is read.
+fn check(args: &Args) -> anyhow::Result<()> {
     let is_png = args.output.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("png"));
     if !is_png {
         return Err(Error::Invalid(format!("{}: the picture must be a .png file", args.output.display())).into());
@@ -237,49 +244,132 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     args.strip.check()?;
     stripkit::Stripifier::new(args.strip.options(None)).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
-    let progress = indicatif::ProgressBar::new_spinner();
-    progress.enable_steady_tick(std::time::Duration::from_millis(120));
-    progress.set_message(format!("reading {}", args.input.display()));
+    Ok(())
+}
+
+/// The mesh, and the `--morph` mesh when given (same vertex count).
+fn read_meshes(args: &Args) -> anyhow::Result<(stripkit::Mesh, Option<stripkit::Mesh>)> {
     let mesh = args.read.read(&args.input)?;
     if mesh.face_count() == 0 {
         return Err(Error::Invalid(format!("no faces in {}", args.input.display())).into());
     }
-    let target = match &args.morph {
-        Some(path) => {
-            let other = args.read.read(path)?;
-            if other.vertex_count() != mesh.vertex_count() {
-                return Err(Error::Invalid(format!(
-                    "--morph {}: {} vertices, but {} has {}; a morph needs the same vertices",
-                    path.display(),
-                    other.vertex_count(),
-                    args.input.display(),
-                    mesh.vertex_count()
-                ))
-                .into());
-            }
-            Some(other)
-        }
-        None => None,
+    let Some(path) = &args.morph else { return Ok((mesh, None)) };
+    let other = args.read.read(path)?;
+    if other.vertex_count() != mesh.vertex_count() {
+        return Err(Error::Invalid(format!(
+            "--morph {}: {} vertices, but {} has {}; a morph needs the same vertices",
+            path.display(),
+            other.vertex_count(),
+            args.input.display(),
+            mesh.vertex_count()
+        ))
+        .into());
+    }
+    Ok((mesh, Some(other)))
+}
+
+/// What is drawn: the exploded triangles over the mesh's positions (and the morph
+/// target's), seen by the framed camera.
+struct Scene<'a> {
+    framing: frame::Framing,
+    exploded: paint::Exploded,
+    positions: &'a [[f32; 3]],
+    target: Option<&'a [[f32; 3]]>,
+    /// The positions as drawn: the blend at `t` when morphing.
+    drawn: &'a [[f32; 3]],
+    t: f32,
+}
+
+/// Draws the scene (and its wireframe) and reads the picture back. Returns the picture
+/// and, with `--wireframe`, the number of edges drawn.
+fn draw(
+    renderer: &mut Renderer,
+    args: &Args,
+    scene: &Scene,
+) -> anyhow::Result<(stripkit_render::Image, Option<usize>)> {
+    let (w, h) = args.size;
+    let exploded = &scene.exploded;
+    let camera = &scene.framing.camera;
+    let positions = exploded.gather(scene.positions);
+    let morph_target = scene.target.map(|o| exploded.gather(o));
+    let normals = (args.shading == ShadingArg::Smooth)
+        .then(|| exploded.gather(&paint::vertex_normals(scene.drawn, &exploded.corners)));
+    let geometry = renderer.upload(&Vertices {
+        positions: &positions,
+        morph_target: morph_target.as_deref(),
+        normals: normals.as_deref(),
+        colors: Some(&exploded.colors),
+    })?;
+    let corners: Vec<u32> = (0..exploded.corners.len() as u32).collect();
+    let indices = renderer.upload_indices(&corners, Topology::Triangles, IndexWidth::smallest(corners.len()))?;
+    renderer.clear(args.background.map(|c| c as f32 / 255.0));
+    let mut params = DrawParams::new(camera.view_proj(w as f32 / h as f32));
+    params.morph = scene.t;
+    params.shading = match args.shading {
+        ShadingArg::Flat => Shading::Flat,
+        ShadingArg::Smooth => Shading::Smooth,
+        ShadingArg::Unlit => Shading::Unlit,
     };
+    // A light from the eye, a little above and to the left.
+    let (up, right) = (scene.framing.up, scene.framing.right);
+    let dir: [f32; 3] = std::array::from_fn(|d| camera.eye[d] - camera.target[d]);
+    let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt().max(1e-20);
+    params.light = std::array::from_fn(|d| dir[d] / len + 0.5 * up[d] - 0.35 * right[d]);
+    renderer.draw(&geometry, &indices, &params);
+    let mut edges = None;
+    if args.wireframe {
+        let fov = (camera.fov_y_degrees as f64).to_radians();
+        let pixel = (2.0 * (fov * 0.5).tan() / h as f64) as f32;
+        let width = (w.min(h) as f32 / 640.0).max(1.0);
+        let band = wire::bands(scene.drawn, &exploded.corners, camera.eye, pixel, width, 1.5);
+        edges = Some(band.len() / 6);
+        let colors = vec![paint::WIRE; band.len()];
+        let lines = renderer.upload(&Vertices {
+            positions: &band,
+            morph_target: None,
+            normals: None,
+            colors: Some(&colors),
+        })?;
+        let order: Vec<u32> = (0..band.len() as u32).collect();
+        let line_indices = renderer.upload_indices(&order, Topology::Triangles, IndexWidth::smallest(order.len()))?;
+        let mut line_params = params.clone();
+        line_params.morph = 0.0;
+        line_params.shading = Shading::Unlit;
+        renderer.draw(&lines, &line_indices, &line_params);
+    }
+    if let Some(e) = renderer.gl_error() {
+        return Err(stripkit_render::RenderError::Gl(format!("drawing failed (GL error {e:#x})")).into());
+    }
+    Ok((renderer.read_image(), edges))
+}
+
+/// Runs the command: read -> frame -> door -> explode and colour -> draw -> PNG.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    check(&args)?;
+    let progress = indicatif::ProgressBar::new_spinner();
+    progress.enable_steady_tick(std::time::Duration::from_millis(120));
+    progress.set_message(format!("reading {}", args.input.display()));
+    let (mesh, target) = read_meshes(&args)?;
     let t = if target.is_some() { args.t.unwrap_or(0.5) } else { 0.0 };
 
-    // The camera frames every vertex a face uses, of both meshes when morphing.
+    // The camera frames every vertex a face uses, of both meshes when morphing, so
+    // that the pictures of one pair at several t line up.
     let (w, h) = args.size;
-    let aspect = w as f32 / h as f32;
     let mut points = used_positions(&mesh);
     if let Some(other) = &target {
         points.extend(used_positions(other));
     }
-    let framing = frame::frame(&points, args.view, args.up, args.fov, args.zoom, aspect).map_err(Error::Invalid)?;
+    let framing =
+        frame::frame(&points, args.view, args.up, args.fov, args.zoom, w as f32 / h as f32).map_err(Error::Invalid)?;
     drop(points);
-    // The positions drawn (for facing and normals): the blend at t when morphing.
-    let blended: Vec<[f32; 3]> = match &target {
-        Some(other) => {
-            mesh.positions.iter().zip(&other.positions).map(|(a, b)| std::array::from_fn(|d| a[d] + (b[d] - a[d]) * t)).collect()
-        }
-        None => Vec::new(),
-    };
-    let drawn = if target.is_some() { &blended } else { &mesh.positions };
+    let blended: Option<Vec<[f32; 3]>> = target.as_ref().map(|other| {
+        mesh.positions
+            .iter()
+            .zip(&other.positions)
+            .map(|(a, b)| std::array::from_fn(|d| a[d] + (b[d] - a[d]) * t))
+            .collect()
+    });
+    let drawn = blended.as_deref().unwrap_or(&mesh.positions);
 
     // Fail before the stripifier's work where nothing can draw.
     progress.set_message("starting the renderer");
@@ -299,69 +389,37 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         ColorArg::Strips => Paint::Strips,
         ColorArg::Order => Paint::Order,
         ColorArg::Cull => Paint::Cull {
-            eye: framing.eye_towards(args.cull_view.unwrap_or(args.view)).ok_or_else(|| Error::Invalid("--cull-view must not be 0,0,0".into()))?,
+            eye: framing
+                .eye_towards(args.cull_view.unwrap_or(args.view))
+                .ok_or_else(|| Error::Invalid("--cull-view must not be 0,0,0".into()))?,
         },
         ColorArg::None => Paint::None,
     };
     let exploded = paint::explode(&strips.strips, drawn, paint);
     if exploded.triangles() == 0 {
-        return Err(Error::Invalid(format!("no faces in {} (every triangle is degenerate)", args.input.display())).into());
+        return Err(
+            Error::Invalid(format!("no faces in {} (every triangle is degenerate)", args.input.display())).into()
+        );
     }
     let draw_start = Instant::now();
-    let positions = exploded.gather(&mesh.positions);
-    let morph_target = target.as_ref().map(|o| exploded.gather(&o.positions));
-    let normals = (args.shading == ShadingArg::Smooth).then(|| exploded.gather(&paint::vertex_normals(drawn, &exploded.corners)));
-    let geometry = renderer.upload(&Vertices {
-        positions: &positions,
-        morph_target: morph_target.as_deref(),
-        normals: normals.as_deref(),
-        colors: Some(&exploded.colors),
-    })?;
-    let corners: Vec<u32> = (0..exploded.corners.len() as u32).collect();
-    let indices = renderer.upload_indices(&corners, Topology::Triangles, IndexWidth::smallest(corners.len()))?;
-    let bg = args.background;
-    renderer.clear(bg.map(|c| c as f32 / 255.0));
-    let mut params = DrawParams::new(framing.camera.view_proj(aspect));
-    params.morph = t;
-    params.shading = match args.shading {
-        ShadingArg::Flat => Shading::Flat,
-        ShadingArg::Smooth => Shading::Smooth,
-        ShadingArg::Unlit => Shading::Unlit,
+    let scene = Scene {
+        framing,
+        exploded,
+        positions: &mesh.positions,
+        target: target.as_ref().map(|o| o.positions.as_slice()),
+        drawn,
+        t,
     };
-    // A light from the eye, a little above and to the left.
-    let back = framing.eye_towards(args.view).unwrap_or(framing.camera.eye);
-    let dir: [f32; 3] = std::array::from_fn(|d| back[d] - framing.camera.target[d]);
-    let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt().max(1e-20);
-    params.light = std::array::from_fn(|d| dir[d] / len + 0.5 * framing.up[d] - 0.35 * framing.right[d]);
-    renderer.draw(&geometry, &indices, &params);
-    let mut edges = None;
-    if args.wireframe {
-        let fov = (framing.camera.fov_y_degrees as f64).to_radians();
-        let pixel = (2.0 * (fov * 0.5).tan() / h as f64) as f32;
-        let width = (w.min(h) as f32 / 640.0).max(1.0);
-        let band = wire::bands(drawn, &exploded.corners, framing.camera.eye, pixel, width, 1.5);
-        edges = Some(band.len() / 6);
-        let colors = vec![paint::WIRE; band.len()];
-        let lines = renderer.upload(&Vertices { positions: &band, morph_target: None, normals: None, colors: Some(&colors) })?;
-        let order: Vec<u32> = (0..band.len() as u32).collect();
-        let line_indices = renderer.upload_indices(&order, Topology::Triangles, IndexWidth::smallest(order.len()))?;
-        let mut line_params = params.clone();
-        line_params.morph = 0.0;
-        line_params.shading = Shading::Unlit;
-        renderer.draw(&lines, &line_indices, &line_params);
-    }
-    if let Some(e) = renderer.gl_error() {
-        return Err(stripkit_render::RenderError::Gl(format!("drawing failed (GL error {e:#x})")).into());
-    }
-    let image = renderer.read_image();
+    let (image, edges) = draw(&mut renderer, &args, &scene)?;
     let draw_time = draw_start.elapsed();
-    let pixels = image.pixels_other_than(bg);
+    let pixels = image.pixels_other_than(args.background);
     progress.set_message(format!("writing {}", args.output.display()));
     let write_start = Instant::now();
     stripkit::io::write_atomic(&args.output, &image.encode_png_rgb())?;
     let write_time = write_start.elapsed();
     progress.finish_and_clear();
 
+    let exploded = &scene.exploded;
     let report = Report {
         input: &args.input,
         output: &args.output,

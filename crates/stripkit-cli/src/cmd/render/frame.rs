@@ -135,7 +135,11 @@ mod tests {
         // A long thin box along x, seen from +z: wide, not tall.
         let mut pts = Vec::new();
         for i in 0..8 {
-            pts.push([if i & 1 == 0 { -4.0 } else { 6.0 }, if i & 2 == 0 { -1.0 } else { 1.0 }, if i & 4 == 0 { 0.0 } else { 0.5 }]);
+            pts.push([
+                if i & 1 == 0 { -4.0 } else { 6.0 },
+                if i & 2 == 0 { -1.0 } else { 1.0 },
+                if i & 4 == 0 { 0.0 } else { 0.5 },
+            ]);
         }
         for aspect in [1.0, 2.0, 0.5] {
             let fr = frame(&pts, [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 30.0, 1.0, aspect).unwrap();

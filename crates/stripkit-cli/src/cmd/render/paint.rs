@@ -110,11 +110,7 @@ pub fn explode(strips: &StripSet, positions: &[[f32; 3]], paint: Paint) -> Explo
         for_each_triangle(s, |t| tris.push((k, t)));
     }
     let n = tris.len();
-    let mut out = Exploded {
-        corners: Vec::with_capacity(3 * n),
-        colors: Vec::with_capacity(3 * n),
-        front: 0,
-    };
+    let mut out = Exploded { corners: Vec::with_capacity(3 * n), colors: Vec::with_capacity(3 * n), front: 0 };
     for (j, &(k, t)) in tris.iter().enumerate() {
         let color = match paint {
             Paint::Strips => strip_color(k),
