@@ -30,6 +30,8 @@ enum Command {
     Simplify(cmd::simplify::Args),
     /// Hausdorff and RMS distance between two surfaces.
     Distance(cmd::distance::Args),
+    /// Draw a mesh's strips to a PNG: each strip its own colour, the strip order, or back faces.
+    Render(cmd::render::Args),
 }
 
 fn main() -> ExitCode {
@@ -41,6 +43,7 @@ fn main() -> ExitCode {
         Command::Match(a) => cmd::matching::run(a),
         Command::Simplify(a) => cmd::simplify::run(a),
         Command::Distance(a) => cmd::distance::run(a),
+        Command::Render(a) => cmd::render::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -59,7 +59,7 @@ fn simplify_refuses_a_sequence_over_its_own_output_before_any_work() {
     std::fs::create_dir(dir.join("sub")).unwrap();
     let spellings = [out.clone(), dir.join(".").join("out.obj"), dir.join("sub").join("..").join("out.obj")];
     for seq in &spellings {
-        let o = simplify_to(&input, &out, &seq);
+        let o = simplify_to(&input, &out, seq);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{}: {err}", seq.display());
         assert!(err.contains("-o") && err.contains("--sequence"), "{err}");

@@ -3,6 +3,7 @@
 pub mod distance;
 pub mod gen;
 pub mod matching;
+pub mod render;
 pub mod simplify;
 pub mod stats;
 pub mod strip;
@@ -40,6 +41,18 @@ impl ReadArgs {
     /// Reads a mesh under these limits.
     pub fn read(&self, path: &Path) -> stripkit::Result<stripkit::Mesh> {
         stripkit::io::read_with(path, &self.options())
+    }
+}
+
+/// Refuses, before any work, an output whose folder does not exist.
+pub fn check_output_folder(output: &Path) -> Result<(), stripkit::Error> {
+    match output.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(dir) if !dir.is_dir() => Err(stripkit::Error::Invalid(format!(
+            "cannot write {}: the folder {} does not exist",
+            output.display(),
+            dir.display()
+        ))),
+        _ => Ok(()),
     }
 }
 

@@ -91,20 +91,11 @@ impl From<Join> for stripkit::Join {
     }
 }
 
-/// Arguments of `stripkit strip`.
+/// The strip options: which stripifier and its settings. `stripkit strip` and
+/// `stripkit render` both take them (flattened), so that a picture shows the strips
+/// `strip` writes.
 #[derive(clap::Args, Debug)]
-#[command(after_help = "Output by extension of OUT:\n  \
-    .ply   vertices plus a `tristrips` element (-1 ends a strip); --join degenerate writes one stitched strip\n  \
-    .json  {\"strips\": [[...], ...], \"figures\": {...}} (with --join restart also \"indices\" and \"restart_index\")\n  \
-    .gltf, .glb  core glTF has no restart index: one TRIANGLE_STRIP primitive holding the stitched strip\n               \
-    (--join separate: one primitive per strip)\n\
-Exit status: 0 success, 1 verification failed (nothing written), 2 bad input or argument.")]
-pub struct Args {
-    /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz); polygons are fanned into triangles.
-    pub input: PathBuf,
-    /// Output file: .ply, .json, .gltf or .glb (see below).
-    #[arg(short, long, value_name = "OUT")]
-    pub output: PathBuf,
+pub struct StripArgs {
     /// Stripifying algorithm.
     #[arg(long, value_enum, default_value = "auto")]
     pub algo: Algo,
@@ -124,13 +115,6 @@ pub struct Args {
     /// indices, not fewer (bunny: N = 8: 81,155; N = 32: 82,613). At most 32. Default 1.
     #[arg(long, value_name = "N", value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(0..=stripkit::MAX_TUNNEL_CUTS as u64))]
     pub tunnel: Option<usize>,
-    /// How strips are joined in the output: `restart` (one buffer with a restart index),
-    /// `degenerate` (one stitched strip), `separate` (one list per strip).
-    #[arg(long, value_enum, default_value = "restart")]
-    pub join: Join,
-    /// Primitive-restart index for `--join restart`; must not be a vertex id of the mesh.
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_RESTART)]
-    pub restart_index: u32,
     /// Vertex-cache size: the FIFO `--algo cache|balanced` tune for, and the cache of the
     /// `acmr` figure (acmr16 and acmr32 are always printed). 1 to 65,536.
     #[arg(long, value_name = "N", default_value_t = 16)]
@@ -157,6 +141,31 @@ pub struct Args {
     /// Simulate an LRU cache for the `acmr` figure instead of FIFO.
     #[arg(long)]
     pub lru: bool,
+}
+
+/// Arguments of `stripkit strip`.
+#[derive(clap::Args, Debug)]
+#[command(after_help = "Output by extension of OUT:\n  \
+    .ply   vertices plus a `tristrips` element (-1 ends a strip); --join degenerate writes one stitched strip\n  \
+    .json  {\"strips\": [[...], ...], \"figures\": {...}} (with --join restart also \"indices\" and \"restart_index\")\n  \
+    .gltf, .glb  core glTF has no restart index: one TRIANGLE_STRIP primitive holding the stitched strip\n               \
+    (--join separate: one primitive per strip)\n\
+Exit status: 0 success, 1 verification failed (nothing written), 2 bad input or argument.")]
+pub struct Args {
+    /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz); polygons are fanned into triangles.
+    pub input: PathBuf,
+    /// Output file: .ply, .json, .gltf or .glb (see below).
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub strip: StripArgs,
+    /// How strips are joined in the output: `restart` (one buffer with a restart index),
+    /// `degenerate` (one stitched strip), `separate` (one list per strip).
+    #[arg(long, value_enum, default_value = "restart")]
+    pub join: Join,
+    /// Primitive-restart index for `--join restart`; must not be a vertex id of the mesh.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_RESTART)]
+    pub restart_index: u32,
     /// Print one JSON object with every figure on stdout instead of the text summary.
     #[arg(long)]
     pub json: bool,
@@ -213,75 +222,74 @@ fn output_kind(path: &Path) -> anyhow::Result<OutKind> {
     }
 }
 
-/// Flags that belong to one algorithm, given with another: an error, not silence.
-fn check_flags(args: &Args) -> Result<(), Error> {
-    let bad = |m: &str| Err(Error::Invalid(m.to_string()));
-    if args.refine && args.algo != Algo::Cache {
-        return bad("--refine applies to --algo cache (balanced always refines)");
+impl StripArgs {
+    /// Flags that belong to one algorithm, given with another: an error, not silence.
+    pub fn check(&self) -> Result<(), Error> {
+        let bad = |m: &str| Err(Error::Invalid(m.to_string()));
+        if self.refine && self.algo != Algo::Cache {
+            return bad("--refine applies to --algo cache (balanced always refines)");
+        }
+        if self.max_acmr.is_some() && self.algo != Algo::Balanced {
+            return bad("--max-acmr applies to --algo balanced");
+        }
+        if (self.heuristic.is_some() || self.tunnel.is_some()) && !matches!(self.algo, Algo::Greedy | Algo::Auto) {
+            return bad("--heuristic and --tunnel apply to --algo greedy (and auto on meshes that are not quad-dominant)");
+        }
+        Ok(())
     }
-    if args.max_acmr.is_some() && args.algo != Algo::Balanced {
-        return bad("--max-acmr applies to --algo balanced");
+
+    /// The library's options for these arguments (default join and restart index).
+    /// `mesh`: resolve `--algo auto` the library's way (`is_quad_dominant`) so that
+    /// greedy gets the flags given for it.
+    pub fn options(&self, mesh: Option<&stripkit::Mesh>) -> StripOptions {
+        let greedy = || {
+            Algorithm::Greedy(GreedyOptions {
+                heuristic: match self.heuristic.unwrap_or(HeuristicArg::Indices) {
+                    HeuristicArg::Strips => Heuristic::Strips,
+                    HeuristicArg::Indices => Heuristic::Indices,
+                },
+                tunnel_cuts: Some(self.tunnel.unwrap_or(1)).filter(|&n| n > 0),
+            })
+        };
+        let algorithm = match self.algo {
+            Algo::Auto => match mesh {
+                Some(m) if stripkit::is_quad_dominant(m) => Algorithm::qstrip(),
+                Some(_) => greedy(),
+                None => Algorithm::Auto,
+            },
+            Algo::Greedy => greedy(),
+            Algo::Qstrip => Algorithm::qstrip(),
+            Algo::QuadSingle => Algorithm::QuadSingle,
+            Algo::Cache => Algorithm::Cache { refine: self.refine },
+            Algo::Balanced => Algorithm::balanced(self.max_acmr.unwrap_or(0.8)),
+        };
+        let split = match self.diagonals {
+            None | Some(DiagonalsArg::Auto) => Split::Auto,
+            Some(DiagonalsArg::Fan) => Split::Fan,
+            Some(DiagonalsArg::Qstrip) => Split::Qstrip,
+        };
+        let cache = if self.lru { CacheModel::lru(self.cache) } else { CacheModel::fifo(self.cache) };
+        StripOptions::default().algorithm(algorithm).cache_model(cache).split(split)
     }
-    if (args.heuristic.is_some() || args.tunnel.is_some()) && !matches!(args.algo, Algo::Greedy | Algo::Auto) {
-        return bad("--heuristic and --tunnel apply to --algo greedy (and auto on meshes that are not quad-dominant)");
+
+    /// The heuristic greedy ran with, for reports: `None` for other algorithms.
+    pub fn heuristic_used(&self, algorithm: &Algorithm) -> Option<HeuristicArg> {
+        matches!(algorithm, Algorithm::Greedy(_)).then(|| self.heuristic.unwrap_or(HeuristicArg::Indices))
     }
-    Ok(())
 }
 
-/// The library's options for these arguments. `mesh`: resolve `--algo auto` the
-/// library's way (`is_quad_dominant`) so that greedy gets the flags given for it.
+/// `strip`'s options: the strip flags plus the join.
 fn options(args: &Args, mesh: Option<&stripkit::Mesh>) -> StripOptions {
-    let greedy = || {
-        Algorithm::Greedy(GreedyOptions {
-            heuristic: match args.heuristic.unwrap_or(HeuristicArg::Indices) {
-                HeuristicArg::Strips => Heuristic::Strips,
-                HeuristicArg::Indices => Heuristic::Indices,
-            },
-            tunnel_cuts: Some(args.tunnel.unwrap_or(1)).filter(|&n| n > 0),
-        })
-    };
-    let algorithm = match args.algo {
-        Algo::Auto => match mesh {
-            Some(m) if stripkit::is_quad_dominant(m) => Algorithm::qstrip(),
-            Some(_) => greedy(),
-            None => Algorithm::Auto,
-        },
-        Algo::Greedy => greedy(),
-        Algo::Qstrip => Algorithm::qstrip(),
-        Algo::QuadSingle => Algorithm::QuadSingle,
-        Algo::Cache => Algorithm::Cache { refine: args.refine },
-        Algo::Balanced => Algorithm::balanced(args.max_acmr.unwrap_or(0.8)),
-    };
-    let split = match args.diagonals {
-        None | Some(DiagonalsArg::Auto) => Split::Auto,
-        Some(DiagonalsArg::Fan) => Split::Fan,
-        Some(DiagonalsArg::Qstrip) => Split::Qstrip,
-    };
-    let cache = if args.lru { CacheModel::lru(args.cache) } else { CacheModel::fifo(args.cache) };
-    StripOptions::default()
-        .algorithm(algorithm)
-        .cache_model(cache)
-        .split(split)
-        .join(args.join.into())
-        .restart_index(args.restart_index)
+    args.strip.options(mesh).join(args.join.into()).restart_index(args.restart_index)
 }
 
 /// Runs the command: read -> door -> encode -> write.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let kind = output_kind(&args.output)?;
     // Fail before the work when the output cannot be written at all.
-    if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty()) {
-        if !dir.is_dir() {
-            return Err(Error::Invalid(format!(
-                "cannot write {}: the folder {} does not exist",
-                args.output.display(),
-                dir.display()
-            ))
-            .into());
-        }
-    }
+    super::check_output_folder(&args.output)?;
     // Arguments are checked before the file is read.
-    check_flags(&args)?;
+    args.strip.check()?;
     Stripifier::new(options(&args, None)).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
     // A spinner on a terminal (indicatif draws nothing when stderr is not one):
     // balanced and --refine take seconds on meshes of a million triangles.
@@ -302,8 +310,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         input: &args.input,
         output: &args.output,
         algo: strips.algorithm.name(),
-        heuristic: matches!(strips.algorithm, Algorithm::Greedy(_))
-            .then(|| args.heuristic.unwrap_or(HeuristicArg::Indices)),
+        heuristic: args.strip.heuristic_used(&strips.algorithm),
         join: args.join,
         vertices: mesh.vertex_count(),
         figures,
@@ -340,7 +347,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 }
 
 /// The library names its settings; the user typed flags: say which.
-fn flag_names(e: Error) -> Error {
+pub fn flag_names(e: Error) -> Error {
     match e {
         Error::Invalid(m) => Error::Invalid(
             m.replace("the cache size", "--cache")

@@ -1,0 +1,321 @@
+//! `stripkit render` through the built binary: the pictures are decoded and their
+//! pixels counted. Where the machine has no EGL at all, the tests that need a picture
+//! say so and pass; the error path itself is tested everywhere.
+
+mod support;
+
+use std::collections::HashSet;
+use std::path::Path;
+use std::process::{Command, Output};
+use support::{json, stripkit, tmp, write_mesh};
+
+/// The colours `--color cull` uses (src/cmd/render/paint.rs).
+const FRONT: [u8; 3] = [58, 110, 190];
+const BACK: [u8; 3] = [246, 214, 200];
+const WHITE: [u8; 3] = [255, 255, 255];
+/// `--wireframe`'s lines.
+const WIRE: [u8; 3] = [30, 30, 30];
+
+/// A decoded picture.
+struct Picture {
+    width: u32,
+    height: u32,
+    pixels: Vec<[u8; 3]>,
+}
+
+impl Picture {
+    fn read(path: &Path) -> Picture {
+        let decoder = png::Decoder::new(std::fs::File::open(path).expect("the picture exists"));
+        let mut reader = decoder.read_info().expect("a PNG");
+        let mut buf = vec![0; reader.output_buffer_size()];
+        let info = reader.next_frame(&mut buf).expect("PNG data");
+        assert_eq!(info.color_type, png::ColorType::Rgb, "opaque pictures, no alpha channel");
+        assert_eq!(info.bit_depth, png::BitDepth::Eight);
+        let pixels = buf[..info.buffer_size()].chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
+        Picture { width: info.width, height: info.height, pixels }
+    }
+    /// Pixels other than the background.
+    fn drawn(&self) -> impl Iterator<Item = (usize, &[u8; 3])> {
+        self.pixels.iter().enumerate().filter(|(_, p)| **p != WHITE)
+    }
+    fn count(&self, rgb: [u8; 3]) -> usize {
+        self.pixels.iter().filter(|p| **p == rgb).count()
+    }
+    fn colors(&self) -> HashSet<[u8; 3]> {
+        self.drawn().map(|(_, p)| *p).collect()
+    }
+    /// Mean column of the drawn pixels.
+    fn mean_x(&self) -> f64 {
+        let (sum, n) = self.drawn().fold((0.0, 0usize), |(s, n), (i, _)| (s + (i % self.width as usize) as f64, n + 1));
+        sum / n as f64
+    }
+}
+
+/// Runs `stripkit render ARGS --json`; `None` (after saying why) where this machine
+/// has no EGL, so that a test needing a picture passes there without one.
+fn render(args: &[&str]) -> Option<serde_json::Value> {
+    let mut all = vec!["render"];
+    all.extend_from_slice(args);
+    all.push("--json");
+    let out = stripkit(&all);
+    let err = String::from_utf8_lossy(&out.stderr);
+    if !out.status.success() && err.contains("stripkit renders through EGL") {
+        eprintln!("skipped: no EGL on this machine ({err})");
+        return None;
+    }
+    Some(json(&out))
+}
+
+fn strip_count(mesh: &str, algo: &str) -> u64 {
+    let out = tmp("render", &format!("count-{algo}.json"));
+    let j = json(&stripkit(&["strip", mesh, "-o", out.to_str().unwrap(), "--algo", algo, "--json"]));
+    j["strips"].as_u64().unwrap()
+}
+
+/// A w x h grid in the plane z = 0, as an OBJ in the test folder.
+fn grid(w: u32, h: u32) -> String {
+    let path = tmp("render", &format!("grid-{w}x{h}.obj"));
+    write_mesh(&path, &stripkit::gen::grid(w, h));
+    path.to_str().unwrap().to_string()
+}
+
+#[test]
+fn every_strip_gets_its_own_colour() {
+    // A flat grid seen head-on, unlit: every triangle visible, every pixel exactly
+    // its strip's colour, so the picture holds one colour per strip.
+    let mesh = grid(12, 8);
+    for algo in ["greedy", "cache"] {
+        let png = tmp("render", &format!("grid-strips-{algo}.png"));
+        let p = png.to_str().unwrap();
+        let Some(j) =
+            render(&[&mesh, "-o", p, "--algo", algo, "--shading", "unlit", "--view", "0,0,1", "--size", "240x160"])
+        else {
+            return;
+        };
+        let strips = strip_count(&mesh, algo);
+        assert_eq!(j["strips"].as_u64(), Some(strips), "render shows the strips `strip` writes");
+        assert_eq!(j["triangles"], 192);
+        assert_eq!(j["algo"], algo);
+        let pic = Picture::read(&png);
+        assert_eq!((pic.width, pic.height), (240, 160));
+        // The 12 x 8 grid fills 94% of both sides of a 3:2 picture: 88% of its pixels.
+        let drawn = pic.drawn().count();
+        assert_eq!(j["pixels"].as_u64(), Some(drawn as u64));
+        let share = drawn as f64 / (240.0 * 160.0);
+        assert!((0.84..=0.92).contains(&share), "{algo}: {share:.3} of the picture drawn");
+        assert_eq!(pic.colors().len() as u64, strips, "{algo}: one colour per strip");
+        assert!(strips >= 2, "{algo}: {strips} strips");
+    }
+}
+
+#[test]
+fn zoom_magnifies_the_middle() {
+    // The 12 x 8 grid fills 94% of each side; twice magnified, it covers the picture.
+    let mesh = grid(12, 8);
+    let png = tmp("render", "grid-zoom.png");
+    let p = png.to_str().unwrap();
+    let Some(j) = render(&[&mesh, "-o", p, "--zoom", "2", "--view", "0,0,1", "--size", "120x80"]) else {
+        return;
+    };
+    assert_eq!(j["pixels"], 120 * 80);
+    assert_eq!(Picture::read(&png).drawn().count(), 120 * 80);
+}
+
+#[test]
+fn wireframe_draws_every_edge_once() {
+    // A 4 x 4 grid: 40 sides and 16 diagonals, 2,900 pixels of length on a 200 x 200
+    // picture (47 pixels per unit), a band 1 pixel wide covering one or two pixels
+    // across (4,416 on llvmpipe); none without --wireframe.
+    let mesh = grid(4, 4);
+    let png = tmp("render", "grid-wire.png");
+    let p = png.to_str().unwrap();
+    let args = [mesh.as_str(), "-o", p, "--shading", "unlit", "--view", "0,0,1", "--size", "200x200"];
+    let Some(j) = render(&args) else { return };
+    assert!(j.get("edges").is_none());
+    assert_eq!(Picture::read(&png).count(WIRE), 0);
+    let j = render(&[&args[..], &["--wireframe"]].concat()).unwrap();
+    assert_eq!(j["edges"], 56);
+    let lines = Picture::read(&png).count(WIRE);
+    assert!((2500..6000).contains(&lines), "{lines} line pixels");
+}
+
+#[test]
+fn order_colours_run_along_the_strips() {
+    let mesh = grid(16, 16);
+    let png = tmp("render", "grid-order.png");
+    let p = png.to_str().unwrap();
+    let Some(j) =
+        render(&[&mesh, "-o", p, "--color", "order", "--shading", "unlit", "--view", "0,0,1", "--size", "256x256"])
+    else {
+        return;
+    };
+    assert_eq!(j["triangles"], 512);
+    let pic = Picture::read(&png);
+    let colors = pic.colors();
+    // The gradient's two ends: the first triangle of the first strip is blue, the
+    // last of the last strip red; in between, almost every triangle its own shade.
+    assert!(colors.contains(&[40, 60, 200]) && colors.contains(&[200, 30, 30]));
+    assert!(colors.len() >= 400, "{} shades for 512 triangles", colors.len());
+    // Neighbouring triangles of one strip differ by a small step: most pairs of
+    // horizontally adjacent drawn pixels are equal or close.
+    let close = pic
+        .pixels
+        .chunks_exact(256)
+        .flat_map(|row| row.windows(2))
+        .filter(|w| w[0] != WHITE && w[1] != WHITE)
+        .filter(|w| (0..3).map(|c| (w[0][c] as i32 - w[1][c] as i32).abs()).sum::<i32>() <= 40)
+        .count();
+    let pairs =
+        pic.pixels.chunks_exact(256).flat_map(|row| row.windows(2)).filter(|w| w[0] != WHITE && w[1] != WHITE).count();
+    assert!(close as f64 >= 0.9 * pairs as f64, "{close} of {pairs} neighbouring pixels close");
+}
+
+#[test]
+fn cull_colours_follow_the_eye() {
+    let path = tmp("render", "sphere.obj");
+    write_mesh(&path, &stripkit::gen::icosphere(3));
+    let mesh = path.to_str().unwrap();
+    let png = tmp("render", "sphere-cull.png");
+    let p = png.to_str().unwrap();
+    let common = [mesh, "-o", p, "--color", "cull", "--shading", "unlit", "--view", "0,0,1", "--size", "200x200"];
+    let Some(j) = render(&common) else { return };
+    let pic = Picture::read(&png);
+    let drawn = pic.drawn().count();
+    // Seen from its own eye, a closed convex surface shows only front faces (a few
+    // silhouette pixels may go either way).
+    assert!(pic.count(FRONT) as f64 >= 0.99 * drawn as f64, "{} front of {drawn}", pic.count(FRONT));
+    assert!(pic.count(BACK) as f64 <= 0.01 * drawn as f64);
+    // An eye at a finite distance sees less than half a sphere.
+    let front = j["front"].as_u64().unwrap() as f64 / 1280.0;
+    assert!((0.3..0.5).contains(&front), "{front:.3} of the triangles face the eye");
+    // Judged from behind, everything visible would be culled.
+    let mut behind = common.to_vec();
+    behind.extend(["--cull-view", "0,0,-1"]);
+    let j = render(&behind).unwrap();
+    let pic = Picture::read(&png);
+    assert!(pic.count(BACK) as f64 >= 0.99 * pic.drawn().count() as f64);
+    // The eye behind sees its own cap, as large; the belt between the caps faces neither.
+    let behind_front = j["front"].as_u64().unwrap() as f64 / 1280.0;
+    assert!((behind_front - front).abs() < 0.05 && front + behind_front < 1.0, "{front} {behind_front}");
+}
+
+#[test]
+fn morph_frames_line_up() {
+    // The same grid moved 8 units to the right: the camera frames both, t = 0 draws
+    // the left one, t = 1 the right one, t = 0.5 the middle.
+    let a = stripkit::gen::grid(8, 8);
+    let mut b = a.clone();
+    b.positions.iter_mut().for_each(|p| p[0] += 8.0);
+    let (pa, pb) = (tmp("render", "morph-a.obj"), tmp("render", "morph-b.obj"));
+    write_mesh(&pa, &a);
+    write_mesh(&pb, &b);
+    let mut centres = Vec::new();
+    for t in ["0", "0.5", "1"] {
+        let png = tmp("render", &format!("morph-{t}.png"));
+        let args = [pa.to_str().unwrap(), "-o", png.to_str().unwrap(), "--morph", pb.to_str().unwrap(), "--t", t];
+        let Some(j) = render(&[&args[..], &["--view", "0,0,1", "--size", "320x160"]].concat()) else {
+            return;
+        };
+        assert_eq!(j["t"].as_f64(), Some(t.parse().unwrap()));
+        let pic = Picture::read(&png);
+        // Each frame is a square half the picture wide.
+        let share = pic.drawn().count() as f64 / (320.0 * 160.0);
+        assert!((0.4..0.47).contains(&share), "t = {t}: {share:.3}");
+        centres.push(pic.mean_x());
+    }
+    assert!((centres[0] - 84.0).abs() < 4.0, "{centres:?}");
+    assert!((centres[1] - 160.0).abs() < 4.0, "{centres:?}");
+    assert!((centres[2] - 236.0).abs() < 4.0, "{centres:?}");
+}
+
+/// `render ARGS` fails with exit status 2, says each of `want`, writes no picture.
+fn refused(args: &[&str], want: &[&str], env: Option<(&str, &str)>) {
+    let png = tmp("render", "refused.png");
+    let _ = std::fs::remove_file(&png);
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_stripkit"));
+    cmd.arg("render").args(args);
+    if !args.contains(&"-o") {
+        cmd.arg("-o").arg(&png);
+    }
+    if let Some((k, v)) = env {
+        cmd.env(k, v);
+    }
+    let out: Output = cmd.output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    for w in want {
+        assert!(err.contains(w), "{args:?}: want `{w}` in `{err}`");
+    }
+    assert!(!png.exists(), "{args:?} left a picture");
+    let tmps = std::fs::read_dir(png.parent().unwrap())
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().starts_with(".refused.png"));
+    assert_eq!(tmps.count(), 0, "{args:?} left a temporary file");
+}
+
+#[test]
+fn without_egl_it_says_what_to_install_and_writes_nothing() {
+    let mesh = grid(4, 4);
+    refused(
+        &[&mesh],
+        &["/nonexistent/libEGL.so.1 could not be loaded", "libEGL.so.1", "apt-get install libegl1"],
+        Some(("STRIPKIT_EGL_LIBRARY", "/nonexistent/libEGL.so.1")),
+    );
+}
+
+#[test]
+fn bad_arguments_and_meshes_are_refused() {
+    let mesh = grid(4, 4);
+    let m = mesh.as_str();
+    for size in ["0x10", "15x800", "4097x100", "800", "axb", "800x-1"] {
+        refused(&[m, "--size", size], &["is not a picture size", "16 to 4096"], None);
+    }
+    refused(&[m, "--view", "1,2"], &["is not a direction"], None);
+    refused(&[m, "--view", "0,0,0"], &["--view must not be 0,0,0"], None);
+    refused(&[m, "--view", "0,1,0", "--up", "0,2,0"], &["parallel"], None);
+    refused(&[m, "--fov", "170"], &["field of view"], None);
+    refused(&[m, "--zoom", "0.5"], &["is not a zoom"], None);
+    refused(&[m, "--background", "#12345"], &["is not a colour"], None);
+    refused(&[m, "--t", "0.5"], &["--morph"], None);
+    refused(&[m, "--cull-view", "1,0,0"], &["--cull-view applies to --color cull"], None);
+    refused(&[m, "--refine"], &["--refine applies to --algo cache"], None);
+    refused(&[m, "-o", tmp("render", "pic.jpg").to_str().unwrap()], &["must be a .png"], None);
+    refused(&[m, "-o", "/nonexistent-folder/pic.png"], &["folder /nonexistent-folder does not exist"], None);
+    let other = grid(5, 5);
+    refused(&[m, "--morph", &other, "--t", "0.5"], &["--morph", "36 vertices", "has 25", "same vertices"], None);
+    let empty = tmp("render", "empty.obj");
+    std::fs::write(&empty, "v 0 0 0\nv 1 0 0\nv 0 1 0\n").unwrap();
+    refused(&[empty.to_str().unwrap()], &["no faces in", "empty.obj"], None);
+    refused(&[tmp("render", "missing.obj").to_str().unwrap()], &["missing.obj"], None);
+}
+
+#[test]
+fn help_explains_the_options() {
+    let out = stripkit(&["render", "--help"]);
+    assert!(out.status.success());
+    let help = String::from_utf8_lossy(&out.stdout);
+    for w in [
+        "--color",
+        "strips",
+        "order",
+        "cull",
+        "issue #18",
+        "--view",
+        "--cull-view",
+        "--up",
+        "--fov",
+        "--zoom",
+        "--size",
+        "--background",
+        "--shading",
+        "--wireframe",
+        "--morph",
+        "--t",
+        "--algo",
+        "--max-memory",
+        "--json",
+        "libEGL.so.1",
+    ] {
+        assert!(help.contains(w), "`{w}` missing from render --help");
+    }
+}
