@@ -319,7 +319,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                     strips: b.topology == Topology::Strip,
                     indices: b.indices.len(),
                     invocations: None,
-                    h100_model: crate::batch::BatchModel::NVIDIA_H100.invocations(&b.indices, b.topology),
+                    h100_model: crate::batch::invocations(&crate::batch::BatchModel::NVIDIA_H100, &b.indices, b.topology),
                     fifo16_misses: stripkit::cache_misses(&decoded, n, 16, CacheKind::Fifo),
                     fifo32_misses: stripkit::cache_misses(&decoded, n, 32, CacheKind::Fifo),
                     ms: Vec::new(),
