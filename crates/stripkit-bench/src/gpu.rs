@@ -113,6 +113,7 @@ pub fn buffers(mesh: &stripkit::Mesh) -> anyhow::Result<Vec<Buffer>> {
         ("stripkit greedy".into(), StripOptions::default().algorithm(Algorithm::greedy())),
         ("stripkit cache".into(), StripOptions::default().algorithm(Algorithm::cache())),
         ("stripkit balanced".into(), StripOptions::default().algorithm(Algorithm::balanced(0.8))),
+        ("stripkit batch".into(), StripOptions::default().algorithm(Algorithm::batch())),
     ];
     for size in [8, 32, 64] {
         modes.push((format!("stripkit cache --cache {size}"), StripOptions::default().algorithm(Algorithm::cache()).cache_size(size)));
