@@ -19,16 +19,27 @@ pub struct Args {
     /// Also sweep the cache mode's FIFO size (3 to 16) and its refinement.
     #[arg(long)]
     pub sweep: bool,
+    /// The strip reuse window of the model that measures (and of an extra `batch`
+    /// row planned for it); default the H100 model's.
+    #[arg(long)]
+    pub window: Option<usize>,
+    /// The window of the extra `batch` row (default `--window`).
+    #[arg(long)]
+    pub plan_window: Option<usize>,
 }
 
 /// Prints one markdown table: per mesh and row, shaded vertices per triangle under the
 /// H100 model and indices per triangle.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let model = BatchModel::NVIDIA_H100;
+    let model = BatchModel { strip_window: args.window.unwrap_or(BatchModel::NVIDIA_H100.strip_window), ..BatchModel::NVIDIA_H100 };
     let mut modes: Vec<(String, StripOptions)> = vec![
         ("stripkit cache --cache 8".into(), StripOptions::default().algorithm(Algorithm::cache()).cache_size(8)),
         ("stripkit batch".into(), StripOptions::default().algorithm(Algorithm::batch())),
     ];
+    let plan = BatchModel { strip_window: args.plan_window.unwrap_or(model.strip_window), ..model };
+    if plan != BatchModel::NVIDIA_H100 {
+        modes.push((format!("stripkit batch planned for window {}", plan.strip_window), StripOptions::default().algorithm(Algorithm::Batch(plan))));
+    }
     if args.sweep {
         for size in [3, 4, 5, 6, 7, 10, 12, 16] {
             modes.push((format!("stripkit cache --cache {size}"), StripOptions::default().algorithm(Algorithm::cache()).cache_size(size)));

@@ -115,6 +115,12 @@ pub fn buffers(mesh: &stripkit::Mesh) -> anyhow::Result<Vec<Buffer>> {
         ("stripkit balanced".into(), StripOptions::default().algorithm(Algorithm::balanced(0.8))),
         ("stripkit batch".into(), StripOptions::default().algorithm(Algorithm::batch())),
     ];
+    // The batch stripifier planned for neighbouring reuse windows: where the model's
+    // window is right, one of these shades fewer vertices than the other.
+    for window in [14, 15] {
+        let model = stripkit::BatchModel { strip_window: window, ..stripkit::BatchModel::NVIDIA_H100 };
+        modes.push((format!("stripkit batch, window {window}"), StripOptions::default().algorithm(Algorithm::Batch(model))));
+    }
     for size in [8, 32, 64] {
         modes.push((format!("stripkit cache --cache {size}"), StripOptions::default().algorithm(Algorithm::cache()).cache_size(size)));
     }

@@ -392,6 +392,17 @@ impl BatchModel {
         strip_fifo: true,
     };
 
+    /// What the `batch` stripifier plans for by default ([`crate::Algorithm::batch`]):
+    /// [`BatchModel::NVIDIA_H100`] with a reuse window of 13. The fit is wrong for
+    /// the batch stripifier's many short strips: on an H200 (same driver) its strips
+    /// of bunny shaded 0.953 vertices per triangle when planned for the fitted window
+    /// of 15 (0.833 modelled), 0.935 for 14 and 0.928 for 13 (0.839 modelled), the
+    /// fewest on all seven shared models (docs/experiments/gpu-batch-strips.md).
+    pub const NVIDIA_H100_PLANNING: BatchModel = BatchModel {
+        strip_window: 13,
+        ..BatchModel::NVIDIA_H100
+    };
+
     /// Vertex-shader invocations the model predicts for a triangle list (`indices` in
     /// threes; a trailing partial triangle is ignored).
     pub fn list_invocations(&self, indices: &[u32]) -> u64 {

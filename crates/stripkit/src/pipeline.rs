@@ -66,10 +66,11 @@ pub enum Algorithm {
     /// Strips planned for a GPU that shades vertices in batches ([`BatchModel`]):
     /// the mesh's fan cut into compact patches of one batch of triangles each, each
     /// patch covered by short swap-free strips side by side, every choice simulated
-    /// on the model. Under [`BatchModel::NVIDIA_H100`] these shade 0.7% to 2.4% fewer
-    /// vertices than meshoptimizer's vertex-cache-optimized list on five of the seven
-    /// shared models (1% more on dragon and cow), at about 1.95 indices per triangle
-    /// against the list's 3, in about 100 times the time of `cache`
+    /// on the model. The model predicts fewer shaded vertices than meshoptimizer's
+    /// vertex-cache-optimized list on most shared models, but an H200 shades about
+    /// 11% more than modelled for these strips: as many as `cache` with a FIFO of 8
+    /// (0.92 to 0.95 per triangle against the list's 0.82 to 0.85), at about 2
+    /// indices per triangle, in about 100 times the time of `cache`
     /// (docs/experiments/gpu-batch-strips.md).
     Batch(BatchModel),
 }
@@ -91,10 +92,11 @@ impl Algorithm {
     pub fn balanced(max_acmr: f64) -> Self {
         Algorithm::Balanced { max_acmr }
     }
-    /// Batch strips for the batch model fitted to an NVIDIA H100
-    /// ([`BatchModel::NVIDIA_H100`]).
+    /// Batch strips for the batch model fitted to an NVIDIA H100, planned with a
+    /// reuse window two shorter than fitted ([`BatchModel::NVIDIA_H100_PLANNING`]:
+    /// the fewest vertices measured on an H200).
     pub fn batch() -> Self {
-        Algorithm::Batch(BatchModel::NVIDIA_H100)
+        Algorithm::Batch(BatchModel::NVIDIA_H100_PLANNING)
     }
     /// The lowercase name the CLI uses for this algorithm.
     pub fn name(&self) -> &'static str {

@@ -46,10 +46,10 @@ pub enum Algo {
     /// exact FIFO (bunny: 1.22 indices per triangle at 0.80 misses).
     Balanced,
     /// Strips planned for a GPU that shades vertices in batches (the batch model fitted
-    /// to an NVIDIA H100: 30 triangles, strips reusing the last 15 shaded vertices):
-    /// compact one-batch patches of short strips; fewer shaded vertices than
-    /// meshoptimizer's cache-optimized list on most meshes, about 1.95 indices per
-    /// triangle. Fans every face.
+    /// to an NVIDIA H100: 30 triangles, strips reusing recently shaded vertices):
+    /// compact one-batch patches of short strips, about 2 indices per triangle. Fans
+    /// every face. Experimental: an H200 shades as many vertices for them as for
+    /// `cache --cache 8`, more than for meshoptimizer's cache-optimized list.
     Batch,
 }
 

@@ -556,9 +556,9 @@ mod tests {
         }
     }
 
-    /// Modelled shaded vertices per triangle of strips.
+    /// Shaded vertices per triangle of strips, under the model the door plans for.
     fn per_triangle(strips: &StripSet, triangles: usize) -> f64 {
-        H100.strip_invocations(&encode_restart(strips, u32::MAX), u32::MAX) as f64 / triangles as f64
+        BatchModel::NVIDIA_H100_PLANNING.strip_invocations(&encode_restart(strips, u32::MAX), u32::MAX) as f64 / triangles as f64
     }
 
     #[test]
@@ -573,7 +573,7 @@ mod tests {
             let cache = door(&mesh, &StripOptions::default().algorithm(Algorithm::cache()).cache_size(8)).expect("cache");
             let (b, c) = (per_triangle(&batch.strips, t), per_triangle(&cache.strips, t));
             eprintln!("{t} triangles: batch {b:.4}, cache-8 {c:.4} shaded per triangle");
-            assert!(b < c && b < 0.85, "batch {b} against cache-8 {c}");
+            assert!(b < c && b < 0.87, "batch {b} against cache-8 {c}");
             // Fewer indices than a list.
             assert!((batch.figures.indices_restart as f64) < 2.2 * t as f64);
         }
