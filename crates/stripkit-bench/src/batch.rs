@@ -56,7 +56,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     for max_triangles in [30, 32, 33] {
         for max_vertices in [32, 48, 64, 96] {
             for (strip_window, strip_fifo) in [8, 12, 14, 15, 16].into_iter().flat_map(|w| [(w, false), (w, true)]) {
-                let model = BatchModel { max_triangles, max_vertices, strip_window, strip_fifo };
+                let model = BatchModel { max_triangles, max_vertices, strip_window, strip_fifo, restart_window: strip_window };
                 let mut err = 0.0;
                 for (_, topo, idx, inv) in &cases {
                     err += ((invocations(&model, idx, *topo) as f64 - inv) / inv).abs();

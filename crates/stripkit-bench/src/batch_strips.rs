@@ -26,19 +26,27 @@ pub struct Args {
     /// The window of the extra `batch` row (default `--window`).
     #[arg(long)]
     pub plan_window: Option<usize>,
+    /// The model's window for a strip's first two indices (default `--window`).
+    #[arg(long)]
+    pub restart_window: Option<usize>,
+    /// The extra row's window for a strip's first two indices.
+    #[arg(long)]
+    pub plan_restart_window: Option<usize>,
 }
 
 /// Prints one markdown table: per mesh and row, shaded vertices per triangle under the
 /// H100 model and indices per triangle.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let model = BatchModel { strip_window: args.window.unwrap_or(BatchModel::NVIDIA_H100.strip_window), ..BatchModel::NVIDIA_H100 };
+    let window = args.window.unwrap_or(BatchModel::NVIDIA_H100.strip_window);
+    let model = BatchModel { strip_window: window, restart_window: args.restart_window.unwrap_or(window), ..BatchModel::NVIDIA_H100 };
     let mut modes: Vec<(String, StripOptions)> = vec![
         ("stripkit cache --cache 8".into(), StripOptions::default().algorithm(Algorithm::cache()).cache_size(8)),
         ("stripkit batch".into(), StripOptions::default().algorithm(Algorithm::batch())),
     ];
-    let plan = BatchModel { strip_window: args.plan_window.unwrap_or(model.strip_window), ..model };
+    let pw = args.plan_window.unwrap_or(model.strip_window);
+    let plan = BatchModel { strip_window: pw, restart_window: args.plan_restart_window.unwrap_or(model.restart_window.min(pw)), ..model };
     if plan != BatchModel::NVIDIA_H100 {
-        modes.push((format!("stripkit batch planned for window {}", plan.strip_window), StripOptions::default().algorithm(Algorithm::Batch(plan))));
+        modes.push((format!("stripkit batch planned for window {} ({} after a restart)", plan.strip_window, plan.restart_window), StripOptions::default().algorithm(Algorithm::Batch(plan))));
     }
     if args.sweep {
         for size in [3, 4, 5, 6, 7, 10, 12, 16] {

@@ -3,6 +3,7 @@
 
 mod batch;
 mod batch_strips;
+mod probe_variants;
 mod gpu;
 mod strips;
 mod simplify;

@@ -356,8 +356,9 @@ pub fn figures(input: &[[u32; 3]], strips: &StripSet, cache: CacheModel) -> Figu
 ///   batch is reused);
 /// - in a strip, a vertex is reused only while it is among the last `strip_window`
 ///   vertices shaded in the batch (`strip_fifo`; otherwise among its last
-///   `strip_window` indices); a batch that begins inside a strip starts with the
-///   strip's last two vertices, shaded again.
+///   `strip_window` indices), `restart_window` for the first two indices of a strip;
+///   a batch that begins inside a strip starts with the strip's last two vertices,
+///   shaded again.
 ///
 /// ```
 /// use stripkit::BatchModel;
@@ -378,6 +379,9 @@ pub struct BatchModel {
     /// The strip window holds the last `strip_window` shaded vertices (a FIFO), not
     /// the last indices.
     pub strip_fifo: bool,
+    /// The window (counted as `strip_window`) for the first two indices of a strip
+    /// after a restart; at most `strip_window` (`strip_window` itself: no difference).
+    pub restart_window: usize,
 }
 
 impl BatchModel {
@@ -390,16 +394,20 @@ impl BatchModel {
         max_vertices: 32,
         strip_window: 15,
         strip_fifo: true,
+        restart_window: 15,
     };
 
     /// What the `batch` stripifier plans for by default ([`crate::Algorithm::batch`]):
-    /// [`BatchModel::NVIDIA_H100`] with a reuse window of 13. The fit is wrong for
-    /// the batch stripifier's many short strips: on an H200 (same driver) its strips
-    /// of bunny shaded 0.953 vertices per triangle when planned for the fitted window
-    /// of 15 (0.833 modelled), 0.935 for 14 and 0.928 for 13 (0.839 modelled), the
-    /// fewest on all seven shared models (docs/experiments/gpu-batch-strips.md).
+    /// [`BatchModel::NVIDIA_H100`] with a reuse window of 14, 10 for the first two
+    /// indices of a strip. The fit is wrong for the batch stripifier's many short
+    /// strips: on an H200 (same driver) its strips of bunny shaded 0.953 vertices per
+    /// triangle when planned for the fitted window of 15 (0.833 modelled), 0.928 for
+    /// 13, 0.929 for 16 and 11 after a restart (the window variant that fits the
+    /// H200's counts best), and 0.918 for these settings, the fewest of the five on
+    /// all seven shared models (docs/experiments/gpu-batch-strips.md).
     pub const NVIDIA_H100_PLANNING: BatchModel = BatchModel {
-        strip_window: 13,
+        strip_window: 14,
+        restart_window: 10,
         ..BatchModel::NVIDIA_H100
     };
 
@@ -480,7 +488,9 @@ impl StripBatches {
     /// Whether `i` is in the batch's reuse window: the next index would reuse it (as
     /// long as no new batch begins first).
     pub(crate) fn reused(&self, i: u32) -> bool {
-        self.hist.iter().rev().take(self.model.strip_window).any(|&h| h == i)
+        let m = self.model;
+        let w = if self.run < 2 { m.restart_window.min(m.strip_window) } else { m.strip_window };
+        self.hist.iter().rev().take(w).any(|&h| h == i)
     }
 
     /// Feeds one index of the running strip.

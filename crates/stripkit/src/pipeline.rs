@@ -67,10 +67,10 @@ pub enum Algorithm {
     /// the mesh's fan cut into compact patches of one batch of triangles each, each
     /// patch covered by short swap-free strips side by side, every choice simulated
     /// on the model. The model predicts fewer shaded vertices than meshoptimizer's
-    /// vertex-cache-optimized list on most shared models, but an H200 shades about
-    /// 11% more than modelled for these strips: as many as `cache` with a FIFO of 8
-    /// (0.92 to 0.95 per triangle against the list's 0.82 to 0.85), at about 2
-    /// indices per triangle, in about 100 times the time of `cache`
+    /// vertex-cache-optimized list on most shared models, but an H200 shades 9-15%
+    /// more than modelled for these strips: 0-3% fewer than `cache` with a FIFO of 8
+    /// (0.91 to 0.92 per triangle against the list's 0.82 to 0.85), at about 2
+    /// indices per triangle, in about 100 times the time of `cache`. Experimental
     /// (docs/experiments/gpu-batch-strips.md).
     Batch(BatchModel),
 }
@@ -92,9 +92,9 @@ impl Algorithm {
     pub fn balanced(max_acmr: f64) -> Self {
         Algorithm::Balanced { max_acmr }
     }
-    /// Batch strips for the batch model fitted to an NVIDIA H100, planned with a
-    /// reuse window two shorter than fitted ([`BatchModel::NVIDIA_H100_PLANNING`]:
-    /// the fewest vertices measured on an H200).
+    /// Batch strips for the batch model fitted to an NVIDIA H100, planned with shorter
+    /// reuse windows than fitted ([`BatchModel::NVIDIA_H100_PLANNING`]: the fewest
+    /// vertices measured on an H200).
     pub fn batch() -> Self {
         Algorithm::Batch(BatchModel::NVIDIA_H100_PLANNING)
     }

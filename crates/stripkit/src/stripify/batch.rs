@@ -547,9 +547,9 @@ mod tests {
         let mesh = gen::torus(20, 10, 2.0, 0.5);
         let tris = mesh.triangulate().tris;
         for model in [
-            BatchModel { max_triangles: 7, max_vertices: 9, strip_window: 4, strip_fifo: true },
-            BatchModel { max_triangles: 1, max_vertices: 3, strip_window: 1, strip_fifo: false },
-            BatchModel { max_triangles: 96, max_vertices: 96, strip_window: 32, strip_fifo: true },
+            BatchModel { max_triangles: 7, max_vertices: 9, strip_window: 4, strip_fifo: true, restart_window: 2 },
+            BatchModel { max_triangles: 1, max_vertices: 3, strip_window: 1, strip_fifo: false, restart_window: 1 },
+            BatchModel { max_triangles: 96, max_vertices: 96, strip_window: 32, strip_fifo: true, restart_window: 40 },
         ] {
             let strips = stripify(&tris, &mesh.positions, mesh.vertex_count(), &model);
             assert!(verify(&tris, &strips).ok(), "{model:?}");
