@@ -402,8 +402,8 @@ impl BatchModel {
     /// indices of a strip. The fit is wrong for the batch stripifier's many short
     /// strips: on an H200 (same driver) its strips of bunny shaded 0.953 vertices per
     /// triangle when planned for the fitted window of 15 (0.833 modelled), 0.928 for
-    /// 13, 0.929 for 16 and 11 after a restart (the window variant that fits the
-    /// H200's counts best), and 0.918 for these settings, the fewest of the five on
+    /// 13, 0.929 for 16 and 11 after a restart (a variant that fit one run's
+    /// counts best), and 0.918 for these settings, the fewest of the five on
     /// all seven shared models (docs/experiments/gpu-batch-strips.md).
     pub const NVIDIA_H100_PLANNING: BatchModel = BatchModel {
         strip_window: 14,
