@@ -1,115 +1,21 @@
 //! A model of how a GPU batches vertices, fitted to the invocation counts that
 //! `stripkit-bench gpu` measures, and the `gpu-model` command that fits it.
 //!
-//! The model (parameters in [`BatchModel`]):
-//! - the index stream is cut into batches of at most `max_triangles` primitives and at
-//!   most `max_vertices` shaded vertices;
-//! - in a triangle list, a vertex is shaded once per batch (any earlier use in the batch
-//!   is reused);
-//! - in a strip, a vertex is reused only when it occurred within the last `strip_window`
-//!   indices of the same batch; a new batch starts with the last two vertices of the
-//!   running strip, shaded again.
+//! The model is the library's [`BatchModel`] (its docs give the rule).
 
 use anyhow::Context;
 use std::path::PathBuf;
 use stripkit_render::Topology;
 
-/// Batch limits and the strip reuse window.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct BatchModel {
-    /// Primitives per batch.
-    pub max_triangles: usize,
-    /// Shaded vertices per batch.
-    pub max_vertices: usize,
-    /// How far back a strip vertex can be reused: in indices, or in shaded vertices
-    /// when `strip_fifo`.
-    pub strip_window: usize,
-    /// The strip window holds the last `strip_window` shaded vertices (a FIFO), not the
-    /// last indices.
-    pub strip_fifo: bool,
-}
+/// The model itself lives in the library ([`stripkit::BatchModel`], one copy: the
+/// `batch` stripifier plans with it).
+pub use stripkit::BatchModel;
 
-impl BatchModel {
-    /// The model fitted to an NVIDIA H100 (driver 580.159.04) by `gpu-model`: batches of
-    /// 30 triangles and 32 shaded vertices, strips reusing the last 15 shaded vertices
-    /// (0.82% mean error over the 176 index buffers of the shared models).
-    pub const NVIDIA_H100: BatchModel = BatchModel { max_triangles: 30, max_vertices: 32, strip_window: 15, strip_fifo: true };
-
-    /// Vertex-shader invocations the model predicts for one draw.
-    pub fn invocations(&self, indices: &[u32], topology: Topology) -> u64 {
-        match topology {
-            Topology::Triangles => self.list(indices),
-            Topology::Strip => self.strip(indices),
-        }
-    }
-
-    fn list(&self, indices: &[u32]) -> u64 {
-        let mut total = 0u64;
-        let mut batch: Vec<u32> = Vec::with_capacity(self.max_vertices);
-        let mut tris = 0;
-        for t in indices.chunks_exact(3) {
-            let new = t.iter().enumerate().filter(|&(k, v)| !batch.contains(v) && !t[..k].contains(v)).count();
-            if tris == self.max_triangles || batch.len() + new > self.max_vertices {
-                batch.clear();
-                tris = 0;
-            }
-            for (k, &v) in t.iter().enumerate() {
-                if !batch.contains(&v) && !t[..k].contains(&v) {
-                    batch.push(v);
-                    total += 1;
-                }
-            }
-            tris += 1;
-        }
-        total
-    }
-
-    fn strip(&self, indices: &[u32]) -> u64 {
-        let mut total = 0u64;
-        // The batch's index history (for the window) and its counts.
-        let mut hist: Vec<u32> = Vec::new();
-        let mut shaded = 0;
-        let mut tris = 0;
-        let mut run = 0; // indices of the running strip
-        let mut last2 = [u32::MAX; 2];
-        for &i in indices {
-            if i == u32::MAX {
-                run = 0;
-                continue;
-            }
-            let reused = hist.iter().rev().take(self.strip_window).any(|&h| h == i);
-            let makes_tri = run >= 2;
-            if (makes_tri && tris == self.max_triangles) || (!reused && shaded == self.max_vertices) {
-                // New batch: the running strip's last two vertices come again, shaded.
-                hist.clear();
-                shaded = 0;
-                tris = 0;
-                if run >= 2 {
-                    for v in last2 {
-                        hist.push(v);
-                        shaded += 1;
-                        total += 1;
-                    }
-                }
-                let reused = hist.iter().rev().take(self.strip_window).any(|&h| h == i);
-                if !reused {
-                    shaded += 1;
-                    total += 1;
-                }
-            } else if !reused {
-                shaded += 1;
-                total += 1;
-            }
-            if !self.strip_fifo || !reused {
-                hist.push(i);
-            }
-            if makes_tri {
-                tris += 1;
-            }
-            last2 = [last2[1], i];
-            run += 1;
-        }
-        total
+/// Vertex-shader invocations `model` predicts for one draw.
+pub fn invocations(model: &BatchModel, indices: &[u32], topology: Topology) -> u64 {
+    match topology {
+        Topology::Triangles => model.list_invocations(indices),
+        Topology::Strip => model.strip_invocations(indices, u32::MAX),
     }
 }
 
@@ -150,10 +56,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     for max_triangles in [30, 32, 33] {
         for max_vertices in [32, 48, 64, 96] {
             for (strip_window, strip_fifo) in [8, 12, 14, 15, 16].into_iter().flat_map(|w| [(w, false), (w, true)]) {
-                let model = BatchModel { max_triangles, max_vertices, strip_window, strip_fifo };
+                let model = BatchModel { max_triangles, max_vertices, strip_window, strip_fifo, restart_window: strip_window };
                 let mut err = 0.0;
                 for (_, topo, idx, inv) in &cases {
-                    err += ((model.invocations(idx, *topo) as f64 - inv) / inv).abs();
+                    err += ((invocations(&model, idx, *topo) as f64 - inv) / inv).abs();
                 }
                 best.push((err / cases.len().max(1) as f64, model));
             }
@@ -167,7 +73,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let model = best[0].1;
     println!("\nper buffer, model {model:?}:\n\n| buffer | measured | model |\n|---|---:|---:|");
     for (name, topo, idx, inv) in &cases {
-        println!("| {name} | {inv} | {} |", model.invocations(idx, *topo));
+        println!("| {name} | {inv} | {} |", invocations(&model, idx, *topo));
     }
     Ok(())
 }

@@ -113,7 +113,18 @@ pub fn buffers(mesh: &stripkit::Mesh) -> anyhow::Result<Vec<Buffer>> {
         ("stripkit greedy".into(), StripOptions::default().algorithm(Algorithm::greedy())),
         ("stripkit cache".into(), StripOptions::default().algorithm(Algorithm::cache())),
         ("stripkit balanced".into(), StripOptions::default().algorithm(Algorithm::balanced(0.8))),
+        ("stripkit batch".into(), StripOptions::default().algorithm(Algorithm::batch())),
     ];
+    // The batch stripifier planned for neighbouring reuse windows: where the model's
+    // window is right, one of these shades fewer vertices than the other.
+    for window in [13, 14, 15] {
+        let model = stripkit::BatchModel { strip_window: window, restart_window: window, ..stripkit::BatchModel::NVIDIA_H100 };
+        modes.push((format!("stripkit batch, window {window}"), StripOptions::default().algorithm(Algorithm::Batch(model))));
+    }
+    // Planned for a shorter window at the start of a strip (the variant of the model
+    // that fits the H200's counts best: 16 and 11; the default plans for 14 and 10).
+    let model = stripkit::BatchModel { strip_window: 16, restart_window: 11, ..stripkit::BatchModel::NVIDIA_H100 };
+    modes.push(("stripkit batch, window 16, 11 after a restart".into(), StripOptions::default().algorithm(Algorithm::Batch(model))));
     for size in [8, 32, 64] {
         modes.push((format!("stripkit cache --cache {size}"), StripOptions::default().algorithm(Algorithm::cache()).cache_size(size)));
     }
@@ -319,7 +330,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                     strips: b.topology == Topology::Strip,
                     indices: b.indices.len(),
                     invocations: None,
-                    h100_model: crate::batch::BatchModel::NVIDIA_H100.invocations(&b.indices, b.topology),
+                    h100_model: crate::batch::invocations(&crate::batch::BatchModel::NVIDIA_H100, &b.indices, b.topology),
                     fifo16_misses: stripkit::cache_misses(&decoded, n, 16, CacheKind::Fifo),
                     fifo32_misses: stripkit::cache_misses(&decoded, n, 32, CacheKind::Fifo),
                     ms: Vec::new(),

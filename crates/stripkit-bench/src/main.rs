@@ -2,6 +2,8 @@
 //! run; writes markdown tables. One module per comparison.
 
 mod batch;
+mod batch_strips;
+mod probe_variants;
 mod gpu;
 mod strips;
 mod simplify;
@@ -28,6 +30,8 @@ enum Command {
     Gpu(gpu::Args),
     /// Fits the GPU batch model to invocation counts measured by `gpu --json`.
     GpuModel(batch::Args),
+    /// Modelled vertex shading (the H100 batch model) and indices of stripkit's strips next to meshoptimizer's list.
+    BatchStrips(batch_strips::Args),
     /// Weighted perfect matching: stripkit next to LEMON (when installed).
     Matching(matching::Args),
 }
@@ -49,5 +53,6 @@ fn main() -> anyhow::Result<()> {
         Command::Matching(a) => matching::run(a),
         Command::Gpu(a) => gpu::run(a),
         Command::GpuModel(a) => batch::run(a),
+        Command::BatchStrips(a) => batch_strips::run(a),
     }
 }

@@ -283,3 +283,19 @@ fn spot_str() -> &'static str {
     static SPOT: std::sync::OnceLock<String> = std::sync::OnceLock::new();
     SPOT.get_or_init(spot)
 }
+
+#[test]
+fn batch_strips_verify_on_spot() {
+    // `--algo batch`: strips planned for the H100 batch model, verified, fewer indices
+    // than a list; QSTRIP's diagonals are refused (batch fans every face).
+    let out = stripkit(&["strip", &spot(), "--algo", "batch", "-o", tmp("batch.ply").to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let v = json(&out);
+    assert_eq!(v["verified"], true);
+    assert_eq!(v["triangles"], 5856);
+    let restart = v["indices_restart"].as_u64().unwrap();
+    assert!(restart < 5856 * 21 / 10, "{restart}");
+    let out = stripkit(&["strip", &spot(), "--algo", "batch", "--diagonals", "qstrip", "-o", tmp("batch2.ply").to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("qstrip"));
+}

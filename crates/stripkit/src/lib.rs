@@ -85,7 +85,7 @@ mod tests;
 
 pub use error::{Error, Result};
 pub use mesh::{io, Mesh, Triangles};
-pub use metrics::{acmr, cache_misses, figures, swaps, CacheKind, CacheModel, Figures};
+pub use metrics::{acmr, cache_misses, figures, swaps, BatchModel, CacheKind, CacheModel, Figures};
 pub use pipeline::{
     is_quad_dominant, stripify, stripify_bound, stripify_indices, unstripify, Algorithm, Join, Split,
     StripOptions, Stripifier, Strips, MAX_CACHE_SIZE, MAX_TUNNEL_CUTS, QUAD_DOMINANT,

@@ -346,6 +346,190 @@ pub fn figures(input: &[[u32; 3]], strips: &StripSet, cache: CacheModel) -> Figu
     }
 }
 
+/// A model of how a GPU batches the vertices of one draw for vertex shading, fitted
+/// to measured vertex-shader invocation counts (`stripkit-bench gpu-model`):
+///
+/// - the index stream is cut into batches of at most `max_triangles` primitives
+///   (degenerate triangles of a strip included, restarts not) and at most
+///   `max_vertices` shaded vertices;
+/// - in a triangle list, a vertex is shaded once per batch (any earlier use in the
+///   batch is reused);
+/// - in a strip, a vertex is reused only while it is among the last `strip_window`
+///   vertices shaded in the batch (`strip_fifo`; otherwise among its last
+///   `strip_window` indices), `restart_window` for the first two indices of a strip;
+///   a batch that begins inside a strip starts with the strip's last two vertices,
+///   shaded again.
+///
+/// ```
+/// use stripkit::BatchModel;
+/// let m = BatchModel::NVIDIA_H100;
+/// // Two triangles sharing an edge: 4 vertices shaded, as a list or as a strip.
+/// assert_eq!(m.list_invocations(&[0, 1, 2, 2, 1, 3]), 4);
+/// assert_eq!(m.strip_invocations(&[0, 1, 2, 3], u32::MAX), 4);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct BatchModel {
+    /// Primitives per batch.
+    pub max_triangles: usize,
+    /// Shaded vertices per batch.
+    pub max_vertices: usize,
+    /// How far back a strip vertex can be reused: in shaded vertices when
+    /// `strip_fifo`, else in indices.
+    pub strip_window: usize,
+    /// The strip window holds the last `strip_window` shaded vertices (a FIFO), not
+    /// the last indices.
+    pub strip_fifo: bool,
+    /// The window (counted as `strip_window`) for the first two indices of a strip
+    /// after a restart; at most `strip_window` (`strip_window` itself: no difference).
+    pub restart_window: usize,
+}
+
+impl BatchModel {
+    /// The model fitted to an NVIDIA H100 (driver 580.159.04): batches of 30
+    /// triangles and 32 shaded vertices, strips reusing the last 15 shaded vertices
+    /// (0.82% mean error over 176 index buffers of the shared models;
+    /// docs/experiments/gpu/h100-model-fit.md).
+    pub const NVIDIA_H100: BatchModel = BatchModel {
+        max_triangles: 30,
+        max_vertices: 32,
+        strip_window: 15,
+        strip_fifo: true,
+        restart_window: 15,
+    };
+
+    /// What the `batch` stripifier plans for by default ([`crate::Algorithm::batch`]):
+    /// [`BatchModel::NVIDIA_H100`] with a reuse window of 14, 10 for the first two
+    /// indices of a strip. The fit is wrong for the batch stripifier's many short
+    /// strips: on an H200 (same driver) its strips of bunny shaded 0.953 vertices per
+    /// triangle when planned for the fitted window of 15 (0.833 modelled), 0.928 for
+    /// 13, 0.929 for 16 and 11 after a restart (a variant that fit one run's
+    /// counts best), and 0.918 for these settings, the fewest of the five on
+    /// all seven shared models (docs/experiments/gpu-batch-strips.md).
+    pub const NVIDIA_H100_PLANNING: BatchModel = BatchModel {
+        strip_window: 14,
+        restart_window: 10,
+        ..BatchModel::NVIDIA_H100
+    };
+
+    /// Vertex-shader invocations the model predicts for a triangle list (`indices` in
+    /// threes; a trailing partial triangle is ignored).
+    pub fn list_invocations(&self, indices: &[u32]) -> u64 {
+        let mut total = 0u64;
+        let mut batch: Vec<u32> = Vec::with_capacity(self.max_vertices);
+        let mut tris = 0;
+        for t in indices.chunks_exact(3) {
+            let fresh = |k: usize, v: &u32, batch: &[u32]| !batch.contains(v) && !t[..k].contains(v);
+            let new = t.iter().enumerate().filter(|&(k, v)| fresh(k, v, &batch)).count();
+            if tris == self.max_triangles || batch.len() + new > self.max_vertices {
+                batch.clear();
+                tris = 0;
+            }
+            for (k, &v) in t.iter().enumerate() {
+                if fresh(k, &v, &batch) {
+                    batch.push(v);
+                    total += 1;
+                }
+            }
+            tris += 1;
+        }
+        total
+    }
+
+    /// Vertex-shader invocations the model predicts for a strip buffer whose strips
+    /// are separated by `restart` (primitive restart).
+    pub fn strip_invocations(&self, indices: &[u32], restart: u32) -> u64 {
+        let mut sim = StripBatches::new(*self);
+        for &i in indices {
+            if i == restart {
+                sim.restart();
+            } else {
+                sim.push(i);
+            }
+        }
+        sim.total
+    }
+}
+
+/// [`BatchModel`]'s strip rule as a running simulation, one index at a time (the
+/// batch stripifier plans with the very rule that measures it).
+#[derive(Clone, Debug)]
+pub(crate) struct StripBatches {
+    model: BatchModel,
+    /// The batch's history: its shaded vertices (FIFO window) or its indices.
+    hist: Vec<u32>,
+    shaded: usize,
+    /// Triangles of the batch (degenerate ones included).
+    pub(crate) tris: usize,
+    /// Indices of the running strip.
+    run: usize,
+    last2: [u32; 2],
+    /// Vertices shaded so far, all batches.
+    pub(crate) total: u64,
+}
+
+impl StripBatches {
+    pub(crate) fn new(model: BatchModel) -> Self {
+        StripBatches {
+            model,
+            hist: Vec::with_capacity(2 * model.max_vertices.max(model.max_triangles + 2)),
+            shaded: 0,
+            tris: 0,
+            run: 0,
+            last2: [u32::MAX; 2],
+            total: 0,
+        }
+    }
+
+    /// A primitive restart: the next index starts a strip (same batch).
+    pub(crate) fn restart(&mut self) {
+        self.run = 0;
+    }
+
+    /// Whether `i` is in the batch's reuse window: the next index would reuse it (as
+    /// long as no new batch begins first).
+    pub(crate) fn reused(&self, i: u32) -> bool {
+        let m = self.model;
+        let w = if self.run < 2 { m.restart_window.min(m.strip_window) } else { m.strip_window };
+        self.hist.iter().rev().take(w).any(|&h| h == i)
+    }
+
+    /// Feeds one index of the running strip.
+    pub(crate) fn push(&mut self, i: u32) {
+        let m = self.model;
+        // Whether the window (of the batch before any break) holds `i`: this decides
+        // whether `i` enters the history, as in the fitted model.
+        let before = self.reused(i);
+        let mut reused = before;
+        let makes_tri = self.run >= 2;
+        if (makes_tri && self.tris == m.max_triangles) || (!reused && self.shaded == m.max_vertices) {
+            // New batch: the running strip's last two vertices come again, shaded.
+            self.hist.clear();
+            self.shaded = 0;
+            self.tris = 0;
+            if self.run >= 2 {
+                for v in self.last2 {
+                    self.hist.push(v);
+                    self.shaded += 1;
+                    self.total += 1;
+                }
+            }
+            reused = self.reused(i);
+        }
+        if !reused {
+            self.shaded += 1;
+            self.total += 1;
+        }
+        if !m.strip_fifo || !before {
+            self.hist.push(i);
+        }
+        if makes_tri {
+            self.tris += 1;
+        }
+        self.last2 = [self.last2[1], i];
+        self.run += 1;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -16,7 +16,7 @@
 use crate::error::{Error, Result};
 use crate::mesh::io::{self, Format, WriteOptions};
 use crate::mesh::Mesh;
-use crate::metrics::{self, CacheModel, Figures};
+use crate::metrics::{self, BatchModel, CacheModel, Figures};
 use crate::strip::{self, StripSet};
 use crate::stripify::cache::{self, CacheOptions, Diagonals};
 use crate::stripify::greedy::{self, GreedyOptions};
@@ -63,6 +63,16 @@ pub enum Algorithm {
         /// The most FIFO misses per triangle to accept (positive, finite).
         max_acmr: f64,
     },
+    /// Strips planned for a GPU that shades vertices in batches ([`BatchModel`]):
+    /// the mesh's fan cut into compact patches of one batch of triangles each, each
+    /// patch covered by short swap-free strips side by side, every choice simulated
+    /// on the model. The model predicts fewer shaded vertices than meshoptimizer's
+    /// vertex-cache-optimized list on most shared models, but an H200 shades 9-15%
+    /// more than modelled for these strips: 0-3% fewer than `cache` with a FIFO of 8
+    /// (0.91 to 0.92 per triangle against the list's 0.82 to 0.85), at about 2
+    /// indices per triangle, in about 100 times the time of `cache`. Experimental
+    /// (docs/experiments/gpu-batch-strips.md).
+    Batch(BatchModel),
 }
 
 impl Algorithm {
@@ -82,6 +92,12 @@ impl Algorithm {
     pub fn balanced(max_acmr: f64) -> Self {
         Algorithm::Balanced { max_acmr }
     }
+    /// Batch strips for the batch model fitted to an NVIDIA H100, planned with shorter
+    /// reuse windows than fitted ([`BatchModel::NVIDIA_H100_PLANNING`]: the fewest
+    /// vertices measured on an H200).
+    pub fn batch() -> Self {
+        Algorithm::Batch(BatchModel::NVIDIA_H100_PLANNING)
+    }
     /// The lowercase name the CLI uses for this algorithm.
     pub fn name(&self) -> &'static str {
         match self {
@@ -91,6 +107,7 @@ impl Algorithm {
             Algorithm::QuadSingle => "quad-single",
             Algorithm::Cache { .. } => "cache",
             Algorithm::Balanced { .. } => "balanced",
+            Algorithm::Batch(_) => "batch",
         }
     }
 }
@@ -259,6 +276,14 @@ impl StripOptions {
             Algorithm::Greedy(_) if self.split == Split::Qstrip => bad(
                 "greedy strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced".into(),
             ),
+            Algorithm::Batch(_) if self.split == Split::Qstrip => bad(
+                "batch strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced".into(),
+            ),
+            Algorithm::Batch(m)
+                if m.max_triangles == 0 || m.max_vertices < 3 || m.strip_window == 0 =>
+            {
+                bad(format!("a batch model needs at least one triangle, three vertices and a window of one per batch (got {m:?})"))
+            }
             Algorithm::Qstrip(_) | Algorithm::QuadSingle if self.split == Split::Fan => bad(format!(
                 "{} chooses each quad's diagonal itself; split fan applies to greedy, cache and balanced",
                 self.algorithm.name()
@@ -456,12 +481,17 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
         StripOptions { algorithm: algorithm.clone(), ..options.clone() }.check()?;
     }
     // The fan is the greedy stripifier's input, made outside its timing.
-    let fan = matches!(algorithm, Algorithm::Greedy(_)).then(|| mesh.triangulate().tris);
+    let fan = matches!(algorithm, Algorithm::Greedy(_) | Algorithm::Batch(_)).then(|| mesh.triangulate().tris);
     let start = Instant::now();
     let (strips, split, quads, fan) = match &algorithm {
         Algorithm::Greedy(g) => {
             let tris = fan.unwrap_or_default();
             let strips = greedy::stripify(&tris, vertex_count, g);
+            (strips, Split::Fan, None, Some(tris))
+        }
+        Algorithm::Batch(model) => {
+            let tris = fan.unwrap_or_default();
+            let strips = crate::stripify::batch::stripify(&tris, &mesh.positions, vertex_count, model);
             (strips, Split::Fan, None, Some(tris))
         }
         Algorithm::Qstrip(q) => {

@@ -45,6 +45,12 @@ pub enum Algo {
     /// weight that keeps the bound, then strips joined by a local search scored on the
     /// exact FIFO (bunny: 1.22 indices per triangle at 0.80 misses).
     Balanced,
+    /// Strips planned for a GPU that shades vertices in batches (the batch model fitted
+    /// to an NVIDIA H100: 30 triangles, strips reusing recently shaded vertices):
+    /// compact one-batch patches of short strips, about 2 indices per triangle. Fans
+    /// every face. Experimental: an H200 shades as many vertices for them as for
+    /// `cache --cache 8`, more than for meshoptimizer's cache-optimized list.
+    Batch,
 }
 
 /// How `cache` and `balanced` split quads.
@@ -262,6 +268,7 @@ impl StripArgs {
             Algo::QuadSingle => Algorithm::QuadSingle,
             Algo::Cache => Algorithm::Cache { refine: self.refine },
             Algo::Balanced => Algorithm::balanced(self.max_acmr.unwrap_or(0.8)),
+            Algo::Batch => Algorithm::batch(),
         };
         let split = match self.diagonals {
             None | Some(DiagonalsArg::Auto) => Split::Auto,

@@ -7,6 +7,7 @@
 //! with [`crate::topology::walks::encode_path`]. The quad stripifiers ([`quad`], [`quad_single`]) work on quad
 //! sequences instead, and [`quad_verify`] checks their output against the quads.
 
+pub mod batch;
 mod buckets;
 pub mod cache;
 pub mod greedy;
