@@ -42,7 +42,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("skipping {name}: not in {}", args.models.display());
             continue;
         };
-        let bufs = crate::gpu::buffers(&mesh)?;
+        let bufs = crate::gpu::buffers(&mesh, true)?;
         for row in m["rows"].as_array().context("rows")? {
             let label = row["label"].as_str().unwrap_or_default();
             let Some(inv) = row["invocations"].as_f64() else { continue };

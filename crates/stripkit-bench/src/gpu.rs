@@ -52,6 +52,10 @@ pub struct Args {
     /// Write every figure as JSON here.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
+    /// Also draw the rows that explore settings: batch strips planned for other reuse
+    /// windows, cache sizes 32 and 64.
+    #[arg(long)]
+    pub variants: bool,
     /// Skip the synthetic batch probes.
     #[arg(long)]
     pub no_probes: bool,
@@ -96,7 +100,9 @@ fn flat(tris: &[[u32; 3]]) -> Vec<u32> {
 }
 
 /// Every index buffer of the comparison for one mesh, each checked against its triangles.
-pub fn buffers(mesh: &stripkit::Mesh) -> anyhow::Result<Vec<Buffer>> {
+/// `variants` adds the rows that explore settings (batch windows, cache sizes 32 and
+/// 64) next to the modes a user would pick. stripkit's modes run on parallel threads.
+pub fn buffers(mesh: &stripkit::Mesh, variants: bool) -> anyhow::Result<Vec<Buffer>> {
     let tris = mesh.triangulate().tris;
     let n = mesh.vertex_count();
     let list = flat(&tris);
@@ -115,25 +121,38 @@ pub fn buffers(mesh: &stripkit::Mesh) -> anyhow::Result<Vec<Buffer>> {
         ("stripkit balanced".into(), StripOptions::default().algorithm(Algorithm::balanced(0.8))),
         ("stripkit batch".into(), StripOptions::default().algorithm(Algorithm::batch())),
     ];
+    modes.push(("stripkit cache --cache 8".into(), StripOptions::default().algorithm(Algorithm::cache()).cache_size(8)));
     // The batch stripifier planned for neighbouring reuse windows: where the model's
     // window is right, one of these shades fewer vertices than the other.
-    for window in [13, 14, 15] {
+    for window in [13, 14, 15].into_iter().filter(|_| variants) {
         let model = stripkit::BatchModel { strip_window: window, restart_window: window, ..stripkit::BatchModel::NVIDIA_H100 };
         modes.push((format!("stripkit batch, window {window}"), StripOptions::default().algorithm(Algorithm::Batch(model))));
     }
     // Planned for a shorter window at the start of a strip (the variant of the model
     // that fits the H200's counts best: 16 and 11; the default plans for 14 and 10).
-    let model = stripkit::BatchModel { strip_window: 16, restart_window: 11, ..stripkit::BatchModel::NVIDIA_H100 };
-    modes.push(("stripkit batch, window 16, 11 after a restart".into(), StripOptions::default().algorithm(Algorithm::Batch(model))));
-    for size in [8, 32, 64] {
+    if variants {
+        let model = stripkit::BatchModel { strip_window: 16, restart_window: 11, ..stripkit::BatchModel::NVIDIA_H100 };
+        modes.push(("stripkit batch, window 16, 11 after a restart".into(), StripOptions::default().algorithm(Algorithm::Batch(model))));
+    }
+    for size in [32, 64].into_iter().filter(|_| variants) {
         modes.push((format!("stripkit cache --cache {size}"), StripOptions::default().algorithm(Algorithm::cache()).cache_size(size)));
     }
     if stripkit::is_quad_dominant(mesh) {
         modes.push(("stripkit qstrip".into(), StripOptions::default().algorithm(Algorithm::qstrip())));
     }
-    for (label, opts) in modes {
-        let strips = stripkit::stripify(mesh, &opts).with_context(|| label.clone())?;
-        out.push(Buffer { label, topology: Topology::Strip, indices: strips.restart_buffer() });
+    let strips: Vec<anyhow::Result<Vec<u32>>> = std::thread::scope(|scope| {
+        let handles: Vec<_> = modes
+            .iter()
+            .map(|(label, opts)| {
+                scope.spawn(move || {
+                    stripkit::stripify(mesh, opts).map(|s| s.restart_buffer()).with_context(|| label.clone())
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap_or_else(|_| Err(anyhow::anyhow!("stripifier thread panicked")))).collect()
+    });
+    for ((label, _), indices) in modes.into_iter().zip(strips) {
+        out.push(Buffer { label, topology: Topology::Strip, indices: indices? });
     }
     // stripkit's rows are verified by the door (QSTRIP against its own diagonals); the
     // peers' rows are checked here.
@@ -309,7 +328,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let t0 = Instant::now();
         let tris = mesh.triangulate().tris;
         let n = mesh.vertex_count();
-        let bufs = buffers(mesh)?;
+        let bufs = buffers(mesh, args.variants)?;
         let nrm = normals(&mesh.positions, &tris);
         let (lo, hi) = mesh.bounds().context("empty mesh")?;
         let center = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0, (lo[2] + hi[2]) / 2.0];
