@@ -11,6 +11,31 @@ pub mod strip;
 use std::path::Path;
 use std::process::ExitCode;
 
+/// Prints a command's report on stdout: one line of JSON with `--json`, else its text
+/// summary. A closed pipe (`... | head`) is not an error of ours.
+pub fn print_report<R: serde::Serialize>(
+    json: bool,
+    report: &R,
+    summary: impl FnOnce(&mut std::io::StdoutLock<'static>, &R) -> std::io::Result<()>,
+) -> anyhow::Result<()> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    let printed = if json {
+        writeln!(stdout, "{}", serde_json::to_string(report)?)
+    } else {
+        summary(&mut stdout, report)
+    };
+    ignore_closed_pipe(printed)
+}
+
+/// A write to stdout that failed only because the reader went away is not an error.
+pub fn ignore_closed_pipe(result: std::io::Result<()>) -> anyhow::Result<()> {
+    match result {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
+        _ => Ok(()),
+    }
+}
+
 /// The memory ceiling for reading meshes, shared by every command that reads one.
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct ReadArgs {

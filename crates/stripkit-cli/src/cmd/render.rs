@@ -442,16 +442,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         morph: args.morph.as_deref(),
         t: target.is_some().then_some(t),
     };
-    let mut stdout = std::io::stdout().lock();
-    let printed = if args.json {
-        writeln!(stdout, "{}", serde_json::to_string(&report)?)
-    } else {
-        print_summary(&mut stdout, &report)
-    };
-    match printed {
-        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
-        _ => Ok(()),
-    }
+    super::print_report(args.json, &report, |out, r| print_summary(out, r))
 }
 
 fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {

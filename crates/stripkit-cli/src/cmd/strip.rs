@@ -340,17 +340,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     io::write_encoded(&args.output, &bytes)?;
     progress.finish_and_clear();
 
-    let mut stdout = std::io::stdout().lock();
-    let printed = if args.json {
-        writeln!(stdout, "{}", serde_json::to_string(&report)?)
-    } else {
-        print_summary(&mut stdout, &report)
-    };
-    match printed {
-        // A closed pipe (`| head`) is not an error of ours.
-        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
-        _ => Ok(()),
-    }
+    super::print_report(args.json, &report, |out, r| print_summary(out, r))
 }
 
 /// The library names its settings; the user typed flags: say which.

@@ -56,6 +56,7 @@ pub fn sample_surface(mesh: &Mesh, n: usize, seed: u64) -> Vec<[f64; 3]> {
         0.5 * (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()
     };
     let total: f64 = tris.iter().map(|t| area(&corners(t))).sum();
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // also true for NaN, on purpose
     if n == 0 || !(total > 0.0) {
         return Vec::new();
     }

@@ -467,6 +467,7 @@ impl State {
         let longest = l2(new[0], new[1]).max(l2(new[1], new[2])).max(l2(new[2], new[0]));
         let area2 = dot(n1, n1);
         // Degenerate: height below a millionth of the longest edge.
+        #[allow(clippy::neg_cmp_op_on_partial_ord)] // also true for NaN, on purpose
         if !(area2 > 1e-12 * longest * longest) {
             return false;
         }

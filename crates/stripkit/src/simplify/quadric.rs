@@ -91,6 +91,7 @@ impl Quadric {
         let c02 = b * e - c * d;
         let det = a * c00 + b * c01 + c * c02;
         let scale = (a + d + f) / 3.0;
+        #[allow(clippy::neg_cmp_op_on_partial_ord)] // also true for NaN, on purpose
         if !(det.abs() > 1e-9 * scale * scale * scale) || scale <= 0.0 {
             return None;
         }
