@@ -136,3 +136,18 @@ fn twenty_thousand_quads_on_one_edge() {
         assert_eq!(sets.len(), n, "{a:?}: coincident triangles");
     }
 }
+
+/// `batch` (swap-free short strips) on both high-valence meshes: verified, at most
+/// three indices and a restart per triangle. Before its scans went through
+/// `FreeCursor`, it reread every triangle around the hub for each batch of 30: 89.7 s
+/// on the edge and 33.2 s on the star (release CLI), now 2.0 s and 1.4 s.
+#[test]
+fn batch_strips_around_a_hub_vertex_and_edge() {
+    for (name, mesh) in [("star", star(N)), ("edge", edge_fan(N))] {
+        let s = stripify(&mesh, &StripOptions::default().algorithm(Algorithm::batch())).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let f = &s.figures;
+        assert!(f.verified && f.winding_preserved, "{name}: {f:?}");
+        assert_eq!((f.triangles, f.lost, f.added, f.flipped), (N as usize, 0, 0, 0), "{name}");
+        assert!(f.indices_restart < 4 * N as usize, "{name}: {} indices", f.indices_restart);
+    }
+}

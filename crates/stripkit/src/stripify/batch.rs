@@ -39,7 +39,8 @@
 
 use crate::metrics::{BatchModel, StripBatches};
 use crate::strip::{is_degenerate, StripSet};
-use crate::topology::{vertex_triangles, Csr, DualGraph, NO_NEIGHBOR};
+use crate::stripify::cache::FAN_CANDIDATES;
+use crate::topology::{vertex_triangles, Csr, DualGraph, FreeCursor, NO_NEIGHBOR};
 
 /// What one index costs, in shaded vertices, when choosing among lines: a small
 /// preference for fewer strips at equal shading.
@@ -76,6 +77,8 @@ pub fn stripify(tris: &[[u32; 3]], positions: &[[f32; 3]], vertex_count: usize, 
         end: None,
         recent: Vec::new(),
         scan: 0,
+        free: FreeCursor::new(vt.values().len()),
+        around: Vec::new(),
     };
     while s.left > 0 {
         let slots = if s.sim.tris >= model.max_triangles {
@@ -127,6 +130,11 @@ struct Planner<'a> {
     recent: Vec<u32>,
     /// Every triangle before it is taken.
     scan: usize,
+    /// The free triangles around a vertex without rescanning its taken ones, so that
+    /// a vertex in thousands of triangles costs no more per batch than any other.
+    free: FreeCursor,
+    /// Scratch: free triangles around one vertex.
+    around: Vec<u32>,
 }
 
 impl Planner<'_> {
@@ -185,9 +193,10 @@ impl Planner<'_> {
             }
         }
         let mut keys: Vec<((usize, usize), u32)> = Vec::new();
-        for &v in &self.recent {
-            for &t in vt.bucket(v as usize) {
-                if !self.taken[t as usize] {
+        for i in 0..self.recent.len() {
+            self.free_around(vt, self.recent[i], FAN_CANDIDATES as usize);
+            for &t in &self.around {
+                {
                     let tri = self.tris[t as usize];
                     let cached = tri.iter().filter(|&&x| self.sim.reused(x)).count();
                     let edge_cached = usize::from(cached >= 2);
@@ -259,8 +268,10 @@ impl Planner<'_> {
             if best.is_none() {
                 // No free triangle across the patch's edges: one around its vertices.
                 for &v in &verts {
-                    for &m in vt.bucket(v as usize) {
-                        if self.taken[m as usize] || self.patch_mark[m as usize] == e {
+                    // The patch's own triangles are free too: look past them.
+                    self.free_around(vt, v, FAN_CANDIDATES as usize + patch.len());
+                    for &m in &self.around {
+                        if self.patch_mark[m as usize] == e {
                             continue;
                         }
                         let new = self.tris[m as usize].iter().filter(|v| !verts.contains(v)).count();
@@ -290,6 +301,13 @@ impl Planner<'_> {
             }
         }
         patch
+    }
+
+    /// At most `limit` free triangles around `v`, in `around`.
+    fn free_around(&mut self, vt: &Csr<u32>, v: u32, limit: usize) {
+        self.around.clear();
+        let taken = &self.taken;
+        self.free.free_in(vt, v as usize, limit, |t| taken[t as usize], &mut self.around);
     }
 
     /// A free triangle of the current patch not yet used by the plan.

@@ -90,6 +90,63 @@ impl<T> Csr<T> {
     }
 }
 
+/// Finds the free entries of a [`Csr`]'s buckets while entries are only ever taken
+/// (a stripifier's triangles around a vertex): a taken position points past itself for
+/// good (`skip`, compressed along the path followed), so every taken position is stepped
+/// over O(1) times amortised and a bucket's free entries are found without rescanning
+/// its taken ones, whatever the valence.
+#[derive(Clone, Debug)]
+pub struct FreeCursor {
+    skip: Vec<u32>,
+}
+
+impl FreeCursor {
+    /// A cursor over `len` positions (the length of the `Csr`'s values), all free.
+    pub fn new(len: usize) -> Self {
+        FreeCursor { skip: (0..len as u32).collect() }
+    }
+
+    /// The first position from `start` on, before `end` (the end of `start`'s bucket),
+    /// whose value `taken` does not hold, or `end`. `taken` must never turn false again
+    /// for a value it once held for.
+    #[inline]
+    pub fn next_free<T: Copy>(&mut self, start: u32, end: u32, values: &[T], taken: impl Fn(T) -> bool) -> u32 {
+        let mut i = start;
+        while i < end {
+            let s = self.skip[i as usize];
+            if s != i {
+                i = s;
+                continue;
+            }
+            if !taken(values[i as usize]) {
+                break;
+            }
+            self.skip[i as usize] = i + 1;
+            i += 1;
+        }
+        // Path compression: every position followed from `start` is taken.
+        let mut j = start;
+        while j < i {
+            let next = self.skip[j as usize];
+            self.skip[j as usize] = i;
+            j = next;
+        }
+        i
+    }
+
+    /// At most `limit` free values of bucket `k` of `csr`, in bucket order.
+    pub fn free_in<T: Copy>(&mut self, csr: &Csr<T>, k: usize, limit: usize, taken: impl Fn(T) -> bool, out: &mut Vec<T>) {
+        let (start, end) = (csr.offsets()[k], csr.offsets()[k + 1]);
+        let mut i = self.next_free(start, end, csr.values(), &taken);
+        let mut n = 0;
+        while i < end && n < limit {
+            out.push(csr.values()[i as usize]);
+            n += 1;
+            i = self.next_free(i + 1, end, csr.values(), &taken);
+        }
+    }
+}
+
 /// Vertex -> its non-degenerate triangles, each list in increasing triangle id. Every
 /// index of `tris` must be below `vertex_count`.
 pub fn vertex_triangles(tris: &[[u32; 3]], vertex_count: usize) -> Csr<u32> {

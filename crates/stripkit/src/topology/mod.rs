@@ -19,7 +19,7 @@ mod csr;
 pub mod facts;
 pub(crate) mod walks;
 
-pub use csr::{vertex_triangles, Csr};
+pub use csr::{vertex_triangles, Csr, FreeCursor};
 pub use facts::{validate, MeshFacts};
 pub use walks::Walks;
 

@@ -39,7 +39,7 @@ use super::{CacheOptions, Links};
 use crate::stripify::buckets::Buckets;
 use crate::metrics::Fifo;
 use crate::strip::{is_degenerate, StripSet};
-use crate::topology::{vertex_bound, vertex_triangles, Csr, Walks, NO_NEIGHBOR};
+use crate::topology::{vertex_bound, vertex_triangles, Csr, FreeCursor, Walks, NO_NEIGHBOR};
 
 pub(super) const NONE: u32 = u32::MAX;
 /// `mark` of a triangle already in a strip.
@@ -216,7 +216,7 @@ pub(super) fn start_of(tri: [u32; 3], slot: usize) -> [u32; 3] {
 /// 16 is above the highest valence of the shared models (14, cow; 8 to 13 on the
 /// others), where a vertex's free triangles are all offered as before; 32 took `balanced`
 /// on the star 1.3 s against 0.57 s.
-pub(super) const FAN_CANDIDATES: u32 = 16;
+pub(crate) const FAN_CANDIDATES: u32 = 16;
 
 /// `Best::slot` of a walk that goes on from the end of the last strip.
 pub(super) const CONTINUE: usize = 3;
@@ -252,7 +252,7 @@ pub(super) struct State<'a> {
     /// Per position of `vtris.values()`: itself while its triangle may be free, else
     /// a later position of the same bucket (or the bucket's end) before which every
     /// triangle is taken (see [`State::next_free`]).
-    pub(super) skip: Vec<u32>,
+    pub(super) free: FreeCursor,
     /// Per vertex, in one record: `[0]` the epoch of the walk that pushed it in its
     /// private copy of the FIFO and `[1]` that walk's push count then; `[2]` the epoch
     /// of the walk that counted `[3]` of its free triangles as covered; `[4]` its free
@@ -326,7 +326,7 @@ impl<'a> State<'a> {
             opt,
             b,
             vs: (0..vcount).map(|v| [0, 0, 0, 0, vtris.bucket(v).len() as u32]).collect(),
-            skip: (0..vtris.values().len() as u32).collect(),
+            free: FreeCursor::new(vtris.values().len()),
             vtris,
             fifo: Fifo::new(opt.cache_size, vcount),
             // The sentinel triangle `n` is TAKEN.
@@ -641,34 +641,11 @@ impl<'a> State<'a> {
         }
     }
 
-    /// The first position from `i` on, before `end` (the end of `i`'s bucket of
-    /// `vtris`), whose triangle is free, or `end`. Triangles are only ever taken, so
-    /// a taken position points past itself for good (`skip`, compressed along the path
-    /// followed): every taken position is stepped over O(1) times amortised, and a
-    /// vertex's free triangles are found without rescanning its taken ones.
+    /// The first free position from `start` on in its bucket of `vtris` (see [`FreeCursor`]).
     #[inline]
     fn next_free(&mut self, start: u32, end: u32) -> u32 {
-        let mut i = start;
-        while i < end {
-            let s = self.skip[i as usize];
-            if s != i {
-                i = s;
-                continue;
-            }
-            if self.mark[self.vtris.values()[i as usize] as usize] != TAKEN {
-                break;
-            }
-            self.skip[i as usize] = i + 1;
-            i += 1;
-        }
-        // Path compression: every position followed from `start` is taken.
-        let mut j = start;
-        while j < i {
-            let next = self.skip[j as usize];
-            self.skip[j as usize] = i;
-            j = next;
-        }
-        i
+        let mark = &self.mark;
+        self.free.next_free(start, end, self.vtris.values(), |t| mark[t as usize] == TAKEN)
     }
 
     /// Emits the chosen prefix as a new strip (or as more of the last one) and feeds

@@ -40,6 +40,7 @@ use crate::strip::{is_degenerate, join_shared_ends, StripSet};
 use crate::topology::{DualGraph, Walks};
 use canonical::Canonical;
 use fifo_strips::State;
+pub(crate) use fifo_strips::FAN_CANDIDATES;
 
 /// Settings of the cache-aware stripifier.
 #[derive(Clone, Copy, Debug, PartialEq)]
