@@ -29,3 +29,23 @@ pub(crate) fn xorshift(mut x: u64) -> impl FnMut(u32) -> u32 {
         (x % u64::from(m)) as u32
     }
 }
+
+/// A `w` x `h` grid of quads, each split along a diagonal picked by a small LCG from
+/// `seed`: irregular valences (3 to 9), so strips need swaps. Returns the triangles
+/// and the vertex count.
+pub(crate) fn random_diagonals(w: u32, h: u32, mut seed: u64) -> (Vec<[u32; 3]>, usize) {
+    let id = |x: u32, y: u32| y * (w + 1) + x;
+    let mut tris = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            let (a, b, c, d) = (id(x, y), id(x + 1, y), id(x + 1, y + 1), id(x, y + 1));
+            if seed >> 63 == 0 {
+                tris.extend([[a, b, c], [a, c, d]]);
+            } else {
+                tris.extend([[a, b, d], [b, c, d]]);
+            }
+        }
+    }
+    (tris, ((w + 1) * (h + 1)) as usize)
+}

@@ -519,21 +519,8 @@ mod tests {
 
     /// A grid of quads each split along a diagonal picked by a small LCG (valences 3
     /// to 9, many swaps), with the walks of the plain greedy stripifier (no tunnels).
-    fn random_diagonals(w: u32, h: u32, mut seed: u64) -> (Vec<[u32; 3]>, DualGraph, Walks) {
-        let id = |x: u32, y: u32| y * (w + 1) + x;
-        let mut tris = Vec::new();
-        for y in 0..h {
-            for x in 0..w {
-                seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-                let (a, b, c, d) = (id(x, y), id(x + 1, y), id(x + 1, y + 1), id(x, y + 1));
-                if seed >> 63 == 0 {
-                    tris.extend([[a, b, c], [a, c, d]]);
-                } else {
-                    tris.extend([[a, b, d], [b, c, d]]);
-                }
-            }
-        }
-        let vc = ((w + 1) * (h + 1)) as usize;
+    fn random_diagonals(w: u32, h: u32, seed: u64) -> (Vec<[u32; 3]>, DualGraph, Walks) {
+        let (tris, vc) = crate::test_support::random_diagonals(w, h, seed);
         let graph = DualGraph::from_triangles(&tris, vc);
         let plain = crate::stripify::greedy::GreedyOptions { tunnel_cuts: None, ..Default::default() };
         let walks = crate::stripify::greedy::walks_with_graph(&tris, &graph, &plain);

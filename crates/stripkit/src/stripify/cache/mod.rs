@@ -459,24 +459,7 @@ mod tests {
         assert!(verify(&[], &stripify(&[], 0, &CacheOptions::cache(16))).ok());
     }
 
-    /// A grid of quads, each split along a diagonal picked by a small LCG: irregular
-    /// valences (3 to 9), so strips need swaps.
-    fn random_diagonals(w: u32, h: u32, mut seed: u64) -> (Vec<[u32; 3]>, usize) {
-        let id = |x: u32, y: u32| y * (w + 1) + x;
-        let mut tris = Vec::new();
-        for y in 0..h {
-            for x in 0..w {
-                seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-                let (a, b, c, d) = (id(x, y), id(x + 1, y), id(x + 1, y + 1), id(x, y + 1));
-                if seed >> 63 == 0 {
-                    tris.extend([[a, b, c], [a, c, d]]);
-                } else {
-                    tris.extend([[a, b, d], [b, c, d]]);
-                }
-            }
-        }
-        (tris, ((w + 1) * (h + 1)) as usize)
-    }
+    use crate::test_support::random_diagonals;
 
     #[test]
     fn flips_reroute_strips_to_fewer_indices() {
