@@ -17,7 +17,7 @@ use std::time::Instant;
 use stripkit::Error;
 use stripkit_render::{DrawParams, IndexWidth, Renderer, Shading, Topology, Vertices};
 
-use super::strip::{flag_names, HeuristicArg, StripArgs};
+use super::strip::{HeuristicArg, StripArgs};
 use paint::Paint;
 
 /// What the colours show.
@@ -242,9 +242,7 @@ fn check(args: &Args) -> anyhow::Result<()> {
     if args.cull_view.is_some() && args.color != ColorArg::Cull {
         return Err(Error::Invalid("--cull-view applies to --color cull".into()).into());
     }
-    args.strip.check()?;
-    stripkit::Stripifier::new(args.strip.options(None)).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
-    Ok(())
+    args.strip.validate(|o| o)
 }
 
 /// The mesh, and the `--morph` mesh when given (same vertex count).
@@ -378,11 +376,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let start_time = start.elapsed();
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
-    let mut stripifier =
-        stripkit::Stripifier::new(args.strip.options(Some(&mesh))).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
-    let strips = stripifier
-        .stripify(&mesh)
-        .map_err(|e| anyhow::anyhow!(flag_names(e)).context(format!("{}", args.input.display())))?;
+    let strips = args.strip.stripify(&mesh, &args.input, |o| o)?;
 
     progress.set_message("drawing");
     let paint = match args.color {

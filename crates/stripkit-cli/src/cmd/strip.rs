@@ -279,15 +279,36 @@ impl StripArgs {
         StripOptions::default().algorithm(algorithm).cache_model(cache).split(split)
     }
 
+    /// Checks the flags before any file is read: each flag with its own algorithm, and
+    /// the options (`more` adds the command's own) as the library will take them.
+    pub fn validate(&self, more: impl FnOnce(StripOptions) -> StripOptions) -> anyhow::Result<()> {
+        self.check()?;
+        Stripifier::new(more(self.options(None))).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
+        Ok(())
+    }
+
+    /// Strips `mesh`, read from `input`, through the door with these flags (`more`
+    /// adds the command's own options); errors name the flags and the file.
+    pub fn stripify(
+        &self,
+        mesh: &stripkit::Mesh,
+        input: &Path,
+        more: impl FnOnce(StripOptions) -> StripOptions,
+    ) -> anyhow::Result<stripkit::Strips> {
+        let mut stripifier =
+            Stripifier::new(more(self.options(Some(mesh)))).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
+        stripifier.stripify(mesh).map_err(|e| anyhow::anyhow!(flag_names(e)).context(format!("{}", input.display())))
+    }
+
     /// The heuristic greedy ran with, for reports: `None` for other algorithms.
     pub fn heuristic_used(&self, algorithm: &Algorithm) -> Option<HeuristicArg> {
         matches!(algorithm, Algorithm::Greedy(_)).then(|| self.heuristic.unwrap_or(HeuristicArg::Indices))
     }
 }
 
-/// `strip`'s options: the strip flags plus the join.
-fn options(args: &Args, mesh: Option<&stripkit::Mesh>) -> StripOptions {
-    args.strip.options(mesh).join(args.join.into()).restart_index(args.restart_index)
+/// `strip`'s own options on top of the strip flags: the join and its restart index.
+fn with_join(args: &Args, options: StripOptions) -> StripOptions {
+    options.join(args.join.into()).restart_index(args.restart_index)
 }
 
 /// Runs the command: read -> door -> encode -> write.
@@ -296,20 +317,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // Fail before the work when the output cannot be written at all.
     super::check_output_folder(&args.output)?;
     // Arguments are checked before the file is read.
-    args.strip.check()?;
-    Stripifier::new(options(&args, None)).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
+    args.strip.validate(|o| with_join(&args, o))?;
     // A spinner on a terminal (indicatif draws nothing when stderr is not one):
     // balanced and --refine take seconds on meshes of a million triangles.
     let progress = indicatif::ProgressBar::new_spinner();
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
     let mesh = args.read.read(&args.input)?;
-    let mut stripifier = Stripifier::new(options(&args, Some(&mesh))).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
-    let strips = stripifier
-        .stripify(&mesh)
-        .map_err(|e| anyhow::anyhow!(flag_names(e)).context(format!("{}", args.input.display())))?;
+    let strips = args.strip.stripify(&mesh, &args.input, |o| with_join(&args, o))?;
 
     progress.set_message(format!("writing {}", args.output.display()));
     let figures = &strips.figures;
