@@ -9,14 +9,7 @@ pub(crate) use dirs::models_dir;
 /// The research mesh `name` from [`models_dir`]; `None` (after printing why) when the
 /// folder or the file is absent or unreadable, so that a test can skip it.
 pub(crate) fn model(name: &str) -> Option<crate::Mesh> {
-    let dir = models_dir()?;
-    match crate::io::read(&dir.join(name)) {
-        Ok(mesh) => Some(mesh),
-        Err(e) => {
-            eprintln!("skipped: {name} in {}: {e}", dir.display());
-            None
-        }
-    }
+    dirs::model_with(name, crate::io::read)
 }
 
 /// A xorshift64 generator for tests: each call returns the next state modulo `m`

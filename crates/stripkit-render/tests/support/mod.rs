@@ -30,14 +30,7 @@ pub fn renderer() -> Renderer {
 /// The research mesh `name` from [`models_dir`]; `None` (after printing why) when the
 /// folder or the file is absent or unreadable, so that a test can skip it.
 pub fn model(name: &str) -> Option<stripkit::Mesh> {
-    let dir = models_dir()?;
-    match stripkit::io::read(&dir.join(name)) {
-        Ok(mesh) => Some(mesh),
-        Err(e) => {
-            eprintln!("skipped: {name} in {}: {e}", dir.display());
-            None
-        }
-    }
+    dirs::model_with(name, stripkit::io::read)
 }
 
 /// Area-weighted vertex normals of `tris` (for the lit pictures).

@@ -2,7 +2,7 @@
 //! tests (`src/test_support.rs`), its integration tests (`tests/support/mod.rs`) and
 //! the CLI's tests, so that all of them skip, or not, for the same reason.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The research meshes folder `../shared/models` beside the checkout, or the folder
 /// named by `STRIPKIT_MODELS`; `None` (after printing why) when it is absent, so that
@@ -26,4 +26,19 @@ pub fn models_dir() -> Option<PathBuf> {
 #[allow(dead_code)]
 pub fn assets_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets")
+}
+
+/// The research mesh `name` from [`models_dir`], read by `read` (the library's
+/// `io::read`, named by the includer); `None` (after printing why) when the folder or
+/// the file is absent or unreadable, so that a test can skip it.
+#[allow(dead_code)]
+pub fn model_with<M, E: std::fmt::Display>(name: &str, read: impl Fn(&Path) -> Result<M, E>) -> Option<M> {
+    let dir = models_dir()?;
+    match read(&dir.join(name)) {
+        Ok(mesh) => Some(mesh),
+        Err(e) => {
+            eprintln!("skipped: {name} in {}: {e}", dir.display());
+            None
+        }
+    }
 }
