@@ -359,6 +359,30 @@ impl Planner<'_> {
         self.end = Some((t, a, b));
     }
 
+    /// Walks a line on from triangle `t` across its exit edge `(a, b)`, through triangles
+    /// of the patch that are open and not on `path` yet: each step's new vertex goes to
+    /// `sim`, its triangle to `path`, and `step` sees the line so far.
+    fn walk_line(
+        &self,
+        (mut t, mut a, mut b): (u32, u32, u32),
+        used: &[u32],
+        sim: &mut StripBatches,
+        path: &mut Vec<u32>,
+        mut step: impl FnMut(&StripBatches, &[u32]),
+    ) {
+        loop {
+            let m = self.across(t, a, b);
+            if !self.open(m, used) || path.contains(&m) {
+                break;
+            }
+            let c = opposite(self.tris[m as usize], a, b);
+            sim.push(c);
+            path.push(m);
+            step(sim, path);
+            (t, a, b) = (m, b, c);
+        }
+    }
+
     /// One plan for the patch under `strategy`: the vertices it shades and its lines.
     fn plan(&self, patch: &[u32], strategy: Strategy) -> (u64, Vec<Choice>) {
         let mut sim = self.sim.clone();
@@ -391,20 +415,10 @@ impl Planner<'_> {
             if let Some((t, a, b)) = end {
                 scratch.clone_from(&sim);
                 let base = scratch.total;
-                let (mut t, mut a, mut b) = (t, a, b);
                 path.clear();
-                loop {
-                    let m = self.across(t, a, b);
-                    if !self.open(m, &used) || path.contains(&m) {
-                        break;
-                    }
-                    let c = opposite(self.tris[m as usize], a, b);
-                    scratch.push(c);
-                    path.push(m);
-                    let cost = (scratch.total - base) as f64 + iw * path.len() as f64;
-                    consider(&mut best, None, cost, &path);
-                    (t, a, b) = (m, b, c);
-                }
+                self.walk_line((t, a, b), &used, &mut scratch, &mut path, |sim, path| {
+                    consider(&mut best, None, (sim.total - base) as f64 + iw * path.len() as f64, path);
+                });
             }
             // Under `Oldest`, new lines start only at triangles of the oldest shaded
             // vertex that still has open triangles in the patch.
@@ -433,21 +447,12 @@ impl Planner<'_> {
                     }
                     path.clear();
                     path.push(t0);
-                    let mut n_idx = 4.0;
-                    consider(&mut best, Some((t0, rot)), (scratch.total - base) as f64 + iw * n_idx, &path);
-                    let (mut t, mut a, mut b) = (t0, u, w);
-                    loop {
-                        let m = self.across(t, a, b);
-                        if !self.open(m, &used) || path.contains(&m) {
-                            break;
-                        }
-                        let c = opposite(self.tris[m as usize], a, b);
-                        scratch.push(c);
-                        n_idx += 1.0;
-                        path.push(m);
-                        consider(&mut best, Some((t0, rot)), (scratch.total - base) as f64 + iw * n_idx, &path);
-                        (t, a, b) = (m, b, c);
-                    }
+                    // A new line costs its three indices, the restart and one per triangle after the first.
+                    let cost = |sim: &StripBatches, path: &[u32]| (sim.total - base) as f64 + iw * (path.len() + 3) as f64;
+                    consider(&mut best, Some((t0, rot)), cost(&scratch, &path), &path);
+                    self.walk_line((t0, u, w), &used, &mut scratch, &mut path, |sim, path| {
+                        consider(&mut best, Some((t0, rot)), cost(sim, path), path);
+                    });
                 }
             }
             let Some((_, choice)) = best else { break };
