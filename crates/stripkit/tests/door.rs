@@ -7,22 +7,10 @@ mod support;
 use proptest::prelude::*;
 use stripkit::{
     decode, gen, io, stripify, stripify_bound, stripify_indices, unstripify, verify_triangles, Algorithm, Error,
-    GreedyOptions, Heuristic, Join, Mesh, Split, StripOptions,
+    Join, Mesh, Split, StripOptions,
 };
 
-/// Every algorithm setting the door offers for triangle input.
-fn algorithms() -> Vec<Algorithm> {
-    vec![
-        Algorithm::Auto,
-        Algorithm::greedy(),
-        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Strips, tunnel_cuts: Some(2) }),
-        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: None }),
-        Algorithm::qstrip(),
-        Algorithm::cache(),
-        Algorithm::Cache { refine: true },
-        Algorithm::balanced(0.8),
-    ]
-}
+use support::algorithms;
 
 /// Oriented triangles up to rotation, degenerate ones dropped, sorted.
 fn oriented(flat: &[u32]) -> Vec<[u32; 3]> {

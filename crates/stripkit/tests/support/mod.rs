@@ -9,6 +9,22 @@ pub use base64::encode_base64;
 #[allow(unused_imports)] // each test binary uses a different subset
 pub use dirs::{assets_dir, models_dir};
 
+/// Every algorithm setting the door offers for triangle input (quad-single needs quads).
+pub fn algorithms() -> Vec<stripkit::Algorithm> {
+    use stripkit::{Algorithm, GreedyOptions, Heuristic};
+    vec![
+        Algorithm::Auto,
+        Algorithm::greedy(),
+        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Strips, tunnel_cuts: Some(2) }),
+        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: None }),
+        Algorithm::qstrip(),
+        Algorithm::cache(),
+        Algorithm::Cache { refine: true },
+        Algorithm::balanced(0.8),
+        Algorithm::batch(),
+    ]
+}
+
 /// The non-degenerate triangles `strips` draw (its restart buffer decoded), as
 /// vertex sets (sorted), sorted; so that equal neighbours are coincident triangles.
 pub fn drawn_sets(strips: &stripkit::Strips) -> Vec<[u32; 3]> {
