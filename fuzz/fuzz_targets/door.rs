@@ -12,15 +12,16 @@ const VERTICES: usize = 16;
 
 fuzz_target!(|data: &[u8]| {
     let Some((&first, rest)) = data.split_first() else { return };
-    let algorithm = match first % 6 {
+    let algorithm = match first % 7 {
         0 => Algorithm::Auto,
         1 => Algorithm::greedy(),
         2 => Algorithm::qstrip(),
         3 => Algorithm::cache(),
         4 => Algorithm::Cache { refine: true },
-        _ => Algorithm::balanced(0.8),
+        5 => Algorithm::balanced(0.8),
+        _ => Algorithm::batch(),
     };
-    let join = if (first / 6) % 2 == 0 { Join::Restart } else { Join::Degenerate };
+    let join = if (first / 7) % 2 == 0 { Join::Restart } else { Join::Degenerate };
     let mut indices: Vec<u32> =
         rest.iter().take(300).flat_map(|&b| [u32::from(b & 15), u32::from(b >> 4)]).collect();
     indices.truncate(indices.len() / 3 * 3);
