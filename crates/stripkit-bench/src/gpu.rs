@@ -189,18 +189,6 @@ pub fn first_use_remap(indices: &[u32], n: usize) -> Vec<u32> {
     remap
 }
 
-fn normals(positions: &[[f32; 3]], tris: &[[u32; 3]]) -> Vec<[f32; 3]> {
-    let mut n = vec![[0f32; 3]; positions.len()];
-    for t in tris {
-        let p = |i: u32| glam::Vec3::from(positions[i as usize]);
-        let f = (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]));
-        for &i in t {
-            n[i as usize] = (glam::Vec3::from(n[i as usize]) + f).into();
-        }
-    }
-    n
-}
-
 /// Uploaded vertices in one order, and the index remap that goes with them.
 struct Upload {
     geometry: Geometry,
@@ -329,7 +317,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let tris = mesh.triangulate().tris;
         let n = mesh.vertex_count();
         let bufs = buffers(mesh, args.variants)?;
-        let nrm = normals(&mesh.positions, &tris);
+        let nrm = stripkit_render::vertex_normals(&mesh.positions, &flat(&tris));
         let (lo, hi) = mesh.bounds().context("empty mesh")?;
         let center = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0, (lo[2] + hi[2]) / 2.0];
         let radius = glam::Vec3::from(hi).distance(glam::Vec3::from(lo)) / 2.0;

@@ -30,10 +30,12 @@
 mod camera;
 mod egl;
 mod image;
+mod normals;
 mod shaders;
 
 pub use camera::{helix_path, Camera, HELIX_VIEWS};
 pub use image::Image;
+pub use normals::vertex_normals;
 
 use glow::HasContext;
 use std::time::{Duration, Instant};

@@ -18,7 +18,8 @@ mod support;
 
 use stripkit::{gen, stripify, Algorithm, Error, GreedyOptions, Heuristic, Mesh, Split, StripOptions};
 use stripkit_render::{DrawParams, Image, IndexWidth, Shading, Topology};
-use support::{camera, color_difference, covered, exact, flat, model, renderer, vertex_normals, Scene, SIZE};
+use stripkit_render::vertex_normals;
+use support::{camera, color_difference, covered, exact, flat, model, renderer, Scene, SIZE};
 
 /// Views from the front-upper-right and from behind-below-left (closed meshes).
 const VIEWS: [[f32; 3]; 2] = [[0.35, 0.45, 1.0], [-0.8, -0.3, -0.6]];
@@ -83,7 +84,7 @@ fn reference(scene: &mut Scene, tris: &[[u32; 3]], mvp: [f32; 16]) -> Reference 
 /// failures (each printed figure line that did not hold), empty when all held.
 fn check_mesh(name: &str, mesh: &Mesh, algorithms: &[(&str, Algorithm)], views: &[[f32; 3]]) -> Vec<String> {
     let fan = mesh.triangulate().tris;
-    let normals = vertex_normals(&mesh.positions, &fan);
+    let normals = vertex_normals(&mesh.positions, &flat(&fan));
     let mut scene = Scene::new(renderer(), &mesh.positions, Some(&normals));
     let mvps: Vec<[f32; 16]> = views.iter().map(|&d| camera(&mesh.positions, d)).collect();
     let fan_refs: Vec<Reference> = mvps.iter().map(|&m| reference(&mut scene, &fan, m)).collect();

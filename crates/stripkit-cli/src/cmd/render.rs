@@ -291,7 +291,7 @@ fn draw(
     let positions = exploded.gather(scene.positions);
     let morph_target = scene.target.map(|o| exploded.gather(o));
     let normals = (args.shading == ShadingArg::Smooth)
-        .then(|| exploded.gather(&paint::vertex_normals(scene.drawn, &exploded.corners)));
+        .then(|| exploded.gather(&stripkit_render::vertex_normals(scene.drawn, &exploded.corners)));
     let geometry = renderer.upload(&Vertices {
         positions: &positions,
         morph_target: morph_target.as_deref(),

@@ -33,19 +33,6 @@ pub fn model(name: &str) -> Option<stripkit::Mesh> {
     dirs::model_with(name, stripkit::io::read)
 }
 
-/// Area-weighted vertex normals of `tris` (for the lit pictures).
-pub fn vertex_normals(positions: &[[f32; 3]], tris: &[[u32; 3]]) -> Vec<[f32; 3]> {
-    let mut n = vec![glam::Vec3::ZERO; positions.len()];
-    for t in tris {
-        let [a, b, c] = t.map(|i| glam::Vec3::from(positions[i as usize]));
-        let f = (b - a).cross(c - a);
-        for &i in t {
-            n[i as usize] += f;
-        }
-    }
-    n.into_iter().map(|v| v.normalize_or(glam::Vec3::Z).into()).collect()
-}
-
 /// A camera on `mesh`'s bounding box looking from `direction`.
 pub fn camera(positions: &[[f32; 3]], direction: [f32; 3]) -> [f32; 16] {
     let mut lo = [f32::INFINITY; 3];
