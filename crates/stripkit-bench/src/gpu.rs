@@ -17,7 +17,7 @@
 //! a FIFO cache. `probes` draws synthetic buffers whose counts reveal the batch sizes.
 
 use anyhow::Context;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 use stripkit::{Algorithm, CacheKind, StripOptions};
 use stripkit_render::{
@@ -95,17 +95,13 @@ fn configs(quick: bool) -> Vec<Config> {
     v
 }
 
-fn flat(tris: &[[u32; 3]]) -> Vec<u32> {
-    tris.iter().flatten().copied().collect()
-}
-
 /// Every index buffer of the comparison for one mesh, each checked against its triangles.
 /// `variants` adds the rows that explore settings (batch windows, cache sizes 32 and
 /// 64) next to the modes a user would pick. stripkit's modes run on parallel threads.
 pub fn buffers(mesh: &stripkit::Mesh, variants: bool) -> anyhow::Result<Vec<Buffer>> {
     let tris = mesh.triangulate().tris;
     let n = mesh.vertex_count();
-    let list = flat(&tris);
+    let list = tris.as_flattened().to_vec();
     let vc = meshopt::optimize_vertex_cache(&list, n);
     let vcs = meshopt::optimize_vertex_cache_strip(&list, n);
     let mo_strip = |l: &[u32]| meshopt::stripify(l, n, u32::MAX).map_err(|e| anyhow::anyhow!("meshopt stripify: {e:?}"));
@@ -268,21 +264,6 @@ struct RowResult {
     ms: Vec<(String, f64)>,
 }
 
-fn mesh_files(dir: &Path) -> Vec<PathBuf> {
-    let mut files = Vec::new();
-    for d in [dir.to_path_buf(), dir.join("quads")] {
-        if let Ok(entries) = std::fs::read_dir(&d) {
-            for p in entries.flatten().map(|e| e.path()) {
-                if p.is_file() && stripkit::io::Format::from_path(&p).is_some() {
-                    files.push(p);
-                }
-            }
-        }
-    }
-    files.sort();
-    files
-}
-
 /// Runs the comparison.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let mut r = Renderer::new(64, 64)?;
@@ -293,7 +274,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if !args.models.is_dir() {
         anyhow::bail!("{}: no such folder of meshes (give one with --models)", args.models.display());
     }
-    for p in mesh_files(&args.models) {
+    for p in crate::strips::mesh_files(&args.models)? {
         let name = p.strip_prefix(&args.models).unwrap_or(&p).display().to_string();
         if args.only.as_ref().is_some_and(|o| !name.contains(o.as_str())) {
             continue;
@@ -317,7 +298,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let tris = mesh.triangulate().tris;
         let n = mesh.vertex_count();
         let bufs = buffers(mesh, args.variants)?;
-        let nrm = stripkit_render::vertex_normals(&mesh.positions, &flat(&tris));
+        let nrm = stripkit_render::vertex_normals(&mesh.positions, tris.as_flattened());
         let (lo, hi) = mesh.bounds().context("empty mesh")?;
         let center = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0, (lo[2] + hi[2]) / 2.0];
         let radius = glam::Vec3::from(hi).distance(glam::Vec3::from(lo)) / 2.0;

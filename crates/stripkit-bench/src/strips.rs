@@ -79,10 +79,6 @@ fn quad_modes() -> Vec<Mode> {
     ]
 }
 
-fn flat(tris: &[[u32; 3]]) -> Vec<u32> {
-    tris.iter().flatten().copied().collect()
-}
-
 fn unflat(indices: &[u32]) -> Vec<[u32; 3]> {
     indices
         .chunks_exact(3)
@@ -91,16 +87,16 @@ fn unflat(indices: &[u32]) -> Vec<[u32; 3]> {
 }
 
 fn reorder_cache(tris: &[[u32; 3]], n: usize) -> Vec<[u32; 3]> {
-    unflat(&meshopt::optimize_vertex_cache(&flat(tris), n))
+    unflat(&meshopt::optimize_vertex_cache(tris.as_flattened(), n))
 }
 
 fn reorder_strip(tris: &[[u32; 3]], n: usize) -> Vec<[u32; 3]> {
-    unflat(&meshopt::optimize_vertex_cache_strip(&flat(tris), n))
+    unflat(&meshopt::optimize_vertex_cache_strip(tris.as_flattened(), n))
 }
 
 /// meshoptimizer's stripify with restart index `u32::MAX`, split by stripkit's decoder.
 fn meshopt_stripify(tris: &[[u32; 3]], n: usize) -> StripSet {
-    match meshopt::stripify(&flat(tris), n, u32::MAX) {
+    match meshopt::stripify(tris.as_flattened(), n, u32::MAX) {
         Ok(buf) => stripkit::decode_restart(&buf, u32::MAX),
         Err(_) => StripSet::new(), // shows up as "lost" in the verified column
     }
@@ -133,7 +129,8 @@ struct Row {
     quads: Option<usize>,
 }
 
-fn mesh_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
+/// The meshes of `dir` and of its `quads/` subfolder, sorted by path.
+pub(crate) fn mesh_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     let mut files = Vec::new();
     for d in [dir.to_path_buf(), dir.join("quads")] {
         let Ok(entries) = std::fs::read_dir(&d) else {
