@@ -219,25 +219,13 @@ fn time(r: &mut Renderer, g: &Geometry, ib: &IndexBuffer, views: &[[f32; 16]], h
     let mut params = DrawParams::new(views[0]);
     params.shading = Shading::Smooth;
     params.heavy = if heavy { HEAVY_VERTEX_SHADER } else { 0 };
-    // Warm-up draw: shader compilation and uploads out of the timing.
-    r.clear([0.0; 3]);
-    r.draw(g, ib, &params);
-    r.finish();
-    let mut best = f64::INFINITY;
-    let mut v = 0;
-    for _ in 0..repeats.max(1) {
-        r.clear([0.0; 3]);
-        r.finish();
-        let t = Instant::now();
-        for _ in 0..draws.max(1) {
-            params.mvp = views[v % views.len()];
-            v += 1;
-            r.draw(g, ib, &params);
-        }
-        r.finish();
-        best = best.min(t.elapsed().as_secs_f64() * 1e3 / draws.max(1) as f64);
-    }
-    best
+    (0..repeats.max(1))
+        .map(|k| {
+            // Each run goes on along the path where the last one stopped.
+            let first = k as usize * draws.max(1) as usize;
+            r.time_draws(g, ib, &params, views, first, draws).as_secs_f64() * 1e3
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Per-mesh results.

@@ -48,19 +48,9 @@ impl Image {
     pub fn pixels_other_than(&self, rgb: [u8; 3]) -> usize {
         self.rgba.chunks_exact(4).filter(|p| p[..3] != rgb).count()
     }
-    /// The picture as PNG bytes.
+    /// The picture as an RGBA PNG at the best compression.
     pub fn encode_png(&self) -> Vec<u8> {
-        let mut out = Vec::new();
-        {
-            let mut enc = png::Encoder::new(&mut out, self.width, self.height);
-            enc.set_color(png::ColorType::Rgba);
-            enc.set_depth(png::BitDepth::Eight);
-            enc.set_compression(png::Compression::Best);
-            // Writing into a Vec cannot fail for a well-formed size.
-            let mut w = enc.write_header().expect("PNG header into memory");
-            w.write_image_data(&self.rgba).expect("PNG data into memory");
-        }
-        out
+        encode(self.width, self.height, png::ColorType::Rgba, png::Compression::Best, &self.rgba)
     }
     /// The picture as an RGB PNG, alpha dropped (the framebuffer is opaque), at the
     /// `png` crate's default compression: what `stripkit render` writes. On an 800x800
@@ -68,33 +58,7 @@ impl Image {
     /// to encode (125 ms instead of 336 ms).
     pub fn encode_png_rgb(&self) -> Vec<u8> {
         let rgb: Vec<u8> = self.rgba.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
-        let mut out = Vec::new();
-        {
-            let mut enc = png::Encoder::new(&mut out, self.width, self.height);
-            enc.set_color(png::ColorType::Rgb);
-            enc.set_depth(png::BitDepth::Eight);
-            enc.set_compression(png::Compression::Default);
-            // Writing into a Vec cannot fail for a well-formed size.
-            let mut w = enc.write_header().expect("PNG header into memory");
-            w.write_image_data(&rgb).expect("PNG data into memory");
-        }
-        out
-    }
-    /// Side-by-side composition of pictures of equal height, left to right.
-    pub fn hstack(images: &[Image]) -> Option<Image> {
-        let h = images.first()?.height;
-        if images.iter().any(|i| i.height != h) {
-            return None;
-        }
-        let w: u32 = images.iter().map(|i| i.width).sum();
-        let mut rgba = Vec::with_capacity(w as usize * h as usize * 4);
-        for y in 0..h as usize {
-            for i in images {
-                let row = i.width as usize * 4;
-                rgba.extend_from_slice(&i.rgba[y * row..(y + 1) * row]);
-            }
-        }
-        Some(Image::new(w, h, rgba))
+        encode(self.width, self.height, png::ColorType::Rgb, png::Compression::Default, &rgb)
     }
     /// Writes a PNG: a temporary file beside `path`, then a rename, so a failed write
     /// never leaves half a picture where an old one was.
@@ -110,6 +74,21 @@ impl Image {
             io(e)
         })
     }
+}
+
+/// 8-bit PNG bytes of `data` (rows top first, `color`'s channels per pixel).
+fn encode(width: u32, height: u32, color: png::ColorType, compression: png::Compression, data: &[u8]) -> Vec<u8> {
+    let mut out = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut out, width, height);
+        enc.set_color(color);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.set_compression(compression);
+        // Writing into a Vec cannot fail for a well-formed size.
+        let mut w = enc.write_header().expect("PNG header into memory");
+        w.write_image_data(data).expect("PNG data into memory");
+    }
+    out
 }
 
 #[cfg(test)]

@@ -498,8 +498,11 @@ impl Renderer {
             Topology::Triangles => glow::TRIANGLES,
             Topology::Strip => glow::TRIANGLE_STRIP,
         };
-        let identity = glam::Mat4::IDENTITY.to_cols_array();
-        let bones: Vec<f32> = (0..4).flat_map(|_| identity).collect();
+        // Four identity matrices: the heavy shader's blends cost work, not change.
+        let mut bones = [0f32; 64];
+        for m in bones.chunks_exact_mut(16) {
+            m.copy_from_slice(&glam::Mat4::IDENTITY.to_cols_array());
+        }
         // SAFETY: objects of this context; ranges are clamped to the buffer.
         unsafe {
             gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
@@ -541,14 +544,28 @@ impl Renderer {
         unsafe { self.gl.finish() }
     }
 
-    /// Mean wall time of one draw over `draws` draws, the queue drained before and after.
-    pub fn time_draws(&mut self, geometry: &Geometry, indices: &IndexBuffer, params: &DrawParams, draws: u32) -> Duration {
+    /// Mean wall time of one draw over `draws` draws, after one untimed draw, the queue
+    /// drained before and after. Draw `i` uses `views[(first_view + i) % views.len()]`
+    /// as its matrix (a camera path), or `params.mvp` when `views` is empty.
+    pub fn time_draws(
+        &mut self,
+        geometry: &Geometry,
+        indices: &IndexBuffer,
+        params: &DrawParams,
+        views: &[[f32; 16]],
+        first_view: usize,
+        draws: u32,
+    ) -> Duration {
+        let mut p = params.clone();
         self.clear([0.0; 3]);
-        self.draw(geometry, indices, params);
+        self.draw(geometry, indices, &p);
         self.finish();
         let start = Instant::now();
-        for _ in 0..draws.max(1) {
-            self.draw(geometry, indices, params);
+        for i in 0..draws.max(1) as usize {
+            if !views.is_empty() {
+                p.mvp = views[(first_view + i) % views.len()];
+            }
+            self.draw(geometry, indices, &p);
         }
         self.finish();
         start.elapsed() / draws.max(1)
