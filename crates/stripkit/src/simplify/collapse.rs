@@ -208,10 +208,7 @@ impl State {
     /// collapse r -> k (called before it rewrites the triangles).
     fn count_collapse(&mut self, r: u32, k: u32) {
         for i in self.tris_of(r) {
-            let t = self.refs[i] as usize;
-            if !self.tri_alive[t] {
-                continue;
-            }
+            let Some(t) = self.live(i) else { continue };
             let tri = self.tris[t];
             if tri.contains(&k) {
                 for e in 0..3 {
@@ -230,6 +227,13 @@ impl State {
             }
         }
         self.live_tris[r as usize] = 0;
+    }
+
+    /// The triangle at position `i` of a vertex's list, when it is still alive.
+    #[inline]
+    fn live(&self, i: usize) -> Option<usize> {
+        let t = self.refs[i] as usize;
+        self.tri_alive[t].then_some(t)
     }
 
     fn tris_of(&self, v: u32) -> std::ops::Range<usize> {
@@ -356,10 +360,7 @@ impl State {
         ring.clear();
         for (w, other, centre) in [(u, v, 0u8), (v, u, 1)] {
             for i in self.tris_of(w) {
-                let t = self.refs[i] as usize;
-                if !self.tri_alive[t] {
-                    continue;
-                }
+                let Some(t) = self.live(i) else { continue };
                 let removed = self.tris[t].contains(&other);
                 if removed && centre == 1 {
                     continue; // seen from u
@@ -389,10 +390,7 @@ impl State {
             }
         }
         for i in self.tris_of(o) {
-            let t = self.refs[i] as usize;
-            if !self.tri_alive[t] {
-                continue;
-            }
+            let Some(t) = self.live(i) else { continue };
             for w in self.tris[t] {
                 if w == o || w == h || self.is_hub(w) {
                     continue;
@@ -488,10 +486,7 @@ impl State {
         nb.clear();
         let mut shared = 0;
         for i in self.tris_of(r) {
-            let t = self.refs[i] as usize;
-            if !self.tri_alive[t] {
-                continue;
-            }
+            let Some(t) = self.live(i) else { continue };
             let tri = self.tris[t];
             if tri.contains(&k) {
                 shared += 1;
@@ -607,10 +602,7 @@ impl State {
             self.count_collapse(r, k);
         }
         for i in self.tris_of(r) {
-            let t = self.refs[i] as usize;
-            if !self.tri_alive[t] {
-                continue;
-            }
+            let Some(t) = self.live(i) else { continue };
             if self.tris[t].contains(&k) {
                 self.tri_alive[t] = false;
                 self.removed_now.push(t as u32);
