@@ -96,4 +96,5 @@ pub use strip::{
 };
 pub use stripify::greedy::{GreedyOptions, Heuristic};
 pub use stripify::quad::{Policy, QuadOptions};
+pub use stripify::single::{SingleOptions, SingleReport, Weights};
 pub use topology::{validate, MeshFacts};

@@ -20,6 +20,7 @@ use crate::metrics::{self, BatchModel, CacheModel, Figures};
 use crate::strip::{self, StripSet};
 use crate::stripify::cache::{self, CacheOptions, Diagonals};
 use crate::stripify::greedy::{self, GreedyOptions};
+use crate::stripify::single::{self, SingleOptions, SingleReport};
 use crate::stripify::{quad, quad_single, quad_verify};
 use std::time::{Duration, Instant};
 
@@ -73,6 +74,12 @@ pub enum Algorithm {
     /// indices per triangle, in about 100 times the time of `cache`. Experimental
     /// (docs/experiments/gpu-batch-strips.md).
     Batch(BatchModel),
+    /// One strip per connected component (the fewest strips on meshes with boundaries)
+    /// from a maximum-weight perfect matching of the dual graph, its loops merged at
+    /// nodal vertices, by edge swaps on flat convex quads and by edge splits (Steiner
+    /// vertices at edge midpoints): the mesh may change, and [`Strips::single`] says
+    /// how. The weights steer the strip ([`SingleOptions`]).
+    Single(SingleOptions),
 }
 
 impl Algorithm {
@@ -108,6 +115,7 @@ impl Algorithm {
             Algorithm::Cache { .. } => "cache",
             Algorithm::Balanced { .. } => "balanced",
             Algorithm::Batch(_) => "batch",
+            Algorithm::Single(_) => "single",
         }
     }
 }
@@ -276,6 +284,10 @@ impl StripOptions {
             Algorithm::Greedy(_) if self.split == Split::Qstrip => bad(
                 "greedy strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced".into(),
             ),
+            Algorithm::Single(_) if self.split == Split::Qstrip => bad(
+                "single strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced".into(),
+            ),
+            Algorithm::Single(o) => o.check(),
             Algorithm::Batch(_) if self.split == Split::Qstrip => bad(
                 "batch strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced".into(),
             ),
@@ -320,6 +332,13 @@ pub struct Strips {
     pub restart_index: u32,
     /// Time of the stripifier alone (no verification, no figures).
     pub stripify_time: Duration,
+    /// [`Algorithm::Single`]: what the builder did (Steiner vertices, swaps, pieces
+    /// merged, times).
+    pub single: Option<SingleReport>,
+    /// Vertices the algorithm added after the mesh's own (Steiner vertices of
+    /// [`Algorithm::Single`], each at the midpoint of the edge it split): the strips
+    /// and [`Strips::triangles`] index the mesh's positions followed by these.
+    pub added_positions: Vec<[f32; 3]>,
 }
 
 impl Strips {
@@ -364,6 +383,13 @@ impl Strips {
     /// [`Strips::for_format`]), read back with the library's own reader and checked
     /// against [`Strips::triangles`] before they are returned.
     pub fn to_file_bytes(&self, mesh: &Mesh, format: Format) -> Result<Vec<u8>> {
+        let changed;
+        let mesh = if !self.changes_mesh() {
+            mesh
+        } else {
+            changed = self.changed_mesh(mesh);
+            &changed
+        };
         let Some(to_write) = self.for_format(format) else {
             return Err(Error::Invalid(format!(
                 "{format:?} files cannot hold strips; write PLY, glTF or GLB (or JSON)"
@@ -377,6 +403,23 @@ impl Strips {
             return Err(fail(&format!("{name}, read back"), &v));
         }
         Ok(bytes)
+    }
+
+    /// Whether the strips draw a changed mesh (Steiner vertices or swapped edges).
+    pub fn changes_mesh(&self) -> bool {
+        !self.added_positions.is_empty() || self.single.as_ref().is_some_and(|r| r.swapped_edges > 0)
+    }
+
+    /// The mesh the strips draw: `mesh` itself, or, where the algorithm changed it
+    /// ([`Algorithm::Single`]), its positions plus [`Strips::added_positions`] and
+    /// [`Strips::triangles`] as faces.
+    pub fn changed_mesh(&self, mesh: &Mesh) -> Mesh {
+        if !self.changes_mesh() {
+            return mesh.clone();
+        }
+        let mut positions = mesh.positions.clone();
+        positions.extend_from_slice(&self.added_positions);
+        Mesh::from_triangles(positions, &self.triangles)
     }
 
     /// The strips as JSON: `{"join", "strips": [[..], ..]}` (the joined strips), plus
@@ -482,6 +525,9 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     }
     // The fan is the greedy stripifier's input, made outside its timing.
     let fan = matches!(algorithm, Algorithm::Greedy(_) | Algorithm::Batch(_)).then(|| mesh.triangulate().tris);
+    let mut added_positions = Vec::new();
+    let mut single_report = None;
+    let mut stripify_time_single = None;
     let start = Instant::now();
     let (strips, split, quads, fan) = match &algorithm {
         Algorithm::Greedy(g) => {
@@ -523,9 +569,21 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
                 (m.strips, Split::Fan, None, Some(mesh.triangulate().tris))
             }
         }
+        Algorithm::Single(o) => {
+            let input = mesh.triangulate().tris;
+            let single = single::single_strips(&mesh.positions, input.clone(), o)?;
+            stripify_time_single = Some(start.elapsed());
+            if let Err(why) = single::check::cover(&input, &single.work) {
+                return Err(Error::Verification(format!("the changed mesh of single: {why}")));
+            }
+            added_positions =
+                single.work.pos[vertex_count..].iter().map(|p| p.map(|x| x as f32)).collect();
+            single_report = Some(single.report);
+            (single.strips, Split::Fan, None, Some(single.work.tris))
+        }
         Algorithm::Auto => unreachable!("resolved above"),
     };
-    let stripify_time = start.elapsed();
+    let stripify_time = stripify_time_single.unwrap_or_else(|| start.elapsed());
     let triangles = match fan {
         Some(tris) => tris,
         None => {
@@ -556,6 +614,8 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
         join: options.join,
         restart_index: options.restart_index,
         stripify_time,
+        single: single_report,
+        added_positions,
     })
 }
 

@@ -51,6 +51,14 @@ pub enum Algo {
     /// every face. Experimental: an H200 shades as many vertices for them as for
     /// `cache --cache 8`, more than for meshoptimizer's cache-optimized list.
     Batch,
+    /// One strip per connected component from a maximum-weight perfect matching of the
+    /// dual graph (Gopi and Eppstein; weights as in "Constrained single strips"): the
+    /// loops the matching leaves are merged at nodal vertices, by edge swaps on flat
+    /// convex quads (`--swap-angle`) and by edge splits, which add a vertex at an edge's
+    /// midpoint. The written mesh holds those vertices and swaps; the report counts
+    /// them. `--weights` steers the strip. Meshes with boundaries get the fewest strips
+    /// the merges reach.
+    Single,
 }
 
 /// How `cache` and `balanced` split quads.
@@ -147,6 +155,27 @@ pub struct StripArgs {
     /// Simulate an LRU cache for the `acmr` figure instead of FIFO.
     #[arg(long)]
     pub lru: bool,
+    /// `--algo single`: what steers the strip. `uniform` (any matching, fewest
+    /// changes), `cull` (stays inside clusters of similar normals, for back-face
+    /// culling), `cache` (winds around a breadth-first tree of edges, for the vertex
+    /// cache), `direction:X,Y,Z` (advances along the axis), or a mix such as
+    /// `mix:cull=0.5,cache=0.5` (in a mix, `direction:X:Y:Z=C`). Default `uniform`.
+    #[arg(long, value_name = "W")]
+    pub weights: Option<String>,
+    /// `--algo single`: swap an edge to merge two loops only where its two triangles'
+    /// normals differ by at most this many degrees and they form a convex quad (the
+    /// surface then moves by the distance between the diagonals, reported); `off`:
+    /// never swap, split instead. Default 1.
+    #[arg(long, value_name = "DEGREES")]
+    pub swap_angle: Option<String>,
+    /// `--algo single` with cull weights: the most normal deviation inside a cluster,
+    /// in degrees. Default 30.
+    #[arg(long, value_name = "DEGREES")]
+    pub cull_angle: Option<f64>,
+    /// `--algo single`: seed of the randomized parts (cache weights' tree, clustering
+    /// seeds). Default 1.
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
 }
 
 /// Arguments of `stripkit strip`.
@@ -202,6 +231,9 @@ struct Report<'a> {
     /// QSTRIP only: `indices_restart / quads` (METRICS.md).
     #[serde(skip_serializing_if = "Option::is_none")]
     indices_per_quad: Option<f64>,
+    /// `single` only: Steiner vertices, swaps, pieces merged, times.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    single: Option<&'a stripkit::SingleReport>,
 }
 
 enum OutKind {
@@ -241,7 +273,42 @@ impl StripArgs {
         if (self.heuristic.is_some() || self.tunnel.is_some()) && !matches!(self.algo, Algo::Greedy | Algo::Auto) {
             return bad("--heuristic and --tunnel apply to --algo greedy (and auto on meshes that are not quad-dominant)");
         }
+        if (self.weights.is_some() || self.swap_angle.is_some() || self.cull_angle.is_some() || self.seed.is_some())
+            && self.algo != Algo::Single
+        {
+            return bad("--weights, --swap-angle, --cull-angle and --seed apply to --algo single");
+        }
+        if self.algo == Algo::Single {
+            self.single_options()?;
+        }
         Ok(())
+    }
+
+    /// `--algo single`'s settings from the flags.
+    fn single_options(&self) -> Result<stripkit::SingleOptions, Error> {
+        let mut o = stripkit::SingleOptions::new(match &self.weights {
+            Some(w) => w.parse::<stripkit::Weights>().map_err(|e| match e {
+                Error::Invalid(m) => Error::Invalid(format!("--{m}")),
+                other => other,
+            })?,
+            None => stripkit::Weights::Uniform,
+        });
+        if let Some(a) = &self.swap_angle {
+            o = o.swap_angle(if a == "off" {
+                None
+            } else {
+                Some(a.parse::<f64>().map_err(|_| {
+                    Error::Invalid(format!("--swap-angle '{a}': expected degrees (0 to 90) or 'off'"))
+                })?)
+            });
+        }
+        if let Some(a) = self.cull_angle {
+            o = o.cull_angle(a);
+        }
+        if let Some(s) = self.seed {
+            o = o.seed(s);
+        }
+        Ok(o)
     }
 
     /// The library's options for these arguments (default join and restart index).
@@ -269,6 +336,9 @@ impl StripArgs {
             Algo::Cache => Algorithm::Cache { refine: self.refine },
             Algo::Balanced => Algorithm::balanced(self.max_acmr.unwrap_or(0.8)),
             Algo::Batch => Algorithm::batch(),
+            // Checked by `check` first; an unparsable value falls back to the default
+            // only where `check` was skipped.
+            Algo::Single => Algorithm::Single(self.single_options().unwrap_or_default()),
         };
         let split = match self.diagonals {
             None | Some(DiagonalsArg::Auto) => Split::Auto,
@@ -336,13 +406,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         algo: strips.algorithm.name(),
         heuristic: args.strip.heuristic_used(&strips.algorithm),
         join: args.join,
-        vertices: mesh.vertex_count(),
+        vertices: mesh.vertex_count() + strips.added_positions.len(),
         figures,
         ms: strips.stripify_time.as_secs_f64() * 1e3,
         diagonals: matches!(strips.algorithm, Algorithm::Cache { .. } | Algorithm::Balanced { .. })
             .then(|| strips.split.name()),
         quads: strips.quads,
         indices_per_quad: strips.indices_per_quad(),
+        single: strips.single.as_ref(),
     };
     let bytes = match kind {
         OutKind::Json => {
@@ -368,7 +439,9 @@ pub fn flag_names(e: Error) -> Error {
                 .replace("restart index", "--restart-index")
                 .replace("balanced needs a positive number of misses per triangle as its bound", "--max-acmr must be a positive number of misses per triangle")
                 .replace("split qstrip", "--diagonals qstrip")
-                .replace("split fan", "--diagonals fan"),
+                .replace("split fan", "--diagonals fan")
+                .replace("swap angle", "--swap-angle")
+                .replace("cull angle", "--cull-angle"),
         ),
         other => other,
     }
@@ -429,6 +502,20 @@ fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
             f.cache.size,
             f.acmr,
             w = 20usize.saturating_sub(format!("acmr{} ({kind})", f.cache.size).len()) + 11
+        )?;
+    }
+    if let Some(s) = r.single {
+        writeln!(out, "  components           {:>10}", s.components)?;
+        writeln!(out, "  steiner_vertices     {:>10}", s.steiner_vertices)?;
+        writeln!(out, "  swapped_edges        {:>10}", s.swapped_edges)?;
+        if s.swapped_edges > 0 {
+            writeln!(out, "  max swap deviation   {:>10.3e}", s.max_swap_deviation)?;
+        }
+        writeln!(out, "  pieces merged        {:>10} ({} paths; {} nodal, {} joins, {} attaches)", s.initial_pieces, s.initial_paths, s.nodal, s.joins, s.attaches)?;
+        writeln!(
+            out,
+            "  ms: weights {:.1}, matching {:.1}, merge {:.1}",
+            s.weights_ms, s.matching_ms, s.merge_ms
         )?;
     }
     writeln!(out, "  stripify ms          {:>10.2}", r.ms)?;

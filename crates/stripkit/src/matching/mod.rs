@@ -8,4 +8,5 @@
 mod dual;
 
 pub use dual::{mesh_dual_graph, DualWeights};
+pub(crate) use dual::splitmix;
 pub use stripkit_matching::*;

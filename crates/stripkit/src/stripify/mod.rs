@@ -15,4 +15,5 @@ pub mod quad;
 mod quad_adjacency;
 mod quad_sequence;
 pub mod quad_single;
+pub mod single;
 pub mod quad_verify;

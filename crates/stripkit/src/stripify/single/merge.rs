@@ -1,0 +1,456 @@
+//! From a matching to strips: the strip links the matching leaves, the pieces they
+//! form (loops and, on meshes with boundaries, paths), and the greedy merging of the
+//! pieces by the operations of the paper (nodal vertex, edge swap, edge split) plus
+//! two that only paths allow (joining two path ends, and opening a loop onto a path
+//! end).
+//!
+//! Merging runs in passes. A pass finds every operation valid on the pieces as they
+//! are, sorts them by (class, cost) — operations that leave the mesh alone first, then
+//! swaps, then splits; inside a class the weight the strip loses — and applies them in
+//! that order while union-find says they still join different pieces. Each triangle
+//! takes part in at most one operation per pass, so the operations of a pass are
+//! independent local rewirings and union-find tracks exactly what they join. The next
+//! pass starts over on the changed mesh (the pieces of a split may merge again), until
+//! one piece is left per component or no operation applies.
+
+use super::work::{cross, dot, edge, sub, WorkMesh};
+use crate::topology::NO_NEIGHBOR;
+use std::collections::HashSet;
+
+const NONE: u32 = u32::MAX;
+
+/// The pieces of the strip graph: `comp[t]` for every triangle, and whether each piece
+/// is a path (else a loop).
+pub(crate) struct Pieces {
+    pub comp: Vec<u32>,
+    pub is_path: Vec<bool>,
+}
+
+/// The next triangle of the piece after `t`, entered from slot `from` (or from nowhere
+/// with `from == 3`): `(next, its slot of the shared edge)`.
+fn step(w: &WorkMesh, t: usize, from: usize) -> Option<(usize, usize)> {
+    let j = (0..3).find(|&j| j != from && w.linked(t, j))?;
+    Some((w.nbr[t][j] as usize, w.twin(t, j)))
+}
+
+/// Visits every piece: paths from one end, then loops from their lowest triangle;
+/// `f(piece, is_path, triangles in order)`. Degenerate triangles with no links are
+/// single-triangle paths.
+pub(crate) fn for_each_piece(w: &WorkMesh, mut f: impl FnMut(u32, bool, &[u32])) -> usize {
+    let n = w.len();
+    let mut seen = vec![false; n];
+    let mut buf = Vec::new();
+    let mut pieces = 0u32;
+    for pass in 0..2 {
+        for s in 0..n {
+            if seen[s] || (pass == 0 && w.degree(s) == 2) {
+                continue;
+            }
+            buf.clear();
+            let (mut t, mut from) = (s, 3);
+            loop {
+                seen[t] = true;
+                buf.push(t as u32);
+                match step(w, t, from) {
+                    Some((u, k)) if !seen[u] => (t, from) = (u, k),
+                    _ => break,
+                }
+            }
+            f(pieces, pass == 0, &buf);
+            pieces += 1;
+        }
+    }
+    pieces as usize
+}
+
+pub(crate) fn pieces(w: &WorkMesh) -> Pieces {
+    let mut comp = vec![NONE; w.len()];
+    let mut is_path = Vec::new();
+    for_each_piece(w, |p, path, tris| {
+        is_path.push(path);
+        for &t in tris {
+            comp[t as usize] = p;
+        }
+    });
+    Pieces { comp, is_path }
+}
+
+/// Union-find over pieces, with the path flag of each root.
+struct Union {
+    parent: Vec<u32>,
+    path: Vec<bool>,
+}
+
+impl Union {
+    fn find(&mut self, mut x: u32) -> u32 {
+        while self.parent[x as usize] != x {
+            let p = self.parent[x as usize];
+            self.parent[x as usize] = self.parent[p as usize];
+            x = p;
+        }
+        x
+    }
+    fn union(&mut self, a: u32, b: u32) {
+        let (a, b) = (self.find(a), self.find(b));
+        if a != b {
+            self.parent[b as usize] = a;
+            self.path[a as usize] |= self.path[b as usize];
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Kind {
+    /// Link two path ends across slot `j` of `t`.
+    Join { t: u32, j: u8 },
+    /// Link path end `e` across slot `j` to loop triangle `t = nbr[e][j]`, and cut the
+    /// loop at `t`'s slot `cut`.
+    Attach { e: u32, j: u8, cut: u8 },
+    /// Swap the edge in slot `j` of `t`.
+    Swap { t: u32, j: u8 },
+    /// Split the edge in slot `j` of `t`.
+    Split { t: u32, j: u8 },
+    /// Toggle the links around vertex `v`; `fan` indexes into the pass's fan store.
+    Nodal { fan: u32 },
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Op {
+    class: u8,
+    cost: f64,
+    kind: Kind,
+}
+
+/// What merging did.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct MergeStats {
+    pub passes: usize,
+    pub nodal: usize,
+    pub joins: usize,
+    pub attaches: usize,
+    pub swaps: usize,
+    pub splits: usize,
+}
+
+/// Settings of the merge.
+pub(crate) struct MergeSettings {
+    /// Swaps allowed up to this dihedral angle (radians); `None`: no swaps.
+    pub swap_angle: Option<f64>,
+}
+
+/// The weight of the dual edge in slot `j` of `t`, as the merge sees it.
+pub(crate) type WeightFn<'a> = &'a dyn Fn(&WorkMesh, usize, usize) -> f64;
+
+/// Merges the pieces of `w` greedily (see the module docs).
+pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings) -> MergeStats {
+    let mut stats = MergeStats::default();
+    let mut stamp: Vec<u32> = Vec::new();
+    loop {
+        stats.passes += 1;
+        let pass = stats.passes as u32;
+        let p = pieces(w);
+        let piece_count = p.is_path.len();
+        // Candidate operations on the pieces as they are.
+        let mut ops: Vec<Op> = Vec::new();
+        let mut fans: Vec<u32> = Vec::new(); // (t, slot) pairs, flattened per fan
+        let mut fan_offsets: Vec<u32> = vec![0];
+        let edges: Option<HashSet<(u32, u32)>> = settings.swap_angle.map(|_| {
+            let mut s = HashSet::with_capacity(w.len() * 3 / 2);
+            for t in &w.tris {
+                for j in 0..3 {
+                    let (a, b) = edge(t, j);
+                    s.insert((a.min(b), a.max(b)));
+                }
+            }
+            s
+        });
+        for t in 0..w.len() {
+            for j in 0..3 {
+                let u = w.nbr[t][j];
+                if u == NO_NEIGHBOR || (u as usize) < t || w.linked(t, j) {
+                    continue;
+                }
+                let u = u as usize;
+                let (ct, cu) = (p.comp[t], p.comp[u]);
+                if ct == cu {
+                    continue;
+                }
+                let wt = weight(w, t, j);
+                let (et, eu) = (w.degree(t) < 2, w.degree(u) < 2);
+                if et && eu {
+                    ops.push(Op { class: 0, cost: wt, kind: Kind::Join { t: t as u32, j: j as u8 } });
+                    continue;
+                }
+                if et != eu {
+                    let (e, je, l) = if et { (t, j, u) } else { (u, w.twin(t, j), t) };
+                    if !p.is_path[p.comp[l] as usize] {
+                        // Cut the loop at l where the strip loses least.
+                        let (cut, cw) = (0..3)
+                            .filter(|&k| w.linked(l, k))
+                            .map(|k| (k, weight(w, l, k)))
+                            .fold((3, f64::NEG_INFINITY), |b, x| if x.1 > b.1 { x } else { b });
+                        if cut < 3 {
+                            ops.push(Op {
+                                class: 0,
+                                cost: wt - cw,
+                                kind: Kind::Attach { e: e as u32, j: je as u8, cut: cut as u8 },
+                            });
+                        }
+                    }
+                }
+                if p.is_path[ct as usize] && p.is_path[cu as usize] {
+                    continue;
+                }
+                if let (Some(max), Some(edges)) = (settings.swap_angle, edges.as_ref()) {
+                    if swap_ok(w, t, j, max, edges) {
+                        ops.push(Op { class: 1, cost: 2.0 * wt, kind: Kind::Swap { t: t as u32, j: j as u8 } });
+                    }
+                }
+                if !degenerate(w, t) && !degenerate(w, u) {
+                    ops.push(Op { class: 2, cost: 2.0 * wt, kind: Kind::Split { t: t as u32, j: j as u8 } });
+                }
+            }
+        }
+        nodal_candidates(w, &p, weight, &mut ops, &mut fans, &mut fan_offsets);
+        if ops.is_empty() {
+            break;
+        }
+        ops.sort_by(|a, b| a.class.cmp(&b.class).then(a.cost.total_cmp(&b.cost)));
+        let mut uf = Union { parent: (0..piece_count as u32).collect(), path: p.is_path.clone() };
+        stamp.resize(w.len(), 0);
+        let mut applied = 0;
+        let mut edges = edges;
+        for op in ops {
+            let free = |stamp: &[u32], t: u32| stamp[t as usize] != pass;
+            match op.kind {
+                Kind::Join { t, j } => {
+                    let u = w.nbr[t as usize][j as usize];
+                    if !free(&stamp, t) || !free(&stamp, u) {
+                        continue;
+                    }
+                    let (a, b) = (uf.find(p.comp[t as usize]), uf.find(p.comp[u as usize]));
+                    if a == b {
+                        continue;
+                    }
+                    w.set_link(t as usize, j as usize, true);
+                    uf.union(a, b);
+                    stats.joins += 1;
+                    stamp[t as usize] = pass;
+                    stamp[u as usize] = pass;
+                }
+                Kind::Attach { e, j, cut } => {
+                    let l = w.nbr[e as usize][j as usize];
+                    let x = w.nbr[l as usize][cut as usize];
+                    if !free(&stamp, e) || !free(&stamp, l) || !free(&stamp, x) {
+                        continue;
+                    }
+                    let (a, b) = (uf.find(p.comp[e as usize]), uf.find(p.comp[l as usize]));
+                    if a == b || uf.path[b as usize] {
+                        continue;
+                    }
+                    w.set_link(l as usize, cut as usize, false);
+                    w.set_link(e as usize, j as usize, true);
+                    uf.union(a, b);
+                    stats.attaches += 1;
+                    for s in [e, l, x] {
+                        stamp[s as usize] = pass;
+                    }
+                }
+                Kind::Swap { t, j } | Kind::Split { t, j } => {
+                    let u = w.nbr[t as usize][j as usize];
+                    if !free(&stamp, t) || !free(&stamp, u) {
+                        continue;
+                    }
+                    let (a, b) = (uf.find(p.comp[t as usize]), uf.find(p.comp[u as usize]));
+                    if a == b || (uf.path[a as usize] && uf.path[b as usize]) {
+                        continue;
+                    }
+                    if let Kind::Swap { .. } = op.kind {
+                        let edges = edges.as_mut().expect("swaps only with the edge set");
+                        let (c, d) = swap_diagonal(w, t as usize, j as usize);
+                        if edges.contains(&(c.min(d), c.max(d))) {
+                            continue;
+                        }
+                        let (x, y) = edge(&w.tris[t as usize], j as usize);
+                        edges.remove(&(x.min(y), x.max(y)));
+                        edges.insert((c.min(d), c.max(d)));
+                        w.swap(t as usize, j as usize);
+                        stats.swaps += 1;
+                    } else {
+                        let [tb, ub] = w.split(t as usize, j as usize, true);
+                        stamp.resize(w.len(), 0);
+                        stamp[tb as usize] = pass;
+                        stamp[ub as usize] = pass;
+                        if let Some(edges) = edges.as_mut() {
+                            let m = w.tris[tb as usize][0];
+                            let [x, y] = *w.steiner.last().expect("just split");
+                            edges.remove(&(x.min(y), x.max(y)));
+                            let c = w.tris[tb as usize][2];
+                            let d = w.tris[ub as usize][2];
+                            for q in [x, y, c, d] {
+                                edges.insert((q.min(m), q.max(m)));
+                            }
+                        }
+                        stats.splits += 1;
+                    }
+                    uf.union(a, b);
+                    stamp[t as usize] = pass;
+                    stamp[u as usize] = pass;
+                }
+                Kind::Nodal { fan } => {
+                    let f = &fans[fan_offsets[fan as usize] as usize..fan_offsets[fan as usize + 1] as usize];
+                    if f.chunks(2).any(|c| !free(&stamp, c[0])) {
+                        continue;
+                    }
+                    let mut roots: Vec<u32> = f.chunks(2).map(|c| uf.find(p.comp[c[0] as usize])).collect();
+                    roots.sort_unstable();
+                    roots.dedup();
+                    if roots.len() * 2 != f.len() / 2 || roots.iter().filter(|&&r| uf.path[r as usize]).count() > 1 {
+                        continue;
+                    }
+                    // Toggle the link out of every fan triangle towards the next.
+                    let links: Vec<bool> = f.chunks(2).map(|c| w.linked(c[0] as usize, c[1] as usize)).collect();
+                    for (c, on) in f.chunks(2).zip(links) {
+                        w.set_link(c[0] as usize, c[1] as usize, !on);
+                    }
+                    for &r in &roots[1..] {
+                        uf.union(roots[0], r);
+                    }
+                    for c in f.chunks(2) {
+                        stamp[c[0] as usize] = pass;
+                    }
+                    stats.nodal += 1;
+                }
+            }
+            applied += 1;
+        }
+        if applied == 0 {
+            break;
+        }
+    }
+    stats
+}
+
+fn degenerate(w: &WorkMesh, t: usize) -> bool {
+    let [a, b, c] = w.tris[t];
+    a == b || b == c || a == c
+}
+
+/// The new diagonal `(c, d)` a swap of slot `j` of `t` would make.
+fn swap_diagonal(w: &WorkMesh, t: usize, j: usize) -> (u32, u32) {
+    let u = w.nbr[t][j] as usize;
+    let k = w.twin(t, j);
+    (w.tris[t][(j + 2) % 3], w.tris[u][(k + 2) % 3])
+}
+
+/// A swap is allowed on a convex, nearly flat quad whose other diagonal is no edge yet.
+fn swap_ok(w: &WorkMesh, t: usize, j: usize, max_angle: f64, edges: &HashSet<(u32, u32)>) -> bool {
+    let max_angle = max_angle.max(1e-6); // rounding in the normals of coplanar triangles
+    let u = w.nbr[t][j] as usize;
+    let (a, b) = edge(&w.tris[t], j);
+    let (c, d) = swap_diagonal(w, t, j);
+    if c == d || a == b || edges.contains(&(c.min(d), c.max(d))) || degenerate(w, t) || degenerate(w, u) {
+        return false;
+    }
+    let (nt, nu) = (w.normal(t), w.normal(u));
+    if nt == [0.0; 3] || nu == [0.0; 3] || dot(nt, nu).clamp(-1.0, 1.0).acos() > max_angle {
+        return false;
+    }
+    // Convex: both new triangles (a, d, c) and (d, b, c) face the way of the old ones.
+    let p = |i: u32| w.pos[i as usize];
+    let n = [nt[0] + nu[0], nt[1] + nu[1], nt[2] + nu[2]];
+    let ln = dot(n, n).sqrt();
+    let n1 = cross(sub(p(d), p(a)), sub(p(c), p(a)));
+    let n2 = cross(sub(p(b), p(d)), sub(p(c), p(d)));
+    let (l1, l2) = (dot(n1, n1).sqrt(), dot(n2, n2).sqrt());
+    let min_cos = max_angle.cos();
+    ln > 0.0 && l1 > 0.0 && l2 > 0.0 && dot(n1, n) / (l1 * ln) >= min_cos && dot(n2, n) / (l2 * ln) >= min_cos
+}
+
+/// Nodal vertices: a closed fan of an even number of triangles whose links to the next
+/// triangle alternate on and off, the on links in as many different pieces as there
+/// are on links, at most one of them a path. Toggling every link of the fan joins them.
+/// The fan is stored as (triangle, slot towards the next) pairs.
+fn nodal_candidates(
+    w: &WorkMesh,
+    p: &Pieces,
+    weight: WeightFn,
+    ops: &mut Vec<Op>,
+    fans: &mut Vec<u32>,
+    offsets: &mut Vec<u32>,
+) {
+    let nv = w.pos.len();
+    // One triangle and corner per vertex, the first met.
+    let mut first = vec![NONE; nv];
+    for (t, tri) in w.tris.iter().enumerate() {
+        for (i, &v) in tri.iter().enumerate() {
+            if first[v as usize] == NONE {
+                first[v as usize] = (t * 3 + i) as u32;
+            }
+        }
+    }
+    let mut fan: Vec<u32> = Vec::new();
+    let mut comps: Vec<u32> = Vec::new();
+    'vertex: for v in 0..nv {
+        let f0 = first[v];
+        if f0 == NONE {
+            continue;
+        }
+        fan.clear();
+        let (t0, i0) = ((f0 / 3) as usize, (f0 % 3) as usize);
+        let (mut t, mut i) = (t0, i0);
+        loop {
+            // Slot i is the edge (v, x) out of t; the next fan triangle is across it.
+            fan.push(t as u32);
+            fan.push(i as u32);
+            if fan.len() > 64 {
+                continue 'vertex; // valence over 32: not worth it
+            }
+            let u = w.nbr[t][i];
+            if u == NO_NEIGHBOR {
+                continue 'vertex;
+            }
+            let k = w.twin(t, i);
+            (t, i) = (u as usize, (k + 1) % 3);
+            if w.tris[t][i] != v as u32 {
+                continue 'vertex;
+            }
+            if t == t0 {
+                break;
+            }
+        }
+        let n = fan.len() / 2;
+        if n < 4 || n % 2 == 1 || t != t0 || i != i0 {
+            continue;
+        }
+        // Alternation, and the on links' pieces.
+        let on0 = w.linked(fan[0] as usize, fan[1] as usize);
+        comps.clear();
+        let mut cost = 0.0;
+        let mut paths = 0;
+        for q in 0..n {
+            let (ft, fs) = (fan[2 * q] as usize, fan[2 * q + 1] as usize);
+            let on = w.linked(ft, fs);
+            if on != ((q % 2 == 0) == on0) {
+                continue 'vertex;
+            }
+            let wq = weight(w, ft, fs);
+            if on {
+                cost -= wq;
+                let c = p.comp[ft];
+                paths += p.is_path[c as usize] as usize;
+                comps.push(c);
+            } else {
+                cost += wq;
+            }
+        }
+        comps.sort_unstable();
+        comps.dedup();
+        if comps.len() * 2 != n || paths > 1 {
+            continue;
+        }
+        ops.push(Op { class: 0, cost, kind: Kind::Nodal { fan: (offsets.len() - 1) as u32 } });
+        fans.extend_from_slice(&fan);
+        offsets.push(fans.len() as u32);
+    }
+}

@@ -1,0 +1,381 @@
+//! Single strips from a weighted perfect matching (Gopi and Eppstein's single-strip
+//! triangulation, steered by weights as in "Constrained single strips", sections 3 to
+//! 6).
+//!
+//! 1. **Weights** on the dual edges ([`Weights`]): a heavy edge is one the strip should
+//!    not cross.
+//! 2. **Matching.** A maximum-weight matching of the dual graph's degree-3 triangles
+//!    (on a closed manifold mesh: a perfect matching of every triangle). Every
+//!    triangle is linked to its other neighbours, so the links form disjoint loops;
+//!    triangles with fewer neighbours (boundaries, non-manifold or degenerate
+//!    neighbours) are never matched and keep every link they have, and a degree-3
+//!    triangle the matching leaves out drops its heaviest link. The pieces are then
+//!    loops and paths.
+//! 3. **Merging** ([`merge`]): nodal vertices (mesh unchanged), path-end joins and
+//!    attaches (mesh unchanged), edge swaps on convex, nearly flat quads, and edge
+//!    splits (a Steiner vertex at an edge's midpoint, surface unchanged), greedily by
+//!    class then by the weight lost, until one piece is left per component.
+//! 4. **Strips.** Each piece, a loop cut once or a path, is one strip with the fewest
+//!    swaps for it ([`crate::topology::walks::encode_path`]).
+//!
+//! The result names the changed mesh: Steiner vertices appended after the input's
+//! vertices, swapped pairs recorded; [`check`] proves the changed triangles cover the
+//! input triangles.
+
+pub(crate) mod check;
+mod cull;
+pub(crate) mod merge;
+mod weights;
+pub(crate) mod work;
+
+use crate::error::{Error, Result};
+use crate::strip::StripSet;
+use crate::topology::walks::encode_path;
+use crate::topology::DualGraph;
+use std::fmt;
+use std::str::FromStr;
+use std::time::Instant;
+use stripkit_matching::{solve, Graph, Objective, UNMATCHED};
+use work::WorkMesh;
+
+/// How the single-strip builder weights the dual edges: a heavy edge is one the strip
+/// should not cross. Each kind gives weights in `[0, 1]`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Weights {
+    /// Every edge the same: any perfect matching; loops merged at the fewest changes.
+    Uniform,
+    /// Back-face culling: 0 inside clusters of nearly parallel normals, more across
+    /// clusters whose normals differ more, so the strip stays inside flat regions.
+    Cull,
+    /// Vertex caching: edges of a randomized breadth-first spanning tree of the mesh
+    /// edges (at most one per triangle) weigh 1, the rest 0; the strip winds around the
+    /// tree like a space-filling curve.
+    Cache,
+    /// Direction: edges along the axis weigh most (`|cos|` of their angle to it), so
+    /// the strip advances along the axis.
+    Direction([f64; 3]),
+    /// A linear combination `sum c_k * w_k`.
+    Mix(Vec<(f64, Weights)>),
+}
+
+impl Weights {
+    fn fmt_term(&self, f: &mut fmt::Formatter<'_>, in_mix: bool) -> fmt::Result {
+        match self {
+            Weights::Uniform => write!(f, "uniform"),
+            Weights::Cull => write!(f, "cull"),
+            Weights::Cache => write!(f, "cache"),
+            Weights::Direction([x, y, z]) if in_mix => write!(f, "direction:{x}:{y}:{z}"),
+            Weights::Direction([x, y, z]) => write!(f, "direction:{x},{y},{z}"),
+            Weights::Mix(terms) => {
+                write!(f, "mix:")?;
+                for (i, (c, k)) in terms.iter().enumerate() {
+                    if i > 0 {
+                        write!(f, ",")?;
+                    }
+                    k.fmt_term(f, true)?;
+                    write!(f, "={c}")?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+impl fmt::Display for Weights {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.fmt_term(f, false)
+    }
+}
+
+fn parse_axis(s: &str, sep: char) -> Option<[f64; 3]> {
+    let v: Vec<f64> = s.split(sep).map(|x| x.trim().parse::<f64>().ok()).collect::<Option<_>>()?;
+    let a: [f64; 3] = v.try_into().ok()?;
+    (a.iter().all(|x| x.is_finite()) && a.iter().any(|&x| x != 0.0)).then_some(a)
+}
+
+impl FromStr for Weights {
+    type Err = Error;
+    /// `uniform`, `cull`, `cache`, `direction:X,Y,Z`, or `mix:TERM=C,TERM=C,..` where a
+    /// term is `uniform`, `cull`, `cache` or `direction:X:Y:Z` and `C` a non-negative
+    /// coefficient.
+    fn from_str(s: &str) -> Result<Weights> {
+        let bad = |why: &str| {
+            Error::Invalid(format!(
+                "weights '{s}': {why}; expected uniform, cull, cache, direction:X,Y,Z or mix:TERM=C,.. \
+                 (e.g. mix:cull=0.5,cache=0.5, direction in a mix as direction:X:Y:Z)"
+            ))
+        };
+        let simple = |t: &str, sep: char| -> Option<Weights> {
+            match t {
+                "uniform" => Some(Weights::Uniform),
+                "cull" => Some(Weights::Cull),
+                "cache" => Some(Weights::Cache),
+                _ => t.strip_prefix("direction:").and_then(|a| parse_axis(a, sep)).map(Weights::Direction),
+            }
+        };
+        if let Some(rest) = s.strip_prefix("mix:") {
+            let mut terms = Vec::new();
+            for part in rest.split(',') {
+                let (name, c) = part.rsplit_once('=').ok_or_else(|| bad(&format!("term '{part}' has no '=C'")))?;
+                let k = simple(name.trim(), ':').ok_or_else(|| bad(&format!("unknown term '{name}'")))?;
+                let c: f64 = c.trim().parse().map_err(|_| bad(&format!("coefficient '{c}' is not a number")))?;
+                if !(c.is_finite() && c >= 0.0) {
+                    return Err(bad(&format!("coefficient {c} is not a finite non-negative number")));
+                }
+                terms.push((c, k));
+            }
+            if terms.iter().all(|(c, _)| *c == 0.0) {
+                return Err(bad("every coefficient is 0"));
+            }
+            return Ok(Weights::Mix(terms));
+        }
+        simple(s.trim(), ',').ok_or_else(|| bad("unknown kind or bad axis (three numbers, not all 0)"))
+    }
+}
+
+/// Settings of the single-strip builder ([`crate::Algorithm::Single`]).
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct SingleOptions {
+    /// The dual-edge weights.
+    pub weights: Weights,
+    /// Edge swaps are allowed on convex quads whose two triangles' normals differ by
+    /// at most this many degrees; `None`: never swap (splits instead). Default 1.
+    pub swap_angle: Option<f64>,
+    /// Normal deviation bound of the culling clusters, in degrees. Default 30.
+    pub cull_angle: f64,
+    /// Seed of the randomized parts (the cache weights' tree, the clustering's seeds).
+    pub seed: u64,
+}
+
+impl Default for SingleOptions {
+    fn default() -> Self {
+        SingleOptions { weights: Weights::Uniform, swap_angle: Some(1.0), cull_angle: 30.0, seed: 1 }
+    }
+}
+
+impl SingleOptions {
+    /// The default settings with these weights.
+    pub fn new(weights: Weights) -> Self {
+        SingleOptions { weights, ..Default::default() }
+    }
+    /// Sets [`SingleOptions::swap_angle`].
+    pub fn swap_angle(mut self, degrees: Option<f64>) -> Self {
+        self.swap_angle = degrees;
+        self
+    }
+    /// Sets [`SingleOptions::cull_angle`].
+    pub fn cull_angle(mut self, degrees: f64) -> Self {
+        self.cull_angle = degrees;
+        self
+    }
+    /// Sets [`SingleOptions::seed`].
+    pub fn seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+    pub(crate) fn check(&self) -> Result<()> {
+        if let Some(a) = self.swap_angle {
+            if !(a.is_finite() && (0.0..90.0).contains(&a)) {
+                return Err(Error::Invalid(format!("swap angle {a} is not in 0..90 degrees")));
+            }
+        }
+        if !(self.cull_angle.is_finite() && self.cull_angle > 0.0 && self.cull_angle < 180.0) {
+            return Err(Error::Invalid(format!("cull angle {} is not in (0, 180) degrees", self.cull_angle)));
+        }
+        Ok(())
+    }
+}
+
+/// What the single-strip builder reports beside the strips.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+#[non_exhaustive]
+pub struct SingleReport {
+    /// Steiner vertices added (one per edge split, cull peaks included).
+    pub steiner_vertices: usize,
+    /// Edges swapped.
+    pub swapped_edges: usize,
+    /// Pieces (loops and paths) the matching left, before merging.
+    pub initial_pieces: usize,
+    /// Of those, paths.
+    pub initial_paths: usize,
+    /// Merge operations applied: nodal vertices, path joins, attaches.
+    pub nodal: usize,
+    /// Path ends joined.
+    pub joins: usize,
+    /// Loops opened onto a path end.
+    pub attaches: usize,
+    /// Merge passes run.
+    pub passes: usize,
+    /// Whether the matching was perfect on the degree-3 triangles.
+    pub perfect_matching: bool,
+    /// Total matched weight (integer weights, scaled by 1000).
+    pub matched_weight: i64,
+    /// Connected components of the changed mesh's dual graph (the fewest strips
+    /// possible).
+    pub components: usize,
+    /// Components that are closed (every triangle has three dual neighbours).
+    pub closed_components: usize,
+    /// Strips made.
+    pub strips: usize,
+    /// Largest distance between the two diagonals of a swapped quad (0 for a planar
+    /// quad), in model units.
+    pub max_swap_deviation: f64,
+    /// Milliseconds of the weights (cull: clustering included).
+    pub weights_ms: f64,
+    /// Milliseconds of the matching.
+    pub matching_ms: f64,
+    /// Milliseconds of merging and encoding.
+    pub merge_ms: f64,
+}
+
+/// The output of [`single_strips`]: the strips over the changed mesh.
+#[derive(Clone, Debug)]
+pub(crate) struct Single {
+    pub strips: StripSet,
+    pub work: WorkMesh,
+    pub report: SingleReport,
+}
+
+/// Integer weights for the matching: `round(1000 w)`.
+pub(crate) const WEIGHT_SCALE: f64 = 1000.0;
+
+/// Single strips for the triangles `tris` over `positions` (see the module docs).
+pub(crate) fn single_strips(positions: &[[f32; 3]], tris: Vec<[u32; 3]>, options: &SingleOptions) -> Result<Single> {
+    options.check()?;
+    let mut report = SingleReport::default();
+    let clock = Instant::now();
+    let mut w = WorkMesh::new(positions, tris);
+    weights::assign(&mut w, &options.weights, options.seed, options.cull_angle.to_radians());
+    report.weights_ms = ms(clock);
+
+    let clock = Instant::now();
+    let (perfect, matched_weight) = match_links(&mut w)?;
+    report.perfect_matching = perfect;
+    report.matched_weight = matched_weight;
+    report.matching_ms = ms(clock);
+
+    let clock = Instant::now();
+    let p = merge::pieces(&w);
+    report.initial_pieces = p.is_path.len();
+    report.initial_paths = p.is_path.iter().filter(|&&x| x).count();
+    let weight = |w: &WorkMesh, t: usize, j: usize| w.weight[t][j];
+    let settings = merge::MergeSettings { swap_angle: options.swap_angle.map(f64::to_radians) };
+    let stats = merge::merge(&mut w, &weight, &settings);
+    report.nodal = stats.nodal;
+    report.joins = stats.joins;
+    report.attaches = stats.attaches;
+    report.passes = stats.passes;
+    report.steiner_vertices = w.steiner.len();
+    report.swapped_edges = w.swaps.len();
+
+    let dual = DualGraph { neighbors: w.nbr.clone() };
+    let mut strips = StripSet::new();
+    merge::for_each_piece(&w, |_, _, walk| {
+        let drawn: Vec<u32> = walk.iter().copied().filter(|&t| !degenerate(&w.tris[t as usize])).collect();
+        if !drawn.is_empty() {
+            encode_path(&w.tris, &dual, &drawn, &mut strips);
+        }
+    });
+    report.strips = strips.len();
+    let (components, closed) = components(&w);
+    report.components = components;
+    report.closed_components = closed;
+    report.max_swap_deviation = check::max_swap_deviation(&w);
+    report.merge_ms = ms(clock);
+    Ok(Single { strips, work: w, report })
+}
+
+fn ms(since: Instant) -> f64 {
+    since.elapsed().as_secs_f64() * 1e3
+}
+
+fn degenerate(t: &[u32; 3]) -> bool {
+    t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
+}
+
+/// Components of the dual graph of non-degenerate triangles, and how many are closed.
+fn components(w: &WorkMesh) -> (usize, usize) {
+    let n = w.len();
+    let mut seen = vec![false; n];
+    let mut stack = Vec::new();
+    let (mut count, mut closed) = (0, 0);
+    for s in 0..n {
+        if seen[s] || degenerate(&w.tris[s]) {
+            continue;
+        }
+        count += 1;
+        let mut all3 = true;
+        seen[s] = true;
+        stack.push(s);
+        while let Some(t) = stack.pop() {
+            all3 &= w.dual_degree(t) == 3;
+            for &u in &w.nbr[t] {
+                if u != crate::topology::NO_NEIGHBOR && !seen[u as usize] {
+                    seen[u as usize] = true;
+                    stack.push(u as usize);
+                }
+            }
+        }
+        closed += all3 as usize;
+    }
+    (count, closed)
+}
+
+/// Links from a maximum-weight matching of the degree-3 triangles: every dual edge is
+/// a link unless matched; a degree-3 triangle left unmatched drops its heaviest link.
+/// Returns whether the matching was perfect and its weight.
+fn match_links(w: &mut WorkMesh) -> Result<(bool, i64)> {
+    let n = w.len();
+    let full: Vec<bool> = (0..n).map(|t| w.dual_degree(t) == 3 && !degenerate(&w.tris[t])).collect();
+    let mut id = vec![u32::MAX; n];
+    let mut nodes = 0u32;
+    for t in 0..n {
+        if full[t] {
+            id[t] = nodes;
+            nodes += 1;
+        }
+    }
+    let mut ends = Vec::with_capacity(nodes as usize * 3 / 2);
+    let mut ws = Vec::with_capacity(nodes as usize * 3 / 2);
+    let mut slot_of_edge = Vec::with_capacity(nodes as usize * 3 / 2);
+    for t in 0..n {
+        for j in 0..3 {
+            let u = w.nbr[t][j];
+            if u != crate::topology::NO_NEIGHBOR && (t as u32) < u && full[t] && full[u as usize] {
+                ends.push([id[t], id[u as usize]]);
+                ws.push((w.weight[t][j] * WEIGHT_SCALE).round().max(0.0) as i64);
+                slot_of_edge.push((t as u32, j as u8));
+            }
+        }
+    }
+    // Every dual edge starts as a link; matched ones are cut.
+    for t in 0..n {
+        for j in 0..3 {
+            if w.nbr[t][j] != crate::topology::NO_NEIGHBOR {
+                w.link[t] |= 1 << j;
+            }
+        }
+    }
+    if nodes == 0 {
+        return Ok((true, 0));
+    }
+    let g = Graph::new(nodes as usize, ends, ws)?;
+    let m = solve(&g, Objective::MaxWeight)?;
+    for &e in &m.edges {
+        let (t, j) = slot_of_edge[e as usize];
+        w.set_link(t as usize, j as usize, false);
+    }
+    if !m.perfect {
+        for t in 0..n {
+            if full[t] && m.mate[id[t] as usize] == UNMATCHED && w.degree(t) == 3 {
+                let j = (0..3).max_by(|&a, &b| w.weight[t][a].total_cmp(&w.weight[t][b])).expect("three slots");
+                w.set_link(t, j, false);
+            }
+        }
+    }
+    Ok((m.perfect, m.total_weight))
+}
+
+#[cfg(test)]
+mod tests;

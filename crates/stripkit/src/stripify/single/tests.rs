@@ -1,0 +1,21 @@
+use super::*;
+use crate::gen;
+use crate::strip;
+
+fn run(mesh: &crate::Mesh, weights: Weights) -> Single {
+    let tris = mesh.triangulate().tris;
+    let s = single_strips(&mesh.positions, tris.clone(), &SingleOptions::new(weights)).unwrap();
+    let v = strip::verify(&s.work.tris, &s.strips);
+    assert!(v.ok(), "{v}");
+    check::cover(&tris, &s.work).unwrap();
+    s
+}
+
+#[test]
+fn icosphere_gives_one_strip_for_every_weight_kind() {
+    let m = gen::icosphere(3);
+    for k in [Weights::Uniform, Weights::Cache, Weights::Cull, Weights::Direction([0.0, 0.0, 1.0])] {
+        let s = run(&m, k.clone());
+        assert_eq!(s.report.strips, 1, "{k}: {:?}", s.report);
+    }
+}
