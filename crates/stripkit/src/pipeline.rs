@@ -339,6 +339,9 @@ pub struct Strips {
     /// [`Algorithm::Single`], each at the midpoint of the edge it split): the strips
     /// and [`Strips::triangles`] index the mesh's positions followed by these.
     pub added_positions: Vec<[f32; 3]>,
+    /// For each added vertex, the two vertices whose midpoint it is (an edge split);
+    /// either may itself be an added vertex of a lower number.
+    pub added_from: Vec<[u32; 2]>,
 }
 
 impl Strips {
@@ -408,6 +411,19 @@ impl Strips {
     /// Whether the strips draw a changed mesh (Steiner vertices or swapped edges).
     pub fn changes_mesh(&self) -> bool {
         !self.added_positions.is_empty() || self.single.as_ref().is_some_and(|r| r.swapped_edges > 0)
+    }
+
+    /// Per-vertex values (`values[v]` for each of the mesh's vertices: positions of
+    /// another frame, normals, texture coordinates) extended over the added vertices,
+    /// each the mean of the two it splits: what the changed mesh needs of them.
+    pub fn with_added_vertices<const N: usize>(&self, values: &[[f32; N]]) -> Vec<[f32; N]> {
+        let mut out = values.to_vec();
+        out.reserve(self.added_from.len());
+        for &[a, b] in &self.added_from {
+            let (x, y) = (out[a as usize], out[b as usize]);
+            out.push(std::array::from_fn(|d| ((x[d] as f64 + y[d] as f64) / 2.0) as f32));
+        }
+        out
     }
 
     /// The mesh the strips draw: `mesh` itself, or, where the algorithm changed it
@@ -526,6 +542,7 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     // The fan is the greedy stripifier's input, made outside its timing.
     let fan = matches!(algorithm, Algorithm::Greedy(_) | Algorithm::Batch(_)).then(|| mesh.triangulate().tris);
     let mut added_positions = Vec::new();
+    let mut added_from = Vec::new();
     let mut single_report = None;
     let mut stripify_time_single = None;
     let start = Instant::now();
@@ -578,6 +595,7 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
             }
             added_positions =
                 single.work.pos[vertex_count..].iter().map(|p| p.map(|x| x as f32)).collect();
+            added_from = single.work.steiner.clone();
             single_report = Some(single.report);
             (single.strips, Split::Fan, None, Some(single.work.tris))
         }
@@ -616,6 +634,7 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
         stripify_time,
         single: single_report,
         added_positions,
+        added_from,
     })
 }
 
@@ -693,6 +712,13 @@ pub fn stripify_indices(
     if options.join == Join::Separate {
         return Err(Error::Invalid(
             "a flat buffer holds restart-separated or stitched strips, not separate ones (join restart or degenerate)".into(),
+        ));
+    }
+    if let Algorithm::Single(_) = options.algorithm {
+        return Err(Error::Invalid(
+            "single may add vertices (edge splits) and swap edges, which a plain index buffer cannot return; \
+             use stripify on a Mesh and read Strips::changed_mesh"
+                .into(),
         ));
     }
     // Against the caller's vertex count, not only the vertices used.

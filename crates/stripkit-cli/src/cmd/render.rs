@@ -360,14 +360,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let framing =
         frame::frame(&points, args.view, args.up, args.fov, args.zoom, w as f32 / h as f32).map_err(Error::Invalid)?;
     drop(points);
-    let blended: Option<Vec<[f32; 3]>> = target.as_ref().map(|other| {
-        mesh.positions
-            .iter()
-            .zip(&other.positions)
-            .map(|(a, b)| std::array::from_fn(|d| a[d] + (b[d] - a[d]) * t))
-            .collect()
-    });
-    let drawn = blended.as_deref().unwrap_or(&mesh.positions);
 
     // Fail before the stripifier's work where nothing can draw.
     progress.set_message("starting the renderer");
@@ -377,6 +369,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
     let strips = args.strip.stripify(&mesh, &args.input, |o| o)?;
+    // `single` may add vertices (edge midpoints): every per-vertex array gets them.
+    let positions = strips.with_added_vertices(&mesh.positions);
+    let target_positions = target.as_ref().map(|o| strips.with_added_vertices(&o.positions));
+    let blended: Option<Vec<[f32; 3]>> = target_positions.as_ref().map(|other| {
+        positions
+            .iter()
+            .zip(other)
+            .map(|(a, b)| std::array::from_fn(|d| a[d] + (b[d] - a[d]) * t))
+            .collect()
+    });
+    let drawn = blended.as_deref().unwrap_or(&positions);
 
     progress.set_message("drawing");
     let paint = match args.color {
@@ -399,8 +402,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let scene = Scene {
         framing,
         exploded,
-        positions: &mesh.positions,
-        target: target.as_ref().map(|o| o.positions.as_slice()),
+        positions: &positions,
+        target: target_positions.as_deref(),
         drawn,
         t,
     };

@@ -206,7 +206,9 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
                         ops.push(Op { class: 1, cost: 2.0 * wt, kind: Kind::Swap { t: t as u32, j: j as u8 } });
                     }
                 }
-                if !degenerate(w, t) && !degenerate(w, u) {
+                let (c, d) = swap_diagonal(w, t, j);
+                if c != d && !degenerate(w, t) && !degenerate(w, u) {
+                    // (c == d: the two share every edge, a pillow no split can open.)
                     ops.push(Op { class: 2, cost: 2.0 * wt, kind: Kind::Split { t: t as u32, j: j as u8 } });
                 }
             }
@@ -344,7 +346,7 @@ fn swap_diagonal(w: &WorkMesh, t: usize, j: usize) -> (u32, u32) {
 }
 
 /// A swap is allowed on a convex, nearly flat quad whose other diagonal is no edge yet.
-fn swap_ok(w: &WorkMesh, t: usize, j: usize, max_angle: f64, edges: &HashSet<(u32, u32)>) -> bool {
+pub(super) fn swap_ok(w: &WorkMesh, t: usize, j: usize, max_angle: f64, edges: &HashSet<(u32, u32)>) -> bool {
     let max_angle = max_angle.max(1e-6); // rounding in the normals of coplanar triangles
     let u = w.nbr[t][j] as usize;
     let (a, b) = edge(&w.tris[t], j);
@@ -391,8 +393,7 @@ fn nodal_candidates(
     }
     let mut fan: Vec<u32> = Vec::new();
     let mut comps: Vec<u32> = Vec::new();
-    'vertex: for v in 0..nv {
-        let f0 = first[v];
+    'vertex: for (v, &f0) in first.iter().enumerate() {
         if f0 == NONE {
             continue;
         }

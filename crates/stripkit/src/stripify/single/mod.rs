@@ -209,6 +209,12 @@ pub struct SingleReport {
     pub passes: usize,
     /// Whether the matching was perfect on the degree-3 triangles.
     pub perfect_matching: bool,
+    /// Path ends every strip set of the input mesh has at least, from the matching: a
+    /// triangle with three dual neighbours needs one of them off its strip, so
+    /// `sum(2 - degree) + 2 (full - matched edges)` over the triangles, where `full` counts
+    /// those with three neighbours. Strips without mesh changes are at least half of
+    /// it (and at least one per component); splits do not lower it.
+    pub forced_ends: usize,
     /// Total matched weight (integer weights, scaled by 1000).
     pub matched_weight: i64,
     /// Connected components of the changed mesh's dual graph (the fewest strips
@@ -250,7 +256,8 @@ pub(crate) fn single_strips(positions: &[[f32; 3]], tris: Vec<[u32; 3]>, options
     report.weights_ms = ms(clock);
 
     let clock = Instant::now();
-    let (perfect, matched_weight) = match_links(&mut w)?;
+    let (perfect, matched_weight, forced_ends) = match_links(&mut w)?;
+    report.forced_ends = forced_ends;
     report.perfect_matching = perfect;
     report.matched_weight = matched_weight;
     report.matching_ms = ms(clock);
@@ -324,8 +331,9 @@ fn components(w: &WorkMesh) -> (usize, usize) {
 
 /// Links from a maximum-weight matching of the degree-3 triangles: every dual edge is
 /// a link unless matched; a degree-3 triangle left unmatched drops its heaviest link.
-/// Returns whether the matching was perfect and its weight.
-fn match_links(w: &mut WorkMesh) -> Result<(bool, i64)> {
+/// Returns whether the matching was perfect, its weight, and the ends it forces (see
+/// [`SingleReport::forced_ends`]).
+fn match_links(w: &mut WorkMesh) -> Result<(bool, i64, usize)> {
     let n = w.len();
     let full: Vec<bool> = (0..n).map(|t| w.dual_degree(t) == 3 && !degenerate(&w.tris[t])).collect();
     let mut id = vec![u32::MAX; n];
@@ -357,8 +365,11 @@ fn match_links(w: &mut WorkMesh) -> Result<(bool, i64)> {
             }
         }
     }
+    // A cover by paths and loops has sum(2 - d) + 2 |off| ends, and the links off the
+    // strips cover every full triangle: at least full - (matched edges) of them.
+    let base: i64 = (0..n).filter(|&t| !degenerate(&w.tris[t])).map(|t| 2 - w.dual_degree(t) as i64).sum();
     if nodes == 0 {
-        return Ok((true, 0));
+        return Ok((true, 0, base.max(0) as usize));
     }
     let g = Graph::new(nodes as usize, ends, ws)?;
     let m = solve(&g, Objective::MaxWeight)?;
@@ -374,7 +385,8 @@ fn match_links(w: &mut WorkMesh) -> Result<(bool, i64)> {
             }
         }
     }
-    Ok((m.perfect, m.total_weight))
+    let forced = base + 2 * (nodes as i64 - m.edges.len() as i64);
+    Ok((m.perfect, m.total_weight, forced.max(0) as usize))
 }
 
 #[cfg(test)]

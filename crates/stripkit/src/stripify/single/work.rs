@@ -105,19 +105,16 @@ impl WorkMesh {
             .expect("dual neighbours share their edge, run in opposite directions")
     }
 
-    /// Points the neighbour across `(a, b)` of the old owner `from` at `to` instead.
-    fn repoint(&mut self, across: u32, from: u32, to: u32) {
+    /// Points the neighbour `across` the edge `(p, q)` (as its new owner `to` runs it)
+    /// at `to`: the slot is found by the edge, since a neighbour may touch the owner
+    /// across more than one edge.
+    fn repoint(&mut self, across: u32, (p, q): (u32, u32), to: u32) {
         if across == NO_NEIGHBOR {
             return;
         }
-        let s = &mut self.nbr[across as usize];
-        for x in s.iter_mut() {
-            if *x == from {
-                *x = to;
-                return;
-            }
-        }
-        unreachable!("a dual neighbour points back");
+        let a = across as usize;
+        let k = (0..3).find(|&k| edge(&self.tris[a], k) == (q, p)).expect("a dual neighbour shares the edge");
+        self.nbr[a][k] = to;
     }
 
     fn link_bit(&self, t: usize, j: usize) -> u8 {
@@ -173,8 +170,8 @@ impl WorkMesh {
         self.nbr.push([t32, y_ad, u32_]);
         self.link.push(mm | l_ad << 1);
         self.origin.push(self.origin[u]);
-        self.repoint(x_bc, t32, tb);
-        self.repoint(y_ad, u32_, ub);
+        self.repoint(x_bc, (b, c), tb);
+        self.repoint(y_ad, (a, d), ub);
         [tb, ub]
     }
 
@@ -208,8 +205,8 @@ impl WorkMesh {
         self.tris[u] = [d, b, c];
         self.nbr[u] = [y_db, x_bc, t32];
         self.link[u] = l_db | l_bc << 1;
-        self.repoint(y_ad, u32_, t32);
-        self.repoint(x_bc, t32, u32_);
+        self.repoint(y_ad, (a, d), t32);
+        self.repoint(x_bc, (b, c), u32_);
     }
 
     /// The unit normal of `t` (zero for a degenerate triangle).
