@@ -95,4 +95,7 @@ pub use graph::{scale_f64_weights, Graph, DIMACS_SPARE_NODES, MAX_WEIGHT};
 pub use solve::{
     max_weight_perfect_matching, min_cost_perfect_matching, solve, verify, Matching, Objective, UNMATCHED,
 };
-pub use unweighted::{maximum_cardinality_matching, maximum_cardinality_matching_bounded, unweighted_perfect_matching};
+pub use unweighted::{
+    maximum_cardinality_matching, maximum_cardinality_matching_bounded, maximum_cardinality_matching_from,
+    unweighted_perfect_matching,
+};

@@ -24,10 +24,38 @@ pub fn maximum_cardinality_matching(g: &Graph) -> Vec<u32> {
 /// vertices (Tutte-Berge with the empty set); then the result is still maximum, and
 /// the last search, which would fail after exploring a whole component, is never run.
 pub fn maximum_cardinality_matching_bounded(g: &Graph, min_exposed: usize) -> Vec<u32> {
+    search_from(g, vec![NONE; g.node_count()], min_exposed)
+}
+
+/// A maximum-cardinality matching grown from `start` (partner of each vertex or
+/// [`UNMATCHED`](crate::UNMATCHED); pairs that are not edges of `g`, or not mutual,
+/// are dropped): the free vertices are first matched greedily among themselves, then
+/// each remaining one starts a breadth-first search for a shortest augmenting path.
+/// Every augmentation keeps the matched vertices matched and swaps the edges along one
+/// shortest path, so most of `start` survives: a heuristic for a heavy perfect matching
+/// when `start` holds the heavy edges.
+pub fn maximum_cardinality_matching_from(g: &Graph, start: &[u32]) -> Vec<u32> {
+    let n = g.node_count();
+    let mut mate = vec![NONE; n];
+    for v in 0..n.min(start.len()) {
+        let u = start[v];
+        if u != NONE
+            && (u as usize) < n
+            && u as usize != v
+            && start.get(u as usize) == Some(&(v as u32))
+            && g.adjacency(v).iter().any(|&e| other(g, e, v as u32) == u)
+        {
+            mate[v] = u;
+        }
+    }
+    search_from(g, mate, 0)
+}
+
+fn search_from(g: &Graph, mate: Vec<u32>, min_exposed: usize) -> Vec<u32> {
     let n = g.node_count();
     let ids = || (0..n as u32).collect::<Vec<u32>>();
     let mut s = State {
-        mate: vec![NONE; n],
+        mate,
         parent: vec![NONE; n],
         used: vec![false; n],
         in_blossom: vec![false; n],
@@ -79,7 +107,18 @@ pub fn unweighted_perfect_matching(g: &Graph) -> Option<Vec<u32>> {
 fn karp_sipser(g: &Graph, mate: &mut [u32]) {
     let n = g.node_count();
     let mut deg: Vec<u32> = (0..n)
-        .map(|v| g.adjacency(v).iter().filter(|&&e| other(g, e, v as u32) != v as u32).count() as u32)
+        .map(|v| {
+            if mate[v] != NONE {
+                return 0;
+            }
+            g.adjacency(v)
+                .iter()
+                .filter(|&&e| {
+                    let u = other(g, e, v as u32);
+                    u != v as u32 && mate[u as usize] == NONE
+                })
+                .count() as u32
+        })
         .collect();
     let mut ones: Vec<u32> = (0..n as u32).filter(|&v| deg[v as usize] == 1).collect();
     let mut next = 0usize;

@@ -96,5 +96,5 @@ pub use strip::{
 };
 pub use stripify::greedy::{GreedyOptions, Heuristic};
 pub use stripify::quad::{Policy, QuadOptions};
-pub use stripify::single::{SingleOptions, SingleReport, Weights};
+pub use stripify::single::{MatchingMode, SingleOptions, SingleReport, Weights, EXACT_MATCHING_NODES};
 pub use topology::{validate, MeshFacts};

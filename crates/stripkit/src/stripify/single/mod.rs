@@ -146,11 +146,39 @@ pub struct SingleOptions {
     pub cull_angle: f64,
     /// Seed of the randomized parts (the cache weights' tree, the clustering's seeds).
     pub seed: u64,
+    /// How the matching is found. Default [`MatchingMode::Auto`].
+    pub matching: MatchingMode,
 }
+
+/// How the single-strip builder matches the dual graph.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+#[non_exhaustive]
+pub enum MatchingMode {
+    /// [`MatchingMode::Exact`] up to [`EXACT_MATCHING_NODES`] triangles,
+    /// [`MatchingMode::Greedy`] above.
+    #[default]
+    Auto,
+    /// The maximum-weight matching, proved by its certificate.
+    Exact,
+    /// Heaviest edges first (greedy), then shortest augmenting paths until the
+    /// matching is maximum: every triangle matched as in the exact case, most heavy
+    /// edges kept, in about the time of an unweighted matching.
+    Greedy,
+}
+
+/// The most triangles [`MatchingMode::Auto`] matches exactly.
+pub const EXACT_MATCHING_NODES: usize = 1 << 19;
 
 impl Default for SingleOptions {
     fn default() -> Self {
-        SingleOptions { weights: Weights::Uniform, swap_angle: Some(1.0), cull_angle: 30.0, seed: 1 }
+        SingleOptions {
+            weights: Weights::Uniform,
+            swap_angle: Some(1.0),
+            cull_angle: 30.0,
+            seed: 1,
+            matching: MatchingMode::Auto,
+        }
     }
 }
 
@@ -167,6 +195,11 @@ impl SingleOptions {
     /// Sets [`SingleOptions::cull_angle`].
     pub fn cull_angle(mut self, degrees: f64) -> Self {
         self.cull_angle = degrees;
+        self
+    }
+    /// Sets [`SingleOptions::matching`].
+    pub fn matching(mut self, mode: MatchingMode) -> Self {
+        self.matching = mode;
         self
     }
     /// Sets [`SingleOptions::seed`].
@@ -256,7 +289,7 @@ pub(crate) fn single_strips(positions: &[[f32; 3]], tris: Vec<[u32; 3]>, options
     report.weights_ms = ms(clock);
 
     let clock = Instant::now();
-    let (perfect, matched_weight, forced_ends) = match_links(&mut w)?;
+    let (perfect, matched_weight, forced_ends) = match_links(&mut w, options.matching)?;
     report.forced_ends = forced_ends;
     report.perfect_matching = perfect;
     report.matched_weight = matched_weight;
@@ -333,7 +366,7 @@ fn components(w: &WorkMesh) -> (usize, usize) {
 /// a link unless matched; a degree-3 triangle left unmatched drops its heaviest link.
 /// Returns whether the matching was perfect, its weight, and the ends it forces (see
 /// [`SingleReport::forced_ends`]).
-fn match_links(w: &mut WorkMesh) -> Result<(bool, i64, usize)> {
+fn match_links(w: &mut WorkMesh, mode: MatchingMode) -> Result<(bool, i64, usize)> {
     let n = w.len();
     let full: Vec<bool> = (0..n).map(|t| w.dual_degree(t) == 3 && !degenerate(&w.tris[t])).collect();
     let mut id = vec![u32::MAX; n];
@@ -372,7 +405,17 @@ fn match_links(w: &mut WorkMesh) -> Result<(bool, i64, usize)> {
         return Ok((true, 0, base.max(0) as usize));
     }
     let g = Graph::new(nodes as usize, ends, ws)?;
-    let m = solve(&g, Objective::MaxWeight)?;
+    let exact = match mode {
+        MatchingMode::Exact => true,
+        MatchingMode::Greedy => false,
+        MatchingMode::Auto => (nodes as usize) <= EXACT_MATCHING_NODES,
+    };
+    let m = if exact {
+        let m = solve(&g, Objective::MaxWeight)?;
+        Found { perfect: m.perfect, mate: m.mate, edges: m.edges, total_weight: m.total_weight }
+    } else {
+        greedy_matching(&g)
+    };
     for &e in &m.edges {
         let (t, j) = slot_of_edge[e as usize];
         w.set_link(t as usize, j as usize, false);
@@ -387,6 +430,54 @@ fn match_links(w: &mut WorkMesh) -> Result<(bool, i64, usize)> {
     }
     let forced = base + 2 * (nodes as i64 - m.edges.len() as i64);
     Ok((m.perfect, m.total_weight, forced.max(0) as usize))
+}
+
+/// [`MatchingMode::Greedy`]: edges by weight, heaviest first, taken where both ends
+/// are free; then shortest augmenting paths to a maximum-cardinality matching.
+fn greedy_matching(g: &Graph) -> Found {
+    let n = g.node_count();
+    let mut order: Vec<u32> = (0..g.edge_count() as u32).collect();
+    let ws = g.weights();
+    order.sort_by_key(|&e| std::cmp::Reverse(ws[e as usize]));
+    let mut mate = vec![UNMATCHED; n];
+    for e in order {
+        let [a, b] = g.edges()[e as usize];
+        if a != b && mate[a as usize] == UNMATCHED && mate[b as usize] == UNMATCHED {
+            mate[a as usize] = b;
+            mate[b as usize] = a;
+        }
+    }
+    let mate = stripkit_matching::maximum_cardinality_matching_from(g, &mate);
+    // Edge ids of the pairs: the heaviest edge between each pair.
+    let mut edges = Vec::with_capacity(n / 2);
+    let mut total = 0;
+    for v in 0..n {
+        let u = mate[v];
+        if u != UNMATCHED && (v as u32) < u {
+            let e = g
+                .adjacency(v)
+                .iter()
+                .copied()
+                .filter(|&e| {
+                    let [a, b] = g.edges()[e as usize];
+                    (a == u) || (b == u)
+                })
+                .max_by_key(|&e| ws[e as usize])
+                .expect("partners are neighbours");
+            total += ws[e as usize];
+            edges.push(e);
+        }
+    }
+    edges.sort_unstable();
+    Found { perfect: edges.len() * 2 == n, mate, edges, total_weight: total }
+}
+
+/// A matching: whether perfect, partners, edge ids, weight.
+struct Found {
+    perfect: bool,
+    mate: Vec<u32>,
+    edges: Vec<u32>,
+    total_weight: i64,
 }
 
 #[cfg(test)]
