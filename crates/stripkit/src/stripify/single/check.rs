@@ -12,6 +12,7 @@
 //! * every Steiner vertex lies at the midpoint of the edge it split;
 //! * without swaps, every piece lies in its input triangle's plane and faces its way:
 //!   the pieces are exactly a subdivision of the triangle.
+//!
 //! Swapped groups cover the same quad; how far a swap moves the surface is reported
 //! ([`max_swap_deviation`]).
 

@@ -391,8 +391,7 @@ fn nodal_candidates(
     }
     let mut fan: Vec<u32> = Vec::new();
     let mut comps: Vec<u32> = Vec::new();
-    'vertex: for v in 0..nv {
-        let f0 = first[v];
+    'vertex: for (v, &f0) in first.iter().enumerate().take(nv) {
         if f0 == NONE {
             continue;
         }
