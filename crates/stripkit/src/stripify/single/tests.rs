@@ -19,3 +19,15 @@ fn icosphere_gives_one_strip_for_every_weight_kind() {
         assert_eq!(s.report.strips, 1, "{k}: {:?}", s.report);
     }
 }
+
+#[test]
+fn cull_reports_clusters_and_peaks() {
+    let m = gen::cube();
+    let s = run(&m, Weights::Cull);
+    assert_eq!(s.report.strips, 1);
+    assert_eq!(s.report.clusters, 6);
+    assert_eq!(s.report.cull_peaks, 6);
+    assert!(s.report.steiner_vertices >= 6, "{:?}", s.report);
+    let s = run(&m, Weights::Uniform);
+    assert_eq!((s.report.clusters, s.report.cull_peaks), (0, 0));
+}
