@@ -520,6 +520,9 @@ fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
         writeln!(out, "  steiner_vertices     {:>10}", s.steiner_vertices)?;
         if s.clusters > 0 {
             writeln!(out, "  cull clusters        {:>10} ({} peaks split)", s.clusters, s.cull_peaks)?;
+            if s.boundary_edges > 0 {
+                writeln!(out, "  boundary crossings   {:>10} (of {} boundary edges)", s.boundary_crossings, s.boundary_edges)?;
+            }
         }
         writeln!(out, "  swapped_edges        {:>10}", s.swapped_edges)?;
         if s.swapped_edges > 0 {

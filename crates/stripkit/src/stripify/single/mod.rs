@@ -207,6 +207,11 @@ pub struct SingleReport {
     pub clusters: usize,
     /// Cull weights: cluster peaks split (one Steiner vertex each).
     pub cull_peaks: usize,
+    /// Cull weights (alone, not in a mix): dual edges between clusters, after the
+    /// peak splits and merging (halves of a split boundary edge count twice).
+    pub boundary_edges: usize,
+    /// Of those, the ones the strip crosses (strip links).
+    pub boundary_crossings: usize,
     /// Edges swapped.
     pub swapped_edges: usize,
     /// Pieces (loops and paths) the matching left, before merging.
@@ -290,6 +295,9 @@ pub(crate) fn single_strips(positions: &[[f32; 3]], tris: Vec<[u32; 3]>, options
     report.passes = stats.passes;
     report.steiner_vertices = w.steiner.len();
     report.swapped_edges = w.swaps.len();
+    if options.weights == Weights::Cull {
+        (report.boundary_edges, report.boundary_crossings) = boundary_crossings(&w);
+    }
 
     let dual = DualGraph { neighbors: w.nbr.clone() };
     let mut strips = StripSet::new();
@@ -306,6 +314,21 @@ pub(crate) fn single_strips(positions: &[[f32; 3]], tris: Vec<[u32; 3]>, options
     report.max_swap_deviation = check::max_swap_deviation(&w);
     report.merge_ms = ms(clock);
     Ok(Single { strips, work: w, report })
+}
+
+/// Dual edges whose weight marks a cluster boundary, and how many are strip links.
+fn boundary_crossings(w: &WorkMesh) -> (usize, usize) {
+    let (mut edges, mut crossed) = (0, 0);
+    for t in 0..w.len() {
+        for j in 0..3 {
+            let u = w.nbr[t][j];
+            if u != crate::topology::NO_NEIGHBOR && (t as u32) < u && w.weight[t][j] >= cull::FLOOR {
+                edges += 1;
+                crossed += w.linked(t, j) as usize;
+            }
+        }
+    }
+    (edges, crossed)
 }
 
 fn ms(since: Instant) -> f64 {

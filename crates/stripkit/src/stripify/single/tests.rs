@@ -28,6 +28,8 @@ fn cull_reports_clusters_and_peaks() {
     assert_eq!(s.report.clusters, 6);
     assert_eq!(s.report.cull_peaks, 6);
     assert!(s.report.steiner_vertices >= 6, "{:?}", s.report);
+    // One strip through six faces crosses at least five face boundaries.
+    assert!(s.report.boundary_crossings >= 5 && s.report.boundary_crossings < s.report.boundary_edges, "{:?}", s.report);
     let s = run(&m, Weights::Uniform);
     assert_eq!((s.report.clusters, s.report.cull_peaks), (0, 0));
 }
