@@ -499,7 +499,7 @@ mod tests {
         // at an odd position it still costs 7 indices, joined with 2 extra.
         let fan = [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5]];
         let fan_strip = vec![1, 2, 0, 3, 0, 4, 5];
-        assert!(verify(&fan, &StripSet::from_strips(&[fan_strip.clone()])).ok());
+        assert!(verify(&fan, &StripSet::from_strips(std::slice::from_ref(&fan_strip))).ok());
         let set = StripSet::from_strips(&[vec![7, 8, 9], fan_strip]);
         let one = encode_stitched(&set);
         assert_eq!(one.len(), 3 + 2 + 7);

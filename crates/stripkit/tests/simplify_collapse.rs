@@ -177,7 +177,7 @@ fn error_target_stops_at_the_bound() {
     let bound = all.sequence.collapses[all.sequence.len() / 3].error;
     let s = run(&mesh, Placement::Optimal, Target::Error(bound), None);
     assert!(s.max_error <= bound);
-    assert!(s.sequence.len() >= 1 && s.sequence.len() < all.sequence.len());
+    assert!(!s.sequence.is_empty() && s.sequence.len() < all.sequence.len());
 }
 
 #[test]
@@ -258,7 +258,8 @@ fn damaged_sequence_files_are_refused_with_the_place() {
     let e = refused("huge.bin", &huge);
     assert!(e.contains("file ends inside collapse 0 of 4294967295"), "{e}");
     // Each field of a collapse, edited in a copy of the sequence.
-    let edits: [(&str, fn(&mut CollapseSequence), &str); 5] = [
+    type Edit = (&'static str, fn(&mut CollapseSequence), &'static str);
+    let edits: [Edit; 5] = [
         ("past.bin", |q| q.collapses[3].removed = q.vertex_count, "past the"),
         ("self.bin", |q| q.collapses[3].kept = q.collapses[3].removed, "into itself"),
         ("nan.bin", |q| q.collapses[3].position[1] = f32::NAN, "NaN or infinite"),

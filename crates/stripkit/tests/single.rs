@@ -69,8 +69,9 @@ fn one_strip_per_closed_component() {
                 // Each split adds a vertex and two triangles; swaps keep the count.
                 assert_eq!(s.figures.triangles, n + 2 * r.steiner_vertices, "{name} {k}");
                 assert_eq!(s.added_positions.len(), r.steiner_vertices);
-                // Splits stay rare: a few, or at most 5% of the vertices.
-                assert!(r.steiner_vertices <= 4 + mesh.vertex_count() / 20, "{name} {k}: {r:?}");
+                // Merging splits stay rare: a few, or at most 5% of the vertices (cull
+                // also splits every cluster peak, on purpose).
+                assert!(r.steiner_vertices - r.cull_peaks <= 4 + mesh.vertex_count() / 20, "{name} {k}: {r:?}");
             }
         }
         // Without swaps the surface is untouched: the same strips, only splits.

@@ -172,6 +172,10 @@ pub struct StripArgs {
     /// in degrees. Default 30.
     #[arg(long, value_name = "DEGREES")]
     pub cull_angle: Option<f64>,
+    /// `--algo single` with cull weights: small seeded noise on the weights inside
+    /// clusters, which speeds up the matching (`on` or `off`). Default on.
+    #[arg(long, value_name = "ON|OFF")]
+    pub cull_noise: Option<String>,
     /// `--algo single`: seed of the randomized parts (cache weights' tree, clustering
     /// seeds). Default 1.
     #[arg(long, value_name = "N")]
@@ -295,11 +299,12 @@ impl StripArgs {
         if (self.weights.is_some()
             || self.swap_angle.is_some()
             || self.cull_angle.is_some()
+            || self.cull_noise.is_some()
             || self.seed.is_some()
             || self.matching.is_some())
             && self.algo != Algo::Single
         {
-            return bad("--weights, --swap-angle, --cull-angle, --seed and --matching apply to --algo single");
+            return bad("--weights, --swap-angle, --cull-angle, --cull-noise, --seed and --matching apply to --algo single");
         }
         if self.algo == Algo::Single {
             self.single_options()?;
@@ -327,6 +332,13 @@ impl StripArgs {
         }
         if let Some(a) = self.cull_angle {
             o = o.cull_angle(a);
+        }
+        if let Some(n) = &self.cull_noise {
+            o = o.cull_noise(match n.as_str() {
+                "on" => true,
+                "off" => false,
+                _ => return Err(Error::Invalid(format!("--cull-noise '{n}': expected on or off"))),
+            });
         }
         if let Some(s) = self.seed {
             o = o.seed(s);
@@ -537,6 +549,12 @@ fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
     if let Some(s) = r.single {
         writeln!(out, "  components           {:>10}", s.components)?;
         writeln!(out, "  steiner_vertices     {:>10}", s.steiner_vertices)?;
+        if s.clusters > 0 {
+            writeln!(out, "  cull clusters        {:>10} ({} peaks split)", s.clusters, s.cull_peaks)?;
+            if s.boundary_edges > 0 {
+                writeln!(out, "  boundary crossings   {:>10} (of {} boundary edges)", s.boundary_crossings, s.boundary_edges)?;
+            }
+        }
         writeln!(out, "  swapped_edges        {:>10}", s.swapped_edges)?;
         if s.swapped_edges > 0 {
             writeln!(out, "  max swap deviation   {:>10.3e}", s.max_swap_deviation)?;

@@ -228,7 +228,6 @@ pub(super) fn split_sets(v: &[u32], diag: u8) -> [[u32; 3]; 2] {
     })
 }
 
-
 /// True when quads `a` and `b` are the same face: the same four vertices in the same
 /// cyclic order (a face listed twice, perhaps from another corner). Their triangles
 /// may coincide: that is the input's doing, not a wrong split, so no diagonal is
@@ -495,6 +494,35 @@ pub(super) fn solve_diagonals(quads: &[&[u32]], pairs: &[(u32, u32)], fixed: &[(
         .collect()
 }
 
+/// Candidate pairs [`candidate_pairs`] works out before it gives up.
+const SOLVE_BUDGET: usize = 1 << 20;
+
+/// Every pair of `quads` that shares one of its four possible triangles (so three
+/// vertices), sorted; `None` when more than about [`SOLVE_BUDGET`] pairs would be
+/// listed (hundreds of quads on the same three vertices). QSTRIP solves these pairs
+/// when a cluster needs it, and the quad check asks the same question, so the two
+/// agree on which coincidences could have been avoided.
+pub(super) fn candidate_pairs(quads: &[&[u32]]) -> Option<Vec<(u32, u32)>> {
+    let mut by_triangle: Vec<([u32; 3], u32)> = Vec::with_capacity(4 * quads.len());
+    for (i, v) in quads.iter().enumerate() {
+        for d in 0..2 {
+            by_triangle.extend(split_sets(v, d).map(|t| (t, i as u32)));
+        }
+    }
+    by_triangle.sort_unstable();
+    by_triangle.dedup();
+    let groups = || by_triangle.chunk_by(|a, b| a.0 == b.0).filter(|g| g.len() > 1);
+    if groups().map(|g| g.len() * g.len()).sum::<usize>() > 2 * SOLVE_BUDGET {
+        return None;
+    }
+    let mut pairs: Vec<(u32, u32)> = groups()
+        .flat_map(|g| (0..g.len()).flat_map(move |i| g[i + 1..].iter().map(move |b| (g[i].1, b.1))))
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    Some(pairs)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -555,33 +583,4 @@ mod tests {
         // Both answers occur, so both branches were compared.
         assert!(sat > 100 && unsat > 100, "{sat} solvable, {unsat} not");
     }
-}
-
-/// Candidate pairs [`candidate_pairs`] works out before it gives up.
-const SOLVE_BUDGET: usize = 1 << 20;
-
-/// Every pair of `quads` that shares one of its four possible triangles (so three
-/// vertices), sorted; `None` when more than about [`SOLVE_BUDGET`] pairs would be
-/// listed (hundreds of quads on the same three vertices). QSTRIP solves these pairs
-/// when a cluster needs it, and the quad check asks the same question, so the two
-/// agree on which coincidences could have been avoided.
-pub(super) fn candidate_pairs(quads: &[&[u32]]) -> Option<Vec<(u32, u32)>> {
-    let mut by_triangle: Vec<([u32; 3], u32)> = Vec::with_capacity(4 * quads.len());
-    for (i, v) in quads.iter().enumerate() {
-        for d in 0..2 {
-            by_triangle.extend(split_sets(v, d).map(|t| (t, i as u32)));
-        }
-    }
-    by_triangle.sort_unstable();
-    by_triangle.dedup();
-    let groups = || by_triangle.chunk_by(|a, b| a.0 == b.0).filter(|g| g.len() > 1);
-    if groups().map(|g| g.len() * g.len()).sum::<usize>() > 2 * SOLVE_BUDGET {
-        return None;
-    }
-    let mut pairs: Vec<(u32, u32)> = groups()
-        .flat_map(|g| (0..g.len()).flat_map(move |i| g[i + 1..].iter().map(move |b| (g[i].1, b.1))))
-        .collect();
-    pairs.sort_unstable();
-    pairs.dedup();
-    Some(pairs)
 }

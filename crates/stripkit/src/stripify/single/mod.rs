@@ -144,10 +144,15 @@ pub struct SingleOptions {
     pub swap_angle: Option<f64>,
     /// Normal deviation bound of the culling clusters, in degrees. Default 30.
     pub cull_angle: f64,
-    /// Seed of the randomized parts (the cache weights' tree, the clustering's seeds).
+    /// Seed of the randomized parts (the cache weights' tree, the clustering's seeds,
+    /// the cull noise).
     pub seed: u64,
     /// How the matching is found. Default [`MatchingMode::Auto`].
     pub matching: MatchingMode,
+    /// Small seeded noise on the cull weights inside clusters (at most 3 of the
+    /// integer weights' 1000), which speeds up the matching (section 6 of the paper).
+    /// Default on.
+    pub cull_noise: bool,
 }
 
 /// How the single-strip builder matches the dual graph.
@@ -178,6 +183,7 @@ impl Default for SingleOptions {
             cull_angle: 30.0,
             seed: 1,
             matching: MatchingMode::Auto,
+            cull_noise: true,
         }
     }
 }
@@ -200,6 +206,11 @@ impl SingleOptions {
     /// Sets [`SingleOptions::matching`].
     pub fn matching(mut self, mode: MatchingMode) -> Self {
         self.matching = mode;
+        self
+    }
+    /// Sets [`SingleOptions::cull_noise`].
+    pub fn cull_noise(mut self, on: bool) -> Self {
+        self.cull_noise = on;
         self
     }
     /// Sets [`SingleOptions::seed`].
@@ -226,6 +237,15 @@ impl SingleOptions {
 pub struct SingleReport {
     /// Steiner vertices added (one per edge split, cull peaks included).
     pub steiner_vertices: usize,
+    /// Cull weights: clusters of nearly parallel normals (0 for other weights).
+    pub clusters: usize,
+    /// Cull weights: cluster peaks split (one Steiner vertex each).
+    pub cull_peaks: usize,
+    /// Cull weights (alone, not in a mix): dual edges between clusters, after the
+    /// peak splits and merging (halves of a split boundary edge count twice).
+    pub boundary_edges: usize,
+    /// Of those, the ones the strip crosses (strip links).
+    pub boundary_crossings: usize,
     /// Edges swapped.
     pub swapped_edges: usize,
     /// Pieces (loops and paths) the matching left, before merging.
@@ -285,7 +305,15 @@ pub(crate) fn single_strips(positions: &[[f32; 3]], tris: Vec<[u32; 3]>, options
     let mut report = SingleReport::default();
     let clock = Instant::now();
     let mut w = WorkMesh::new(positions, tris);
-    weights::assign(&mut w, &options.weights, options.seed, options.cull_angle.to_radians());
+    let cull = weights::assign(
+        &mut w,
+        &options.weights,
+        options.seed,
+        options.cull_angle.to_radians(),
+        options.cull_noise,
+    );
+    report.clusters = cull.clusters;
+    report.cull_peaks = cull.peaks;
     report.weights_ms = ms(clock);
 
     let clock = Instant::now();
@@ -308,6 +336,9 @@ pub(crate) fn single_strips(positions: &[[f32; 3]], tris: Vec<[u32; 3]>, options
     report.passes = stats.passes;
     report.steiner_vertices = w.steiner.len();
     report.swapped_edges = w.swaps.len();
+    if options.weights == Weights::Cull {
+        (report.boundary_edges, report.boundary_crossings) = boundary_crossings(&w);
+    }
 
     let dual = DualGraph { neighbors: w.nbr.clone() };
     let mut strips = StripSet::new();
@@ -324,6 +355,21 @@ pub(crate) fn single_strips(positions: &[[f32; 3]], tris: Vec<[u32; 3]>, options
     report.max_swap_deviation = check::max_swap_deviation(&w);
     report.merge_ms = ms(clock);
     Ok(Single { strips, work: w, report })
+}
+
+/// Dual edges whose weight marks a cluster boundary, and how many are strip links.
+fn boundary_crossings(w: &WorkMesh) -> (usize, usize) {
+    let (mut edges, mut crossed) = (0, 0);
+    for t in 0..w.len() {
+        for j in 0..3 {
+            let u = w.nbr[t][j];
+            if u != crate::topology::NO_NEIGHBOR && (t as u32) < u && w.weight[t][j] >= cull::FLOOR {
+                edges += 1;
+                crossed += w.linked(t, j) as usize;
+            }
+        }
+    }
+    (edges, crossed)
 }
 
 fn ms(since: Instant) -> f64 {

@@ -123,3 +123,17 @@ fn swaps_only_on_flat_convex_quads() {
     edges.insert((2u32, 3u32));
     assert!(!merge::swap_ok(&quad([1.0, 0.0, 0.0]), 0, 0, deg(1.0), &edges));
 }
+
+#[test]
+fn cull_reports_clusters_and_peaks() {
+    let m = gen::cube();
+    let s = run(&m, Weights::Cull);
+    assert_eq!(s.report.strips, 1);
+    assert_eq!(s.report.clusters, 6);
+    assert_eq!(s.report.cull_peaks, 6);
+    assert!(s.report.steiner_vertices >= 6, "{:?}", s.report);
+    // One strip through six faces crosses at least five face boundaries.
+    assert!(s.report.boundary_crossings >= 5 && s.report.boundary_crossings < s.report.boundary_edges, "{:?}", s.report);
+    let s = run(&m, Weights::Uniform);
+    assert_eq!((s.report.clusters, s.report.cull_peaks), (0, 0));
+}

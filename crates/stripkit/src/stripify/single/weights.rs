@@ -7,13 +7,22 @@ use super::{cull, Weights};
 use crate::matching::splitmix;
 use crate::topology::NO_NEIGHBOR;
 
+/// What the cull weights found: clusters and peaks split.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct CullStats {
+    pub clusters: usize,
+    pub peaks: usize,
+}
+
 /// Sets `w.weight` for `weights`. Cull weights may first split peaks of clusters, so
-/// this may change the mesh.
-pub(crate) fn assign(w: &mut WorkMesh, weights: &Weights, seed: u64, cull_angle: f64) {
+/// this may change the mesh. `cull_angle` in radians; `cull_noise`: small seeded noise
+/// on the in-cluster cull weights. Returns the cull statistics (zero without cull).
+pub(crate) fn assign(w: &mut WorkMesh, weights: &Weights, seed: u64, cull_angle: f64, cull_noise: bool) -> CullStats {
     // The mesh changes (cull's peak splits) come first, so every kind sees the final mesh.
-    let cull = uses_cull(weights).then(|| cull::cull_weights(w, cull_angle, seed));
-    let table = eval(w, weights, seed, cull.as_deref());
+    let cull = uses_cull(weights).then(|| cull::cull_weights(w, cull_angle, seed, cull_noise));
+    let table = eval(w, weights, seed, cull.as_ref().map(|c| c.weights.as_slice()));
     w.weight = table;
+    cull.map(|c| CullStats { clusters: c.clusters, peaks: c.peaks }).unwrap_or_default()
 }
 
 fn uses_cull(weights: &Weights) -> bool {
@@ -175,10 +184,10 @@ mod tests {
         let w = WorkMesh::new(&m.positions, m.triangulate().tris);
         let d = direction_weights(&w, [1.0, 0.0, 0.0]);
         for (t, s) in w.tris.iter().zip(&d) {
-            for (j, &sj) in s.iter().enumerate() {
+            for (j, &x) in s.iter().enumerate() {
                 let (a, b) = edge(t, j);
                 let e = sub(w.pos[b as usize], w.pos[a as usize]);
-                assert!((sj - (e[0].abs() / dot(e, e).sqrt())).abs() < 1e-12);
+                assert!((x - (e[0].abs() / dot(e, e).sqrt())).abs() < 1e-12);
             }
         }
     }
