@@ -118,6 +118,8 @@ enum Kind {
 struct Op {
     class: u8,
     cost: f64,
+    /// Pieces the operation joins (more first among equal costs).
+    joins: u8,
     kind: Kind,
 }
 
@@ -178,7 +180,7 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
                 let wt = weight(w, t, j);
                 let (et, eu) = (w.degree(t) < 2, w.degree(u) < 2);
                 if et && eu {
-                    ops.push(Op { class: 0, cost: wt, kind: Kind::Join { t: t as u32, j: j as u8 } });
+                    ops.push(Op { class: 0, cost: wt, joins: 2, kind: Kind::Join { t: t as u32, j: j as u8 } });
                     continue;
                 }
                 if et != eu {
@@ -193,6 +195,7 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
                             ops.push(Op {
                                 class: 0,
                                 cost: wt - cw,
+                                joins: 2,
                                 kind: Kind::Attach { e: e as u32, j: je as u8, cut: cut as u8 },
                             });
                         }
@@ -203,13 +206,13 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
                 }
                 if let (Some(max), Some(edges)) = (settings.swap_angle, edges.as_ref()) {
                     if swap_ok(w, t, j, max, edges) {
-                        ops.push(Op { class: 1, cost: 2.0 * wt, kind: Kind::Swap { t: t as u32, j: j as u8 } });
+                        ops.push(Op { class: 1, cost: 2.0 * wt, joins: 2, kind: Kind::Swap { t: t as u32, j: j as u8 } });
                     }
                 }
                 let (c, d) = swap_diagonal(w, t, j);
                 if c != d && !degenerate(w, t) && !degenerate(w, u) {
                     // (c == d: the two share every edge, a pillow no split can open.)
-                    ops.push(Op { class: 2, cost: 2.0 * wt, kind: Kind::Split { t: t as u32, j: j as u8 } });
+                    ops.push(Op { class: 2, cost: 2.0 * wt, joins: 2, kind: Kind::Split { t: t as u32, j: j as u8 } });
                 }
             }
         }
@@ -217,12 +220,18 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
         if ops.is_empty() {
             break;
         }
-        ops.sort_by(|a, b| a.class.cmp(&b.class).then(a.cost.total_cmp(&b.cost)));
+        ops.sort_by(|a, b| a.class.cmp(&b.class).then(a.cost.total_cmp(&b.cost)).then(b.joins.cmp(&a.joins)));
         let mut uf = Union { parent: (0..piece_count as u32).collect(), path: p.is_path.clone() };
         stamp.resize(w.len(), 0);
         let mut applied = 0;
         let mut edges = edges;
+        // Only the cheapest class that applies runs in a pass: after free merges, the
+        // next pass may find new free ones where a swap or split was queued.
+        let mut pass_class = None;
         for op in ops {
+            if pass_class.is_some_and(|c| op.class > c) {
+                break;
+            }
             let free = |stamp: &[u32], t: u32| stamp[t as usize] != pass;
             match op.kind {
                 Kind::Join { t, j } => {
@@ -325,6 +334,7 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
                 }
             }
             applied += 1;
+            pass_class = Some(op.class);
         }
         if applied == 0 {
             break;
@@ -450,7 +460,7 @@ fn nodal_candidates(
         if comps.len() * 2 != n || paths > 1 {
             continue;
         }
-        ops.push(Op { class: 0, cost, kind: Kind::Nodal { fan: (offsets.len() - 1) as u32 } });
+        ops.push(Op { class: 0, cost, joins: (n / 2).min(255) as u8, kind: Kind::Nodal { fan: (offsets.len() - 1) as u32 } });
         fans.extend_from_slice(&fan);
         offsets.push(fans.len() as u32);
     }

@@ -172,6 +172,11 @@ pub enum MatchingMode {
     Greedy,
 }
 
+/// Greedy matchings tried (different tie-breaking orders) on small meshes.
+const GREEDY_TRIES: usize = 8;
+/// Triangles times tries the greedy matching may spend: 8 tries up to 2^17 triangles.
+const GREEDY_TRY_BUDGET: usize = 1 << 20;
+
 /// The most triangles [`MatchingMode::Auto`] matches exactly.
 pub const EXACT_MATCHING_NODES: usize = 1 << 19;
 
@@ -426,6 +431,7 @@ fn match_links(w: &mut WorkMesh, mode: MatchingMode) -> Result<(bool, i64, usize
     let mut ends = Vec::with_capacity(nodes as usize * 3 / 2);
     let mut ws = Vec::with_capacity(nodes as usize * 3 / 2);
     let mut slot_of_edge = Vec::with_capacity(nodes as usize * 3 / 2);
+    let mut mesh_edge: Vec<(u32, u32)> = Vec::with_capacity(nodes as usize * 3 / 2);
     for t in 0..n {
         for j in 0..3 {
             let u = w.nbr[t][j];
@@ -433,6 +439,7 @@ fn match_links(w: &mut WorkMesh, mode: MatchingMode) -> Result<(bool, i64, usize
                 ends.push([id[t], id[u as usize]]);
                 ws.push((w.weight[t][j] * WEIGHT_SCALE).round().max(0.0) as i64);
                 slot_of_edge.push((t as u32, j as u8));
+                mesh_edge.push(work::edge(&w.tris[t], j));
             }
         }
     }
@@ -450,45 +457,88 @@ fn match_links(w: &mut WorkMesh, mode: MatchingMode) -> Result<(bool, i64, usize
     if nodes == 0 {
         return Ok((true, 0, base.max(0) as usize));
     }
+    // Equal weights: every maximum-cardinality matching is a heaviest one, and the
+    // greedy one leaves fewer loops.
+    let uniform = ws.iter().all(|&x| x == ws[0]);
     let g = Graph::new(nodes as usize, ends, ws)?;
     let exact = match mode {
         MatchingMode::Exact => true,
         MatchingMode::Greedy => false,
-        MatchingMode::Auto => (nodes as usize) <= EXACT_MATCHING_NODES,
+        MatchingMode::Auto => !uniform && (nodes as usize) <= EXACT_MATCHING_NODES,
+    };
+    let apply = |w: &mut WorkMesh, m: &Found| {
+        for &e in &m.edges {
+            let (t, j) = slot_of_edge[e as usize];
+            w.set_link(t as usize, j as usize, false);
+        }
+        if !m.perfect {
+            for t in 0..n {
+                if full[t] && m.mate[id[t] as usize] == UNMATCHED && w.degree(t) == 3 {
+                    let j = (0..3).max_by(|&a, &b| w.weight[t][a].total_cmp(&w.weight[t][b])).expect("three slots");
+                    w.set_link(t, j, false);
+                }
+            }
+        }
     };
     let m = if exact {
         let m = solve(&g, Objective::MaxWeight)?;
         Found { perfect: m.perfect, mate: m.mate, edges: m.edges, total_weight: m.total_weight }
     } else {
-        greedy_matching(&g)
-    };
-    for &e in &m.edges {
-        let (t, j) = slot_of_edge[e as usize];
-        w.set_link(t as usize, j as usize, false);
-    }
-    if !m.perfect {
-        for t in 0..n {
-            if full[t] && m.mate[id[t] as usize] == UNMATCHED && w.degree(t) == 3 {
-                let j = (0..3).max_by(|&a, &b| w.weight[t][a].total_cmp(&w.weight[t][b])).expect("three slots");
-                w.set_link(t, j, false);
+        // Several tie-breaking orders on smaller meshes; the one leaving the fewest
+        // pieces is kept (fewer merges, fewer Steiner vertices).
+        let tries = (GREEDY_TRY_BUDGET / nodes as usize).clamp(1, GREEDY_TRIES);
+        let all_on = w.link.clone();
+        let mut best: Option<(usize, Found)> = None;
+        for k in 0..tries {
+            let m = greedy_matching(&g, k as u64, &mesh_edge, w.pos.len());
+            w.link.copy_from_slice(&all_on);
+            apply(w, &m);
+            let pieces = merge::pieces(w).is_path.len();
+            if best.as_ref().is_none_or(|(p, b)| (m.total_weight, std::cmp::Reverse(pieces)) > (b.total_weight, std::cmp::Reverse(*p))) {
+                best = Some((pieces, m));
             }
         }
-    }
+        w.link.copy_from_slice(&all_on);
+        best.expect("at least one try").1
+    };
+    apply(w, &m);
     let forced = base + 2 * (nodes as i64 - m.edges.len() as i64);
     Ok((m.perfect, m.total_weight, forced.max(0) as usize))
 }
 
 /// [`MatchingMode::Greedy`]: edges by weight, heaviest first, taken where both ends
-/// are free; then shortest augmenting paths to a maximum-cardinality matching.
-fn greedy_matching(g: &Graph) -> Found {
+/// are free and the mesh edge closes no cycle among the mesh edges taken; then
+/// shortest augmenting paths to a maximum-cardinality matching.
+///
+/// The matched mesh edges are what the strip does not cross, its "medial axis"; on a
+/// closed genus-0 mesh a perfect matching whose edges form no cycle leaves exactly one
+/// loop (its edges are a spanning forest of two trees, and the strip runs around
+/// them), and every cycle they form adds loops. So the greedy pass keeps them a forest.
+fn greedy_matching(g: &Graph, order_seed: u64, mesh_edge: &[(u32, u32)], vertices: usize) -> Found {
     let n = g.node_count();
     let mut order: Vec<u32> = (0..g.edge_count() as u32).collect();
     let ws = g.weights();
-    order.sort_by_key(|&e| std::cmp::Reverse(ws[e as usize]));
+    // Ties in a seeded order (seed 0: edge order).
+    let tie = |e: u32| if order_seed == 0 { e as u64 } else { crate::matching::splitmix(&mut (e as u64 ^ order_seed.wrapping_mul(0x9E37_79B9_7F4A_7C15))) };
+    order.sort_by_key(|&e| (std::cmp::Reverse(ws[e as usize]), tie(e)));
     let mut mate = vec![UNMATCHED; n];
+    let mut forest: Vec<u32> = (0..vertices as u32).collect();
+    let find = |f: &mut Vec<u32>, mut x: u32| {
+        while f[x as usize] != x {
+            f[x as usize] = f[f[x as usize] as usize];
+            x = f[x as usize];
+        }
+        x
+    };
     for e in order {
         let [a, b] = g.edges()[e as usize];
         if a != b && mate[a as usize] == UNMATCHED && mate[b as usize] == UNMATCHED {
+            let (p, q) = mesh_edge[e as usize];
+            let (rp, rq) = (find(&mut forest, p), find(&mut forest, q));
+            if rp == rq {
+                continue;
+            }
+            forest[rq as usize] = rp;
             mate[a as usize] = b;
             mate[b as usize] = a;
         }
