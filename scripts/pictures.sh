@@ -62,3 +62,12 @@ for t in 0 0.33 0.67 1; do
     render "horse-morph-$t" 320x200 "$GALLOP/horse-gallop-01.obj.gz" --morph "$GALLOP/horse-gallop-07.obj.gz" \
         --t "$t" --view 1,0.15,0.05
 done
+
+# 5. Single strips (--algo single): one strip per model, coloured along its length
+# (blue first, red last), for each weight kind. Cull keeps to flat regions, cache winds
+# around a breadth-first tree of edges, direction:0,1,0 runs up and down.
+for w in uniform cull cache direction:0,1,0; do
+    tag=$(echo "$w" | cut -d: -f1)
+    render "fandisk-single-$tag" 240x240 "$MODELS/fandisk.obj" --algo single --weights "$w" --color order --view 1,0.6,-0.9
+    render "horse-single-$tag" 320x200 "$MODELS/horse.ply" --algo single --weights "$w" --color order --view 1,0.15,0.05
+done

@@ -8,6 +8,7 @@ mod gpu;
 mod strips;
 mod simplify;
 mod matching;
+mod single;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -34,6 +35,9 @@ enum Command {
     BatchStrips(batch_strips::Args),
     /// Weighted perfect matching: stripkit next to LEMON (when installed).
     Matching(matching::Args),
+    /// Single strips for every weight kind: strips, Steiner vertices, swaps, acmr16/32
+    /// next to meshoptimizer's cache order, times.
+    Single(single::Args),
 }
 
 /// The research meshes: the folder named by `STRIPKIT_MODELS`, else `../shared/models`
@@ -54,5 +58,6 @@ fn main() -> anyhow::Result<()> {
         Command::Gpu(a) => gpu::run(a),
         Command::GpuModel(a) => batch::run(a),
         Command::BatchStrips(a) => batch_strips::run(a),
+        Command::Single(a) => single::run(a),
     }
 }

@@ -86,16 +86,16 @@ fn unflat(indices: &[u32]) -> Vec<[u32; 3]> {
         .collect()
 }
 
-fn reorder_cache(tris: &[[u32; 3]], n: usize) -> Vec<[u32; 3]> {
+pub(crate) fn reorder_cache(tris: &[[u32; 3]], n: usize) -> Vec<[u32; 3]> {
     unflat(&meshopt::optimize_vertex_cache(tris.as_flattened(), n))
 }
 
-fn reorder_strip(tris: &[[u32; 3]], n: usize) -> Vec<[u32; 3]> {
+pub(crate) fn reorder_strip(tris: &[[u32; 3]], n: usize) -> Vec<[u32; 3]> {
     unflat(&meshopt::optimize_vertex_cache_strip(tris.as_flattened(), n))
 }
 
 /// meshoptimizer's stripify with restart index `u32::MAX`, split by stripkit's decoder.
-fn meshopt_stripify(tris: &[[u32; 3]], n: usize) -> StripSet {
+pub(crate) fn meshopt_stripify(tris: &[[u32; 3]], n: usize) -> StripSet {
     match meshopt::stripify(tris.as_flattened(), n, u32::MAX) {
         Ok(buf) => stripkit::decode_restart(&buf, u32::MAX),
         Err(_) => StripSet::new(), // shows up as "lost" in the verified column

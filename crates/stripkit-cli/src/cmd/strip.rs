@@ -165,7 +165,8 @@ pub struct StripArgs {
     /// `--algo single`: swap an edge to merge two loops only where its two triangles'
     /// normals differ by at most this many degrees and they form a convex quad (the
     /// surface then moves by the distance between the diagonals, reported); `off`:
-    /// never swap, split instead. Default 1.
+    /// never swap, split instead. Default 5 (dragon, cache weights: 1,212 Steiner
+    /// vertices without swaps, 908 at 1 degree, 378 at 5).
     #[arg(long, value_name = "DEGREES")]
     pub swap_angle: Option<String>,
     /// `--algo single` with cull weights: the most normal deviation inside a cluster,

@@ -24,6 +24,8 @@ const NONE: u32 = u32::MAX;
 pub(crate) struct Pieces {
     pub comp: Vec<u32>,
     pub is_path: Vec<bool>,
+    /// Place of each triangle along its piece (from one end, or around the loop).
+    pub pos: Vec<u32>,
 }
 
 /// The next triangle of the piece after `t`, entered from slot `from` (or from nowhere
@@ -65,14 +67,16 @@ pub(crate) fn for_each_piece(w: &WorkMesh, mut f: impl FnMut(u32, bool, &[u32]))
 
 pub(crate) fn pieces(w: &WorkMesh) -> Pieces {
     let mut comp = vec![NONE; w.len()];
+    let mut pos = vec![0; w.len()];
     let mut is_path = Vec::new();
     for_each_piece(w, |p, path, tris| {
         is_path.push(path);
-        for &t in tris {
+        for (i, &t) in tris.iter().enumerate() {
             comp[t as usize] = p;
+            pos[t as usize] = i as u32;
         }
     });
-    Pieces { comp, is_path }
+    Pieces { comp, is_path, pos }
 }
 
 /// Union-find over pieces, with the path flag of each root.
@@ -316,7 +320,7 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
                     let mut roots: Vec<u32> = f.chunks(2).map(|c| uf.find(p.comp[c[0] as usize])).collect();
                     roots.sort_unstable();
                     roots.dedup();
-                    if roots.len() * 2 != f.len() / 2 || roots.iter().filter(|&&r| uf.path[r as usize]).count() > 1 {
+                    if roots.len() != op.joins as usize || roots.iter().filter(|&&r| uf.path[r as usize]).count() > 1 {
                         continue;
                     }
                     // Toggle the link out of every fan triangle towards the next.
@@ -377,6 +381,68 @@ pub(super) fn swap_ok(w: &WorkMesh, t: usize, j: usize, max_angle: f64, edges: &
     let (l1, l2) = (dot(n1, n1).sqrt(), dot(n2, n2).sqrt());
     let min_cos = max_angle.cos();
     ln > 0.0 && l1 > 0.0 && l2 > 0.0 && dot(n1, n) / (l1 * ln) >= min_cos && dot(n2, n) / (l2 * ln) >= min_cos
+}
+
+/// Whether toggling the alternating links of `fan` (loops only) leaves one loop
+/// through it. Cut at the fan, the loops are arcs joining the fan triangles' outer
+/// sides in pairs (`sigma`, read off the triangles' places along their loops); the
+/// links around the vertex pair them the other way (`alpha` now, `beta` after the
+/// toggle); the loops through the fan are the cycles of `sigma` and the pairing.
+fn joins_all(p: &Pieces, fan: &[u32], on0: bool) -> bool {
+    let n = fan.len() / 2;
+    if n > 32 {
+        return false;
+    }
+    let on = |q: usize| (q % 2 == 0) == on0; // link T_q - T_{q+1}
+    let alpha = |q: usize| if on(q) { (q + 1) % n } else { (q + n - 1) % n };
+    let beta = |q: usize| if on(q) { (q + n - 1) % n } else { (q + 1) % n };
+    let mut order: [(u32, u32, u8); 32] = [(0, 0, 0); 32];
+    for q in 0..n {
+        let t = fan[2 * q] as usize;
+        order[q] = (p.comp[t], p.pos[t], q as u8);
+    }
+    let order = &mut order[..n];
+    order.sort_unstable();
+    let mut sigma = [0u8; 32];
+    let mut i = 0;
+    while i < n {
+        let mut j = i;
+        while j < n && order[j].0 == order[i].0 {
+            j += 1;
+        }
+        // order[i..j]: one loop's fan triangles by place; alpha pairs are neighbours
+        // in this order, either (i, i+1), .. or wrapped (j-1, i), (i+1, i+2), ..
+        let run = &order[i..j];
+        let m = run.len();
+        if m % 2 == 1 {
+            return false;
+        }
+        let shift = if alpha(run[0].2 as usize) == run[1 % m].2 as usize { 1 } else { 0 };
+        for k in (0..m).step_by(2) {
+            let (a, b) = (run[(k + shift) % m].2, run[(k + shift + 1) % m].2);
+            if alpha(a as usize) == b as usize && m > 2 {
+                return false; // not the alternation assumed
+            }
+            sigma[a as usize] = b;
+            sigma[b as usize] = a;
+        }
+        i = j;
+    }
+    // Cycles of beta then sigma: one cycle is one loop.
+    let mut seen = 0u32;
+    let mut q = 0;
+    let mut len = 0;
+    loop {
+        seen |= 1 << q;
+        let r = beta(q);
+        seen |= 1 << r;
+        len += 2;
+        q = sigma[r] as usize;
+        if seen >> q & 1 == 1 {
+            break;
+        }
+    }
+    len == n
 }
 
 /// Nodal vertices: a closed fan of an even number of triangles whose links to the next
@@ -457,10 +523,11 @@ fn nodal_candidates(
         }
         comps.sort_unstable();
         comps.dedup();
-        if comps.len() * 2 != n || paths > 1 {
+        let strict = comps.len() * 2 == n;
+        if paths > 1 || (paths == 1 && !strict) || comps.len() < 2 || !(strict || joins_all(p, &fan, on0)) {
             continue;
         }
-        ops.push(Op { class: 0, cost, joins: (n / 2).min(255) as u8, kind: Kind::Nodal { fan: (offsets.len() - 1) as u32 } });
+        ops.push(Op { class: 0, cost, joins: comps.len().min(255) as u8, kind: Kind::Nodal { fan: (offsets.len() - 1) as u32 } });
         fans.extend_from_slice(&fan);
         offsets.push(fans.len() as u32);
     }
