@@ -65,9 +65,11 @@ done
 
 # 5. Single strips (--algo single): one strip per model, coloured along its length
 # (blue first, red last), for each weight kind. Cull keeps to flat regions, cache winds
-# around a breadth-first tree of edges, direction:0,1,0 runs up and down.
-for w in uniform cull cache direction:0,1,0; do
+# around compact balls of a breadth-first tree of edges, direction:0,0,1 runs along z
+# (the horse's up).
+for w in uniform cull cache direction:0,0,1; do
     tag=$(echo "$w" | cut -d: -f1)
     render "fandisk-single-$tag" 240x240 "$MODELS/fandisk.obj" --algo single --weights "$w" --color order --view 1,0.6,-0.9
-    render "horse-single-$tag" 320x200 "$MODELS/horse.ply" --algo single --weights "$w" --color order --view 1,0.15,0.05
+    render "horse-single-$tag" 320x240 "$MODELS/horse.ply" --algo single --weights "$w" --color order \
+        --view 1,-0.5,0.3 --up 0,0,1
 done
