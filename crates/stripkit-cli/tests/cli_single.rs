@@ -1,0 +1,89 @@
+//! `stripkit strip --algo single`: one strip per component, the changed mesh written
+//! and read back, the report's figures, and every flag misuse refused with exit 2.
+
+mod support;
+use support::{json, stripkit, tmp, write_mesh};
+
+fn sphere() -> std::path::PathBuf {
+    let path = tmp("single", "sphere.obj");
+    // A jittered icosphere: no flat quads, so merging needs splits or nodal vertices.
+    let mut m = stripkit::gen::icosphere(3);
+    for (i, p) in m.positions.iter_mut().enumerate() {
+        let k = (i as f32 * 12.9898).sin() * 0.01;
+        p[0] += k;
+        p[1] -= k * 0.5;
+    }
+    write_mesh(&path, &m);
+    path
+}
+
+#[test]
+fn one_strip_and_the_changed_mesh_in_the_file() {
+    let input = sphere();
+    let out = tmp("single", "sphere_single.ply");
+    for w in ["uniform", "cache", "cull", "direction:0,0,1", "mix:cull=0.5,cache=0.5"] {
+        let r = json(&stripkit(&[
+            "strip",
+            input.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--algo",
+            "single",
+            "--weights",
+            w,
+            "--swap-angle",
+            "off",
+            "--json",
+        ]));
+        assert_eq!(r["algo"], "single");
+        assert_eq!(r["strips"], 1, "{w}: {r}");
+        let s = &r["single"];
+        assert_eq!(s["components"], 1);
+        assert_eq!(s["swapped_edges"], 0, "--swap-angle off");
+        let steiner = s["steiner_vertices"].as_u64().unwrap() as usize;
+        assert_eq!(r["vertices"].as_u64().unwrap() as usize, 642 + steiner, "{w}");
+        assert_eq!(r["triangles"].as_u64().unwrap() as usize, 1280 + 2 * steiner, "{w}");
+        // The file holds the Steiner vertices and decodes to the changed mesh.
+        let back = stripkit::io::read(&out).unwrap();
+        assert_eq!(back.vertex_count(), 642 + steiner);
+        assert_eq!(back.triangle_count(), 1280 + 2 * steiner);
+    }
+}
+
+#[test]
+fn text_report_names_the_changes() {
+    let input = sphere();
+    let out = tmp("single", "text.ply");
+    let o = stripkit(&["strip", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--algo", "single", "--weights", "cache"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    for line in ["components", "steiner_vertices", "swapped_edges", "pieces merged", "matching"] {
+        assert!(text.contains(line), "{line} missing from:\n{text}");
+    }
+}
+
+#[test]
+fn misused_flags_exit_2() {
+    let input = sphere();
+    let out = tmp("single", "bad.ply");
+    let (i, o) = (input.to_str().unwrap(), out.to_str().unwrap());
+    for (args, says) in [
+        (vec!["--algo", "greedy", "--weights", "cache"], "apply to --algo single"),
+        (vec!["--algo", "cache", "--swap-angle", "5"], "apply to --algo single"),
+        (vec!["--algo", "single", "--weights", "shiny"], "--weights"),
+        (vec!["--algo", "single", "--weights", "direction:0,0,0"], "--weights"),
+        (vec!["--algo", "single", "--weights", "mix:cull=-1"], "--weights"),
+        (vec!["--algo", "single", "--swap-angle", "sideways"], "--swap-angle"),
+        (vec!["--algo", "single", "--swap-angle", "95"], "--swap-angle"),
+        (vec!["--algo", "single", "--cull-angle", "0"], "--cull-angle"),
+        (vec!["--algo", "single", "--diagonals", "qstrip"], "--diagonals qstrip"),
+    ] {
+        let mut all = vec!["strip", i, "-o", o];
+        all.extend(args.iter());
+        let r = stripkit(&all);
+        assert_eq!(r.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(err.contains(says), "{args:?}: {err}");
+        assert!(!out.exists(), "{args:?} wrote a file");
+    }
+}
