@@ -319,3 +319,40 @@ fn help_explains_the_options() {
         assert!(help.contains(w), "`{w}` missing from render --help");
     }
 }
+
+#[test]
+fn single_strip_draws_the_same_surface_in_one_colour() {
+    // A jittered sphere: merging its loops splits edges (swaps off), so the picture
+    // draws the changed mesh; it covers the same pixels as the input's strips, in one
+    // colour, and a morph moves the Steiner vertices with their edges.
+    let mut m = stripkit::gen::icosphere(3);
+    for (i, p) in m.positions.iter_mut().enumerate() {
+        p[2] += (i as f32 * 12.9898).sin() * 0.01;
+    }
+    let mut moved = m.clone();
+    moved.positions.iter_mut().for_each(|p| p[0] += 4.0);
+    let (pa, pb) = (tmp("render", "single-a.obj"), tmp("render", "single-b.obj"));
+    write_mesh(&pa, &m);
+    write_mesh(&pb, &moved);
+    let a = pa.to_str().unwrap();
+    let common = ["--shading", "unlit", "--view", "0,0,1", "--size", "200x200"];
+    let (g, s) = (tmp("render", "single-greedy.png"), tmp("render", "single-one.png"));
+    let Some(jg) = render(&[&[a, "-o", g.to_str().unwrap(), "--algo", "greedy"][..], &common].concat()) else {
+        return;
+    };
+    let single = ["--algo", "single", "--weights", "cache", "--swap-angle", "off"];
+    let js = render(&[&[a, "-o", s.to_str().unwrap()][..], &single, &common].concat()).unwrap();
+    assert_eq!(js["strips"], 1);
+    assert!(js["triangles"].as_u64().unwrap() > jg["triangles"].as_u64().unwrap(), "splits add triangles: {js}");
+    let (pg, ps) = (Picture::read(&g), Picture::read(&s));
+    assert_eq!(ps.colors().len(), 1);
+    let (ng, ns) = (pg.drawn().count() as f64, ps.drawn().count() as f64);
+    assert!((ng - ns).abs() <= 0.005 * ng, "greedy {ng} pixels, single {ns}");
+    // Morphed half way: the same disc, moved right by half the offset.
+    let png = tmp("render", "single-morph.png");
+    let args = [a, "-o", png.to_str().unwrap(), "--morph", pb.to_str().unwrap(), "--t", "0.5"];
+    render(&[&args[..], &single, &common].concat()).unwrap();
+    let pm = Picture::read(&png);
+    let nm = pm.drawn().count() as f64;
+    assert!(nm > 0.0 && (pm.mean_x() - 100.0).abs() < 3.0, "{nm} pixels at x {}", pm.mean_x());
+}
