@@ -16,6 +16,7 @@ use crate::distance::bvh::point_triangle_distance2;
 use crate::mesh::Mesh;
 use std::collections::HashMap;
 use std::hash::BuildHasherDefault;
+use crate::topology::{edge_key, EdgeHasher};
 
 /// Cosine of the largest normal change one collapse may cause in a triangle; 0.5
 /// (60 degrees) measured best against 0.0 and 0.25 on bunny, horse and dragon.
@@ -114,29 +115,7 @@ struct State {
 
 const NONE: u32 = u32::MAX;
 
-/// A multiplicative hasher for edge keys (two vertex ids in one u64).
-#[derive(Default, Clone, Copy)]
-struct EdgeHasher(u64);
-
-impl std::hash::Hasher for EdgeHasher {
-    fn finish(&self) -> u64 {
-        self.0 ^ (self.0 >> 29)
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-        }
-    }
-    fn write_u64(&mut self, x: u64) {
-        self.0 = (self.0 ^ x).wrapping_mul(0x9E37_79B9_7F4A_7C15);
-    }
-}
-
 type EdgeMap = HashMap<u64, u32, BuildHasherDefault<EdgeHasher>>;
-
-fn edge_key(a: u32, b: u32) -> u64 {
-    (u64::from(a.min(b)) << 32) | u64::from(a.max(b))
-}
 
 /// The neighbours of a vertex with the number of live triangles each shares with it,
 /// in first-seen order: a sparse set (`at[u]` is u's index in `list` when that entry

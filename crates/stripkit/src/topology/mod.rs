@@ -29,6 +29,30 @@ use crate::strip::is_degenerate;
 /// Marks "no neighbour" in [`DualGraph::neighbors`].
 pub const NO_NEIGHBOR: u32 = u32::MAX;
 
+/// A multiplicative hasher for edge keys ([`edge_key`]: two vertex ids in one u64),
+/// for hash maps and sets of undirected edges.
+#[derive(Default, Clone, Copy)]
+pub(crate) struct EdgeHasher(u64);
+
+impl std::hash::Hasher for EdgeHasher {
+    fn finish(&self) -> u64 {
+        self.0 ^ (self.0 >> 29)
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0 ^ x).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+}
+
+/// The key of the undirected edge `a - b`: the lower id in the high half.
+pub(crate) fn edge_key(a: u32, b: u32) -> u64 {
+    (u64::from(a.min(b)) << 32) | u64::from(a.max(b))
+}
+
 /// Undirected edges and the half-edges on them.
 ///
 /// A half-edge is a face corner: half-edge `h` (an index into `mesh.face_indices`)

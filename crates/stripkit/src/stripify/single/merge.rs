@@ -15,7 +15,12 @@
 
 use super::work::{cross, dot, edge, sub, WorkMesh};
 use crate::topology::NO_NEIGHBOR;
+use crate::topology::{edge_key, EdgeHasher};
 use std::collections::HashSet;
+use std::hash::BuildHasherDefault;
+
+/// Undirected edges of the mesh, for the swaps' check that the new diagonal is new.
+pub(super) type EdgeSet = HashSet<u64, BuildHasherDefault<EdgeHasher>>;
 
 const NONE: u32 = u32::MAX;
 
@@ -160,12 +165,12 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
         let mut ops: Vec<Op> = Vec::new();
         let mut fans: Vec<u32> = Vec::new(); // (t, slot) pairs, flattened per fan
         let mut fan_offsets: Vec<u32> = vec![0];
-        let edges: Option<HashSet<(u32, u32)>> = settings.swap_angle.map(|_| {
-            let mut s = HashSet::with_capacity(w.len() * 3 / 2);
+        let edges: Option<EdgeSet> = settings.swap_angle.map(|_| {
+            let mut s = EdgeSet::with_capacity_and_hasher(w.len() * 3 / 2, Default::default());
             for t in &w.tris {
                 for j in 0..3 {
                     let (a, b) = edge(t, j);
-                    s.insert((a.min(b), a.max(b)));
+                    s.insert(edge_key(a, b));
                 }
             }
             s
@@ -283,12 +288,12 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
                     if let Kind::Swap { .. } = op.kind {
                         let edges = edges.as_mut().expect("swaps only with the edge set");
                         let (c, d) = swap_diagonal(w, t as usize, j as usize);
-                        if edges.contains(&(c.min(d), c.max(d))) {
+                        if edges.contains(&edge_key(c, d)) {
                             continue;
                         }
                         let (x, y) = edge(&w.tris[t as usize], j as usize);
-                        edges.remove(&(x.min(y), x.max(y)));
-                        edges.insert((c.min(d), c.max(d)));
+                        edges.remove(&edge_key(x, y));
+                        edges.insert(edge_key(c, d));
                         w.swap(t as usize, j as usize);
                         stats.swaps += 1;
                     } else {
@@ -299,11 +304,11 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
                         if let Some(edges) = edges.as_mut() {
                             let m = w.tris[tb as usize][0];
                             let [x, y] = *w.steiner.last().expect("just split");
-                            edges.remove(&(x.min(y), x.max(y)));
+                            edges.remove(&edge_key(x, y));
                             let c = w.tris[tb as usize][2];
                             let d = w.tris[ub as usize][2];
                             for q in [x, y, c, d] {
-                                edges.insert((q.min(m), q.max(m)));
+                                edges.insert(edge_key(q, m));
                             }
                         }
                         stats.splits += 1;
@@ -360,12 +365,12 @@ fn swap_diagonal(w: &WorkMesh, t: usize, j: usize) -> (u32, u32) {
 }
 
 /// A swap is allowed on a convex, nearly flat quad whose other diagonal is no edge yet.
-pub(super) fn swap_ok(w: &WorkMesh, t: usize, j: usize, max_angle: f64, edges: &HashSet<(u32, u32)>) -> bool {
+pub(super) fn swap_ok(w: &WorkMesh, t: usize, j: usize, max_angle: f64, edges: &EdgeSet) -> bool {
     let max_angle = max_angle.max(1e-6); // rounding in the normals of coplanar triangles
     let u = w.nbr[t][j] as usize;
     let (a, b) = edge(&w.tris[t], j);
     let (c, d) = swap_diagonal(w, t, j);
-    if c == d || a == b || edges.contains(&(c.min(d), c.max(d))) || degenerate(w, t) || degenerate(w, u) {
+    if c == d || a == b || edges.contains(&edge_key(c, d)) || degenerate(w, t) || degenerate(w, u) {
         return false;
     }
     let (nt, nu) = (w.normal(t), w.normal(u));

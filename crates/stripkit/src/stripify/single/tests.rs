@@ -107,7 +107,7 @@ fn quad(d: [f64; 3]) -> WorkMesh {
 
 #[test]
 fn swaps_only_on_flat_convex_quads() {
-    let none = std::collections::HashSet::new();
+    let none = merge::EdgeSet::default();
     let deg = |x: f64| x.to_radians();
     // A flat square: allowed even at 0 degrees.
     assert!(merge::swap_ok(&quad([1.0, 0.0, 0.0]), 0, 0, 0.0, &none));
@@ -119,8 +119,8 @@ fn swaps_only_on_flat_convex_quads() {
     assert!(!merge::swap_ok(&quad([1.0, 0.0, 0.5]), 0, 0, deg(1.0), &none));
     assert!(merge::swap_ok(&quad([1.0, 0.0, 0.5]), 0, 0, deg(40.0), &none));
     // The other diagonal already an edge: refused.
-    let mut edges = std::collections::HashSet::new();
-    edges.insert((2u32, 3u32));
+    let mut edges = merge::EdgeSet::default();
+    edges.insert(crate::topology::edge_key(2, 3));
     assert!(!merge::swap_ok(&quad([1.0, 0.0, 0.0]), 0, 0, deg(1.0), &edges));
 }
 
