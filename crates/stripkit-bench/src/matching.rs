@@ -36,6 +36,13 @@ pub struct Args {
     /// Keep the generated DIMACS files in this folder (default: a temporary folder).
     #[arg(long)]
     keep: Option<PathBuf>,
+    /// Tie robustness instead of the comparison table: the dragon.obj Loop x`--dragon-levels`
+    /// dual graph with weights 1|2 drawn with seeds 1..=SEEDS, each in two edge orders
+    /// (as generated, and sorted by (u, v)); every instance solved once, per-instance
+    /// seconds and min / median / max per order, LEMON on the same instances when
+    /// installed. Repeat with `stripkit-bench matching --ties 5`.
+    #[arg(long, value_name = "SEEDS")]
+    ties: Option<u64>,
 }
 
 /// The LEMON driver: reads a DIMACS-style graph, runs MaxWeightedPerfectMatching
@@ -127,8 +134,119 @@ fn run_lemon(exe: &Path, file: &Path) -> anyhow::Result<(bool, i64, f64)> {
     Ok((f[0] == "1", f[1].parse()?, f[2].parse()?))
 }
 
+/// The two-valued dual graph of the bench: `DualWeights::Random { seed }` folded to
+/// weights 1|2 by the parity of the drawn weight.
+fn two_valued(mesh: &stripkit::Mesh, seed: u64) -> anyhow::Result<Graph> {
+    let g = matching::mesh_dual_graph(mesh, DualWeights::Random { seed })?;
+    let w: Vec<i64> = g.weights().iter().map(|&w| 1 + (w & 1)).collect();
+    Ok(Graph::new(g.node_count(), g.edges().to_vec(), w)?)
+}
+
+/// The same graph with its edges listed in (u, v) order (each edge as u < v).
+fn sorted_edges(g: &Graph) -> anyhow::Result<Graph> {
+    let mut e: Vec<([u32; 2], i64)> =
+        g.edges().iter().zip(g.weights()).map(|(&[a, b], &w)| ([a.min(b), a.max(b)], w)).collect();
+    e.sort_unstable();
+    Ok(Graph::new(g.node_count(), e.iter().map(|x| x.0).collect(), e.iter().map(|x| x.1).collect())?)
+}
+
+fn min_med_max(v: &[f64]) -> String {
+    if v.is_empty() {
+        return "-".into();
+    }
+    let mut s = v.to_vec();
+    s.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    format!("{:.2} / {:.2} / {:.2}", s[0], s[s.len() / 2], s[s.len() - 1])
+}
+
+/// `--ties SEEDS`: the two-valued dragon graph over seeds and edge orders.
+fn run_ties(args: &Args, seeds: u64, tmp: &Path) -> anyhow::Result<()> {
+    let dir = args.models.clone().or_else(crate::models_dir).context("no models folder (--models)")?;
+    let levels = args.dragon_levels.max(0) as u32;
+    let mesh = stripkit::io::read(&dir.join("dragon.obj"))?;
+    let mesh = stripkit::gen::subdivide_loop(&mesh, levels)?;
+    let lemon = if args.no_lemon { None } else { build_lemon(tmp)? };
+    println!("dragon.obj Loop x{levels} dual, weights 1|2; seconds of one solve (certificate checked)");
+    println!();
+    println!("| seed | order | nodes | edges | weight | stripkit s | exposed after greedy | augmentations | blossoms formed | LEMON s |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let orders = ["generated", "sorted"];
+    let mut times = [Vec::new(), Vec::new()];
+    let mut ltimes = [Vec::new(), Vec::new()];
+    for seed in 1..=seeds {
+        let generated = two_valued(&mesh, seed)?;
+        let sorted = sorted_edges(&generated)?;
+        for (o, g) in [generated, sorted].iter().enumerate() {
+            let t = Instant::now();
+            let m = matching::solve(g, Objective::MaxWeight)?;
+            let secs = t.elapsed().as_secs_f64();
+            if !m.certified {
+                bail!("seed {seed} {}: certificate not checked", orders[o]);
+            }
+            times[o].push(secs);
+            let lemon_s = match &lemon {
+                None if args.no_lemon => "skipped".to_string(),
+                None => "LEMON not installed".to_string(),
+                Some(exe) => {
+                    let file = tmp.join(format!("ties-{seed}-{}.dimacs", orders[o]));
+                    std::fs::write(&file, g.to_dimacs())?;
+                    let cell = match run_lemon(exe, &file) {
+                        Ok((ok, w, ms)) => {
+                            if ok && m.perfect && w != m.total_weight {
+                                bail!("seed {seed}: LEMON weight {w} differs from stripkit {}", m.total_weight);
+                            }
+                            ltimes[o].push(ms / 1e3);
+                            format!("{:.2}", ms / 1e3)
+                        }
+                        Err(e) => format!("failed: {}", e.to_string().lines().next().unwrap_or("")),
+                    };
+                    if args.keep.is_none() {
+                        let _ = std::fs::remove_file(&file);
+                    }
+                    cell
+                }
+            };
+            if args.keep.is_some() && lemon.is_none() {
+                std::fs::write(tmp.join(format!("ties-{seed}-{}.dimacs", orders[o])), g.to_dimacs())?;
+            }
+            println!(
+                "| {seed} | {} | {} | {} | {} | {secs:.2} | {} | {} | {} | {lemon_s} |",
+                orders[o],
+                g.node_count(),
+                g.edge_count(),
+                m.total_weight,
+                m.stats.exposed_after_init,
+                m.stats.augmentations,
+                m.stats.blossoms_formed,
+            );
+        }
+    }
+    println!();
+    println!("| order | stripkit s min / median / max | LEMON s min / median / max |");
+    println!("|---|---|---|");
+    for o in 0..2 {
+        println!("| {} | {} | {} |", orders[o], min_med_max(&times[o]), min_med_max(&ltimes[o]));
+    }
+    let all: Vec<f64> = times.concat();
+    let lall: Vec<f64> = ltimes.concat();
+    println!("| both | {} | {} |", min_med_max(&all), min_med_max(&lall));
+    Ok(())
+}
+
 /// Runs the comparison and prints a markdown table.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if let Some(seeds) = args.ties {
+        let (tmp, remove) = match &args.keep {
+            Some(d) => (d.clone(), false),
+            None => (std::env::temp_dir().join(format!("stripkit-bench-ties-{}", std::process::id())), true),
+        };
+        std::fs::create_dir_all(&tmp)?;
+        let r = run_ties(&args, seeds.max(1), &tmp);
+        if remove {
+            let _ = std::fs::remove_dir_all(&tmp);
+        }
+        return r;
+    }
     let runs = args.runs.max(1);
     let mut rows = Vec::new();
     for &level in &args.levels {

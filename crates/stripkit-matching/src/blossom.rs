@@ -23,12 +23,20 @@
 //!   becomes tight, an inner blossom's dual reaches zero); entries are checked when
 //!   popped (lazy deletion) instead of being updated.
 //!
-//! * **Blossoms without touching their vertices.** A vertex keeps a *hint* (a node
-//!   containing it) compressed on lookup, and every blossom an owed dual offset, so
-//!   forming a blossom costs its number of children, not its size.
+//! * **Blossoms without touching their vertices.** Every node (vertex or blossom)
+//!   keeps a *link* to an ancestor, path-compressed on lookup as in union-find, with
+//!   the sum of the owed dual offsets (`boff`) in between; a link dies with its
+//!   target (a generation number per blossom id, bumped when the blossom is
+//!   retired). Forming a blossom costs its number of children and expanding one its
+//!   number of children, not its size, however deep the nesting.
 //! * **Zero-dual blossoms are dissolved** when their tree has augmented (the classic
-//!   end-of-stage expansion). With many equal weights this is what keeps the nesting
-//!   shallow: the Loop-subdivided dragon with weights 1|2 went from 55 s to 13 s.
+//!   end-of-stage expansion). With many equal weights this keeps the nesting
+//!   shallower: the Loop-subdivided dragon with weights 1|2 went from 55 s to 13 s.
+//!   Ties still build deep nests (dragon seed 1: 1.26 billion parent steps in the
+//!   old per-vertex hint lookups, for 8.1 million events), so nothing walks a nest
+//!   level by level more than once: lookups compress, augmenting a nest walks up from
+//!   the new base once, and the certificate's blossom list is built top-down
+//!   (docs/experiments/matching-ties.md: dragon seed 4 went from 183 s to 6 s).
 //!   Ties are *not* broken by perturbing weights: a random perturbation below the
 //!   weight unit was tried and made the greedy start worse and the run about twice as
 //!   slow.
@@ -181,11 +189,15 @@ pub(crate) struct Engine<'g> {
     // Per vertex.
     mate: Vec<u32>, // remote endpoint of the matched edge
     y: Vec<i64>,
-    /// A node containing the vertex (itself or a blossom around it); following
-    /// `parent` from it reaches the top-level blossom. Compressed on every lookup.
-    hint: Vec<u32>,
-    /// Sum of `boff` over the blossoms strictly between the vertex and its hint.
-    hsum: Vec<i64>,
+    /// Per node: a shortcut to a strict ancestor (or NONE), valid while that
+    /// ancestor's generation is `lgen`; `lsum` is the sum of `boff` over the nodes
+    /// strictly between. Path-compressed on every lookup.
+    link: Vec<u32>,
+    lsum: Vec<i64>,
+    lgen: Vec<u32>,
+    /// Per node: bumped when the blossom is retired, which invalidates every link to it.
+    gen: Vec<u32>,
+    path: Vec<u32>,
     /// Per node: a dual change owed to every vertex inside (written when a top-level
     /// blossom stops being top-level, instead of touching its vertices).
     boff: Vec<i64>,
@@ -225,25 +237,9 @@ impl<'g> Engine<'g> {
         self.tree_of[bi] = NONE;
         self.parent[bi] = NONE;
         self.alive[bi - self.n] = false;
+        self.gen[bi] = self.gen[bi].wrapping_add(1);
+        self.link[bi] = NONE;
         self.free_blossoms.push(b);
-    }
-
-    /// Points every vertex inside blossom `s` at `s` as its hint, with the sum of the
-    /// dual offsets (`boff`) of the blossoms between them; `dfs` is reused scratch.
-    fn point_vertices_at(&mut self, s: u32, dfs: &mut Vec<(u32, i64)>) {
-        dfs.clear();
-        dfs.push((s, 0));
-        while let Some((x, acc)) = dfs.pop() {
-            for i in 0..self.childs[x as usize - self.n].len() {
-                let c = self.childs[x as usize - self.n][i];
-                if (c as usize) < self.n {
-                    self.hint[c as usize] = s;
-                    self.hsum[c as usize] = acc;
-                } else {
-                    dfs.push((c, acc + self.boff[c as usize]));
-                }
-            }
-        }
     }
 
     pub fn new(g: &'g SimpleGraph) -> Engine<'g> {
@@ -253,8 +249,11 @@ impl<'g> Engine<'g> {
             n,
             mate: vec![NONE; n],
             y: vec![0; n],
-            hint: (0..n as u32).collect(),
-            hsum: vec![0; n],
+            link: vec![NONE; n],
+            lsum: vec![0; n],
+            lgen: vec![0; n],
+            gen: vec![0; n],
+            path: Vec::new(),
             boff: vec![0; n],
             parent: vec![NONE; n],
             label: vec![FREE; n],
@@ -353,28 +352,84 @@ impl<'g> Engine<'g> {
 
     // ---------------------------------------------------------------- duals
 
-    /// The top-level node containing vertex `v` (compresses `v`'s hint).
+    /// The top-level node containing vertex `v` (compresses its links; afterwards
+    /// `lsum[v]` is the `boff` sum strictly between `v` and the top, see [`Self::above`]).
     #[inline]
     fn top(&mut self, v: u32) -> u32 {
-        let mut a = self.hint[v as usize];
-        if self.parent[a as usize] == NONE {
-            return a;
+        let vi = v as usize;
+        let l = self.link[vi];
+        if l != NONE && self.lgen[vi] == self.gen[l as usize] {
+            if self.parent[l as usize] == NONE {
+                return l;
+            }
+        } else if self.parent[vi] == NONE {
+            return v;
         }
-        let mut s = self.hsum[v as usize];
-        while self.parent[a as usize] != NONE {
-            s += self.boff[a as usize];
-            a = self.parent[a as usize];
+        self.find_node(v).0
+    }
+
+    /// Sum of `boff` over the blossoms strictly between vertex `v` and its top-level
+    /// node `t`, right after `t = self.top(v)`.
+    #[inline]
+    fn above(&self, v: u32, t: u32) -> i64 {
+        if t == v {
+            0
+        } else {
+            self.lsum[v as usize]
         }
-        self.hint[v as usize] = a;
-        self.hsum[v as usize] = s;
-        a
+    }
+
+    /// The next node above node `x`: its link while valid (with the `boff` sum
+    /// strictly between), else its parent (sum 0); NONE at the top.
+    #[inline]
+    fn up(&self, x: u32) -> (u32, i64) {
+        let xi = x as usize;
+        let l = self.link[xi];
+        if l != NONE && self.lgen[xi] == self.gen[l as usize] {
+            (l, self.lsum[xi])
+        } else {
+            (self.parent[xi], 0)
+        }
+    }
+
+    /// The top-level node above node `a`, and the sum of `boff` over the nodes strictly
+    /// between; compresses the links on the way (every node links to the top). A
+    /// blossom's links survive new levels formed above (those only lengthen the walk)
+    /// and die with their target (its generation changes when it is retired), so no
+    /// node is touched when blossoms form or expand.
+    fn find_node(&mut self, a: u32) -> (u32, i64) {
+        let mut path = std::mem::take(&mut self.path);
+        path.clear();
+        let mut x = a;
+        loop {
+            let (u, _) = self.up(x);
+            if u == NONE {
+                break;
+            }
+            path.push(x);
+            x = u;
+        }
+        let r = x;
+        let mut acc = 0i64;
+        for &p in path.iter().rev() {
+            let (u, s) = self.up(p);
+            let sum = if u == r { s } else { s + self.boff[u as usize] + acc };
+            let pi = p as usize;
+            self.link[pi] = r;
+            self.lsum[pi] = sum;
+            self.lgen[pi] = self.gen[r as usize];
+            acc = sum;
+        }
+        let sum = if path.is_empty() { 0 } else { acc };
+        self.path = path;
+        (r, sum)
     }
 
     /// True dual of vertex `v`.
     #[inline]
     fn yv(&mut self, v: u32) -> i64 {
         let b = self.top(v) as usize;
-        let y = self.y[v as usize] + self.hsum[v as usize] + if b >= self.n { self.boff[b] } else { 0 };
+        let y = self.y[v as usize] + self.above(v, b as u32) + if b >= self.n { self.boff[b] } else { 0 };
         match self.label[b] {
             PLUS => y - (self.d - self.tstamp[b]),
             MINUS => y + (self.d - self.tstamp[b]),
@@ -626,7 +681,6 @@ impl<'g> Engine<'g> {
     /// shallow when many weights tie; the matching inside stays as it is.
     fn expand_free(&mut self, b: u32) {
         let mut work = vec![b];
-        let mut dfs: Vec<(u32, i64)> = Vec::new();
         while let Some(b) = work.pop() {
             self.stats.blossoms_dissolved += 1;
             let bi = b as usize;
@@ -642,16 +696,13 @@ impl<'g> Engine<'g> {
                 self.tstamp[si] = self.d;
                 if si < self.n {
                     self.y[si] += owed;
-                    self.hint[si] = s;
-                    self.hsum[si] = 0;
                     continue;
                 }
+                // Links into b die with it (retire); those below stay valid.
                 self.boff[si] += owed;
                 if self.z[si - self.n] == 0 {
                     work.push(s);
-                    continue;
                 }
-                self.point_vertices_at(s, &mut dfs);
             }
             let mut cv = childs;
             cv.clear();
@@ -711,6 +762,10 @@ impl<'g> Engine<'g> {
         self.tree_of.push(NONE);
         self.base.push(NONE);
         self.mark.push(0);
+        self.link.push(NONE);
+        self.lsum.push(0);
+        self.lgen.push(0);
+        self.gen.push(0);
         b
     }
 
@@ -793,10 +848,9 @@ impl<'g> Engine<'g> {
         let childs = std::mem::take(&mut self.childs[nb]);
         let endps = std::mem::take(&mut self.endps[nb]);
         let mut buf = std::mem::take(&mut self.scratch);
-        // Push b's owed offset down to its children; re-point the hints of b's
-        // vertices (the only hints that can name b) at the child holding them.
+        // Push b's owed offset down to its children; the links into b die when it is
+        // retired below, before any lookup.
         let owed = std::mem::replace(&mut self.boff[bi], 0);
-        let mut dfs: Vec<(u32, i64)> = Vec::new();
         for &s in &childs {
             self.parent[s as usize] = NONE;
             self.label[s as usize] = FREE;
@@ -804,12 +858,9 @@ impl<'g> Engine<'g> {
             self.tstamp[s as usize] = self.d;
             if (s as usize) < self.n {
                 self.y[s as usize] += owed;
-                self.hint[s as usize] = s;
-                self.hsum[s as usize] = 0;
                 continue;
             }
             self.boff[s as usize] += owed;
-            self.point_vertices_at(s, &mut dfs);
         }
         let len = childs.len() as i64;
         let at = |j: i64| j.rem_euclid(len) as usize;
@@ -874,44 +925,50 @@ impl<'g> Engine<'g> {
     /// Swaps matched and unmatched edges inside blossom `b` so that vertex `v` becomes
     /// its base.
     fn augment_blossom(&mut self, b: u32, v: u32) {
-        // Iterative form of the recursion: a work stack of (blossom, vertex).
+        // Iterative form of the recursion: a work stack of (blossom, vertex). The
+        // blossoms between `v` and `b` all take `v` as their base: they are handled
+        // in one walk up from `v` (walking once per level cost depth squared on the
+        // deep nests that ties build).
         let mut work = vec![(b, v)];
+        let mut chain = std::mem::take(&mut self.stack);
         while let Some((b, v)) = work.pop() {
-            let nb = b as usize - self.n;
-            let mut t = v;
-            while self.parent[t as usize] != b {
-                t = self.parent[t as usize];
+            chain.clear();
+            let mut c = v;
+            while c != b {
+                c = self.parent[c as usize];
+                chain.push(c);
             }
-            if t as usize >= self.n {
-                work.push((t, v));
-            }
-            let len = self.childs[nb].len() as i64;
-            let at = |j: i64| j.rem_euclid(len) as usize;
-            let i = self.childs[nb].iter().position(|&c| c == t).unwrap_or(0) as i64;
-            let (mut j, jstep, endptrick) =
-                if i & 1 == 1 { (i - len, 1i64, 0u32) } else { (i, -1i64, 1u32) };
-            while j != 0 {
-                j += jstep;
-                let t1 = self.childs[nb][at(j)];
-                let p = self.endps[nb][at(j - endptrick as i64)] ^ endptrick;
-                if t1 as usize >= self.n {
-                    work.push((t1, self.g.endpoint(p)));
+            for lvl in 0..chain.len() {
+                let b = chain[lvl];
+                let t = if lvl == 0 { v } else { chain[lvl - 1] };
+                let nb = b as usize - self.n;
+                let len = self.childs[nb].len() as i64;
+                let at = |j: i64| j.rem_euclid(len) as usize;
+                let i = self.childs[nb].iter().position(|&c| c == t).unwrap_or(0) as i64;
+                let (mut j, jstep, endptrick) =
+                    if i & 1 == 1 { (i - len, 1i64, 0u32) } else { (i, -1i64, 1u32) };
+                while j != 0 {
+                    j += jstep;
+                    let t1 = self.childs[nb][at(j)];
+                    let p = self.endps[nb][at(j - endptrick as i64)] ^ endptrick;
+                    if t1 as usize >= self.n {
+                        work.push((t1, self.g.endpoint(p)));
+                    }
+                    j += jstep;
+                    let t2 = self.childs[nb][at(j)];
+                    if t2 as usize >= self.n {
+                        work.push((t2, self.g.endpoint(p ^ 1)));
+                    }
+                    self.mate[self.g.endpoint(p) as usize] = p ^ 1;
+                    self.mate[self.g.endpoint(p ^ 1) as usize] = p;
                 }
-                j += jstep;
-                let t2 = self.childs[nb][at(j)];
-                if t2 as usize >= self.n {
-                    work.push((t2, self.g.endpoint(p ^ 1)));
-                }
-                self.mate[self.g.endpoint(p) as usize] = p ^ 1;
-                self.mate[self.g.endpoint(p ^ 1) as usize] = p;
+                let iu = i as usize;
+                self.childs[nb].rotate_left(iu);
+                self.endps[nb].rotate_left(iu);
+                self.base[b as usize] = v;
             }
-            let iu = i as usize;
-            self.childs[nb].rotate_left(iu);
-            self.endps[nb].rotate_left(iu);
-            // Sub-blossoms still on the work stack get their new base when processed;
-            // v is the new base of all of them.
-            self.base[b as usize] = v;
         }
+        self.stack = chain;
     }
 
     /// Augments along the path through tight edge `k`.
@@ -977,32 +1034,29 @@ impl<'g> Engine<'g> {
                 blossoms.push((self.z[nb], NONE));
             }
         }
-        // Nearest listed blossom strictly above `x` (a blossom's parent, a vertex's
-        // innermost listed blossom).
-        let listed_ancestor = |this: &Self, mut x: u32| -> u32 {
-            loop {
-                x = this.parent[x as usize];
-                if x == NONE {
-                    return NONE;
-                }
-                let i = index[x as usize - n];
-                if i != NONE {
-                    return i;
+        // Nearest listed blossom strictly above each node (a blossom's parent, a
+        // vertex's innermost listed blossom), top-down in one pass: walking up from
+        // every vertex cost the nesting depth each.
+        let mut near = vec![NONE; self.childs.len()];
+        let mut vertex_blossom = vec![NONE; n];
+        for &b in order.iter().rev() {
+            let nb = b as usize - n;
+            let here = if index[nb] != NONE { index[nb] } else { near[nb] };
+            for &c in &self.childs[nb] {
+                if (c as usize) < n {
+                    vertex_blossom[c as usize] = here;
+                } else {
+                    near[c as usize - n] = here;
                 }
             }
-        };
-        for &b in &order {
-            let nb = b as usize - n;
             if index[nb] != NONE {
-                let pa = listed_ancestor(self, b);
-                blossoms[index[nb] as usize].1 = pa;
+                blossoms[index[nb] as usize].1 = near[nb];
             }
         }
-        let vertex_blossom = (0..n as u32).map(|v| listed_ancestor(self, v)).collect();
         let y = (0..n as u32)
             .map(|v| {
                 let t = self.top(v) as usize;
-                self.y[v as usize] + self.hsum[v as usize] + if t >= n { self.boff[t] } else { 0 }
+                self.y[v as usize] + self.above(v, t as u32) + if t >= n { self.boff[t] } else { 0 }
             })
             .collect();
         Solution { mate_edge, y, blossoms, vertex_blossom }
