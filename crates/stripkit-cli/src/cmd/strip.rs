@@ -184,7 +184,8 @@ pub struct StripArgs {
     /// `--algo single`: how the dual graph is matched. `exact`: the maximum-weight
     /// matching, proved by its certificate; `greedy`: heaviest edges first, then
     /// shortest augmenting paths (every triangle still matched, a few percent of the
-    /// weight lost, 5 to 50 times faster); `auto`: exact up to 524,288 triangles.
+    /// weight lost, 5 to 50 times faster); `auto`: exact on closed meshes and on
+    /// others of up to 65,536 triangles, greedy for uniform weights.
     /// Default `auto`.
     #[arg(long, value_enum)]
     pub matching: Option<MatchingArg>,
@@ -194,7 +195,8 @@ pub struct StripArgs {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum MatchingArg {
-    /// Exact up to 524,288 triangles, greedy above.
+    /// Exact on closed meshes and up to 65,536 triangles, else (and for uniform
+    /// weights) greedy.
     Auto,
     /// The maximum-weight matching.
     Exact,
