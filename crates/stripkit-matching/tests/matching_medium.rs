@@ -110,11 +110,11 @@ fn bipartite_graphs_match_the_hungarian_reference() {
         let mut dense = vec![vec![None; half]; half];
         let mut edges = Vec::new();
         let mut ws = Vec::new();
-        for i in 0..half {
-            for j in 0..half {
+        for (i, row) in dense.iter_mut().enumerate() {
+            for (j, cell) in row.iter_mut().enumerate() {
                 if rng.below(100) < density || i == j && round % 3 == 0 {
                     let w = rng.below(range + 1) as i64 - if round % 5 == 0 { range as i64 / 2 } else { 0 };
-                    dense[i][j] = Some(w);
+                    *cell = Some(w);
                     // Shuffle the side order in the edge list.
                     let (a, b) = (i as u32, (half + j) as u32);
                     edges.push(if rng.below(2) == 0 { [a, b] } else { [b, a] });

@@ -549,8 +549,8 @@ fn check_consistent(g: &Graph, m: &matching::Matching) {
         assert_eq!(m.mate[b as usize], a);
         sum += g.weights()[e as usize];
     }
-    for v in 0..g.node_count() {
-        assert_eq!(seen[v], m.mate[v] != UNMATCHED);
+    for (v, &s) in seen.iter().enumerate() {
+        assert_eq!(s, m.mate[v] != UNMATCHED);
     }
     assert_eq!(sum, m.total_weight);
 }

@@ -62,7 +62,7 @@ fn check_against_exhaustive(g: &Graph, obj: Objective) -> matching::Matching {
         let cert = m.certificate.as_ref().unwrap();
         matching::verify(g, obj, &m.edges, cert).unwrap();
     } else {
-        assert!(m.mate.iter().any(|&x| x == UNMATCHED));
+        assert!(m.mate.contains(&UNMATCHED));
     }
     m
 }
