@@ -21,6 +21,7 @@ pub(crate) mod walks;
 
 pub use csr::{vertex_triangles, Csr, FreeCursor};
 pub use facts::{validate, MeshFacts};
+pub(crate) use facts::UnionFind;
 pub use walks::Walks;
 
 use crate::mesh::Mesh;

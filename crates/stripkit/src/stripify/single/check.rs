@@ -17,6 +17,7 @@
 //! ([`max_swap_deviation`]).
 
 use super::work::{cross, dot, sub, WorkMesh};
+use crate::topology::UnionFind;
 use std::collections::HashMap;
 
 /// What the cover check saw.
@@ -28,14 +29,6 @@ pub(crate) struct Cover {
     pub swap_groups: usize,
 }
 
-fn find(p: &mut [u32], mut x: u32) -> u32 {
-    while p[x as usize] != x {
-        p[x as usize] = p[p[x as usize] as usize];
-        x = p[x as usize];
-    }
-    x
-}
-
 /// Checks that the triangles of `w` cover `input` (triangles over the first
 /// `w.input_vertices` positions of `w`) as the module docs say; `Err` names the first
 /// input triangle whose cover is wrong.
@@ -44,12 +37,11 @@ pub(crate) fn cover(input: &[[u32; 3]], w: &WorkMesh) -> Result<Cover, String> {
     if w.origin.len() != w.tris.len() || w.origin.iter().any(|&o| o as usize >= n) {
         return Err("an output triangle names no input triangle".into());
     }
-    let mut parent: Vec<u32> = (0..n as u32).collect();
+    let mut joined = UnionFind::new(n);
     for &[a, b] in &w.swaps {
-        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-        parent[rb as usize] = ra;
+        joined.union(a, b);
     }
-    let group: Vec<u32> = (0..n as u32).map(|t| find(&mut parent, t)).collect();
+    let group: Vec<u32> = (0..n as u32).map(|t| joined.find(t)).collect();
     let swapped: Vec<bool> = {
         let mut s = vec![false; n];
         for &[a, b] in &w.swaps {

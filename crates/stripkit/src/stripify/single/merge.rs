@@ -15,7 +15,7 @@
 
 use super::work::{cross, dot, edge, sub, WorkMesh};
 use crate::topology::NO_NEIGHBOR;
-use crate::topology::{edge_key, EdgeHasher};
+use crate::topology::{edge_key, EdgeHasher, UnionFind};
 use std::collections::HashSet;
 use std::hash::BuildHasherDefault;
 
@@ -86,24 +86,19 @@ pub(crate) fn pieces(w: &WorkMesh) -> Pieces {
 
 /// Union-find over pieces, with the path flag of each root.
 struct Union {
-    parent: Vec<u32>,
+    sets: UnionFind,
     path: Vec<bool>,
 }
 
 impl Union {
-    fn find(&mut self, mut x: u32) -> u32 {
-        while self.parent[x as usize] != x {
-            let p = self.parent[x as usize];
-            self.parent[x as usize] = self.parent[p as usize];
-            x = p;
-        }
-        x
+    fn find(&mut self, x: u32) -> u32 {
+        self.sets.find(x)
     }
     fn union(&mut self, a: u32, b: u32) {
         let (a, b) = (self.find(a), self.find(b));
-        if a != b {
-            self.parent[b as usize] = a;
-            self.path[a as usize] |= self.path[b as usize];
+        if self.sets.union(a, b) {
+            let r = self.find(a);
+            self.path[r as usize] = self.path[a as usize] | self.path[b as usize];
         }
     }
 }
@@ -230,7 +225,7 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
             break;
         }
         ops.sort_by(|a, b| a.class.cmp(&b.class).then(a.cost.total_cmp(&b.cost)).then(b.joins.cmp(&a.joins)));
-        let mut uf = Union { parent: (0..piece_count as u32).collect(), path: p.is_path.clone() };
+        let mut uf = Union { sets: UnionFind::new(piece_count), path: p.is_path.clone() };
         stamp.resize(w.len(), 0);
         let mut applied = 0;
         let mut edges = edges;

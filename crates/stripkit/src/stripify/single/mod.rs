@@ -531,23 +531,14 @@ fn greedy_matching(g: &Graph, order_seed: u64, mesh_edge: &[(u32, u32)], vertice
     let tie = |e: u32| if order_seed == 0 { e as u64 } else { crate::matching::splitmix(&mut (e as u64 ^ order_seed.wrapping_mul(0x9E37_79B9_7F4A_7C15))) };
     order.sort_by_key(|&e| (std::cmp::Reverse(ws[e as usize]), tie(e)));
     let mut mate = vec![UNMATCHED; n];
-    let mut forest: Vec<u32> = (0..vertices as u32).collect();
-    let find = |f: &mut Vec<u32>, mut x: u32| {
-        while f[x as usize] != x {
-            f[x as usize] = f[f[x as usize] as usize];
-            x = f[x as usize];
-        }
-        x
-    };
+    let mut forest = crate::topology::UnionFind::new(vertices);
     for e in order {
         let [a, b] = g.edges()[e as usize];
         if a != b && mate[a as usize] == UNMATCHED && mate[b as usize] == UNMATCHED {
             let (p, q) = mesh_edge[e as usize];
-            let (rp, rq) = (find(&mut forest, p), find(&mut forest, q));
-            if rp == rq {
+            if !forest.union(p, q) {
                 continue;
             }
-            forest[rq as usize] = rp;
             mate[a as usize] = b;
             mate[b as usize] = a;
         }

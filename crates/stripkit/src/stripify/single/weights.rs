@@ -5,7 +5,7 @@
 use super::work::{dot, edge, sub, WorkMesh};
 use super::{cull, Weights};
 use crate::matching::splitmix;
-use crate::topology::NO_NEIGHBOR;
+use crate::topology::{UnionFind, NO_NEIGHBOR};
 
 /// What the cull weights found: clusters and peaks split.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -130,6 +130,20 @@ fn cache_weights(w: &WorkMesh, seed: u64) -> Vec<[f64; 3]> {
     let mut has_tree = vec![false; w.len()];
     let mut seen = vec![false; nv];
     let mut queue: Vec<u32> = Vec::with_capacity(nv);
+    // The edge in slot `s % 3` of triangle `s / 3` joins the tree unless one of its two
+    // triangles already holds a tree edge.
+    let take = |has_tree: &mut [bool], out: &mut [[f64; 3]], s: u32| {
+        let (t, j) = ((s / 3) as usize, (s % 3) as usize);
+        let u = w.nbr[t][j] as usize;
+        if has_tree[t] || has_tree[u] {
+            return false;
+        }
+        has_tree[t] = true;
+        has_tree[u] = true;
+        out[t][j] = 1.0;
+        out[u][w.twin(t, j)] = 1.0;
+        true
+    };
     {
         let ball = CACHE_BALL;
         // Many sources at once: compact balls of about `ball` vertices, then the balls
@@ -158,15 +172,9 @@ fn cache_weights(w: &WorkMesh, seed: u64) -> Vec<[f64; 3]> {
                     if seen[x as usize] {
                         continue;
                     }
-                    let (t, j) = ((s / 3) as usize, (s % 3) as usize);
-                    let u = w.nbr[t][j] as usize;
-                    if has_tree[t] || has_tree[u] {
+                    if !take(&mut has_tree, &mut out, s) {
                         continue;
                     }
-                    has_tree[t] = true;
-                    has_tree[u] = true;
-                    out[t][j] = 1.0;
-                    out[u][w.twin(t, j)] = 1.0;
                     seen[x as usize] = true;
                     owner[x as usize] = owner[v];
                     queue.push(x);
@@ -184,14 +192,7 @@ fn cache_weights(w: &WorkMesh, seed: u64) -> Vec<[f64; 3]> {
             queue.push(scan as u32);
         }
         // Join the balls: a spanning tree over them, one free edge per join.
-        let mut uf: Vec<u32> = (0..nv as u32).collect();
-        fn find(f: &mut [u32], mut x: u32) -> u32 {
-            while f[x as usize] != x {
-                f[x as usize] = f[f[x as usize] as usize];
-                x = f[x as usize];
-            }
-            x
-        }
+        let mut balls = UnionFind::new(nv);
         // Breadth-first over balls from the queue order, so joins stay local.
         for &v in queue.iter() {
             let v = v as usize;
@@ -200,20 +201,9 @@ fn cache_weights(w: &WorkMesh, seed: u64) -> Vec<[f64; 3]> {
                 if a == u32::MAX || b == u32::MAX {
                     continue;
                 }
-                let (ra, rb) = (find(&mut uf, a), find(&mut uf, b));
-                if ra == rb {
-                    continue;
+                if balls.find(a) != balls.find(b) && take(&mut has_tree, &mut out, s) {
+                    balls.union(a, b);
                 }
-                let (t, j) = ((s / 3) as usize, (s % 3) as usize);
-                let u = w.nbr[t][j] as usize;
-                if has_tree[t] || has_tree[u] {
-                    continue;
-                }
-                has_tree[t] = true;
-                has_tree[u] = true;
-                out[t][j] = 1.0;
-                out[u][w.twin(t, j)] = 1.0;
-                uf[rb as usize] = ra;
             }
         }
     }

@@ -121,6 +121,35 @@ impl WorkMesh {
         self.link[t] >> j & 1
     }
 
+    /// The two triangles across slot `j` of `t` as a quad: `t = (a, b, c)` and
+    /// `u = (b, a, d)`, their outer neighbours, links and weights.
+    fn pair(&self, t: usize, j: usize) -> Pair {
+        let u = self.nbr[t][j] as usize;
+        let k = self.twin(t, j);
+        let (j1, j2, k1, k2) = ((j + 1) % 3, (j + 2) % 3, (k + 1) % 3, (k + 2) % 3);
+        let (wt, wu) = (self.weight[t], self.weight[u]);
+        Pair {
+            u,
+            a: self.tris[t][j],
+            b: self.tris[t][j1],
+            c: self.tris[t][j2],
+            d: self.tris[u][k2],
+            x_ca: self.nbr[t][j2],
+            x_bc: self.nbr[t][j1],
+            y_ad: self.nbr[u][k1],
+            y_db: self.nbr[u][k2],
+            l_ca: self.link_bit(t, j2),
+            l_bc: self.link_bit(t, j1),
+            l_ad: self.link_bit(u, k1),
+            l_db: self.link_bit(u, k2),
+            w_ab: wt[j],
+            w_bc: wt[j1],
+            w_ca: wt[j2],
+            w_ad: wu[k1],
+            w_db: wu[k2],
+        }
+    }
+
     /// Splits the edge in slot `j` of `t` (shared with `u = nbr[t][j]`) at its midpoint
     /// `m`: `t = (a, b, c)` becomes `(a, m, c)` in place and `(m, b, c)` appended;
     /// `u = (b, a, d)` becomes `(b, m, d)` in place and `(m, a, d)` appended. The outer
@@ -128,18 +157,8 @@ impl WorkMesh {
     /// `(m, b, c) - u`, which joins the strips through `t` and `u` into one. Returns
     /// the ids of the two appended pieces.
     pub fn split(&mut self, t: usize, j: usize, merge: bool) -> [u32; 2] {
-        let u = self.nbr[t][j] as usize;
-        let k = self.twin(t, j);
-        let [a, b, c] = [self.tris[t][j], self.tris[t][(j + 1) % 3], self.tris[t][(j + 2) % 3]];
-        let d = self.tris[u][(k + 2) % 3];
-        let (x_ca, x_bc) = (self.nbr[t][(j + 2) % 3], self.nbr[t][(j + 1) % 3]);
-        let (y_ad, y_db) = (self.nbr[u][(k + 1) % 3], self.nbr[u][(k + 2) % 3]);
-        let (l_ca, l_bc) = (self.link_bit(t, (j + 2) % 3), self.link_bit(t, (j + 1) % 3));
-        let (l_ad, l_db) = (self.link_bit(u, (k + 1) % 3), self.link_bit(u, (k + 2) % 3));
-        let wt = self.weight[t];
-        let (w_ab, w_bc, w_ca) = (wt[j], wt[(j + 1) % 3], wt[(j + 2) % 3]);
-        let wu = self.weight[u];
-        let (w_ad, w_db) = (wu[(k + 1) % 3], wu[(k + 2) % 3]);
+        let Pair { u, a, b, c, d, x_ca, x_bc, y_ad, y_db, l_ca, l_bc, l_ad, l_db, w_ab, w_bc, w_ca, w_ad, w_db } =
+            self.pair(t, j);
         self.weight[t] = [w_ab, 0.0, w_ca];
         self.weight[u] = [w_ab, 0.0, w_db];
         self.weight.push([w_ab, w_bc, 0.0]);
@@ -180,20 +199,10 @@ impl WorkMesh {
     /// keeping its link (so the strips through `t` and `u` are rejoined into one). The
     /// caller checks the quad is convex and nearly flat and `c - d` is not an edge.
     pub fn swap(&mut self, t: usize, j: usize) {
-        let u = self.nbr[t][j] as usize;
-        let k = self.twin(t, j);
-        let [a, b, c] = [self.tris[t][j], self.tris[t][(j + 1) % 3], self.tris[t][(j + 2) % 3]];
-        let d = self.tris[u][(k + 2) % 3];
-        let (x_ca, x_bc) = (self.nbr[t][(j + 2) % 3], self.nbr[t][(j + 1) % 3]);
-        let (y_ad, y_db) = (self.nbr[u][(k + 1) % 3], self.nbr[u][(k + 2) % 3]);
-        let (l_ca, l_bc) = (self.link_bit(t, (j + 2) % 3), self.link_bit(t, (j + 1) % 3));
-        let (l_ad, l_db) = (self.link_bit(u, (k + 1) % 3), self.link_bit(u, (k + 2) % 3));
+        let Pair { u, a, b, c, d, x_ca, x_bc, y_ad, y_db, l_ca, l_bc, l_ad, l_db, w_ab, w_bc, w_ca, w_ad, w_db } =
+            self.pair(t, j);
         self.swaps.push([self.origin[t], self.origin[u]]);
         self.swap_quads.push([a, b, c, d]);
-        let wt = self.weight[t];
-        let (w_ab, w_bc, w_ca) = (wt[j], wt[(j + 1) % 3], wt[(j + 2) % 3]);
-        let wu = self.weight[u];
-        let (w_ad, w_db) = (wu[(k + 1) % 3], wu[(k + 2) % 3]);
         self.weight[t] = [w_ad, w_ab, w_ca];
         self.weight[u] = [w_db, w_bc, w_ab];
         let (t32, u32_) = (t as u32, u as u32);
@@ -220,6 +229,30 @@ impl WorkMesh {
             [0.0; 3]
         }
     }
+}
+
+/// Two triangles across an edge, `t = (a, b, c)` and `u = (b, a, d)`: the outer
+/// neighbours (`x_ca` across `c - a` of `t`, ..), their link bits and the weights of
+/// the five edges.
+struct Pair {
+    u: usize,
+    a: u32,
+    b: u32,
+    c: u32,
+    d: u32,
+    x_ca: u32,
+    x_bc: u32,
+    y_ad: u32,
+    y_db: u32,
+    l_ca: u8,
+    l_bc: u8,
+    l_ad: u8,
+    l_db: u8,
+    w_ab: f64,
+    w_bc: f64,
+    w_ca: f64,
+    w_ad: f64,
+    w_db: f64,
 }
 
 pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
