@@ -1,0 +1,674 @@
+//! Back-face culling of single strips with a segment tree (the constrained single-strip
+//! paper, sections 4.2 to 4.4): cut a strip into a few long segments per view, drawing
+//! the front-facing ones and skipping the back-facing ones.
+//!
+//! * [`SegmentTree::build`] builds the tree bottom-up over the strips of a [`StripSet`]:
+//!   neighbouring segments whose normals deviate least are merged first (a priority
+//!   queue over adjacent pairs keyed by the merged normal cone, neighbours in a linked
+//!   list, `O(n log n)`), so flat regions join early and sharp features stay near the
+//!   root. The tree is not balanced. Each [`Node`] holds its index range in the strip
+//!   buffer and conservative [`Bounds`]: a normal cone around the average normal and a
+//!   bounding sphere around the centroid of its vertices.
+//! * [`SegmentTree::cull`] classifies nodes for an eye point from the roots down
+//!   ([`Bounds::classify`]: wholly front-facing, wholly back-facing, or split) and
+//!   returns the index ranges to draw ([`Culled`]), for one multi-draw call.
+//! * [`RenderFront`] does the same, starting at the lowest nodes tested in the last
+//!   frame and merging or splitting them; it gives exactly the ranges of
+//!   [`SegmentTree::cull`].
+//! * [`helix_eyes`]: the eye points of the helix camera path the figures use.
+//!
+//! **Parity.** A leaf of the tree is a *pair* of strip triangles, `2k` and `2k + 1`
+//! counted from the start of their strip (pairs made only of swaps are dropped), so
+//! every node, and every range drawn, starts at an even triangle of its strip: decoded
+//! from its first index with the rule of [`decode`](crate::decode), each triangle keeps
+//! the winding it has in the strip, without an extra index. The price is that a pair
+//! across the silhouette is drawn whole (its back-facing triangle is a *leak*, counted
+//! by the callers).
+//!
+//! ```
+//! use stripkit::cull::{helix_eyes, RenderFront, SegmentTree, Culled, CullOptions, HELIX_VIEWS};
+//! use stripkit::{gen, stripify, Algorithm, SingleOptions, StripOptions, Weights};
+//!
+//! let mesh = gen::icosphere(3);
+//! let single = Algorithm::Single(SingleOptions::new(Weights::Cull));
+//! let strips = stripify(&mesh, &StripOptions::default().algorithm(single))?;
+//! let positions = strips.with_added_vertices(&mesh.positions);
+//! let tree = SegmentTree::build(&strips.strips, &positions);
+//! let mut front = RenderFront::new(&tree);
+//! let (mut a, mut b) = (Culled::default(), Culled::default());
+//! for eye in helix_eyes([0.0; 3], 1.0, HELIX_VIEWS) {
+//!     tree.cull(eye, &CullOptions::default(), &mut a);
+//!     front.cull(&tree, eye, &CullOptions::default(), &mut b);
+//!     assert_eq!(a.ranges, b.ranges);
+//!     // About half the sphere faces away from the eye.
+//!     assert!(a.culled_triangles > mesh.triangle_count() / 4);
+//! }
+//! # Ok::<(), stripkit::Error>(())
+//! ```
+
+mod path;
+
+pub use path::{helix_eyes, HELIX_VIEWS};
+
+use crate::StripSet;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+use std::ops::Range;
+
+/// "No node": the children of a leaf, the parent of a root.
+pub const NONE: u32 = u32::MAX;
+
+/// How a segment faces an eye point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Facing {
+    /// Every triangle faces the eye: draw it.
+    Front,
+    /// Every triangle faces away (or is seen edge-on): skip it.
+    Back,
+    /// The test cannot tell: test the children (a leaf is drawn).
+    Split,
+}
+
+/// Conservative bounds of a set of triangles: a cone around `axis` of half-angle
+/// `angle` that holds every triangle's unit normal, and a sphere that holds every
+/// vertex.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    /// Unit average normal (area-weighted); the cone's axis.
+    pub axis: [f32; 3],
+    /// Half-angle of the normal cone, radians, in `[0, pi]`; negative for an empty
+    /// cone (only zero-area triangles, which draw nothing): such bounds face away.
+    pub angle: f32,
+    /// `cos(angle)`, for [`Bounds::classify`].
+    pub cos_angle: f32,
+    /// `sin(angle)`.
+    pub sin_angle: f32,
+    /// Centroid of the vertices.
+    pub center: [f32; 3],
+    /// Radius of the sphere around `center` that holds every vertex.
+    pub radius: f32,
+}
+
+impl Bounds {
+    /// Bounds from an axis, a half-angle and a sphere (the angle is clamped to `pi`).
+    pub fn new(axis: [f32; 3], angle: f32, center: [f32; 3], radius: f32) -> Self {
+        let a = angle.min(std::f32::consts::PI);
+        Bounds { axis, angle: a, cos_angle: a.cos(), sin_angle: a.sin().max(0.0), center, radius }
+    }
+
+    /// The tightest bounds of `triangles` (indices into `positions`) around their
+    /// average normal and centroid, widened by `slack` (radians and length) against
+    /// rounding.
+    pub fn of_triangles(triangles: &[[u32; 3]], positions: &[[f32; 3]], slack: [f64; 2]) -> Self {
+        let mut acc = Acc::default();
+        for t in triangles {
+            acc.add(t, positions);
+        }
+        acc.finish(triangles, positions, slack)
+    }
+
+    /// How the triangles these bounds hold face the eye point `eye` (perspective).
+    ///
+    /// With `d = center - eye`, `D = |d|`, `b` the angle between `axis` and `d`, `a`
+    /// the cone's half-angle and `r` the radius: a triangle with unit normal `m` in the
+    /// cone and a point `p` in the sphere faces away when `m . (p - eye) >= 0`. Over
+    /// the sphere, `m . (p - eye) >= m . d - r`; over the cone, `m . d >= D cos(b + a)`
+    /// (when `b + a <= pi`). So every triangle faces away when
+    /// `D cos(b + a) >= r`, i.e. `b <= acos(r / D) - a`, which needs `D cos a >= r` and
+    /// then reads, without trigonometry per node,
+    ///
+    /// `axis . d >= r cos a + sqrt(D^2 - r^2) sin a`    (back-facing),
+    ///
+    /// and the same with `-d` for front-facing (strictly). This is exact for the cone
+    /// and the sphere (no triangle of them is misclassified) and a little looser than
+    /// meshoptimizer's apex-free test `axis . d >= D sin a + r`, which it implies. An
+    /// eye inside the sphere gives [`Facing::Split`]. The test is monotone: bounds that
+    /// hold other bounds classify them the same way or as Split themselves.
+    #[inline]
+    pub fn classify(&self, eye: [f32; 3]) -> Facing {
+        if self.angle < 0.0 {
+            return Facing::Back;
+        }
+        let d = [self.center[0] - eye[0], self.center[1] - eye[1], self.center[2] - eye[2]];
+        let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let r = self.radius;
+        let r2 = r * r;
+        if d2 <= r2 || self.cos_angle * self.cos_angle.abs() * d2 <= r2 {
+            // Eye inside the sphere, or D cos a <= r (cos a < 0 included).
+            return Facing::Split;
+        }
+        let t = r * self.cos_angle + (d2 - r2).sqrt() * self.sin_angle;
+        let dn = self.axis[0] * d[0] + self.axis[1] * d[1] + self.axis[2] * d[2];
+        if dn >= t {
+            Facing::Back
+        } else if -dn > t {
+            Facing::Front
+        } else {
+            Facing::Split
+        }
+    }
+}
+
+/// One segment of a strip: a node of the [`SegmentTree`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Node {
+    /// Conservative normal cone and bounding sphere of the node's triangles.
+    pub bounds: Bounds,
+    /// First index of the node's range in [`StripSet::indices`]: an even triangle of
+    /// its strip.
+    pub start: u32,
+    /// One past the last index of the range: `indices[start..end]` drawn as a strip
+    /// draws the node's triangles (and swaps, which draw nothing).
+    pub end: u32,
+    /// The node's leaves are `first_leaf..end_leaf` (leaves are nodes `0..leaf_count`,
+    /// in strip order).
+    pub first_leaf: u32,
+    /// One past the node's last leaf.
+    pub end_leaf: u32,
+    /// Triangles drawn by the range (swaps not counted).
+    pub triangles: u32,
+    /// The strip of the [`StripSet`] the node lies in.
+    pub strip: u32,
+    /// The two children, left (earlier in the strip) first; [`NONE`] for a leaf.
+    pub children: [u32; 2],
+    /// The parent; [`NONE`] for a root.
+    pub parent: u32,
+}
+
+impl Node {
+    /// Whether the node is a leaf (a pair of strip triangles).
+    pub fn is_leaf(&self) -> bool {
+        self.children[0] == NONE
+    }
+}
+
+/// Settings of a traversal.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CullOptions {
+    /// A split node of at most this many triangles is drawn without testing its
+    /// children (0: descend to the leaves, pairs of triangles).
+    pub min_triangles: u32,
+}
+
+/// What one view draws: the output of [`SegmentTree::cull`] and [`RenderFront::cull`].
+/// Reused between views to keep its buffers.
+#[derive(Clone, Debug, Default)]
+pub struct Culled {
+    /// Index ranges into [`StripSet::indices`], in strip order, each drawn as its own
+    /// strip (a multi-draw); neighbouring drawn nodes are merged into one range.
+    pub ranges: Vec<Range<u32>>,
+    /// Triangles in the drawn ranges (swaps not counted).
+    pub drawn_triangles: usize,
+    /// Triangles in the skipped nodes (all of them back-facing or edge-on).
+    pub culled_triangles: usize,
+    /// Nodes classified.
+    pub visited: usize,
+    /// Drawn nodes that were split (leaves or small nodes across the silhouette).
+    pub split_drawn: usize,
+    /// The last drawn node's strip and end leaf, for merging ranges.
+    last: (u32, u32),
+    /// The traversal's stack, kept between views.
+    stack: Vec<u32>,
+}
+
+impl Culled {
+    fn clear(&mut self) {
+        self.ranges.clear();
+        self.drawn_triangles = 0;
+        self.culled_triangles = 0;
+        self.visited = 0;
+        self.split_drawn = 0;
+        self.last = (NONE, NONE);
+    }
+
+    #[inline]
+    fn emit(&mut self, node: &Node, facing: Facing) {
+        if facing == Facing::Back {
+            self.culled_triangles += node.triangles as usize;
+            return;
+        }
+        if facing == Facing::Split {
+            self.split_drawn += 1;
+        }
+        self.drawn_triangles += node.triangles as usize;
+        match self.ranges.last_mut() {
+            Some(r) if self.last == (node.strip, node.first_leaf) => r.end = node.end,
+            _ => self.ranges.push(node.start..node.end),
+        }
+        self.last = (node.strip, node.end_leaf);
+    }
+}
+
+/// The segment tree of a [`StripSet`]: one binary tree per strip (a forest), nodes in
+/// one `Vec`, leaves first.
+#[derive(Clone, Debug, Default)]
+pub struct SegmentTree {
+    /// Leaves (`0..leaf_count`, in strip order), then the merged nodes in merge order.
+    pub nodes: Vec<Node>,
+    /// The root of each strip with a drawable triangle, in strip order.
+    pub roots: Vec<u32>,
+    /// Number of leaves.
+    pub leaf_count: u32,
+}
+
+/// Running sums for the bounds of a set of triangles.
+#[derive(Clone, Copy, Default)]
+struct Acc {
+    normal: [f64; 3],
+    vertex_sum: [f64; 3],
+    vertices: f64,
+    area: f64,
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
+    let n = norm(a);
+    (n > 0.0 && n.is_finite()).then(|| [a[0] / n, a[1] / n, a[2] / n])
+}
+fn angle_between(a: [f64; 3], b: [f64; 3]) -> f64 {
+    // atan2 of |a x b| and a . b: accurate at small angles.
+    norm(cross(a, b)).atan2(dot(a, b))
+}
+fn p64(p: [f32; 3]) -> [f64; 3] {
+    [p[0] as f64, p[1] as f64, p[2] as f64]
+}
+fn f32s(a: [f64; 3]) -> [f32; 3] {
+    [a[0] as f32, a[1] as f32, a[2] as f32]
+}
+
+/// The (area-scaled) normal of a triangle: `(b - a) x (c - a)`.
+pub(crate) fn triangle_normal(t: &[u32; 3], positions: &[[f32; 3]]) -> [f64; 3] {
+    let [a, b, c] = t.map(|v| p64(positions[v as usize]));
+    cross(sub(b, a), sub(c, a))
+}
+
+impl Acc {
+    fn add(&mut self, t: &[u32; 3], positions: &[[f32; 3]]) {
+        let n = triangle_normal(t, positions);
+        for k in 0..3 {
+            self.normal[k] += n[k];
+        }
+        self.area += norm(n);
+        for &v in t {
+            let p = p64(positions[v as usize]);
+            for k in 0..3 {
+                self.vertex_sum[k] += p[k];
+            }
+            self.vertices += 1.0;
+        }
+    }
+
+    fn center(&self) -> [f64; 3] {
+        let n = self.vertices.max(1.0);
+        [self.vertex_sum[0] / n, self.vertex_sum[1] / n, self.vertex_sum[2] / n]
+    }
+
+    /// Exact bounds of `triangles` around the average normal and the centroid.
+    fn finish(&self, triangles: &[[u32; 3]], positions: &[[f32; 3]], slack: [f64; 2]) -> Bounds {
+        let c = self.center();
+        let mut radius = 0.0f64;
+        let mut normals = triangles.iter().filter_map(|t| unit(triangle_normal(t, positions))).peekable();
+        let axis = unit(self.normal).or_else(|| normals.peek().copied());
+        let mut angle = -1.0f64;
+        if let Some(axis) = axis {
+            for m in normals {
+                angle = angle.max(angle_between(axis, m));
+            }
+        }
+        for t in triangles {
+            for &v in t {
+                radius = radius.max(norm(sub(p64(positions[v as usize]), c)));
+            }
+        }
+        let axis = axis.unwrap_or([0.0, 0.0, 1.0]);
+        let angle = if angle < 0.0 { -1.0 } else { angle + slack[0] };
+        let b = Bounds::new(f32s(axis), angle as f32, f32s(c), (radius + slack[1]) as f32);
+        if angle < 0.0 {
+            Bounds { angle: -1.0, ..b }
+        } else {
+            b
+        }
+    }
+}
+
+/// Build state of a node: its sums and its exact-in-f64 bounds.
+#[derive(Clone, Copy)]
+struct Work {
+    acc: Acc,
+    axis: [f64; 3],
+    angle: f64, // < 0: empty cone
+    center: [f64; 3],
+    radius: f64,
+}
+
+impl Work {
+    fn merge(a: &Work, b: &Work, slack: [f64; 2]) -> Work {
+        let mut acc = a.acc;
+        for k in 0..3 {
+            acc.normal[k] += b.acc.normal[k];
+            acc.vertex_sum[k] += b.acc.vertex_sum[k];
+        }
+        acc.vertices += b.acc.vertices;
+        acc.area += b.acc.area;
+        let (axis, angle) = match (a.angle >= 0.0, b.angle >= 0.0) {
+            (false, false) => (a.axis, -1.0),
+            (true, false) => (a.axis, a.angle),
+            (false, true) => (b.axis, b.angle),
+            (true, true) => {
+                let axis = unit(acc.normal).unwrap_or(a.axis);
+                let angle = (angle_between(axis, a.axis) + a.angle).max(angle_between(axis, b.axis) + b.angle);
+                (axis, (angle + slack[0]).min(std::f64::consts::PI))
+            }
+        };
+        let center = acc.center();
+        let radius = (norm(sub(center, a.center)) + a.radius).max(norm(sub(center, b.center)) + b.radius) + slack[1];
+        Work { acc, axis, angle, center, radius }
+    }
+
+    fn bounds(&self) -> Bounds {
+        let b = Bounds::new(f32s(self.axis), self.angle as f32, f32s(self.center), self.radius as f32);
+        if self.angle < 0.0 {
+            Bounds { angle: -1.0, ..b }
+        } else {
+            b
+        }
+    }
+}
+
+/// The merge priority of a pair: the merged cone's half-angle in steps of a quarter
+/// degree, then the merged triangle count (so that nearly flat regions merge as
+/// balanced subtrees rather than chains).
+fn merge_key(w: &Work, triangles: u32) -> u64 {
+    let steps = if w.angle < 0.0 { 0 } else { (w.angle.to_degrees() * 4.0).ceil() as u64 + 1 };
+    (steps << 32) | triangles as u64
+}
+
+impl SegmentTree {
+    /// Builds the tree of every strip of `strips` (indices into `positions`).
+    ///
+    /// Leaves are pairs of strip triangles `2k, 2k + 1` (from the strip's start) with at
+    /// least one drawable triangle (see the module docs on parity). Adjacent segments of
+    /// one strip are merged, smallest merged normal cone first (ties: fewest
+    /// triangles). A merged node's cone is around the average normal of its triangles
+    /// and holds both children's cones; its sphere is centred at the centroid of its
+    /// vertices and holds both children's spheres; both are widened by a slack of
+    /// `1e-5` (radians, and times the size of the positions' bounding box) so that the
+    /// f32 test stays monotone down the tree. `O(n log n)` in the triangles.
+    pub fn build(strips: &StripSet, positions: &[[f32; 3]]) -> SegmentTree {
+        let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+        for &v in &strips.indices {
+            let p = p64(positions[v as usize]);
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let size = if strips.indices.is_empty() { 1.0 } else { norm(sub(hi, lo)).max(1e-30) };
+        let slack = [1e-5, 1e-5 * size];
+
+        let mut nodes: Vec<Node> = Vec::new();
+        let mut work: Vec<Work> = Vec::new();
+        let mut strip_leaves: Vec<Range<u32>> = Vec::new();
+        let mut tris: Vec<[u32; 3]> = Vec::with_capacity(2);
+        for (s, strip) in strips.iter().enumerate() {
+            let base = strips.offsets[s];
+            let first = nodes.len() as u32;
+            let count = strip.len().saturating_sub(2);
+            for k in (0..count).step_by(2) {
+                tris.clear();
+                let mut last = 0;
+                for i in k..(k + 2).min(count) {
+                    let t = if i % 2 == 0 {
+                        [strip[i], strip[i + 1], strip[i + 2]]
+                    } else {
+                        [strip[i + 1], strip[i], strip[i + 2]]
+                    };
+                    if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                        tris.push(t);
+                        last = i;
+                    }
+                }
+                if tris.is_empty() {
+                    continue;
+                }
+                let mut acc = Acc::default();
+                for t in &tris {
+                    acc.add(t, positions);
+                }
+                let b = acc.finish(&tris, positions, slack);
+                let id = nodes.len() as u32;
+                work.push(Work {
+                    acc,
+                    axis: p64(b.axis),
+                    angle: b.angle as f64,
+                    center: p64(b.center),
+                    radius: b.radius as f64,
+                });
+                nodes.push(Node {
+                    bounds: b,
+                    start: base + k as u32,
+                    end: base + last as u32 + 3,
+                    first_leaf: id,
+                    end_leaf: id + 1,
+                    triangles: tris.len() as u32,
+                    strip: s as u32,
+                    children: [NONE; 2],
+                    parent: NONE,
+                });
+            }
+            strip_leaves.push(first..nodes.len() as u32);
+        }
+        let leaf_count = nodes.len() as u32;
+
+        // Linked list of the current segments of each strip, and a heap of adjacent
+        // pairs (stale entries skipped: a pair is live while both are unmerged and
+        // still neighbours).
+        let cap = 2 * nodes.len();
+        let mut next: Vec<u32> = Vec::with_capacity(cap);
+        let mut prev: Vec<u32> = Vec::with_capacity(cap);
+        for range in &strip_leaves {
+            for id in range.clone() {
+                prev.push(if id > range.start { id - 1 } else { NONE });
+                next.push(if id + 1 < range.end { id + 1 } else { NONE });
+            }
+        }
+        let mut heap: BinaryHeap<Reverse<(u64, u32, u32)>> = BinaryHeap::with_capacity(nodes.len());
+        let pair_key = |work: &[Work], nodes: &[Node], a: u32, b: u32| {
+            let w = Work::merge(&work[a as usize], &work[b as usize], slack);
+            merge_key(&w, nodes[a as usize].triangles + nodes[b as usize].triangles)
+        };
+        for a in 0..leaf_count {
+            let b = next[a as usize];
+            if b != NONE {
+                heap.push(Reverse((pair_key(&work, &nodes, a, b), a, b)));
+            }
+        }
+        while let Some(Reverse((_, a, b))) = heap.pop() {
+            let (ai, bi) = (a as usize, b as usize);
+            if nodes[ai].parent != NONE || nodes[bi].parent != NONE || next[ai] != b {
+                continue;
+            }
+            let w = Work::merge(&work[ai], &work[bi], slack);
+            let id = nodes.len() as u32;
+            let (na, nb) = (nodes[ai], nodes[bi]);
+            nodes.push(Node {
+                bounds: w.bounds(),
+                start: na.start,
+                end: nb.end,
+                first_leaf: na.first_leaf,
+                end_leaf: nb.end_leaf,
+                triangles: na.triangles + nb.triangles,
+                strip: na.strip,
+                children: [a, b],
+                parent: NONE,
+            });
+            work.push(w);
+            nodes[ai].parent = id;
+            nodes[bi].parent = id;
+            let (p, n) = (prev[ai], next[bi]);
+            prev.push(p);
+            next.push(n);
+            if p != NONE {
+                next[p as usize] = id;
+                heap.push(Reverse((pair_key(&work, &nodes, p, id), p, id)));
+            }
+            if n != NONE {
+                prev[n as usize] = id;
+                heap.push(Reverse((pair_key(&work, &nodes, id, n), id, n)));
+            }
+        }
+        let mut roots: Vec<u32> = (0..nodes.len() as u32).filter(|&i| nodes[i as usize].parent == NONE).collect();
+        roots.sort_by_key(|&r| nodes[r as usize].first_leaf);
+        SegmentTree { nodes, roots, leaf_count }
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Whether the tree has no node (no drawable triangle).
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Depth of the deepest leaf (a root alone: 0).
+    pub fn depth(&self) -> usize {
+        let mut depth = vec![0u32; self.nodes.len()];
+        let mut max = 0;
+        // Parents come after their children: walk down from the end.
+        for i in (0..self.nodes.len()).rev() {
+            let p = self.nodes[i].parent;
+            if p != NONE {
+                depth[i] = depth[p as usize] + 1;
+                max = max.max(depth[i]);
+            }
+        }
+        max as usize
+    }
+
+    #[inline]
+    fn stops(&self, node: &Node, facing: Facing, options: &CullOptions) -> bool {
+        facing != Facing::Split || node.is_leaf() || node.triangles <= options.min_triangles
+    }
+
+    /// Descends from `id` (whose ancestors are all split), emitting the stopping nodes
+    /// in strip order; `front`, when given, receives them.
+    fn descend(&self, id: u32, eye: [f32; 3], options: &CullOptions, out: &mut Culled, mut front: Option<&mut Vec<u32>>) {
+        let mut stack = std::mem::take(&mut out.stack);
+        stack.clear();
+        stack.push(id);
+        while let Some(id) = stack.pop() {
+            let node = &self.nodes[id as usize];
+            let facing = node.bounds.classify(eye);
+            out.visited += 1;
+            if self.stops(node, facing, options) {
+                out.emit(node, facing);
+                if let Some(f) = front.as_deref_mut() {
+                    f.push(id);
+                }
+            } else {
+                stack.push(node.children[1]);
+                stack.push(node.children[0]);
+            }
+        }
+        out.stack = stack;
+    }
+
+    /// The ranges to draw for the eye point `eye`, traversing from the roots.
+    pub fn cull(&self, eye: [f32; 3], options: &CullOptions, out: &mut Culled) {
+        out.clear();
+        for &r in &self.roots {
+            self.descend(r, eye, options, out, None);
+        }
+    }
+}
+
+/// The render front: the lowest nodes tested in the last frame (those where the
+/// traversal stopped), in strip order. The next frame starts there: a node whose parent
+/// now stops the traversal is merged up (as far as its ancestors stop it), a node that
+/// is now split is split, the others stay. The classification is monotone down the
+/// tree (a node's bounds hold its children's), so this gives exactly the ranges of
+/// [`SegmentTree::cull`] from the roots.
+#[derive(Clone, Debug, Default)]
+pub struct RenderFront {
+    nodes: Vec<u32>,
+    scratch: Vec<u32>,
+}
+
+impl RenderFront {
+    /// A front at the roots (the first frame then traverses from the roots).
+    pub fn new(tree: &SegmentTree) -> Self {
+        RenderFront { nodes: tree.roots.clone(), scratch: Vec::new() }
+    }
+
+    /// The nodes of the front, in strip order.
+    pub fn nodes(&self) -> &[u32] {
+        &self.nodes
+    }
+
+    /// The ranges to draw for `eye`, starting at the front, which moves to this
+    /// view's stopping nodes. `tree` must be the tree the front was made for.
+    pub fn cull(&mut self, tree: &SegmentTree, eye: [f32; 3], options: &CullOptions, out: &mut Culled) {
+        out.clear();
+        let mut new = std::mem::take(&mut self.scratch);
+        new.clear();
+        // Nodes below a node already emitted are skipped: the end of its leaves.
+        let mut covered_to = 0u32;
+        // The last parent tested, and whether it stopped (siblings share it).
+        let mut tested: (u32, bool, Facing) = (NONE, false, Facing::Split);
+        for &x in &self.nodes {
+            let node = &tree.nodes[x as usize];
+            if node.first_leaf < covered_to {
+                continue;
+            }
+            // Merge up while the parent stops the traversal.
+            let (mut top, mut top_facing) = (x, None);
+            loop {
+                let p = tree.nodes[top as usize].parent;
+                if p == NONE {
+                    break;
+                }
+                let (stops, facing) = if tested.0 == p {
+                    (tested.1, tested.2)
+                } else {
+                    let pn = &tree.nodes[p as usize];
+                    let facing = pn.bounds.classify(eye);
+                    out.visited += 1;
+                    let stops = tree.stops(pn, facing, options);
+                    tested = (p, stops, facing);
+                    (stops, facing)
+                };
+                if !stops {
+                    break;
+                }
+                top = p;
+                top_facing = Some(facing);
+            }
+            match top_facing {
+                Some(facing) => {
+                    let t = &tree.nodes[top as usize];
+                    out.emit(t, facing);
+                    new.push(top);
+                    covered_to = t.end_leaf;
+                }
+                None => {
+                    tree.descend(x, eye, options, out, Some(&mut new));
+                    covered_to = node.end_leaf;
+                }
+            }
+        }
+        self.scratch = std::mem::replace(&mut self.nodes, new);
+    }
+}
