@@ -7,7 +7,7 @@
 mod support;
 
 use std::collections::HashMap;
-use stripkit::cull::{helix_eyes, CullOptions, Culled, Facing, RenderFront, SegmentTree, HELIX_VIEWS, NONE};
+use stripkit::cull::{helix_eyes, CullOptions, Culled, Facing, FacingCounter, RenderFront, SegmentTree, HELIX_VIEWS, NONE};
 use stripkit::{gen, stripify, Algorithm, Mesh, SingleOptions, StripOptions, Strips, Weights};
 
 struct Rng(u64);
@@ -253,6 +253,7 @@ fn check_strips(name: &str, strips: &Strips, mesh: &Mesh, options: CullOptions) 
     let eps = 1e-4 * r as f64;
     let mut eyes = helix_eyes(c, r, 60);
     eyes.extend(random_path(c, r, 200, name.len() as u64));
+    let counter = FacingCounter::new(&strips.strips, &pos);
     let mut front = RenderFront::new(&tree);
     let (mut a, mut b) = (Culled::default(), Culled::default());
     for (v, &eye) in eyes.iter().enumerate() {
@@ -267,6 +268,9 @@ fn check_strips(name: &str, strips: &Strips, mesh: &Mesh, options: CullOptions) 
         fresh.cull(&tree, eye, &options, &mut c);
         assert_eq!((c.ranges.as_slice(), c.visited), (a.ranges.as_slice(), a.visited), "{name}");
         assert_eq!(fresh.nodes(), front.nodes(), "{name}: view {v}: the front is not the stopping nodes");
+        let fc = counter.count(eye, &a.ranges);
+        assert_eq!(fc.front_drawn, fc.front, "{name}: view {v}: front-facing triangles not drawn");
+        assert_eq!(fc.back - fc.back_drawn, a.culled_triangles, "{name}: view {v}: culled triangles that face the eye");
         if options.min_triangles == 0 {
             check_view(name, strips, &pos, &tree, eye, &a, eps);
         }

@@ -15,7 +15,9 @@
 //! * [`RenderFront`] does the same, starting at the lowest nodes tested in the last
 //!   frame and merging or splitting them; it gives exactly the ranges of
 //!   [`SegmentTree::cull`].
-//! * [`helix_eyes`]: the eye points of the helix camera path the figures use.
+//! * [`helix_eyes`]: the eye points of the helix camera path the figures use;
+//!   [`FacingCounter`] counts, by brute force, the triangles a view's ranges draw
+//!   facing the eye and facing away.
 //!
 //! **Parity.** A leaf of the tree is a *pair* of strip triangles, `2k` and `2k + 1`
 //! counted from the start of their strip (pairs made only of swaps are dropped), so
@@ -46,8 +48,10 @@
 //! # Ok::<(), stripkit::Error>(())
 //! ```
 
+mod count;
 mod path;
 
+pub use count::{FacingCounter, FacingCounts};
 pub use path::{helix_eyes, HELIX_VIEWS};
 
 use crate::StripSet;
