@@ -271,7 +271,7 @@ fn check_strips(name: &str, strips: &Strips, mesh: &Mesh, options: CullOptions) 
         let fc = counter.count(eye, &a.ranges);
         assert_eq!(fc.front_drawn, fc.front, "{name}: view {v}: front-facing triangles not drawn");
         assert_eq!(fc.back - fc.back_drawn, a.culled_triangles, "{name}: view {v}: culled triangles that face the eye");
-        if options.min_triangles == 0 {
+        if options.min_triangles == 0 && options.max_gap == 0 {
             check_view(name, strips, &pos, &tree, eye, &a, eps);
         }
     }
@@ -293,7 +293,9 @@ fn greedy_strips_and_small_leaves_keep_the_front_equal() {
         let s = strip_with(&mesh, Algorithm::greedy());
         check_strips(&format!("{name} greedy"), &s, &mesh, CullOptions::default());
         let s = single(&mesh, Weights::Cull);
-        check_strips(&format!("{name} min 8"), &s, &mesh, CullOptions { min_triangles: 8 });
+        check_strips(&format!("{name} min 8"), &s, &mesh, CullOptions { min_triangles: 8, max_gap: 0 });
+        check_strips(&format!("{name} gap 6"), &s, &mesh, CullOptions { min_triangles: 0, max_gap: 6 });
+        check_strips(&format!("{name} min 4 gap 30"), &s, &mesh, CullOptions { min_triangles: 4, max_gap: 30 });
     }
 }
 

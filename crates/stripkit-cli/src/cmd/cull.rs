@@ -55,6 +55,10 @@ pub struct Args {
     /// children (0: down to the leaves, pairs of triangles).
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub min_triangles: u32,
+    /// Draw two ranges separated by at most N culled (back-facing) triangles as one:
+    /// fewer draws for a few more triangles (0: only neighbouring drawn nodes join).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub max_gap: u32,
     /// Runs of the path for the times (each view's best is kept).
     #[arg(long, value_name = "N", default_value_t = 5)]
     pub repeat: usize,
@@ -163,7 +167,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let eyes = match args.path {
         PathKind::Spiral => helix_eyes(center, radius, args.views),
     };
-    let cull = CullOptions { min_triangles: args.min_triangles };
+    let cull = CullOptions { min_triangles: args.min_triangles, max_gap: args.max_gap };
     let counter = FacingCounter::new(&strips.strips, &positions);
 
     let mut views = vec![View::default(); eyes.len()];

@@ -192,6 +192,10 @@ pub struct CullOptions {
     /// A split node of at most this many triangles is drawn without testing its
     /// children (0: descend to the leaves, pairs of triangles).
     pub min_triangles: u32,
+    /// Two drawn ranges of one strip separated by at most this many culled triangles
+    /// are drawn as one range, the back-facing triangles between them included (fewer
+    /// draws for a few more triangles; 0: only neighbouring drawn nodes are joined).
+    pub max_gap: u32,
 }
 
 /// What one view draws: the output of [`SegmentTree::cull`] and [`RenderFront::cull`].
@@ -211,12 +215,18 @@ pub struct Culled {
     pub split_drawn: usize,
     /// The last drawn node's strip and end leaf, for merging ranges.
     last: (u32, u32),
+    /// Triangles culled since the last drawn node of its strip.
+    gap: usize,
+    /// [`CullOptions::max_gap`] of the traversal.
+    max_gap: usize,
     /// The traversal's stack, kept between views.
     stack: Vec<u32>,
 }
 
 impl Culled {
-    fn clear(&mut self) {
+    fn clear(&mut self, options: &CullOptions) {
+        self.gap = 0;
+        self.max_gap = options.max_gap as usize;
         self.ranges.clear();
         self.drawn_triangles = 0;
         self.culled_triangles = 0;
@@ -229,16 +239,24 @@ impl Culled {
     fn emit(&mut self, node: &Node, facing: Facing) {
         if facing == Facing::Back {
             self.culled_triangles += node.triangles as usize;
+            self.gap += node.triangles as usize;
             return;
         }
         if facing == Facing::Split {
             self.split_drawn += 1;
         }
         self.drawn_triangles += node.triangles as usize;
+        // The nodes between the last drawn one of this strip and this one were all
+        // culled: `gap` triangles (none when the leaves are neighbours).
         match self.ranges.last_mut() {
-            Some(r) if self.last == (node.strip, node.first_leaf) => r.end = node.end,
+            Some(r) if self.last.0 == node.strip && self.gap <= self.max_gap => {
+                r.end = node.end;
+                self.drawn_triangles += self.gap;
+                self.culled_triangles -= self.gap;
+            }
             _ => self.ranges.push(node.start..node.end),
         }
+        self.gap = 0;
         self.last = (node.strip, node.end_leaf);
     }
 }
@@ -592,7 +610,7 @@ impl SegmentTree {
 
     /// The ranges to draw for the eye point `eye`, traversing from the roots.
     pub fn cull(&self, eye: [f32; 3], options: &CullOptions, out: &mut Culled) {
-        out.clear();
+        out.clear(options);
         for &r in &self.roots {
             self.descend(r, eye, options, out, None);
         }
@@ -625,7 +643,7 @@ impl RenderFront {
     /// The ranges to draw for `eye`, starting at the front, which moves to this
     /// view's stopping nodes. `tree` must be the tree the front was made for.
     pub fn cull(&mut self, tree: &SegmentTree, eye: [f32; 3], options: &CullOptions, out: &mut Culled) {
-        out.clear();
+        out.clear(options);
         let mut new = std::mem::take(&mut self.scratch);
         new.clear();
         // Nodes below a node already emitted are skipped: the end of its leaves.
