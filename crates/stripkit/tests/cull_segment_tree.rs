@@ -112,6 +112,10 @@ fn check_tree(name: &str, strips: &Strips, pos: &[[f32; 3]], tree: &SegmentTree)
     let set = &strips.strips;
     let idx = &set.indices;
     // Leaves: the drawable pairs of each strip, in order, every drawable triangle once.
+    let leaves: Vec<u32> = tree.leaves().collect();
+    for (k, &l) in leaves.iter().enumerate() {
+        assert_eq!(tree.nodes[l as usize].first_leaf as usize, k, "{name}");
+    }
     let mut leaf = 0usize;
     for (s, strip) in set.iter().enumerate() {
         let base = set.offsets[s] as usize;
@@ -120,8 +124,7 @@ fn check_tree(name: &str, strips: &Strips, pos: &[[f32; 3]], tree: &SegmentTree)
             if n == 0 {
                 continue;
             }
-            let l = &tree.nodes[leaf];
-            assert!(l.is_leaf(), "{name}: node {leaf}");
+            let l = &tree.nodes[leaves[leaf] as usize];
             assert_eq!((l.start as usize, l.strip as usize, l.triangles as usize), (base + k, s, n), "{name}");
             leaf += 1;
         }
@@ -181,7 +184,7 @@ fn check_view(name: &str, strips: &Strips, pos: &[[f32; 3]], tree: &SegmentTree,
             *input.entry(canonical(t)).or_default() += 1;
         }
     }
-    let leaf_at: HashMap<u32, u32> = (0..tree.leaf_count).map(|l| (tree.nodes[l as usize].start, l)).collect();
+    let leaf_at: HashMap<u32, u32> = tree.leaves().map(|l| (tree.nodes[l as usize].start, l)).collect();
     let mut drawn: HashMap<[u32; 3], usize> = HashMap::new();
     let mut count = 0;
     for (k, r) in out.ranges.iter().enumerate() {
@@ -308,12 +311,13 @@ fn flat_regions_merge_before_sharp_features() {
     let s = single(&mesh, Weights::Cull);
     let tree = SegmentTree::build(&s.strips.clone(), &s.with_added_vertices(&mesh.positions));
     let flat = |l: u32| tree.nodes[l as usize].bounds.angle < 1f32.to_radians();
+    let leaves: Vec<u32> = tree.leaves().collect();
     let mut runs = 0;
-    for l in 0..tree.leaf_count {
-        let n = &tree.nodes[l as usize];
-        let joins = l > 0 && {
-            let p = &tree.nodes[l as usize - 1];
-            p.strip == n.strip && flat(l) && flat(l - 1) && {
+    for k in 0..leaves.len() {
+        let (l, n) = (leaves[k], &tree.nodes[leaves[k] as usize]);
+        let joins = k > 0 && {
+            let p = &tree.nodes[leaves[k - 1] as usize];
+            p.strip == n.strip && flat(l) && flat(leaves[k - 1]) && {
                 let (a, b) = (p.bounds.axis, n.bounds.axis);
                 a[0] * b[0] + a[1] * b[1] + a[2] * b[2] > 0.999
             }
@@ -322,7 +326,7 @@ fn flat_regions_merge_before_sharp_features() {
             runs += 1;
         }
     }
-    let wide = tree.nodes[tree.leaf_count as usize..].iter().filter(|n| n.bounds.angle >= 1f32.to_radians()).count();
+    let wide = tree.nodes.iter().filter(|n| !n.is_leaf() && n.bounds.angle >= 1f32.to_radians()).count();
     assert_eq!(wide, runs - tree.roots.len(), "runs {runs}, roots {}", tree.roots.len());
     // The cube is culled in few segments: at most one per run.
     let (c, r) = scene(&mesh.positions);

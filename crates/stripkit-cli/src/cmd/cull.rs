@@ -190,7 +190,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         };
         if args.bar.is_some() && v == args.view {
             let svg = bar_svg(&strips.strips, &out, &format!("{} ({weights} weights), view {v}", file_name(&args.file)));
-            std::fs::write(args.bar.as_ref().unwrap(), svg)?;
+            stripkit::io::write_atomic(args.bar.as_ref().unwrap(), svg.as_bytes())?;
         }
     }
     let mut check = Culled::default();

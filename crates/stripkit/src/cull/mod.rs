@@ -133,23 +133,59 @@ impl Bounds {
         if self.angle < 0.0 {
             return Facing::Back;
         }
-        let d = [self.center[0] - eye[0], self.center[1] - eye[1], self.center[2] - eye[2]];
-        let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        let r = self.radius;
-        let r2 = r * r;
-        if d2 <= r2 || self.cos_angle * self.cos_angle.abs() * d2 <= r2 {
-            // Eye inside the sphere, or D cos a <= r (cos a < 0 included).
-            return Facing::Split;
+        classify(self.center, self.radius, self.axis, self.cos_angle, self.sin_angle, eye)
+    }
+}
+
+/// [`Bounds::classify`] on the parts of non-empty bounds.
+#[inline(always)]
+fn classify(center: [f32; 3], r: f32, axis: [f32; 3], cos_a: f32, sin_a: f32, eye: [f32; 3]) -> Facing {
+    let d = [center[0] - eye[0], center[1] - eye[1], center[2] - eye[2]];
+    let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    let r2 = r * r;
+    if d2 <= r2 || cos_a * cos_a.abs() * d2 <= r2 {
+        // Eye inside the sphere, or D cos a <= r (cos a < 0 included).
+        return Facing::Split;
+    }
+    let t = r * cos_a + (d2 - r2).sqrt() * sin_a;
+    let dn = axis[0] * d[0] + axis[1] * d[1] + axis[2] * d[2];
+    if dn >= t {
+        Facing::Back
+    } else if -dn > t {
+        Facing::Front
+    } else {
+        Facing::Split
+    }
+}
+
+/// What the traversal reads of a node: one cache line (the rest is in [`Node`]).
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(64))]
+struct Hot {
+    center: [f32; 3],
+    radius: f32,
+    axis: [f32; 3],
+    /// `cos(angle)`; 2 for an empty cone (faces away).
+    cos: f32,
+    sin: f32,
+    /// The right child ([`NONE`] for a leaf); the left one is the next node.
+    right: u32,
+    triangles: u32,
+    start: u32,
+    end: u32,
+    strip: u32,
+    parent: u32,
+    /// The first node after this node's subtree.
+    subtree_end: u32,
+}
+
+impl Hot {
+    #[inline(always)]
+    fn classify(&self, eye: [f32; 3]) -> Facing {
+        if self.cos > 1.5 {
+            return Facing::Back;
         }
-        let t = r * self.cos_angle + (d2 - r2).sqrt() * self.sin_angle;
-        let dn = self.axis[0] * d[0] + self.axis[1] * d[1] + self.axis[2] * d[2];
-        if dn >= t {
-            Facing::Back
-        } else if -dn > t {
-            Facing::Front
-        } else {
-            Facing::Split
-        }
+        classify(self.center, self.radius, self.axis, self.cos, self.sin, eye)
     }
 }
 
@@ -164,8 +200,8 @@ pub struct Node {
     /// One past the last index of the range: `indices[start..end]` drawn as a strip
     /// draws the node's triangles (and swaps, which draw nothing).
     pub end: u32,
-    /// The node's leaves are `first_leaf..end_leaf` (leaves are nodes `0..leaf_count`,
-    /// in strip order).
+    /// The node's leaves are `first_leaf..end_leaf`, counting the leaves of the whole
+    /// tree in strip order from 0 ([`SegmentTree::leaves`]).
     pub first_leaf: u32,
     /// One past the node's last leaf.
     pub end_leaf: u32,
@@ -213,8 +249,8 @@ pub struct Culled {
     pub visited: usize,
     /// Drawn nodes that were split (leaves or small nodes across the silhouette).
     pub split_drawn: usize,
-    /// The last drawn node's strip and end leaf, for merging ranges.
-    last: (u32, u32),
+    /// The last drawn node's strip, for merging ranges.
+    last_strip: u32,
     /// Triangles culled since the last drawn node of its strip.
     gap: usize,
     /// [`CullOptions::max_gap`] of the traversal.
@@ -232,14 +268,19 @@ impl Culled {
         self.culled_triangles = 0;
         self.visited = 0;
         self.split_drawn = 0;
-        self.last = (NONE, NONE);
+        self.last_strip = NONE;
     }
 
     #[inline]
-    fn emit(&mut self, node: &Node, facing: Facing) {
+    fn emit_back(&mut self, triangles: u32) {
+        self.culled_triangles += triangles as usize;
+        self.gap += triangles as usize;
+    }
+
+    #[inline]
+    fn emit(&mut self, node: &Hot, facing: Facing) {
         if facing == Facing::Back {
-            self.culled_triangles += node.triangles as usize;
-            self.gap += node.triangles as usize;
+            self.emit_back(node.triangles);
             return;
         }
         if facing == Facing::Split {
@@ -247,9 +288,10 @@ impl Culled {
         }
         self.drawn_triangles += node.triangles as usize;
         // The nodes between the last drawn one of this strip and this one were all
-        // culled: `gap` triangles (none when the leaves are neighbours).
+        // culled: `gap` triangles (none when the leaves are neighbours, as every node
+        // has a triangle).
         match self.ranges.last_mut() {
-            Some(r) if self.last.0 == node.strip && self.gap <= self.max_gap => {
+            Some(r) if self.last_strip == node.strip && self.gap <= self.max_gap => {
                 r.end = node.end;
                 self.drawn_triangles += self.gap;
                 self.culled_triangles -= self.gap;
@@ -257,20 +299,23 @@ impl Culled {
             _ => self.ranges.push(node.start..node.end),
         }
         self.gap = 0;
-        self.last = (node.strip, node.end_leaf);
+        self.last_strip = node.strip;
     }
 }
 
 /// The segment tree of a [`StripSet`]: one binary tree per strip (a forest), nodes in
-/// one `Vec`, leaves first.
+/// one `Vec` in depth-first pre-order (a node, its left subtree, its right subtree; the
+/// trees in strip order).
 #[derive(Clone, Debug, Default)]
 pub struct SegmentTree {
-    /// Leaves (`0..leaf_count`, in strip order), then the merged nodes in merge order.
+    /// The nodes, depth-first (a left child right after its parent).
     pub nodes: Vec<Node>,
     /// The root of each strip with a drawable triangle, in strip order.
     pub roots: Vec<u32>,
     /// Number of leaves.
     pub leaf_count: u32,
+    /// The traversal's compact copy of the nodes.
+    hot: Vec<Hot>,
 }
 
 /// Running sums for the bounds of a set of triangles.
@@ -552,7 +597,68 @@ impl SegmentTree {
         }
         let mut roots: Vec<u32> = (0..nodes.len() as u32).filter(|&i| nodes[i as usize].parent == NONE).collect();
         roots.sort_by_key(|&r| nodes[r as usize].first_leaf);
-        SegmentTree { nodes, roots, leaf_count }
+        // Depth-first pre-order, left child first: a subtree is one block of memory,
+        // a left child follows its parent, the leaves come in strip order.
+        let mut order: Vec<u32> = Vec::with_capacity(nodes.len());
+        let mut stack: Vec<u32> = Vec::new();
+        for &r in &roots {
+            stack.push(r);
+            while let Some(id) = stack.pop() {
+                order.push(id);
+                let n = &nodes[id as usize];
+                if !n.is_leaf() {
+                    stack.push(n.children[1]);
+                    stack.push(n.children[0]);
+                }
+            }
+        }
+        let mut new_id = vec![NONE; nodes.len()];
+        for (i, &old) in order.iter().enumerate() {
+            new_id[old as usize] = i as u32;
+        }
+        let map = |id: u32| if id == NONE { NONE } else { new_id[id as usize] };
+        let nodes: Vec<Node> = order
+            .iter()
+            .map(|&old| {
+                let n = nodes[old as usize];
+                Node { children: n.children.map(map), parent: map(n.parent), ..n }
+            })
+            .collect();
+        let roots = roots.into_iter().map(map).collect();
+        let mut hot: Vec<Hot> = nodes
+            .iter()
+            .enumerate()
+            .map(|(i, n)| {
+                let b = &n.bounds;
+                debug_assert!(n.is_leaf() || n.children[0] == i as u32 + 1);
+                Hot {
+                    center: b.center,
+                    radius: b.radius,
+                    axis: b.axis,
+                    cos: if b.angle < 0.0 { 2.0 } else { b.cos_angle },
+                    sin: b.sin_angle,
+                    right: n.children[1],
+                    triangles: n.triangles,
+                    start: n.start,
+                    end: n.end,
+                    strip: n.strip,
+                    parent: n.parent,
+                    subtree_end: i as u32 + 1,
+                }
+            })
+            .collect();
+        // Children come after their parent: the right child's subtree ends last.
+        for i in (0..hot.len()).rev() {
+            if hot[i].right != NONE {
+                hot[i].subtree_end = hot[hot[i].right as usize].subtree_end;
+            }
+        }
+        SegmentTree { nodes, roots, leaf_count, hot }
+    }
+
+    /// The leaves (node ids), in strip order.
+    pub fn leaves(&self) -> impl Iterator<Item = u32> + '_ {
+        (0..self.nodes.len() as u32).filter(|&i| self.nodes[i as usize].is_leaf())
     }
 
     /// Number of nodes.
@@ -569,8 +675,8 @@ impl SegmentTree {
     pub fn depth(&self) -> usize {
         let mut depth = vec![0u32; self.nodes.len()];
         let mut max = 0;
-        // Parents come after their children: walk down from the end.
-        for i in (0..self.nodes.len()).rev() {
+        // Parents come before their children.
+        for i in 0..self.nodes.len() {
             let p = self.nodes[i].parent;
             if p != NONE {
                 depth[i] = depth[p as usize] + 1;
@@ -580,29 +686,27 @@ impl SegmentTree {
         max as usize
     }
 
-    #[inline]
-    fn stops(&self, node: &Node, facing: Facing, options: &CullOptions) -> bool {
-        facing != Facing::Split || node.is_leaf() || node.triangles <= options.min_triangles
-    }
-
     /// Descends from `id` (whose ancestors are all split), emitting the stopping nodes
     /// in strip order; `front`, when given, receives them.
     fn descend(&self, id: u32, eye: [f32; 3], options: &CullOptions, out: &mut Culled, mut front: Option<&mut Vec<u32>>) {
         let mut stack = std::mem::take(&mut out.stack);
         stack.clear();
-        stack.push(id);
-        while let Some(id) = stack.pop() {
-            let node = &self.nodes[id as usize];
-            let facing = node.bounds.classify(eye);
+        let mut next = Some(id);
+        // The left child is visited right after its parent (the next node in memory);
+        // the right one waits on the stack.
+        while let Some(id) = next.or_else(|| stack.pop()) {
+            let h = &self.hot[id as usize];
+            let facing = h.classify(eye);
             out.visited += 1;
-            if self.stops(node, facing, options) {
-                out.emit(node, facing);
+            if facing != Facing::Split || h.right == NONE || h.triangles <= options.min_triangles {
+                out.emit(h, facing);
                 if let Some(f) = front.as_deref_mut() {
                     f.push(id);
                 }
+                next = None;
             } else {
-                stack.push(node.children[1]);
-                stack.push(node.children[0]);
+                stack.push(h.right);
+                next = Some(id + 1);
             }
         }
         out.stack = stack;
@@ -646,29 +750,29 @@ impl RenderFront {
         out.clear(options);
         let mut new = std::mem::take(&mut self.scratch);
         new.clear();
-        // Nodes below a node already emitted are skipped: the end of its leaves.
+        // Nodes below a node already emitted are skipped: the end of its subtree.
         let mut covered_to = 0u32;
         // The last parent tested, and whether it stopped (siblings share it).
         let mut tested: (u32, bool, Facing) = (NONE, false, Facing::Split);
         for &x in &self.nodes {
-            let node = &tree.nodes[x as usize];
-            if node.first_leaf < covered_to {
+            if x < covered_to {
                 continue;
             }
             // Merge up while the parent stops the traversal.
             let (mut top, mut top_facing) = (x, None);
             loop {
-                let p = tree.nodes[top as usize].parent;
+                let p = tree.hot[top as usize].parent;
                 if p == NONE {
                     break;
                 }
                 let (stops, facing) = if tested.0 == p {
                     (tested.1, tested.2)
                 } else {
-                    let pn = &tree.nodes[p as usize];
-                    let facing = pn.bounds.classify(eye);
+                    let h = &tree.hot[p as usize];
+                    let facing = h.classify(eye);
                     out.visited += 1;
-                    let stops = tree.stops(pn, facing, options);
+                    // A parent is never a leaf.
+                    let stops = facing != Facing::Split || h.triangles <= options.min_triangles;
                     tested = (p, stops, facing);
                     (stops, facing)
                 };
@@ -680,14 +784,14 @@ impl RenderFront {
             }
             match top_facing {
                 Some(facing) => {
-                    let t = &tree.nodes[top as usize];
+                    let t = &tree.hot[top as usize];
                     out.emit(t, facing);
                     new.push(top);
-                    covered_to = t.end_leaf;
+                    covered_to = t.subtree_end;
                 }
                 None => {
                     tree.descend(x, eye, options, out, Some(&mut new));
-                    covered_to = node.end_leaf;
+                    covered_to = tree.hot[x as usize].subtree_end;
                 }
             }
         }
