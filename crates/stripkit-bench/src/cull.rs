@@ -238,6 +238,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let (center, radius) = bounding_sphere(&mesh.positions);
         let eyes = helix_eyes(center, radius, HELIX_VIEWS);
         let mut rows = Vec::new();
+        let mut cull_tree = None;
         for w in [Weights::Cull, Weights::Uniform] {
             let s = stripkit::stripify(&mesh, &StripOptions::default().algorithm(Algorithm::Single(SingleOptions::new(w.clone()))))?;
             let pos = s.with_added_vertices(&mesh.positions);
@@ -252,13 +253,31 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 let m = format!("single strip, {w} weights, segment tree, gaps <= {} joined", args.gap);
                 rows.push(tree_row(&m, &tree, &counter, o, &eyes, args.repeat)?);
             }
+            if w == Weights::Cull {
+                cull_tree = Some((tree, counter));
+            }
         }
         let g = stripkit::stripify(&mesh, &StripOptions::default().algorithm(Algorithm::greedy()))?;
         rows.push(per_strip_row(&g.strips, &mesh.positions, &eyes, args.repeat));
         let tree = SegmentTree::build(&g.strips, &mesh.positions);
         let counter = FacingCounter::new(&g.strips, &mesh.positions);
         rows.push(tree_row("greedy strips, segment trees", &tree, &counter, CullOptions::default(), &eyes, args.repeat)?);
-        rows.push(meshlet_row(&tris, &mesh.positions, &eyes, args.repeat)?);
+        let meshlets = meshlet_row(&tris, &mesh.positions, &eyes, args.repeat)?;
+        // The smallest gap at which the cull-weight strip draws at most a tenth of the
+        // meshlets' draws (gaps 0, 4, 16, ... 4^8).
+        if let Some((tree, counter)) = &cull_tree {
+            for k in 0..=8 {
+                let gap = if k == 0 { 0 } else { 1u32 << (2 * k) };
+                let o = CullOptions { max_gap: gap, ..CullOptions::default() };
+                let m = format!("single strip, cull weights, gaps <= {gap} joined (first gap of 4^k with <= 1/10 of the meshlet draws)");
+                let row = tree_row(&m, tree, counter, o, &eyes, 1)?;
+                if row.draws <= meshlets.draws / 10.0 || k == 8 {
+                    rows.push(row);
+                    break;
+                }
+            }
+        }
+        rows.push(meshlets);
         for r in rows {
             let pct = if r.back > 0.0 { 100.0 * r.back_culled / r.back } else { 0.0 };
             out.push_str(&format!(

@@ -257,6 +257,12 @@ fn check_strips(name: &str, strips: &Strips, mesh: &Mesh, options: CullOptions) 
     let mut eyes = helix_eyes(c, r, 60);
     eyes.extend(random_path(c, r, 200, name.len() as u64));
     let counter = FacingCounter::new(&strips.strips, &pos);
+    // And a slow path, where most of the front is kept without a test.
+    eyes.extend((0..80).map(|i| {
+        let t = i as f32 * 0.002;
+        [c[0] + 2.5 * r * t.cos(), c[1] + 0.3 * r, c[2] + 2.5 * r * t.sin()]
+    }));
+    let mut reused = 0;
     let mut front = RenderFront::new(&tree);
     let (mut a, mut b) = (Culled::default(), Culled::default());
     for (v, &eye) in eyes.iter().enumerate() {
@@ -264,6 +270,7 @@ fn check_strips(name: &str, strips: &Strips, mesh: &Mesh, options: CullOptions) 
         front.cull(&tree, eye, &options, &mut b);
         assert_eq!(a.ranges, b.ranges, "{name}: view {v}: render front differs from the root traversal");
         assert_eq!((a.drawn_triangles, a.culled_triangles), (b.drawn_triangles, b.culled_triangles), "{name}");
+        reused += b.reused;
         // The front is where the traversal from the roots stops (a fresh front's first
         // view traverses from the roots).
         let mut fresh = RenderFront::new(&tree);
@@ -278,6 +285,7 @@ fn check_strips(name: &str, strips: &Strips, mesh: &Mesh, options: CullOptions) 
             check_view(name, strips, &pos, &tree, eye, &a, eps);
         }
     }
+    assert!(reused > 0, "{name}: the front never kept a node without a test");
 }
 
 #[test]

@@ -35,6 +35,7 @@ Figures, per view (--json: every view) and averaged:
   back_drawn      back-facing triangles drawn (in split leaves: the test's leak)
   front_missed    front-facing triangles not drawn (always 0)
   visited         nodes classified, from the roots / from the front
+  reused_front    front nodes kept without a test (the eye moved less than their margin)
   us_root, us_front  microseconds per view (best of --repeat runs of the path)
 
 Example: stripkit cull ../shared/models/fandisk.obj --weights cull --bar bar.svg --view 100")]
@@ -93,6 +94,7 @@ pub struct View {
     pub front_missed: usize,
     pub visited_root: usize,
     pub visited_front: usize,
+    pub reused_front: usize,
     pub us_root: f64,
     pub us_front: f64,
 }
@@ -125,6 +127,7 @@ pub struct Averages {
     pub front_missed: f64,
     pub visited_root: f64,
     pub visited_front: f64,
+    pub reused_front: f64,
     pub us_root: f64,
     pub us_front: f64,
     pub us_front_max: f64,
@@ -206,6 +209,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             front.cull(&tree, eye, &cull, &mut check);
             views[v].us_front = views[v].us_front.min(t.elapsed().as_secs_f64() * 1e6);
             views[v].visited_front = check.visited;
+            views[v].reused_front = check.reused;
             anyhow::ensure!(check.ranges.len() == views[v].segments, "view {v}: the render front disagrees with the root traversal");
         }
     }
@@ -220,6 +224,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         front_missed: mean(|v| v.front_missed as f64),
         visited_root: mean(|v| v.visited_root as f64),
         visited_front: mean(|v| v.visited_front as f64),
+        reused_front: mean(|v| v.reused_front as f64),
         us_root: mean(|v| v.us_root),
         us_front: mean(|v| v.us_front),
         us_front_max: views.iter().map(|v| v.us_front).fold(0.0, f64::max),
@@ -247,7 +252,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         writeln!(w, "segments      {:.1}", m.segments)?;
         writeln!(w, "drawn         {:.1} triangles", m.drawn)?;
         writeln!(w, "back-facing   {:.1}: {:.1} culled, {:.1} drawn (leak)", m.back, m.back_culled, m.back_drawn)?;
-        writeln!(w, "visited       {:.1} nodes from the roots, {:.1} from the front", m.visited_root, m.visited_front)?;
+        writeln!(
+            w,
+            "visited       {:.1} nodes from the roots, {:.1} from the front ({:.1} front nodes kept untested)",
+            m.visited_root, m.visited_front, m.reused_front
+        )?;
         writeln!(w, "time          {:.2} us from the roots, {:.2} us from the front (max {:.2})", m.us_root, m.us_front, m.us_front_max)
     })
 }

@@ -116,46 +116,57 @@ impl Bounds {
     /// With `d = center - eye`, `D = |d|`, `b` the angle between `axis` and `d`, `a`
     /// the cone's half-angle and `r` the radius: a triangle with unit normal `m` in the
     /// cone and a point `p` in the sphere faces away when `m . (p - eye) >= 0`. Over
-    /// the sphere, `m . (p - eye) >= m . d - r`; over the cone, `m . d >= D cos(b + a)`
-    /// (when `b + a <= pi`). So every triangle faces away when
-    /// `D cos(b + a) >= r`, i.e. `b <= acos(r / D) - a`, which needs `D cos a >= r` and
-    /// then reads, without trigonometry per node,
+    /// the sphere, `min m . (p - eye) = m . d - r`; over the cone, `min m . d =
+    /// D cos(b + a)` when `b + a <= pi` (else `-D`). So every triangle faces away when
     ///
-    /// `axis . d >= r cos a + sqrt(D^2 - r^2) sin a`    (back-facing),
+    /// `B = D cos(b + a) - r = (axis . d) cos a - sqrt(D^2 - (axis . d)^2) sin a - r >= 0`
     ///
-    /// and the same with `-d` for front-facing (strictly). This is exact for the cone
-    /// and the sphere (no triangle of them is misclassified) and a little looser than
-    /// meshoptimizer's apex-free test `axis . d >= D sin a + r`, which it implies. An
-    /// eye inside the sphere gives [`Facing::Split`]. The test is monotone: bounds that
-    /// hold other bounds classify them the same way or as Split themselves.
+    /// (and `cos a * D >= -(axis . d)`, i.e. `b + a <= pi`), and every triangle faces
+    /// the eye when `F`, the same with `-d`, is `> 0`; otherwise [`Facing::Split`]. This
+    /// is exact for the cone and the sphere (it misclassifies no triangle they could
+    /// hold) and looser than meshoptimizer's apex-free test `axis . d >= D sin a + r`,
+    /// which implies it. It is monotone: bounds that hold other bounds face the same way
+    /// or are split. `B` and `F` are minima of functions of the eye that are
+    /// 1-Lipschitz, so the answer holds while the eye moves less than `|B|` (`|F|`, or
+    /// `min(-B, -F)` for a split): [`RenderFront`] skips the test then.
     #[inline]
     pub fn classify(&self, eye: [f32; 3]) -> Facing {
         if self.angle < 0.0 {
             return Facing::Back;
         }
-        classify(self.center, self.radius, self.axis, self.cos_angle, self.sin_angle, eye)
+        classify(self.center, self.radius, self.axis, self.cos_angle, self.sin_angle, eye).0
     }
 }
 
-/// [`Bounds::classify`] on the parts of non-empty bounds.
+/// [`Bounds::classify`] on the parts of non-empty bounds, with the distance the eye may
+/// move (exactly; before rounding) without changing the answer.
 #[inline(always)]
-fn classify(center: [f32; 3], r: f32, axis: [f32; 3], cos_a: f32, sin_a: f32, eye: [f32; 3]) -> Facing {
+fn classify(center: [f32; 3], r: f32, axis: [f32; 3], cos_a: f32, sin_a: f32, eye: [f32; 3]) -> (Facing, f32) {
     let d = [center[0] - eye[0], center[1] - eye[1], center[2] - eye[2]];
     let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    let r2 = r * r;
-    if d2 <= r2 || cos_a * cos_a.abs() * d2 <= r2 {
-        // Eye inside the sphere, or D cos a <= r (cos a < 0 included).
-        return Facing::Split;
-    }
-    let t = r * cos_a + (d2 - r2).sqrt() * sin_a;
     let dn = axis[0] * d[0] + axis[1] * d[1] + axis[2] * d[2];
-    if dn >= t {
-        Facing::Back
-    } else if -dn > t {
-        Facing::Front
+    let dd = d2.sqrt();
+    // D sin(b) sin(a), and the value of either side where b + a passes pi.
+    let s = (d2 - dn * dn).max(0.0).sqrt() * sin_a;
+    let far = -dd - r;
+    let back = if cos_a * dd >= -dn { dn * cos_a - s - r } else { far };
+    let front = if cos_a * dd >= dn { -dn * cos_a - s - r } else { far };
+    if back >= 0.0 {
+        (Facing::Back, back)
+    } else if front > 0.0 {
+        (Facing::Front, front)
     } else {
-        Facing::Split
+        (Facing::Split, (-back).min(-front))
     }
+}
+
+/// A margin of [`classify`] less a bound on its rounding error: how far the eye may move
+/// with the f32 test still giving the same answer (negative: no distance).
+#[inline(always)]
+fn safe_reach(margin: f32, center: [f32; 3], r: f32, eye: [f32; 3]) -> f32 {
+    let d = [center[0] - eye[0], center[1] - eye[1], center[2] - eye[2]];
+    let scale = d[0].abs() + d[1].abs() + d[2].abs() + r;
+    margin - 1e-5 * scale - f32::MIN_POSITIVE
 }
 
 /// What the traversal reads of a node: one cache line (the rest is in [`Node`]).
@@ -180,12 +191,14 @@ struct Hot {
 }
 
 impl Hot {
+    /// The facing and how far the eye may move keeping it (after rounding).
     #[inline(always)]
-    fn classify(&self, eye: [f32; 3]) -> Facing {
+    fn classify(&self, eye: [f32; 3]) -> (Facing, f32) {
         if self.cos > 1.5 {
-            return Facing::Back;
+            return (Facing::Back, f32::INFINITY);
         }
-        classify(self.center, self.radius, self.axis, self.cos, self.sin, eye)
+        let (f, m) = classify(self.center, self.radius, self.axis, self.cos, self.sin, eye);
+        (f, safe_reach(m, self.center, self.radius, eye))
     }
 }
 
@@ -255,8 +268,11 @@ pub struct Culled {
     gap: usize,
     /// [`CullOptions::max_gap`] of the traversal.
     max_gap: usize,
-    /// The traversal's stack, kept between views.
-    stack: Vec<u32>,
+    /// Front nodes kept by [`RenderFront::cull`] without a test (the eye moved less
+    /// than their margin since they were tested).
+    pub reused: usize,
+    /// The traversal's stack (node, its parent's reach), kept between views.
+    stack: Vec<(u32, f32)>,
 }
 
 impl Culled {
@@ -268,6 +284,7 @@ impl Culled {
         self.culled_triangles = 0;
         self.visited = 0;
         self.split_drawn = 0;
+        self.reused = 0;
         self.last_strip = NONE;
     }
 
@@ -279,27 +296,32 @@ impl Culled {
 
     #[inline]
     fn emit(&mut self, node: &Hot, facing: Facing) {
+        self.emit_parts(node.start, node.end, node.strip, node.triangles, facing);
+    }
+
+    #[inline]
+    fn emit_parts(&mut self, start: u32, end: u32, strip: u32, triangles: u32, facing: Facing) {
         if facing == Facing::Back {
-            self.emit_back(node.triangles);
+            self.emit_back(triangles);
             return;
         }
         if facing == Facing::Split {
             self.split_drawn += 1;
         }
-        self.drawn_triangles += node.triangles as usize;
+        self.drawn_triangles += triangles as usize;
         // The nodes between the last drawn one of this strip and this one were all
         // culled: `gap` triangles (none when the leaves are neighbours, as every node
         // has a triangle).
         match self.ranges.last_mut() {
-            Some(r) if self.last_strip == node.strip && self.gap <= self.max_gap => {
-                r.end = node.end;
+            Some(r) if self.last_strip == strip && self.gap <= self.max_gap => {
+                r.end = end;
                 self.drawn_triangles += self.gap;
                 self.culled_triangles -= self.gap;
             }
-            _ => self.ranges.push(node.start..node.end),
+            _ => self.ranges.push(start..end),
         }
         self.gap = 0;
-        self.last_strip = node.strip;
+        self.last_strip = strip;
     }
 }
 
@@ -686,27 +708,36 @@ impl SegmentTree {
         max as usize
     }
 
-    /// Descends from `id` (whose ancestors are all split), emitting the stopping nodes
-    /// in strip order; `front`, when given, receives them.
-    fn descend(&self, id: u32, eye: [f32; 3], options: &CullOptions, out: &mut Culled, mut front: Option<&mut Vec<u32>>) {
+    /// Descends from `id` (whose ancestors are all split; `reach`: how far the eye
+    /// may move keeping its parent split), emitting the stopping nodes in strip order;
+    /// `front`, when given, receives them with how far the eye may move keeping them.
+    fn descend(
+        &self,
+        id: u32,
+        reach: f32,
+        eye: [f32; 3],
+        options: &CullOptions,
+        out: &mut Culled,
+        mut front: Option<&mut Vec<Entry>>,
+    ) {
         let mut stack = std::mem::take(&mut out.stack);
         stack.clear();
-        let mut next = Some(id);
+        let mut next = Some((id, reach));
         // The left child is visited right after its parent (the next node in memory);
         // the right one waits on the stack.
-        while let Some(id) = next.or_else(|| stack.pop()) {
+        while let Some((id, parent_reach)) = next.or_else(|| stack.pop()) {
             let h = &self.hot[id as usize];
-            let facing = h.classify(eye);
+            let (facing, reach) = h.classify(eye);
             out.visited += 1;
             if facing != Facing::Split || h.right == NONE || h.triangles <= options.min_triangles {
                 out.emit(h, facing);
                 if let Some(f) = front.as_deref_mut() {
-                    f.push(id);
+                    f.push(Entry::new(id, h, facing, eye, reach.min(parent_reach)));
                 }
                 next = None;
             } else {
-                stack.push(h.right);
-                next = Some(id + 1);
+                stack.push((h.right, reach));
+                next = Some((id + 1, reach));
             }
         }
         out.stack = stack;
@@ -716,7 +747,38 @@ impl SegmentTree {
     pub fn cull(&self, eye: [f32; 3], options: &CullOptions, out: &mut Culled) {
         out.clear(options);
         for &r in &self.roots {
-            self.descend(r, eye, options, out, None);
+            self.descend(r, f32::INFINITY, eye, options, out, None);
+        }
+    }
+}
+
+/// A node of the render front and what drawing it needs, with the eye it was tested
+/// from and the squared distance the eye may move from there keeping it.
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    node: u32,
+    subtree_end: u32,
+    start: u32,
+    end: u32,
+    strip: u32,
+    triangles: u32,
+    facing: Facing,
+    eye: [f32; 3],
+    reach2: f32,
+}
+
+impl Entry {
+    fn new(node: u32, h: &Hot, facing: Facing, eye: [f32; 3], reach: f32) -> Self {
+        Entry {
+            node,
+            subtree_end: h.subtree_end,
+            start: h.start,
+            end: h.end,
+            strip: h.strip,
+            triangles: h.triangles,
+            facing,
+            eye,
+            reach2: if reach > 0.0 { reach * reach } else { -1.0 },
         }
     }
 }
@@ -727,21 +789,31 @@ impl SegmentTree {
 /// is now split is split, the others stay. The classification is monotone down the
 /// tree (a node's bounds hold its children's), so this gives exactly the ranges of
 /// [`SegmentTree::cull`] from the roots.
+///
+/// Each node of the front keeps the eye it was tested from and the smaller of its own
+/// margin and its parent's ([`Bounds::classify`], less a bound on rounding): while the
+/// eye stays that close, the node still stops the traversal with the same answer and
+/// its parent is still split, so it is kept without a test ([`Culled::reused`]).
 #[derive(Clone, Debug, Default)]
 pub struct RenderFront {
-    nodes: Vec<u32>,
-    scratch: Vec<u32>,
+    nodes: Vec<Entry>,
+    scratch: Vec<Entry>,
 }
 
 impl RenderFront {
     /// A front at the roots (the first frame then traverses from the roots).
     pub fn new(tree: &SegmentTree) -> Self {
-        RenderFront { nodes: tree.roots.clone(), scratch: Vec::new() }
+        let nodes = tree
+            .roots
+            .iter()
+            .map(|&r| Entry::new(r, &tree.hot[r as usize], Facing::Split, [0.0; 3], -1.0))
+            .collect();
+        RenderFront { nodes, scratch: Vec::new() }
     }
 
     /// The nodes of the front, in strip order.
-    pub fn nodes(&self) -> &[u32] {
-        &self.nodes
+    pub fn nodes(&self) -> Vec<u32> {
+        self.nodes.iter().map(|e| e.node).collect()
     }
 
     /// The ranges to draw for `eye`, starting at the front, which moves to this
@@ -752,45 +824,58 @@ impl RenderFront {
         new.clear();
         // Nodes below a node already emitted are skipped: the end of its subtree.
         let mut covered_to = 0u32;
-        // The last parent tested, and whether it stopped (siblings share it).
-        let mut tested: (u32, bool, Facing) = (NONE, false, Facing::Split);
-        for &x in &self.nodes {
+        // The last parent tested: whether it stopped, its facing and reach (siblings
+        // share it).
+        let mut tested: (u32, bool, Facing, f32) = (NONE, false, Facing::Split, 0.0);
+        for e in &self.nodes {
+            let x = e.node;
             if x < covered_to {
                 continue;
             }
+            let m = [eye[0] - e.eye[0], eye[1] - e.eye[1], eye[2] - e.eye[2]];
+            if m[0] * m[0] + m[1] * m[1] + m[2] * m[2] < e.reach2 {
+                out.emit_parts(e.start, e.end, e.strip, e.triangles, e.facing);
+                out.reused += 1;
+                new.push(*e);
+                covered_to = e.subtree_end;
+                continue;
+            }
             // Merge up while the parent stops the traversal.
-            let (mut top, mut top_facing) = (x, None);
+            let (mut top, mut top_facing, mut top_reach) = (x, None, f32::INFINITY);
+            let mut parent_reach = f32::INFINITY;
             loop {
                 let p = tree.hot[top as usize].parent;
                 if p == NONE {
                     break;
                 }
-                let (stops, facing) = if tested.0 == p {
-                    (tested.1, tested.2)
+                let (stops, facing, reach) = if tested.0 == p {
+                    (tested.1, tested.2, tested.3)
                 } else {
                     let h = &tree.hot[p as usize];
-                    let facing = h.classify(eye);
+                    let (facing, reach) = h.classify(eye);
                     out.visited += 1;
                     // A parent is never a leaf.
                     let stops = facing != Facing::Split || h.triangles <= options.min_triangles;
-                    tested = (p, stops, facing);
-                    (stops, facing)
+                    tested = (p, stops, facing, reach);
+                    (stops, facing, reach)
                 };
                 if !stops {
+                    parent_reach = reach;
                     break;
                 }
                 top = p;
                 top_facing = Some(facing);
+                top_reach = reach;
             }
             match top_facing {
                 Some(facing) => {
                     let t = &tree.hot[top as usize];
                     out.emit(t, facing);
-                    new.push(top);
+                    new.push(Entry::new(top, t, facing, eye, top_reach.min(parent_reach)));
                     covered_to = t.subtree_end;
                 }
                 None => {
-                    tree.descend(x, eye, options, out, Some(&mut new));
+                    tree.descend(x, parent_reach, eye, options, out, Some(&mut new));
                     covered_to = tree.hot[x as usize].subtree_end;
                 }
             }
