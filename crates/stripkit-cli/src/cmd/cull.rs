@@ -191,9 +191,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             us_front: f64::MAX,
             ..View::default()
         };
-        if args.bar.is_some() && v == args.view {
+        if let Some(bar) = args.bar.as_ref().filter(|_| v == args.view) {
             let svg = bar_svg(&strips.strips, &out, &format!("{} ({weights} weights), view {v}", file_name(&args.file)));
-            stripkit::io::write_atomic(args.bar.as_ref().unwrap(), svg.as_bytes())?;
+            stripkit::io::write_atomic(bar, svg.as_bytes())?;
         }
     }
     let mut check = Culled::default();

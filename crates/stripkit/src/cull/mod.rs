@@ -349,6 +349,9 @@ struct Acc {
     area: f64,
 }
 
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
 fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
@@ -385,15 +388,10 @@ pub(crate) fn triangle_normal(t: &[u32; 3], positions: &[[f32; 3]]) -> [f64; 3] 
 impl Acc {
     fn add(&mut self, t: &[u32; 3], positions: &[[f32; 3]]) {
         let n = triangle_normal(t, positions);
-        for k in 0..3 {
-            self.normal[k] += n[k];
-        }
+        self.normal = add(self.normal, n);
         self.area += norm(n);
         for &v in t {
-            let p = p64(positions[v as usize]);
-            for k in 0..3 {
-                self.vertex_sum[k] += p[k];
-            }
+            self.vertex_sum = add(self.vertex_sum, p64(positions[v as usize]));
             self.vertices += 1.0;
         }
     }
@@ -444,10 +442,8 @@ struct Work {
 impl Work {
     fn merge(a: &Work, b: &Work, slack: [f64; 2]) -> Work {
         let mut acc = a.acc;
-        for k in 0..3 {
-            acc.normal[k] += b.acc.normal[k];
-            acc.vertex_sum[k] += b.acc.vertex_sum[k];
-        }
+        acc.normal = add(acc.normal, b.acc.normal);
+        acc.vertex_sum = add(acc.vertex_sum, b.acc.vertex_sum);
         acc.vertices += b.acc.vertices;
         acc.area += b.acc.area;
         let (axis, angle) = match (a.angle >= 0.0, b.angle >= 0.0) {
@@ -498,10 +494,8 @@ impl SegmentTree {
         let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
         for &v in &strips.indices {
             let p = p64(positions[v as usize]);
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
+            lo = std::array::from_fn(|k| lo[k].min(p[k]));
+            hi = std::array::from_fn(|k| hi[k].max(p[k]));
         }
         let size = if strips.indices.is_empty() { 1.0 } else { norm(sub(hi, lo)).max(1e-30) };
         let slack = [1e-5, 1e-5 * size];
