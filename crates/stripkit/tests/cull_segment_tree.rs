@@ -157,6 +157,17 @@ fn check_tree(name: &str, strips: &Strips, pos: &[[f32; 3]], tree: &SegmentTree)
         if n.parent == NONE {
             assert!(tree.roots.contains(&(i as u32)));
         }
+        // The average normal.
+        let mut sum = [0.0f64; 3];
+        for &t in &tris {
+            let [a, b, c] = t.map(|v| p64(pos[v as usize]));
+            let m = cross(sub(b, a), sub(c, a));
+            sum = [sum[0] + m[0], sum[1] + m[1], sum[2] + m[2]];
+        }
+        let l = dot(sum, sum).sqrt();
+        if l > 1e-9 {
+            assert!(dot(sum, p64(n.normal)) / l > 1.0 - 1e-5, "{name}: node {i}: normal {:?} is not the average", n.normal);
+        }
         let bd = &n.bounds;
         let axis = p64(bd.axis);
         let c = p64(bd.center);
