@@ -2,6 +2,7 @@
 //! run; writes markdown tables. One module per comparison.
 
 mod batch;
+mod cull;
 mod batch_strips;
 mod probe_variants;
 mod gpu;
@@ -38,6 +39,8 @@ enum Command {
     /// Single strips for every weight kind: strips, Steiner vertices, swaps, acmr16/32
     /// next to meshoptimizer's cache order, times.
     Single(single::Args),
+    /// Back-face culling along the helix: single strips with segment trees next to greedy strips and meshoptimizer's meshlets.
+    Cull(cull::Args),
 }
 
 /// The research meshes: the folder named by `STRIPKIT_MODELS`, else `../shared/models`
@@ -59,5 +62,6 @@ fn main() -> anyhow::Result<()> {
         Command::GpuModel(a) => batch::run(a),
         Command::BatchStrips(a) => batch_strips::run(a),
         Command::Single(a) => single::run(a),
+        Command::Cull(a) => cull::run(a),
     }
 }

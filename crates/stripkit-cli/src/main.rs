@@ -32,6 +32,8 @@ enum Command {
     Distance(cmd::distance::Args),
     /// Draw a mesh's strips to a PNG: each strip its own colour, the strip order, or back faces.
     Render(cmd::render::Args),
+    /// Back-face culling of a single strip with its segment tree along the helix camera path: segments, culled triangles, times.
+    Cull(cmd::cull::Args),
 }
 
 fn main() -> ExitCode {
@@ -44,6 +46,7 @@ fn main() -> ExitCode {
         Command::Simplify(a) => cmd::simplify::run(a),
         Command::Distance(a) => cmd::distance::run(a),
         Command::Render(a) => cmd::render::run(a),
+        Command::Cull(a) => cmd::cull::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -28,6 +28,9 @@
 //! rule, [`figures`] measures strips by it (indices per join, swaps, vertex-cache
 //! misses per triangle under a [`CacheModel`]).
 //!
+//! [`cull`] cuts single strips into a few segments per view for back-face culling (a
+//! segment tree with a render front).
+//!
 //! Beside the strips: [`MeshFacts`] (what `stripkit stats` prints), [`simplify`]
 //! (edge collapse), [`distance`] (Hausdorff and RMS distances between surfaces) and
 //! [`matching`] (weighted perfect matching).
@@ -73,6 +76,7 @@ mod strip;
 mod stripify;
 mod topology;
 
+pub mod cull;
 pub mod distance;
 pub mod gen;
 pub mod matching;

@@ -1,5 +1,6 @@
 //! One module per subcommand; each has an `Args` (clap) and a `run`.
 
+pub mod cull;
 pub mod distance;
 pub mod gen;
 pub mod matching;

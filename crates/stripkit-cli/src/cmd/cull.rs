@@ -1,0 +1,343 @@
+//! `stripkit cull`: back-face culling of a single strip with its segment tree along the
+//! helix camera path: segments drawn per view, triangles culled and leaked, traversal
+//! times with and without the render front; optionally a picture of the strip bar.
+
+use anyhow::Context;
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+use stripkit::cull::{helix_eyes, CullOptions, Culled, FacingCounter, RenderFront, SegmentTree, HELIX_VIEWS};
+use stripkit::{Algorithm, SingleOptions, StripOptions, Weights};
+
+/// Arguments of `stripkit cull`.
+#[derive(clap::Args)]
+#[command(after_help = "What it does:
+  1. builds the single strip of MESH (`strip --algo single --weights W`, one strip per
+     component), verified;
+  2. builds its segment tree: leaves are pairs of strip triangles (so every range starts
+     at an even triangle and keeps its winding), neighbouring segments with the most
+     similar normals merged first; each node holds a normal cone and a bounding sphere;
+  3. for each eye of the path, classifies nodes as front-facing (drawn), back-facing
+     (skipped) or split (children tested; a split leaf is drawn), from the roots and
+     from the render front (the nodes where the last view stopped); both give the same
+     ranges.
+
+Path `spiral`: 591 eyes (--views) on an ascending helix around the centre of the
+bounding box, 3 half-diagonals from its vertical axis, three turns, height -1.5 to +1.5
+half-diagonals, looking at the centre (the paper's Fig. 17; the path of
+stripkit-bench gpu).
+
+Figures, per view (--json: every view) and averaged:
+  segments        index ranges drawn (one multi-draw; neighbouring nodes merged)
+  drawn           triangles drawn
+  back_culled     back-facing triangles not drawn
+  back_drawn      back-facing triangles drawn (in split leaves: the test's leak)
+  front_missed    front-facing triangles not drawn (always 0)
+  visited         nodes classified, from the roots / from the front
+  reused_front    front nodes kept without a test (the eye moved less than their margin)
+  us_root, us_front  microseconds per view (best of --repeat runs of the path)
+
+Example: stripkit cull ../shared/models/fandisk.obj --weights cull --bar bar.svg --view 100")]
+pub struct Args {
+    /// The mesh file (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz).
+    pub file: PathBuf,
+    /// What steers the single strip: `cull` (stays inside clusters of similar
+    /// normals), `uniform`, `cache`, `direction:X,Y,Z`, or a mix (as `strip --weights`).
+    #[arg(long, value_name = "W", default_value = "cull")]
+    pub weights: String,
+    /// The camera path; `spiral` (the helix) is the only one.
+    #[arg(long, value_enum, default_value = "spiral")]
+    pub path: PathKind,
+    /// Eyes on the path.
+    #[arg(long, value_name = "N", default_value_t = HELIX_VIEWS)]
+    pub views: usize,
+    /// A split node of at most this many triangles is drawn without testing its
+    /// children (0: down to the leaves, pairs of triangles).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub min_triangles: u32,
+    /// Draw two ranges separated by at most N culled (back-facing) triangles as one:
+    /// fewer draws for a few more triangles (0: only neighbouring drawn nodes join).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub max_gap: u32,
+    /// Runs of the path for the times (each view's best is kept).
+    #[arg(long, value_name = "N", default_value_t = 5)]
+    pub repeat: usize,
+    /// Write the strip bar of view --view as SVG: the strip as a horizontal band,
+    /// drawn segments dark, culled ones light (the paper's Fig. 18).
+    #[arg(long, value_name = "OUT.svg")]
+    pub bar: Option<PathBuf>,
+    /// The view of --bar (0-based).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub view: usize,
+    /// Print one JSON object on stdout (with every view) instead of text.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub read: super::ReadArgs,
+}
+
+/// Camera paths.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PathKind {
+    /// The ascending helix (591 views).
+    Spiral,
+}
+
+/// One view's figures.
+#[derive(Serialize, Clone, Copy, Default)]
+pub struct View {
+    pub segments: usize,
+    pub drawn: usize,
+    pub back_culled: usize,
+    pub back_drawn: usize,
+    pub front_missed: usize,
+    pub visited_root: usize,
+    pub visited_front: usize,
+    pub reused_front: usize,
+    pub us_root: f64,
+    pub us_front: f64,
+}
+
+/// The report.
+#[derive(Serialize)]
+pub struct Report {
+    pub file: String,
+    pub weights: String,
+    pub triangles: usize,
+    pub strips: usize,
+    pub steiner_vertices: usize,
+    pub tree_nodes: usize,
+    pub tree_depth: usize,
+    pub build_ms: f64,
+    pub views: usize,
+    pub mean: Averages,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub per_view: Vec<View>,
+}
+
+/// Figures averaged over the views.
+#[derive(Serialize, Default)]
+pub struct Averages {
+    pub segments: f64,
+    pub drawn: f64,
+    pub back: f64,
+    pub back_culled: f64,
+    pub back_drawn: f64,
+    pub front_missed: f64,
+    pub visited_root: f64,
+    pub visited_front: f64,
+    pub reused_front: f64,
+    pub us_root: f64,
+    pub us_front: f64,
+    pub us_front_max: f64,
+}
+
+/// The bounding-box centre and half diagonal of `positions`.
+pub fn bounding_sphere(positions: &[[f32; 3]]) -> ([f32; 3], f32) {
+    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
+    for p in positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let c = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
+    let r = (0..3).map(|k| ((hi[k] - lo[k]) as f64).powi(2)).sum::<f64>().sqrt() as f32 / 2.0;
+    (c, r)
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let weights: Weights = args.weights.parse().map_err(|e| anyhow::anyhow!("--weights: {e}"))?;
+    if args.views == 0 {
+        anyhow::bail!("--views must be at least 1");
+    }
+    if args.bar.is_some() && args.view >= args.views {
+        anyhow::bail!("--view {} is past the last view ({})", args.view, args.views - 1);
+    }
+    if let Some(bar) = &args.bar {
+        super::check_output_folder(bar)?;
+    }
+    let mesh = args.read.read(&args.file)?;
+    let options = StripOptions::default().algorithm(Algorithm::Single(SingleOptions::new(weights.clone())));
+    let strips = stripkit::stripify(&mesh, &options).with_context(|| args.file.display().to_string())?;
+    let positions = strips.with_added_vertices(&mesh.positions);
+    let t0 = Instant::now();
+    let tree = SegmentTree::build(&strips.strips, &positions);
+    let build_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let (center, radius) = bounding_sphere(&mesh.positions);
+    let eyes = match args.path {
+        PathKind::Spiral => helix_eyes(center, radius, args.views),
+    };
+    let cull = CullOptions { min_triangles: args.min_triangles, max_gap: args.max_gap };
+    let counter = FacingCounter::new(&strips.strips, &positions);
+
+    let mut views = vec![View::default(); eyes.len()];
+    let mut out = Culled::default();
+    let mut backs = 0usize;
+    for (v, &eye) in eyes.iter().enumerate() {
+        tree.cull(eye, &cull, &mut out);
+        let c = counter.count(eye, &out.ranges);
+        backs += c.back;
+        views[v] = View {
+            segments: out.ranges.len(),
+            drawn: out.drawn_triangles,
+            back_culled: c.back_culled(),
+            back_drawn: c.back_drawn,
+            front_missed: c.front - c.front_drawn,
+            visited_root: out.visited,
+            us_root: f64::MAX,
+            us_front: f64::MAX,
+            ..View::default()
+        };
+        if let Some(bar) = args.bar.as_ref().filter(|_| v == args.view) {
+            let svg = bar_svg(&strips.strips, &out, &format!("{} ({weights} weights), view {v}", file_name(&args.file)));
+            stripkit::io::write_atomic(bar, svg.as_bytes())?;
+        }
+    }
+    let mut check = Culled::default();
+    for _ in 0..args.repeat.max(1) {
+        for (v, &eye) in eyes.iter().enumerate() {
+            let t = Instant::now();
+            tree.cull(eye, &cull, &mut out);
+            views[v].us_root = views[v].us_root.min(t.elapsed().as_secs_f64() * 1e6);
+        }
+        let mut front = RenderFront::new(&tree);
+        for (v, &eye) in eyes.iter().enumerate() {
+            let t = Instant::now();
+            front.cull(&tree, eye, &cull, &mut check);
+            views[v].us_front = views[v].us_front.min(t.elapsed().as_secs_f64() * 1e6);
+            views[v].visited_front = check.visited;
+            views[v].reused_front = check.reused;
+            anyhow::ensure!(check.ranges.len() == views[v].segments, "view {v}: the render front disagrees with the root traversal");
+        }
+    }
+    let n = views.len() as f64;
+    let mean = |f: fn(&View) -> f64| views.iter().map(f).sum::<f64>() / n;
+    let averages = Averages {
+        segments: mean(|v| v.segments as f64),
+        drawn: mean(|v| v.drawn as f64),
+        back: backs as f64 / n,
+        back_culled: mean(|v| v.back_culled as f64),
+        back_drawn: mean(|v| v.back_drawn as f64),
+        front_missed: mean(|v| v.front_missed as f64),
+        visited_root: mean(|v| v.visited_root as f64),
+        visited_front: mean(|v| v.visited_front as f64),
+        reused_front: mean(|v| v.reused_front as f64),
+        us_root: mean(|v| v.us_root),
+        us_front: mean(|v| v.us_front),
+        us_front_max: views.iter().map(|v| v.us_front).fold(0.0, f64::max),
+    };
+    let report = Report {
+        file: args.file.display().to_string(),
+        weights: weights.to_string(),
+        triangles: counter.len(),
+        strips: strips.strips.len(),
+        steiner_vertices: strips.added_positions.len(),
+        tree_nodes: tree.len(),
+        tree_depth: tree.depth(),
+        build_ms,
+        views: views.len(),
+        mean: averages,
+        per_view: if args.json { views } else { Vec::new() },
+    };
+    anyhow::ensure!(report.mean.front_missed == 0.0, "front-facing triangles were culled");
+    super::print_report(args.json, &report, |w, r| {
+        use std::io::Write;
+        let m = &r.mean;
+        writeln!(w, "{} ({} weights): {} triangles, {} strip(s), {} Steiner vertices", r.file, r.weights, r.triangles, r.strips, r.steiner_vertices)?;
+        writeln!(w, "tree          {} nodes, depth {}, built in {:.1} ms", r.tree_nodes, r.tree_depth, r.build_ms)?;
+        writeln!(w, "path          spiral, {} views; per view on average:", r.views)?;
+        writeln!(w, "segments      {:.1}", m.segments)?;
+        writeln!(w, "drawn         {:.1} triangles", m.drawn)?;
+        writeln!(w, "back-facing   {:.1}: {:.1} culled, {:.1} drawn (leak)", m.back, m.back_culled, m.back_drawn)?;
+        writeln!(
+            w,
+            "visited       {:.1} nodes from the roots, {:.1} from the front ({:.1} front nodes kept untested)",
+            m.visited_root, m.visited_front, m.reused_front
+        )?;
+        writeln!(w, "time          {:.2} us from the roots, {:.2} us from the front (max {:.2})", m.us_root, m.us_front, m.us_front_max)
+    })
+}
+
+fn file_name(p: &std::path::Path) -> String {
+    p.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default()
+}
+
+/// The strip bar: the index buffer as a horizontal band, drawn ranges dark, culled
+/// parts light, strip ends marked.
+pub fn bar_svg(strips: &stripkit::StripSet, culled: &Culled, title: &str) -> String {
+    let (w, h, top) = (1200.0f64, 48.0f64, 28.0f64);
+    let len = strips.indices.len().max(1) as f64;
+    let x = |i: u32| i as f64 / len * w;
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}">
+<rect width="100%" height="100%" fill="white"/>
+<text x="0" y="18" font-family="sans-serif" font-size="14">{} - {} segments drawn, {} triangles drawn, {} culled</text>
+<rect x="0" y="{top}" width="{w}" height="{h}" fill="#d8d8d8"/>
+"##,
+        w,
+        top + h + 4.0,
+        w,
+        top + h + 4.0,
+        xml_escape(title),
+        culled.ranges.len(),
+        culled.drawn_triangles,
+        culled.culled_triangles
+    );
+    for r in &culled.ranges {
+        let _ = writeln!(
+            s,
+            r##"<rect x="{:.3}" y="{top}" width="{:.3}" height="{h}" fill="#202020"/>"##,
+            x(r.start),
+            (x(r.end) - x(r.start)).max(0.3)
+        );
+    }
+    for &o in &strips.offsets[1..strips.offsets.len().saturating_sub(1)] {
+        let _ = writeln!(s, r##"<line x1="{0:.3}" x2="{0:.3}" y1="{1}" y2="{2}" stroke="#d02020" stroke-width="1"/>"##, x(o), top - 3.0, top + h + 3.0);
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+fn xml_escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The library's eye points are the render crate's helix cameras.
+    #[test]
+    fn helix_eyes_match_the_render_crate() {
+        for (c, r, n) in [([0.0f32; 3], 1.0f32, HELIX_VIEWS), ([1.0, -2.0, 3.5], 0.25, 17), ([5.0, 5.0, 5.0], 40.0, 2)] {
+            let eyes = helix_eyes(c, r, n);
+            let cams = stripkit_render::helix_path(c, r, n);
+            assert_eq!(eyes.len(), cams.len());
+            for (e, cam) in eyes.iter().zip(&cams) {
+                assert_eq!(cam.target, c);
+                assert_eq!(cam.fov_y_degrees, 60.0);
+                for k in 0..3 {
+                    assert!((e[k] - cam.eye[k]).abs() <= 1e-5 * r.max(1.0) * 8.0, "{e:?} vs {:?}", cam.eye);
+                }
+            }
+        }
+        assert_eq!(HELIX_VIEWS, stripkit_render::HELIX_VIEWS);
+    }
+
+    #[test]
+    fn bar_marks_drawn_ranges() {
+        let set = stripkit::StripSet::from_strips(&[vec![0u32, 1, 2, 3, 4, 5]]);
+        let pos = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 2.0, 0.0], [1.0, 2.0, 0.0]];
+        let tree = SegmentTree::build(&set, &pos);
+        let mut out = Culled::default();
+        tree.cull([0.5, 1.0, 4.0], &CullOptions::default(), &mut out);
+        assert_eq!(out.ranges.len(), 1);
+        let svg = bar_svg(&set, &out, "a <b>");
+        assert!(svg.contains("fill=\"#202020\"") && svg.contains("a &lt;b&gt;"));
+    }
+}
