@@ -75,6 +75,7 @@ mod pipeline;
 mod strip;
 mod stripify;
 mod topology;
+mod vec3;
 
 pub mod cull;
 pub mod distance;

@@ -54,6 +54,7 @@ mod path;
 pub use count::{FacingCounter, FacingCounts};
 pub use path::{helix_eyes, HELIX_VIEWS};
 
+use crate::vec3::{add, cross, dot, norm, sub, tri_normal, unit};
 use crate::StripSet;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -357,25 +358,6 @@ struct Acc {
     area: f64,
 }
 
-fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
-    let n = norm(a);
-    (n > 0.0 && n.is_finite()).then(|| [a[0] / n, a[1] / n, a[2] / n])
-}
 fn angle_between(a: [f64; 3], b: [f64; 3]) -> f64 {
     // atan2 of |a x b| and a . b: accurate at small angles.
     norm(cross(a, b)).atan2(dot(a, b))
@@ -390,7 +372,7 @@ fn f32s(a: [f64; 3]) -> [f32; 3] {
 /// The (area-scaled) normal of a triangle: `(b - a) x (c - a)`.
 pub(crate) fn triangle_normal(t: &[u32; 3], positions: &[[f32; 3]]) -> [f64; 3] {
     let [a, b, c] = t.map(|v| p64(positions[v as usize]));
-    cross(sub(b, a), sub(c, a))
+    tri_normal(a, b, c)
 }
 
 impl Acc {

@@ -1,15 +1,7 @@
 //! A bounding-volume hierarchy over triangles for exact closest-point queries.
 
-type V3 = [f64; 3];
+use crate::vec3::{cross, dot, sub, unit, V3};
 
-#[inline]
-fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-#[inline]
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
 #[inline]
 fn add_scaled(a: V3, b: V3, s: f64) -> V3 {
     [a[0] + b[0] * s, a[1] + b[1] * s, a[2] + b[2] * s]
@@ -104,15 +96,6 @@ const LEAF: usize = 4;
 
 /// A mesh with a vertex in more triangles than this gets oriented boxes (see `Obb`).
 const HUB_TRIANGLES: u32 = 256;
-
-fn cross(a: V3, b: V3) -> V3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn unit(a: V3) -> Option<V3> {
-    let l = dot(a, a).sqrt();
-    (l > 0.0 && l.is_finite()).then(|| a.map(|x| x / l))
-}
 
 /// Axes of an oriented box around `corners`: the direction of an approximate
 /// diameter (farthest from a corner, then farthest from that), the direction to the

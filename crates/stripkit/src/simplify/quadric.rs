@@ -1,29 +1,7 @@
 //! Quadrics (Garland and Heckbert 1997) and the small f64 vector helpers they need.
 
-/// A 3-vector of f64.
-pub type V3 = [f64; 3];
-
-#[inline]
-pub(crate) fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-#[inline]
-pub(crate) fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-#[inline]
-pub(crate) fn cross(a: V3, b: V3) -> V3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-#[inline]
-pub(crate) fn norm(a: V3) -> f64 {
-    dot(a, a).sqrt()
-}
-/// Twice the area vector of triangle (a, b, c): its direction is the face normal.
-#[inline]
-pub(crate) fn tri_normal(a: V3, b: V3, c: V3) -> V3 {
-    cross(sub(b, a), sub(c, a))
-}
+pub use crate::vec3::V3;
+pub(crate) use crate::vec3::{cross, dot, norm, sub, tri_normal};
 
 /// A symmetric 4x4 quadric `Q` measuring the sum of weighted squared distances to
 /// planes: `Q(p) = p^T A p + 2 b.p + c`, stored as its ten distinct entries.

@@ -16,7 +16,8 @@
 //! Swapped groups cover the same quad; how far a swap moves the surface is reported
 //! ([`max_swap_deviation`]).
 
-use super::work::{cross, dot, sub, WorkMesh};
+use super::work::WorkMesh;
+use crate::vec3::{dot, sub, tri_normal};
 use crate::topology::UnionFind;
 use std::collections::HashMap;
 
@@ -93,7 +94,7 @@ pub(crate) fn cover(input: &[[u32; 3]], w: &WorkMesh) -> Result<Cover, String> {
         }
         if !swapped[g] {
             let [a, b, c] = input[g].map(|i| w.pos[i as usize]);
-            let normal = cross(sub(b, a), sub(c, a));
+            let normal = tri_normal(a, b, c);
             let nn = dot(normal, normal);
             if nn == 0.0 {
                 continue; // degenerate input: the boundary check is all there is
@@ -106,7 +107,7 @@ pub(crate) fn cover(input: &[[u32; 3]], w: &WorkMesh) -> Result<Cover, String> {
                         return Err(format!("a piece of input triangle {g} leaves its plane"));
                     }
                 }
-                if dot(cross(sub(q[1], q[0]), sub(q[2], q[0])), normal) <= 0.0 {
+                if dot(tri_normal(q[0], q[1], q[2]), normal) <= 0.0 {
                     return Err(format!("a piece of input triangle {g} is flipped or flat"));
                 }
             }

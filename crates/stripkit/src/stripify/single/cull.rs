@@ -24,8 +24,10 @@
 //!    in-cluster edge (at most 3 as an integer weight), even between clusters with
 //!    equal normals.
 
-use super::work::{cross, dot, sub, WorkMesh};
+use super::work::WorkMesh;
+use crate::vec3::{dot, norm, sub, tri_normal, unit};
 use crate::matching::splitmix;
+use crate::strip::is_degenerate;
 use crate::topology::NO_NEIGHBOR;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -68,36 +70,30 @@ pub(crate) fn boundary_weight(angle: f64) -> f64 {
     FLOOR + (1.0 - FLOOR) * (a / EPS).ln_1p() / (PI / EPS).ln_1p()
 }
 
-fn degenerate(t: &[u32; 3]) -> bool {
-    t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
-}
-
 /// Unit normals (zero for a zero-area triangle) and areas.
 fn normals_and_areas(w: &WorkMesh) -> (Vec<[f64; 3]>, Vec<f64>) {
     let mut normal = Vec::with_capacity(w.len());
     let mut area = Vec::with_capacity(w.len());
     for t in &w.tris {
         let [a, b, c] = t.map(|i| w.pos[i as usize]);
-        let n = cross(sub(b, a), sub(c, a));
-        let len = dot(n, n).sqrt();
-        if len > 0.0 && len.is_finite() {
-            normal.push(n.map(|x| x / len));
-            area.push(len / 2.0);
-        } else {
-            normal.push([0.0; 3]);
-            area.push(0.0);
+        let n = tri_normal(a, b, c);
+        match unit(n) {
+            Some(u) => {
+                normal.push(u);
+                area.push(norm(n) / 2.0);
+            }
+            None => {
+                normal.push([0.0; 3]);
+                area.push(0.0);
+            }
         }
     }
     (normal, area)
 }
 
-fn unit(v: [f64; 3]) -> [f64; 3] {
-    let l = dot(v, v).sqrt();
-    if l > 0.0 && l.is_finite() {
-        v.map(|x| x / l)
-    } else {
-        [0.0; 3]
-    }
+/// `v` at unit length, zero for a zero vector.
+fn unit_or_zero(v: [f64; 3]) -> [f64; 3] {
+    unit(v).unwrap_or([0.0; 3])
 }
 
 fn add_scaled(s: &mut [f64; 3], v: [f64; 3], k: f64) {
@@ -131,7 +127,7 @@ fn greedy(w: &WorkMesh, normal: &[[f64; 3]], area: &[f64], max_angle: f64, seed:
         while head < queue.len() {
             let t = queue[head] as usize;
             head += 1;
-            let c = unit(sum);
+            let c = unit_or_zero(sum);
             let flat = c == [0.0; 3];
             for &u in &w.nbr[t] {
                 if u == NO_NEIGHBOR || cluster[u as usize] != u32::MAX {
@@ -164,7 +160,7 @@ fn fit(normal: &[[f64; 3]], area: &[f64], cluster: &[u32], proxy: &mut [[f64; 3]
         add_scaled(&mut proxy[c as usize], normal[t], area[t]);
     }
     for p in proxy.iter_mut() {
-        *p = unit(*p);
+        *p = unit_or_zero(*p);
     }
 }
 
@@ -262,7 +258,7 @@ fn split_peaks(w: &mut WorkMesh, cluster: &mut Vec<u32>) -> usize {
     // A split leaves every piece with at most one boundary edge and changes no other
     // triangle's count, so one pass over the input triangles finds them all.
     for t in 0..n {
-        if degenerate(&w.tris[t]) {
+        if is_degenerate(&w.tris[t]) {
             continue;
         }
         let Some(j) = peak_slot(w, cluster, t) else { continue };
@@ -270,7 +266,7 @@ fn split_peaks(w: &mut WorkMesh, cluster: &mut Vec<u32>) -> usize {
             continue;
         }
         let u = w.nbr[t][j] as usize;
-        if degenerate(&w.tris[u]) {
+        if is_degenerate(&w.tris[u]) {
             continue;
         }
         let c = cluster[t];

@@ -13,7 +13,9 @@
 //! pass starts over on the changed mesh (the pieces of a split may merge again), until
 //! one piece is left per component or no operation applies.
 
-use super::work::{cross, dot, edge, sub, WorkMesh};
+use super::work::{edge, WorkMesh};
+use crate::vec3::{dot, tri_normal};
+use crate::strip::is_degenerate;
 use crate::topology::NO_NEIGHBOR;
 use crate::topology::{edge_key, EdgeHasher, UnionFind};
 use std::collections::HashSet;
@@ -214,7 +216,7 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
                     }
                 }
                 let (c, d) = swap_diagonal(w, t, j);
-                if c != d && !degenerate(w, t) && !degenerate(w, u) {
+                if c != d && !is_degenerate(&w.tris[t]) && !is_degenerate(&w.tris[u]) {
                     // (c == d: the two share every edge, a pillow no split can open.)
                     ops.push(Op { class: 2, cost: 2.0 * wt, joins: 2, kind: Kind::Split { t: t as u32, j: j as u8 } });
                 }
@@ -347,10 +349,6 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
     stats
 }
 
-fn degenerate(w: &WorkMesh, t: usize) -> bool {
-    let [a, b, c] = w.tris[t];
-    a == b || b == c || a == c
-}
 
 /// The new diagonal `(c, d)` a swap of slot `j` of `t` would make.
 fn swap_diagonal(w: &WorkMesh, t: usize, j: usize) -> (u32, u32) {
@@ -365,7 +363,7 @@ pub(super) fn swap_ok(w: &WorkMesh, t: usize, j: usize, max_angle: f64, edges: &
     let u = w.nbr[t][j] as usize;
     let (a, b) = edge(&w.tris[t], j);
     let (c, d) = swap_diagonal(w, t, j);
-    if c == d || a == b || edges.contains(&edge_key(c, d)) || degenerate(w, t) || degenerate(w, u) {
+    if c == d || a == b || edges.contains(&edge_key(c, d)) || is_degenerate(&w.tris[t]) || is_degenerate(&w.tris[u]) {
         return false;
     }
     let (nt, nu) = (w.normal(t), w.normal(u));
@@ -376,8 +374,8 @@ pub(super) fn swap_ok(w: &WorkMesh, t: usize, j: usize, max_angle: f64, edges: &
     let p = |i: u32| w.pos[i as usize];
     let n = [nt[0] + nu[0], nt[1] + nu[1], nt[2] + nu[2]];
     let ln = dot(n, n).sqrt();
-    let n1 = cross(sub(p(d), p(a)), sub(p(c), p(a)));
-    let n2 = cross(sub(p(b), p(d)), sub(p(c), p(d)));
+    let n1 = tri_normal(p(a), p(d), p(c));
+    let n2 = tri_normal(p(d), p(b), p(c));
     let (l1, l2) = (dot(n1, n1).sqrt(), dot(n2, n2).sqrt());
     let min_cos = max_angle.cos();
     ln > 0.0 && l1 > 0.0 && l2 > 0.0 && dot(n1, n) / (l1 * ln) >= min_cos && dot(n2, n) / (l2 * ln) >= min_cos

@@ -29,7 +29,7 @@ mod weights;
 pub(crate) mod work;
 
 use crate::error::{Error, Result};
-use crate::strip::StripSet;
+use crate::strip::{is_degenerate, StripSet};
 use crate::topology::walks::encode_path;
 use crate::topology::DualGraph;
 use std::fmt;
@@ -354,7 +354,7 @@ pub(crate) fn single_strips(positions: &[[f32; 3]], tris: Vec<[u32; 3]>, options
     let dual = DualGraph { neighbors: w.nbr.clone() };
     let mut strips = StripSet::new();
     merge::for_each_piece(&w, |_, _, walk| {
-        let drawn: Vec<u32> = walk.iter().copied().filter(|&t| !degenerate(&w.tris[t as usize])).collect();
+        let drawn: Vec<u32> = walk.iter().copied().filter(|&t| !is_degenerate(&w.tris[t as usize])).collect();
         if !drawn.is_empty() {
             encode_path(&w.tris, &dual, &drawn, &mut strips);
         }
@@ -387,10 +387,6 @@ fn ms(since: Instant) -> f64 {
     since.elapsed().as_secs_f64() * 1e3
 }
 
-fn degenerate(t: &[u32; 3]) -> bool {
-    t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
-}
-
 /// Components of the dual graph of non-degenerate triangles, and how many are closed.
 fn components(w: &WorkMesh) -> (usize, usize) {
     let n = w.len();
@@ -398,7 +394,7 @@ fn components(w: &WorkMesh) -> (usize, usize) {
     let mut stack = Vec::new();
     let (mut count, mut closed) = (0, 0);
     for s in 0..n {
-        if seen[s] || degenerate(&w.tris[s]) {
+        if seen[s] || is_degenerate(&w.tris[s]) {
             continue;
         }
         count += 1;
@@ -425,7 +421,7 @@ fn components(w: &WorkMesh) -> (usize, usize) {
 /// [`SingleReport::forced_ends`]).
 fn match_links(w: &mut WorkMesh, mode: MatchingMode) -> Result<(bool, i64, usize)> {
     let n = w.len();
-    let full: Vec<bool> = (0..n).map(|t| w.dual_degree(t) == 3 && !degenerate(&w.tris[t])).collect();
+    let full: Vec<bool> = (0..n).map(|t| w.dual_degree(t) == 3 && !is_degenerate(&w.tris[t])).collect();
     let mut id = vec![u32::MAX; n];
     let mut nodes = 0u32;
     for t in 0..n {
@@ -459,7 +455,7 @@ fn match_links(w: &mut WorkMesh, mode: MatchingMode) -> Result<(bool, i64, usize
     }
     // A cover by paths and loops has sum(2 - d) + 2 |off| ends, and the links off the
     // strips cover every full triangle: at least full - (matched edges) of them.
-    let base: i64 = (0..n).filter(|&t| !degenerate(&w.tris[t])).map(|t| 2 - w.dual_degree(t) as i64).sum();
+    let base: i64 = (0..n).filter(|&t| !is_degenerate(&w.tris[t])).map(|t| 2 - w.dual_degree(t) as i64).sum();
     if nodes == 0 {
         return Ok((true, 0, base.max(0) as usize));
     }

@@ -2,7 +2,8 @@
 //! not cross: the matching takes it. Every kind gives weights in `[0, 1]`, so that a
 //! mix is a plain linear combination.
 
-use super::work::{dot, edge, sub, WorkMesh};
+use super::work::{edge, WorkMesh};
+use crate::vec3::{dot, sub};
 use super::{cull, Weights};
 use crate::matching::splitmix;
 use crate::topology::{UnionFind, NO_NEIGHBOR};

@@ -4,6 +4,7 @@
 //! swap. Flat arrays; a change touches a constant number of entries.
 
 use crate::topology::{DualGraph, NO_NEIGHBOR};
+use crate::vec3::{tri_normal, unit};
 
 /// Slot `j` of a triangle is its edge `(t[j], t[(j + 1) % 3])`.
 #[inline]
@@ -221,13 +222,7 @@ impl WorkMesh {
     /// The unit normal of `t` (zero for a degenerate triangle).
     pub fn normal(&self, t: usize) -> [f64; 3] {
         let [a, b, c] = self.tris[t].map(|i| self.pos[i as usize]);
-        let n = cross(sub(b, a), sub(c, a));
-        let len = dot(n, n).sqrt();
-        if len > 0.0 && len.is_finite() {
-            [n[0] / len, n[1] / len, n[2] / len]
-        } else {
-            [0.0; 3]
-        }
+        unit(tri_normal(a, b, c)).unwrap_or([0.0; 3])
     }
 }
 
@@ -253,16 +248,6 @@ struct Pair {
     w_ca: f64,
     w_ad: f64,
     w_db: f64,
-}
-
-pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 #[cfg(test)]

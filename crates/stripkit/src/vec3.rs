@@ -1,0 +1,37 @@
+//! The small f64 vector helpers shared by the geometry code (quadrics, distances, the
+//! single-strip builder, the culling tree).
+
+/// A 3-vector of f64.
+pub type V3 = [f64; 3];
+
+#[inline]
+pub(crate) fn add(a: V3, b: V3) -> V3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+#[inline]
+pub(crate) fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+#[inline]
+pub(crate) fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+#[inline]
+pub(crate) fn cross(a: V3, b: V3) -> V3 {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+#[inline]
+pub(crate) fn norm(a: V3) -> f64 {
+    dot(a, a).sqrt()
+}
+/// `a` scaled to unit length; `None` for a zero or non-finite vector.
+#[inline]
+pub(crate) fn unit(a: V3) -> Option<V3> {
+    let n = norm(a);
+    (n > 0.0 && n.is_finite()).then(|| [a[0] / n, a[1] / n, a[2] / n])
+}
+/// Twice the area vector of triangle (a, b, c): its direction is the face normal.
+#[inline]
+pub(crate) fn tri_normal(a: V3, b: V3, c: V3) -> V3 {
+    cross(sub(b, a), sub(c, a))
+}
