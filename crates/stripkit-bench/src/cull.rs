@@ -54,19 +54,6 @@ struct Row {
     us: String,
 }
 
-fn bounding_sphere(positions: &[[f32; 3]]) -> ([f32; 3], f32) {
-    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
-    for p in positions {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let c = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
-    let r = (0..3).map(|k| ((hi[k] - lo[k]) as f64).powi(2)).sum::<f64>().sqrt() as f32 / 2.0;
-    (c, r)
-}
-
 /// A segment tree's row: ranges per view from the roots (checked against the front).
 fn tree_row(
     method: &str,
@@ -123,7 +110,7 @@ fn finish(row: &mut Row, views: usize) {
 
 /// Greedy strips, one cone and sphere per strip (the strip is drawn unless it faces away).
 fn per_strip_row(strips: &StripSet, positions: &[[f32; 3]], eyes: &[[f32; 3]], repeat: usize) -> Row {
-    let slack = [1e-5, 1e-5 * 2.0 * bounding_sphere(positions).1 as f64];
+    let slack = SegmentTree::slack(strips, positions);
     let bounds: Vec<Bounds> = strips
         .iter()
         .map(|s| {
@@ -235,7 +222,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let mesh = stripkit::io::read(&path).with_context(|| format!("reading {}", path.display()))?;
         let tris = mesh.triangulate().tris;
         eprintln!("{name}: {} triangles", tris.len());
-        let (center, radius) = bounding_sphere(&mesh.positions);
+        let (center, radius) = stripkit::cull::bounding_sphere(&mesh.positions);
         let eyes = helix_eyes(center, radius, HELIX_VIEWS);
         let mut rows = Vec::new();
         let mut cull_tree = None;

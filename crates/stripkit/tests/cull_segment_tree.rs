@@ -92,18 +92,6 @@ fn strip_triangle(idx: &[u32], i: usize) -> [u32; 3] {
 fn drawable(t: [u32; 3]) -> bool {
     t[0] != t[1] && t[1] != t[2] && t[0] != t[2]
 }
-fn scene(pos: &[[f32; 3]]) -> ([f32; 3], f32) {
-    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
-    for p in pos {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let c = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
-    let r = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f32>().sqrt() / 2.0;
-    (c, r)
-}
 
 /// The tree's invariants: each internal node is exactly the union of its two children
 /// (consecutive in the strip), leaves are the strip's pairs, every cone holds its
@@ -263,7 +251,7 @@ fn check_strips(name: &str, strips: &Strips, mesh: &Mesh, options: CullOptions) 
     let pos = strips.with_added_vertices(&mesh.positions);
     let tree = SegmentTree::build(&strips.strips, &pos);
     check_tree(name, strips, &pos, &tree);
-    let (c, r) = scene(&pos);
+    let (c, r) = stripkit::cull::bounding_sphere(&pos);
     let eps = 1e-4 * r as f64;
     let mut eyes = helix_eyes(c, r, 60);
     eyes.extend(random_path(c, r, 200, name.len() as u64));
@@ -348,7 +336,7 @@ fn flat_regions_merge_before_sharp_features() {
     let wide = tree.nodes.iter().filter(|n| !n.is_leaf() && n.bounds.angle >= 1f32.to_radians()).count();
     assert_eq!(wide, runs - tree.roots.len(), "runs {runs}, roots {}", tree.roots.len());
     // The cube is culled in few segments: at most one per run.
-    let (c, r) = scene(&mesh.positions);
+    let (c, r) = stripkit::cull::bounding_sphere(&mesh.positions);
     let mut out = Culled::default();
     for eye in helix_eyes(c, r, HELIX_VIEWS) {
         tree.cull(eye, &CullOptions::default(), &mut out);
@@ -395,7 +383,7 @@ fn empty_and_tiny_strip_sets() {
 #[test]
 fn fandisk_cull_weights_need_fewer_segments() {
     let Some(mesh) = support::model("fandisk.obj") else { return };
-    let (c, r) = scene(&mesh.positions);
+    let (c, r) = stripkit::cull::bounding_sphere(&mesh.positions);
     let eyes = helix_eyes(c, r, HELIX_VIEWS);
     let mean = |w: Weights| {
         let s = single(&mesh, w);

@@ -133,20 +133,6 @@ pub struct Averages {
     pub us_front_max: f64,
 }
 
-/// The bounding-box centre and half diagonal of `positions`.
-pub fn bounding_sphere(positions: &[[f32; 3]]) -> ([f32; 3], f32) {
-    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
-    for p in positions {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let c = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
-    let r = (0..3).map(|k| ((hi[k] - lo[k]) as f64).powi(2)).sum::<f64>().sqrt() as f32 / 2.0;
-    (c, r)
-}
-
 /// Runs the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let weights: Weights = args.weights.parse().map_err(|e| anyhow::anyhow!("--weights: {e}"))?;
@@ -166,7 +152,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let t0 = Instant::now();
     let tree = SegmentTree::build(&strips.strips, &positions);
     let build_ms = t0.elapsed().as_secs_f64() * 1e3;
-    let (center, radius) = bounding_sphere(&mesh.positions);
+    let (center, radius) = stripkit::cull::bounding_sphere(&mesh.positions);
     let eyes = match args.path {
         PathKind::Spiral => helix_eyes(center, radius, args.views),
     };

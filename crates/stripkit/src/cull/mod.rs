@@ -52,7 +52,7 @@ mod count;
 mod path;
 
 pub use count::{FacingCounter, FacingCounts};
-pub use path::{helix_eyes, HELIX_VIEWS};
+pub use path::{bounding_sphere, helix_eyes, HELIX_VIEWS};
 
 use crate::vec3::{add, cross, dot, norm, sub, tri_normal, unit};
 use crate::StripSet;
@@ -493,7 +493,22 @@ fn merge_key(w: &Work, triangles: u32) -> u64 {
     (steps << 32) | triangles as u64
 }
 
+
 impl SegmentTree {
+    /// The slack [`SegmentTree::build`] widens cones and spheres by: `1e-5` radians,
+    /// and `1e-5` times the diagonal of the bounding box of the strips' vertices (for
+    /// [`Bounds::of_triangles`] on bounds of one's own).
+    pub fn slack(strips: &StripSet, positions: &[[f32; 3]]) -> [f64; 2] {
+        let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+        for &v in &strips.indices {
+            let p = p64(positions[v as usize]);
+            lo = std::array::from_fn(|k| lo[k].min(p[k]));
+            hi = std::array::from_fn(|k| hi[k].max(p[k]));
+        }
+        let size = if strips.indices.is_empty() { 1.0 } else { norm(sub(hi, lo)).max(1e-30) };
+        [1e-5, 1e-5 * size]
+    }
+
     /// Builds the tree of every strip of `strips` (indices into `positions`).
     ///
     /// Leaves are pairs of strip triangles `2k, 2k + 1` (from the strip's start) with at
@@ -505,14 +520,7 @@ impl SegmentTree {
     /// `1e-5` (radians, and times the size of the positions' bounding box) so that the
     /// f32 test stays monotone down the tree. `O(n log n)` in the triangles.
     pub fn build(strips: &StripSet, positions: &[[f32; 3]]) -> SegmentTree {
-        let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
-        for &v in &strips.indices {
-            let p = p64(positions[v as usize]);
-            lo = std::array::from_fn(|k| lo[k].min(p[k]));
-            hi = std::array::from_fn(|k| hi[k].max(p[k]));
-        }
-        let size = if strips.indices.is_empty() { 1.0 } else { norm(sub(hi, lo)).max(1e-30) };
-        let slack = [1e-5, 1e-5 * size];
+        let slack = Self::slack(strips, positions);
 
         let mut nodes: Vec<Node> = Vec::new();
         let mut work: Vec<Work> = Vec::new();

@@ -22,3 +22,21 @@ pub fn helix_eyes(center: [f32; 3], radius: f32, views: usize) -> Vec<[f32; 3]> 
         })
         .collect()
 }
+
+/// The centre of the bounding box of `positions` and half its diagonal: the `center`
+/// and `radius` of [`helix_eyes`]. The origin and 0 for no positions.
+pub fn bounding_sphere(positions: &[[f32; 3]]) -> ([f32; 3], f32) {
+    if positions.is_empty() {
+        return ([0.0; 3], 0.0);
+    }
+    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
+    for p in positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let c = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
+    let r = (0..3).map(|k| ((hi[k] - lo[k]) as f64).powi(2)).sum::<f64>().sqrt() as f32 / 2.0;
+    (c, r)
+}
