@@ -132,6 +132,9 @@ struct Op {
 /// What merging did.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct MergeStats {
+    /// Pieces (and of them paths) before merging.
+    pub initial_pieces: usize,
+    pub initial_paths: usize,
     pub passes: usize,
     pub nodal: usize,
     pub joins: usize,
@@ -146,11 +149,9 @@ pub(crate) struct MergeSettings {
     pub swap_angle: Option<f64>,
 }
 
-/// The weight of the dual edge in slot `j` of `t`, as the merge sees it.
-pub(crate) type WeightFn<'a> = &'a dyn Fn(&WorkMesh, usize, usize) -> f64;
-
 /// Merges the pieces of `w` greedily (see the module docs).
-pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings) -> MergeStats {
+/// Costs are read from `w.weight`.
+pub(crate) fn merge(w: &mut WorkMesh, settings: &MergeSettings) -> MergeStats {
     let mut stats = MergeStats::default();
     let mut stamp: Vec<u32> = Vec::new();
     loop {
@@ -158,6 +159,10 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
         let pass = stats.passes as u32;
         let p = pieces(w);
         let piece_count = p.is_path.len();
+        if stats.passes == 1 {
+            stats.initial_pieces = piece_count;
+            stats.initial_paths = p.is_path.iter().filter(|&&x| x).count();
+        }
         // Candidate operations on the pieces as they are.
         let mut ops: Vec<Op> = Vec::new();
         let mut fans: Vec<u32> = Vec::new(); // (t, slot) pairs, flattened per fan
@@ -183,7 +188,7 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
                 if ct == cu {
                     continue;
                 }
-                let wt = weight(w, t, j);
+                let wt = w.weight[t][j];
                 let (et, eu) = (w.degree(t) < 2, w.degree(u) < 2);
                 if et && eu {
                     ops.push(Op { class: 0, cost: wt, joins: 2, kind: Kind::Join { t: t as u32, j: j as u8 } });
@@ -195,7 +200,7 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
                         // Cut the loop at l where the strip loses least.
                         let (cut, cw) = (0..3)
                             .filter(|&k| w.linked(l, k))
-                            .map(|k| (k, weight(w, l, k)))
+                            .map(|k| (k, w.weight[l][k]))
                             .fold((3, f64::NEG_INFINITY), |b, x| if x.1 > b.1 { x } else { b });
                         if cut < 3 {
                             ops.push(Op {
@@ -222,7 +227,7 @@ pub(crate) fn merge(w: &mut WorkMesh, weight: WeightFn, settings: &MergeSettings
                 }
             }
         }
-        nodal_candidates(w, &p, weight, &mut ops, &mut fans, &mut fan_offsets);
+        nodal_candidates(w, &p, &mut ops, &mut fans, &mut fan_offsets);
         if ops.is_empty() {
             break;
         }
@@ -450,7 +455,6 @@ fn joins_all(p: &Pieces, fan: &[u32], on0: bool) -> bool {
 fn nodal_candidates(
     w: &WorkMesh,
     p: &Pieces,
-    weight: WeightFn,
     ops: &mut Vec<Op>,
     fans: &mut Vec<u32>,
     offsets: &mut Vec<u32>,
@@ -509,7 +513,7 @@ fn nodal_candidates(
             if on != ((q % 2 == 0) == on0) {
                 continue 'vertex;
             }
-            let wq = weight(w, ft, fs);
+            let wq = w.weight[ft][fs];
             if on {
                 cost -= wq;
                 let c = p.comp[ft];

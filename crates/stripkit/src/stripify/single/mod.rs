@@ -335,12 +335,10 @@ pub(crate) fn single_strips(positions: &[[f32; 3]], tris: Vec<[u32; 3]>, options
     report.matching_ms = ms(clock);
 
     let clock = Instant::now();
-    let p = merge::pieces(&w);
-    report.initial_pieces = p.is_path.len();
-    report.initial_paths = p.is_path.iter().filter(|&&x| x).count();
-    let weight = |w: &WorkMesh, t: usize, j: usize| w.weight[t][j];
     let settings = merge::MergeSettings { swap_angle: options.swap_angle.map(f64::to_radians) };
-    let stats = merge::merge(&mut w, &weight, &settings);
+    let stats = merge::merge(&mut w, &settings);
+    report.initial_pieces = stats.initial_pieces;
+    report.initial_paths = stats.initial_paths;
     report.nodal = stats.nodal;
     report.joins = stats.joins;
     report.attaches = stats.attaches;

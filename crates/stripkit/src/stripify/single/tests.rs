@@ -56,16 +56,12 @@ fn pieces_of(w: &WorkMesh) -> usize {
     merge::pieces(w).is_path.len()
 }
 
-fn unit_weight(_: &WorkMesh, _: usize, _: usize) -> f64 {
-    1.0
-}
-
 #[test]
 fn nodal_vertex_of_valence_six_joins_three_loops() {
     let mut w = three_loops();
     assert_eq!(pieces_of(&w), 3);
     assert!(merge::pieces(&w).is_path.iter().all(|&p| !p));
-    let stats = merge::merge(&mut w, &unit_weight, &merge::MergeSettings { swap_angle: None });
+    let stats = merge::merge(&mut w, &merge::MergeSettings { swap_angle: None });
     assert_eq!((stats.nodal, stats.splits, stats.swaps), (1, 0, 0));
     assert_eq!(pieces_of(&w), 1);
     assert!((0..w.len()).all(|t| w.degree(t) == 2));
