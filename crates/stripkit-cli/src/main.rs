@@ -34,6 +34,8 @@ enum Command {
     Render(cmd::render::Args),
     /// Back-face culling of a single strip with its segment tree along the helix camera path: segments, culled triangles, times.
     Cull(cmd::cull::Args),
+    /// Multiresolution strips (SETS): build a model of every level of detail, extract a level, time level changes.
+    Lod(cmd::lod::Args),
 }
 
 fn main() -> ExitCode {
@@ -47,6 +49,7 @@ fn main() -> ExitCode {
         Command::Distance(a) => cmd::distance::run(a),
         Command::Render(a) => cmd::render::run(a),
         Command::Cull(a) => cmd::cull::run(a),
+        Command::Lod(a) => cmd::lod::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

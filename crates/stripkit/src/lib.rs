@@ -81,6 +81,7 @@ pub mod cull;
 pub mod distance;
 pub mod gen;
 pub mod matching;
+pub mod lod;
 pub mod simplify;
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 pub mod cull;
 pub mod distance;
 pub mod gen;
+pub mod lod;
 pub mod matching;
 pub mod render;
 pub mod simplify;

@@ -1,0 +1,103 @@
+//! From a mesh to a model: the door's strips, the simplifier's full collapse sequence,
+//! then [`Sets::build`].
+
+use super::sets::Sets;
+use crate::error::Result;
+use crate::mesh::Mesh;
+use crate::pipeline::{stripify, StripOptions};
+use crate::simplify::{simplify, CollapseSequence, Options, Placement, Target};
+use std::time::Instant;
+
+/// Options of [`build`].
+#[derive(Clone, Debug, Default)]
+pub struct BuildOptions {
+    /// The stripifier of level 0 (any the door runs).
+    pub strip: StripOptions,
+    /// Survivor placement of the collapses: [`Placement::Endpoint`] (half-edge
+    /// collapses, no new vertices: what `stripkit simplify` does by default) or
+    /// [`Placement::Optimal`] (a new vertex per collapse).
+    pub placement: Placement,
+}
+
+/// What [`build`] did.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct BuildReport {
+    /// The stripifier that ran.
+    pub algorithm: String,
+    /// Non-degenerate triangles at level 0 and at the coarsest level.
+    pub triangles: u32,
+    /// Triangles at the coarsest level.
+    pub coarsest_triangles: u32,
+    /// Levels beyond level 0 (collapses).
+    pub levels: u32,
+    /// Strips at level 0.
+    pub strips: usize,
+    /// Slots (level-0 strip indices), versions and beginnings stored.
+    pub slots: usize,
+    /// Slot versions stored.
+    pub versions: usize,
+    /// Strip beginnings stored.
+    pub beginnings: usize,
+    /// Bytes in memory ([`Sets::memory_bytes`]).
+    pub memory_bytes: usize,
+    /// Milliseconds of the stripifier, the simplifier and the model's builder.
+    pub strip_ms: f64,
+    /// Milliseconds of the simplification.
+    pub simplify_ms: f64,
+    /// Milliseconds of [`Sets::build`].
+    pub build_ms: f64,
+}
+
+/// A model with what it was built from.
+#[derive(Clone, Debug)]
+pub struct Built {
+    /// The model.
+    pub sets: Sets,
+    /// The triangle mesh that was simplified: the input's positions (plus any vertex
+    /// the stripifier added) and the triangles the strips draw, in the door's order.
+    /// For a triangle mesh stripped without changes this is the input itself, so
+    /// `stripkit simplify` on the input gives the same levels.
+    pub mesh: Mesh,
+    /// The full collapse sequence (down to where no collapse is possible).
+    pub sequence: CollapseSequence,
+    /// What was done.
+    pub report: BuildReport,
+}
+
+/// Strips `mesh` through the door, simplifies the triangles the strips draw as far
+/// as the simplifier goes (its defaults, with `options.placement`), and builds the
+/// [`Sets`] model of both. `progress` gets the simplifier's fraction done.
+pub fn build(mesh: &Mesh, options: &BuildOptions, progress: &mut dyn FnMut(f64)) -> Result<Built> {
+    let t = Instant::now();
+    let strips = stripify(mesh, &options.strip)?;
+    let strip_ms = t.elapsed().as_secs_f64() * 1e3;
+    let mut positions = mesh.positions.clone();
+    positions.extend_from_slice(&strips.added_positions);
+    let simplified_mesh = Mesh::from_triangles(positions, &strips.triangles);
+    let t = Instant::now();
+    let simplify_options = Options {
+        target: Target::Triangles(0),
+        placement: options.placement,
+        ..Options::default()
+    };
+    let simplified = simplify(&simplified_mesh, &simplify_options, progress)?;
+    let simplify_ms = t.elapsed().as_secs_f64() * 1e3;
+    let t = Instant::now();
+    let sets = Sets::build(&simplified_mesh.positions, &strips.strips, &simplified.sequence, options.placement)?;
+    let build_ms = t.elapsed().as_secs_f64() * 1e3;
+    let report = BuildReport {
+        algorithm: strips.algorithm.name().to_string(),
+        triangles: sets.triangles_at(0),
+        coarsest_triangles: sets.triangles_at(sets.levels()),
+        levels: sets.levels(),
+        strips: sets.strip_count(),
+        slots: sets.slot_count(),
+        versions: sets.version_count(),
+        beginnings: sets.beginning_count(),
+        memory_bytes: sets.memory_bytes(),
+        strip_ms,
+        simplify_ms,
+        build_ms,
+    };
+    Ok(Built { sets, mesh: simplified_mesh, sequence: simplified.sequence, report })
+}

@@ -1,0 +1,373 @@
+//! The `.sets` file: versioned, little-endian, checksummed, read as untrusted input.
+//! The layout is documented in docs/sets-format.md.
+
+use super::sets::{Sets, Version, END};
+use crate::error::{Error, Result};
+use crate::simplify::Placement;
+use std::path::Path;
+
+/// The first eight bytes of a `.sets` file.
+pub const SETS_MAGIC: &[u8; 8] = b"SKLODSET";
+const FORMAT_VERSION: u32 = 1;
+const FLAG_OPTIMAL: u32 = 1;
+
+impl Sets {
+    /// The `.sets` encoding (docs/sets-format.md). Level-0 versions and beginnings
+    /// are implied by the strips; a later version stores its level step, whether its
+    /// label changed (the new label is then the target of the collapse that made the
+    /// level) and its successor's distance, as LEB128 varints.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(64 + 12 * self.positions.len() + 3 * self.version_count());
+        out.extend_from_slice(SETS_MAGIC);
+        let flags = if self.placement == Placement::Optimal { FLAG_OPTIMAL } else { 0 };
+        for x in [
+            FORMAT_VERSION,
+            flags,
+            self.input_vertices,
+            self.positions.len() as u32,
+            self.levels(),
+            self.strip_count() as u32,
+            self.slot_count() as u32,
+            self.version_count() as u32,
+            self.beginning_count() as u32,
+            self.triangles0,
+        ] {
+            out.extend_from_slice(&x.to_le_bytes());
+        }
+        for p in &self.positions {
+            for c in p {
+                out.extend_from_slice(&c.to_le_bytes());
+            }
+        }
+        for i in 0..self.targets.len() {
+            if self.placement == Placement::Endpoint {
+                varint(&mut out, self.targets[i] as u64);
+            }
+            varint(&mut out, self.removed_triangles[i] as u64);
+        }
+        for s in 0..self.strip_count() {
+            varint(&mut out, (self.strip_slots[s + 1] - self.strip_slots[s]) as u64);
+        }
+        let mut last = 0u32;
+        for x in 0..self.slot_count() {
+            let label = self.versions[self.version_offsets[x] as usize].label;
+            varint(&mut out, zigzag(label as i64 - last as i64));
+            last = label;
+        }
+        for x in 0..self.slot_count() {
+            let r = self.version_offsets[x] as usize..self.version_offsets[x + 1] as usize;
+            varint(&mut out, (r.len() - 1) as u64);
+            for w in self.versions[r].windows(2) {
+                let (before, v) = (w[0], w[1]);
+                varint(&mut out, (v.level - before.level) as u64);
+                let next = match v.next {
+                    END => 0,
+                    y => (y - x as u32) as u64,
+                };
+                let relabel = v.label != before.label;
+                debug_assert!(!relabel || v.label == self.targets[v.level as usize - 1]);
+                varint(&mut out, next << 1 | relabel as u64);
+            }
+        }
+        for s in 0..self.strip_count() {
+            let r = self.begin_offsets[s] as usize..self.begin_offsets[s + 1] as usize;
+            varint(&mut out, (r.len() - 1) as u64);
+            for b in r.start + 1..r.end {
+                varint(&mut out, (self.begin_level[b] - self.begin_level[b - 1]) as u64);
+                let slot = match self.begin_slot[b] {
+                    END => 0,
+                    y => (y - self.strip_slots[s] + 1) as u64,
+                };
+                varint(&mut out, slot);
+            }
+        }
+        let mut crc = flate2::Crc::new();
+        crc.update(&out);
+        out.extend_from_slice(&crc.sum().to_le_bytes());
+        out
+    }
+
+    /// Writes the `.sets` file atomically ([`crate::io::write_atomic`]).
+    pub fn write(&self, path: &Path) -> Result<()> {
+        crate::io::write_atomic(path, &self.to_bytes())
+    }
+
+    /// Reads a `.sets` file ([`Sets::from_bytes`]).
+    pub fn read(path: &Path) -> Result<Sets> {
+        let bytes = std::fs::read(path).map_err(|source| Error::Io { path: path.to_path_buf(), source })?;
+        Sets::from_bytes(path, &bytes)
+    }
+
+    /// Decodes a `.sets` file; `path` names it in errors. The checksum is checked
+    /// first; every count is checked against the bytes left before anything is
+    /// allocated for it, every vertex, slot and level against its range, levels
+    /// ascend, successors move forward within their strip, and the triangle counts
+    /// agree with the strips, so that no recovery of the result can index out of
+    /// bounds or loop. A failure is [`Error::Format`] with the byte offset.
+    pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Sets> {
+        let fmt = |at: usize, what: String| Error::Format { path: path.to_path_buf(), at: format!("byte {at}"), what };
+        if bytes.len() < SETS_MAGIC.len() + 44 {
+            return Err(fmt(0, format!("{} bytes is too short for a .sets file", bytes.len())));
+        }
+        if &bytes[..8] != SETS_MAGIC {
+            return Err(fmt(0, "not a stripkit .sets file (bad magic)".into()));
+        }
+        let (body, tail) = bytes.split_at(bytes.len() - 4);
+        let mut crc = flate2::Crc::new();
+        crc.update(body);
+        if crc.sum().to_le_bytes() != tail {
+            return Err(fmt(body.len(), "checksum mismatch: the file is damaged or truncated".into()));
+        }
+        let mut r = Reader { bytes: body, at: 8, fmt: &fmt };
+        let version = r.u32()?;
+        if version != FORMAT_VERSION {
+            return Err(fmt(8, format!("format version {version}; this stripkit reads version {FORMAT_VERSION}")));
+        }
+        let flags = r.u32()?;
+        if flags & !FLAG_OPTIMAL != 0 {
+            return Err(fmt(12, format!("unknown flags {flags:#x}")));
+        }
+        let placement = if flags & FLAG_OPTIMAL != 0 { Placement::Optimal } else { Placement::Endpoint };
+        let mut h = [0u32; 8];
+        for x in &mut h {
+            *x = r.u32()?;
+        }
+        let [input_vertices, position_count, levels, strips, slots, versions, beginnings, triangles0] = h;
+        let expected_positions = match placement {
+            Placement::Endpoint => input_vertices as u64,
+            Placement::Optimal => input_vertices as u64 + levels as u64,
+        };
+        if position_count as u64 != expected_positions || position_count == END {
+            return Err(fmt(20, format!("{position_count} positions for {input_vertices} vertices and {levels} levels")));
+        }
+        if versions < slots || beginnings < strips || slots == END {
+            return Err(fmt(36, "fewer versions than slots or beginnings than strips".into()));
+        }
+        // Positions: 12 bytes each, all present.
+        r.need(position_count as usize * 12, "the positions")?;
+        let mut positions = Vec::with_capacity(position_count as usize);
+        for _ in 0..position_count {
+            let p = [r.f32()?, r.f32()?, r.f32()?];
+            if !p.iter().all(|c| c.is_finite()) {
+                return Err(fmt(r.at - 12, format!("vertex {} has a NaN or infinite coordinate", positions.len())));
+            }
+            positions.push(p);
+        }
+        // Every record below takes at least one byte: counts are checked against the
+        // bytes left before any allocation.
+        r.need(levels as usize, "the collapses")?;
+        let mut targets = Vec::with_capacity(levels as usize);
+        let mut removed_triangles = Vec::with_capacity(levels as usize);
+        for i in 0..levels {
+            let t = match placement {
+                Placement::Endpoint => r.index(position_count, "a collapse's target vertex")?,
+                Placement::Optimal => input_vertices + i,
+            };
+            targets.push(t);
+            removed_triangles.push(r.index(u32::MAX, "a collapse's removed triangle count")?);
+        }
+        r.need(strips as usize, "the strips")?;
+        let mut strip_slots = Vec::with_capacity(strips as usize + 1);
+        strip_slots.push(0u32);
+        for _ in 0..strips {
+            let len = r.index(u32::MAX, "a strip length")? as u64;
+            let end = *strip_slots.last().expect("holds 0") as u64 + len;
+            if end > slots as u64 {
+                return Err(fmt(r.at, format!("the strips hold more than the {slots} slots the header gives")));
+            }
+            strip_slots.push(end as u32);
+        }
+        if *strip_slots.last().expect("holds 0") != slots {
+            return Err(fmt(r.at, format!("the strips hold fewer than the {slots} slots the header gives")));
+        }
+        r.need(slots as usize, "the level-0 strips")?;
+        let mut labels = Vec::with_capacity(slots as usize);
+        let mut last = 0i64;
+        for _ in 0..slots {
+            let d = unzigzag(r.varint("a level-0 vertex")?);
+            last = last.checked_add(d).filter(|v| (0..position_count as i64).contains(v)).ok_or_else(|| {
+                fmt(r.at, format!("a level-0 strip names a vertex outside the {position_count} vertices"))
+            })?;
+            labels.push(last as u32);
+        }
+        // Slot versions.
+        let strip_of = |x: usize| strip_slots.partition_point(|&o| o as usize <= x) - 1;
+        r.need(slots as usize, "the slot versions")?;
+        let mut version_offsets = Vec::with_capacity(slots as usize + 1);
+        version_offsets.push(0u32);
+        let cap = (versions as usize).min(r.left());
+        let mut all_versions: Vec<Version> = Vec::with_capacity(cap);
+        for (x, &label0) in labels.iter().enumerate() {
+            let s = strip_of(x);
+            let strip_end = strip_slots[s + 1] as usize;
+            let extra = r.index(u32::MAX, "a slot's version count")? as usize;
+            if all_versions.len() + 1 + extra > versions as usize {
+                return Err(fmt(r.at, format!("more slot versions than the {versions} the header gives")));
+            }
+            r.need(extra * 2, "a slot's versions")?;
+            all_versions.push(Version {
+                level: 0,
+                label: label0,
+                next: if x + 1 < strip_end { x as u32 + 1 } else { END },
+            });
+            for _ in 0..extra {
+                let step = r.index(u32::MAX, "a version's level step")?;
+                let before = *all_versions.last().expect("pushed above");
+                let level = before.level as u64 + step as u64;
+                if step == 0 || level > levels as u64 {
+                    return Err(fmt(r.at, format!("slot {x}: version levels must ascend within 1..={levels}")));
+                }
+                let code = r.varint("a version's successor")?;
+                let next = match code >> 1 {
+                    0 => END,
+                    d => {
+                        let y = x as u64 + d;
+                        if y >= strip_end as u64 {
+                            return Err(fmt(r.at, format!("slot {x}: its successor leaves its strip")));
+                        }
+                        y as u32
+                    }
+                };
+                let label = if code & 1 == 1 { targets[level as usize - 1] } else { before.label };
+                all_versions.push(Version { level: level as u32, label, next });
+            }
+            version_offsets.push(all_versions.len() as u32);
+        }
+        if all_versions.len() != versions as usize {
+            return Err(fmt(r.at, format!("{} slot versions, the header gives {versions}", all_versions.len())));
+        }
+        r.need(strips as usize, "the strip beginnings")?;
+        let mut begin_offsets = Vec::with_capacity(strips as usize + 1);
+        begin_offsets.push(0u32);
+        let cap = (beginnings as usize).min(r.left());
+        let (mut begin_level, mut begin_slot) = (Vec::with_capacity(cap), Vec::with_capacity(cap));
+        for s in 0..strips as usize {
+            let (lo, hi) = (strip_slots[s], strip_slots[s + 1]);
+            let extra = r.index(u32::MAX, "a strip's beginning count")? as usize;
+            if begin_level.len() + 1 + extra > beginnings as usize {
+                return Err(fmt(r.at, format!("more strip beginnings than the {beginnings} the header gives")));
+            }
+            r.need(extra * 2, "a strip's beginnings")?;
+            begin_level.push(0);
+            begin_slot.push(if lo < hi { lo } else { END });
+            for _ in 0..extra {
+                let step = r.index(u32::MAX, "a beginning's level step")?;
+                let level = begin_level.last().copied().unwrap_or(0) as u64 + step as u64;
+                if step == 0 || level > levels as u64 {
+                    return Err(fmt(r.at, format!("strip {s}: beginning levels must ascend within 1..={levels}")));
+                }
+                let slot = match r.varint("a beginning's slot")? {
+                    0 => END,
+                    d if d <= (hi - lo) as u64 => lo + d as u32 - 1,
+                    _ => return Err(fmt(r.at, format!("strip {s}: a beginning outside the strip"))),
+                };
+                begin_level.push(level as u32);
+                begin_slot.push(slot);
+            }
+            begin_offsets.push(begin_level.len() as u32);
+        }
+        if begin_level.len() != beginnings as usize {
+            return Err(fmt(r.at, format!("{} beginnings, the header gives {beginnings}", begin_level.len())));
+        }
+        if r.at != body.len() {
+            return Err(fmt(r.at, format!("{} bytes follow the last strip beginning", body.len() - r.at)));
+        }
+        let mut sets = Sets {
+            placement,
+            input_vertices,
+            positions,
+            targets,
+            removed_triangles,
+            triangles0,
+            strip_slots,
+            begin_offsets,
+            begin_level,
+            begin_slot,
+            version_offsets,
+            versions: all_versions,
+            change_offsets: Vec::new(),
+            change_level: Vec::new(),
+            triangles_at: Vec::new(),
+        };
+        sets.derive().map_err(|e| fmt(body.len(), e.to_string()))?;
+        let decoded = crate::strip::decode(&sets.strips_at(0)).len();
+        if decoded != triangles0 as usize {
+            return Err(fmt(
+                44,
+                format!("the header gives {triangles0} triangles at level 0, the strips draw {decoded}"),
+            ));
+        }
+        Ok(sets)
+    }
+}
+
+struct Reader<'a> {
+    bytes: &'a [u8],
+    at: usize,
+    fmt: &'a dyn Fn(usize, String) -> Error,
+}
+
+impl Reader<'_> {
+    fn left(&self) -> usize {
+        self.bytes.len() - self.at
+    }
+
+    /// Fails unless at least `n` bytes are left (for `n` records of one byte or more).
+    fn need(&self, n: usize, what: &str) -> Result<()> {
+        if n > self.left() {
+            return Err((self.fmt)(self.at, format!("the file ends before {what} ({n} bytes or more needed)")));
+        }
+        Ok(())
+    }
+
+    fn u32(&mut self) -> Result<u32> {
+        self.need(4, "the header")?;
+        let b = &self.bytes[self.at..self.at + 4];
+        self.at += 4;
+        Ok(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+    }
+
+    fn f32(&mut self) -> Result<f32> {
+        Ok(f32::from_bits(self.u32()?))
+    }
+
+    fn varint(&mut self, what: &str) -> Result<u64> {
+        let mut v = 0u64;
+        for shift in (0..64).step_by(7) {
+            let Some(&b) = self.bytes.get(self.at) else {
+                return Err((self.fmt)(self.at, format!("the file ends inside {what}")));
+            };
+            self.at += 1;
+            v |= ((b & 0x7f) as u64) << shift;
+            if b & 0x80 == 0 {
+                return Ok(v);
+            }
+        }
+        Err((self.fmt)(self.at, format!("{what}: a number longer than 64 bits")))
+    }
+
+    /// A varint below `limit`.
+    fn index(&mut self, limit: u32, what: &str) -> Result<u32> {
+        let v = self.varint(what)?;
+        if v >= limit as u64 {
+            return Err((self.fmt)(self.at, format!("{what} is {v}, not below {limit}")));
+        }
+        Ok(v as u32)
+    }
+}
+
+fn varint(out: &mut Vec<u8>, mut v: u64) {
+    while v >= 0x80 {
+        out.push((v as u8) | 0x80);
+        v >>= 7;
+    }
+    out.push(v as u8);
+}
+
+fn zigzag(v: i64) -> u64 {
+    ((v << 1) ^ (v >> 63)) as u64
+}
+
+fn unzigzag(v: u64) -> i64 {
+    ((v >> 1) as i64) ^ -((v & 1) as i64)
+}

@@ -1,0 +1,33 @@
+//! Level-of-detail strips.
+//!
+//! [`Sets`] is the SETS model (Belmonte et al., *Triangle strip multiresolution
+//! modelling using sorted edges*, 2006): one set of strips from any stripifier plus a
+//! collapse sequence from [`crate::simplify`], stored so that the strips of every
+//! level (level `L` = the first `L` collapses applied) are recovered by binary searches
+//! over data sorted by level. Every level's strips decode to exactly the triangles of
+//! [`crate::simplify::CollapseSequence::replay`] at that level, each with its winding,
+//! so back-face culling works at every level.
+//!
+//! * [`build`] runs the door, the simplifier and [`Sets::build`] on a mesh.
+//! * [`Cursor`] recovers a level, re-walking only the strips whose sequence changed
+//!   since the last level it recovered (coherence), into a buffer where every strip
+//!   keeps a fixed range (a renderer re-uploads just the changed ranges).
+//! * [`Sets::to_bytes`] / [`Sets::from_bytes`]: the `.sets` file (docs/sets-format.md),
+//!   read as untrusted input.
+//! * [`check_levels`] proves a model against an independent replay of the collapses,
+//!   level by level.
+
+mod build;
+mod check;
+mod cursor;
+mod file;
+mod sets;
+
+pub use build::{build, BuildOptions, BuildReport, Built};
+pub use check::{check_levels, LevelCheck};
+pub use cursor::{bench_levels, Cursor, Spacing};
+pub use file::SETS_MAGIC;
+pub use sets::{Sets, END};
+
+#[cfg(test)]
+mod tests;
