@@ -86,4 +86,15 @@ for m in ico grid; do
     { printf '\x00'; cat "$tmp/$m.bin"; } > "$r/$m.bin"
     { printf '\x01'; cat "$tmp/$m.json"; } > "$r/$m.json"
 done
+# 8. SETS models of small generated meshes, without their trailing CRC-32 (the
+# target appends it, so that mutations reach the structure behind the checksum).
+z="$corpus/read_sets"
+mkdir -p "$z"
+for m in ico grid; do
+    "$cli" lod build "$tmp/$m.obj" -o "$tmp/$m.sets" >/dev/null
+    "$cli" lod build "$tmp/$m.obj" -o "$tmp/${m}_opt.sets" --placement optimal >/dev/null
+    for f in "$m" "${m}_opt"; do
+        head -c -4 "$tmp/$f.sets" > "$z/$f"
+    done
+done
 echo "seeded: $(find "$corpus" -type f | wc -l) files in $corpus"

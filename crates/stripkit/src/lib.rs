@@ -28,6 +28,9 @@
 //! rule, [`figures`] measures strips by it (indices per join, swaps, vertex-cache
 //! misses per triangle under a [`CacheModel`]).
 //!
+//! [`lod`] keeps strips across a whole collapse sequence (SETS): every level of
+//! detail recovered by binary search, winding kept, checked against a replay.
+//!
 //! [`cull`] cuts single strips into a few segments per view for back-face culling (a
 //! segment tree with a render front).
 //!
