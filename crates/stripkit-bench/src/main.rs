@@ -10,6 +10,7 @@ mod strips;
 mod simplify;
 mod matching;
 mod single;
+mod lod;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -41,6 +42,9 @@ enum Command {
     Single(single::Args),
     /// Back-face culling along the helix: single strips with segment trees next to greedy strips and meshoptimizer's meshlets.
     Cull(cull::Args),
+    /// SETS multiresolution strips: size, strips of a level against greedy from scratch, and next
+    /// to a discrete LoD chain of meshoptimizer's simplify (memory, levels, switch time, distances).
+    Lod(lod::Args),
 }
 
 /// The research meshes: the folder named by `STRIPKIT_MODELS`, else `../shared/models`
@@ -63,5 +67,6 @@ fn main() -> anyhow::Result<()> {
         Command::BatchStrips(a) => batch_strips::run(a),
         Command::Single(a) => single::run(a),
         Command::Cull(a) => cull::run(a),
+        Command::Lod(a) => lod::run(a),
     }
 }

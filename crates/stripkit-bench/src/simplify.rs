@@ -35,12 +35,12 @@ pub struct Args {
     pub output: Option<PathBuf>,
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
+pub(crate) fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
 }
 
-fn meshopt_simplify(mesh: &Mesh, tris: &[[u32; 3]], target_tris: usize) -> (Vec<u32>, f64) {
+pub(crate) fn meshopt_simplify(mesh: &Mesh, tris: &[[u32; 3]], target_tris: usize) -> (Vec<u32>, f64) {
     let indices: Vec<u32> = tris.iter().flatten().copied().collect();
     let bytes: Vec<u8> = mesh.positions.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
     let adapter = meshopt::VertexDataAdapter::new(&bytes, 12, 0).expect("vertex adapter");

@@ -1,0 +1,270 @@
+//! The `lod` comparison: the SETS multiresolution strips ([`stripkit::lod`]) on the
+//! research models, with their size, the strips of a level next to greedy strips made
+//! from scratch on that level's mesh, and the model next to a discrete LoD chain of
+//! meshoptimizer's `simplify` (memory, levels, time to switch, distance to the input
+//! at equal triangle counts), in one run; writes markdown tables.
+
+use crate::simplify::{median, meshopt_simplify};
+use anyhow::Context;
+use std::fmt::Write as _;
+use std::hint::black_box;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use stripkit::{lod, Algorithm, Mesh, StripOptions};
+
+/// The discrete chain's ratios of the input triangles (finest first).
+const CHAIN_RATIOS: [f64; 8] = [0.5, 0.35, 0.25, 0.15, 0.1, 0.05, 0.02, 0.01];
+
+/// The levels whose strips are compared with greedy strips from scratch.
+const QUALITY_RATIOS: [f64; 3] = [0.5, 0.1, 0.01];
+
+/// Arguments of the `lod` comparison.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Folder of the research meshes (default: `STRIPKIT_MODELS`, else ../shared/models).
+    #[arg(long, value_name = "DIR")]
+    pub models: Option<PathBuf>,
+    /// Models: file names in the folder, or their stems (`bunny`, `horse`, `dragon`,
+    /// `cow`). Default: bunny, horse, dragon.
+    #[arg(long, value_name = "NAME", num_args = 1.., value_delimiter = ',')]
+    pub only: Vec<String>,
+    /// Samples per surface for the distances.
+    #[arg(long, default_value_t = 200_000)]
+    pub samples: usize,
+    /// Rounds of the down-and-back switching path (medians over all switches).
+    #[arg(long, default_value_t = 200)]
+    pub rounds: usize,
+    /// Also write the markdown tables to this file.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+}
+
+/// `name` in `dir`: the file itself, else the first `.obj`, `.ply` or `.off` file whose
+/// stem is `name`.
+fn resolve(dir: &Path, name: &str) -> Option<PathBuf> {
+    let direct = dir.join(name);
+    if direct.is_file() {
+        return Some(direct);
+    }
+    ["obj", "ply", "off"].iter().map(|ext| dir.join(format!("{name}.{ext}"))).find(|p| p.is_file())
+}
+
+/// Medians in microseconds of switching along `path` (indices into whatever `switch`
+/// moves between), `rounds` times after one warm-up round: of every switch, and of a
+/// whole pass.
+fn time_switches(path: &[usize], rounds: usize, mut switch: impl FnMut(usize)) -> (f64, f64) {
+    for &i in path {
+        switch(i);
+    }
+    let mut each = Vec::with_capacity(path.len() * rounds);
+    let mut passes = Vec::with_capacity(rounds);
+    for _ in 0..rounds.max(1) {
+        let mut pass = 0.0;
+        for &i in path {
+            let t = Instant::now();
+            switch(i);
+            let us = t.elapsed().as_secs_f64() * 1e6;
+            each.push(us);
+            pass += us;
+        }
+        passes.push(pass);
+    }
+    (median(each), median(passes))
+}
+
+/// Tables, one string each, filled model by model.
+#[derive(Default)]
+struct Tables {
+    size: String,
+    quality: String,
+    memory: String,
+    switch: String,
+    distance: String,
+}
+
+/// Runs the comparison.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let dir =
+        args.models.clone().or_else(crate::models_dir).context("no models folder (../shared/models or --models)")?;
+    let names: Vec<String> = if args.only.is_empty() {
+        ["bunny", "horse", "dragon"].iter().map(|s| s.to_string()).collect()
+    } else {
+        args.only.clone()
+    };
+    let mut t = Tables::default();
+    t.size.push_str("| model | vertices | triangles | strips | .sets bytes | in-memory bytes | raw mesh bytes | collapse sequence bytes | levels | build ms (strips + simplify + model) |\n");
+    t.size.push_str("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|\n");
+    t.quality.push_str("| model | ratio | level | triangles | SETS indices/tri | greedy from scratch indices/tri | SETS / scratch | SETS strips | SETS degenerate windows | scratch strips |\n");
+    t.quality.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    t.memory.push_str("| model | chain index buffers (9 lists, u32) | SETS in-memory minus positions | SETS / chain | SETS strips as 9 restart buffers (u32) | strip buffers / chain | positions (shared, not counted) | distinct levels: chain | distinct levels: SETS |\n");
+    t.memory.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    t.switch.push_str("| model | chain memcpy, median switch us | chain, median pass us | SETS set_level, median switch us | SETS, median pass us | SETS set_level + compact, median switch us | SETS + compact, median pass us | switches per pass | chain bytes uploaded per pass | SETS changed-range bytes per pass |\n");
+    t.switch.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    t.distance.push_str("| model | ratio | meshopt triangles | SETS level | SETS triangles | Hausdorff meshopt | Hausdorff SETS | lower Hausdorff | RMS meshopt | RMS SETS | lower RMS |\n");
+    t.distance.push_str("|---|---:|---:|---:|---:|---:|---:|---|---:|---:|---|\n");
+    for name in &names {
+        let Some(path) = resolve(&dir, name) else {
+            eprintln!("{name}: not in {}, skipped", dir.display());
+            continue;
+        };
+        let label = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_else(|| name.clone());
+        let mesh = stripkit::io::read(&path).with_context(|| format!("reading {}", path.display()))?;
+        model(&mesh, &label, &args, &mut t)?;
+        eprintln!("done: {label}");
+    }
+    let mut out = String::new();
+    for (title, table) in [
+        ("Size", &t.size),
+        ("Strip quality at a level", &t.quality),
+        ("Memory next to a discrete LoD chain (meshoptimizer simplify at 8 ratios + the full mesh)", &t.memory),
+        ("Time to switch levels (full -> 8 chain levels -> full)", &t.switch),
+        ("Distance to the input at equal triangle counts (relative to the bounding-box diagonal)", &t.distance),
+    ] {
+        writeln!(out, "### {title}\n\n{table}")?;
+    }
+    print!("{out}");
+    if let Some(file) = &args.out {
+        stripkit::io::write_atomic(file, out.as_bytes())?;
+    }
+    Ok(())
+}
+
+/// Every table's rows for one model.
+fn model(mesh: &Mesh, label: &str, args: &Args, t: &mut Tables) -> anyhow::Result<()> {
+    let tris = mesh.triangulate().tris;
+    let start = Instant::now();
+    let built = lod::build(mesh, &lod::BuildOptions::default(), &mut |_| {})?;
+    let build_ms = start.elapsed().as_secs_f64() * 1e3;
+    let sets = &built.sets;
+    let r = &built.report;
+    let positions_bytes = 12 * sets.positions().len();
+    writeln!(
+        t.size,
+        "| {label} | {} | {} | {} | {} | {} | {} | {} | {} | {build_ms:.0} ({:.0} + {:.0} + {:.0}) |",
+        mesh.vertex_count(),
+        tris.len(),
+        r.algorithm,
+        sets.to_bytes().len(),
+        sets.memory_bytes(),
+        12 * mesh.vertex_count() + 12 * tris.len(),
+        built.sequence.to_bytes().len(),
+        sets.levels(),
+        r.strip_ms,
+        r.simplify_ms,
+        r.build_ms
+    )?;
+
+    let greedy = StripOptions::default().algorithm(Algorithm::greedy());
+    for ratio in QUALITY_RATIOS {
+        let level = sets.level_for_ratio(ratio);
+        let n = sets.triangles_at(level);
+        let strips = sets.strips_at(level);
+        let ours = strips.restart_len() as f64 / n as f64;
+        let degenerate = strips.window_count() - n as usize;
+        let replay = built.sequence.replay(&built.mesh, level as usize)?;
+        let level_mesh = Mesh::from_triangles(replay.positions, &replay.triangles);
+        let f = stripkit::stripify(&level_mesh, &greedy)?.figures;
+        let scratch = f.indices_restart as f64 / f.triangles as f64;
+        if f.triangles != n as usize {
+            eprintln!("{label}: level {level} has {n} triangles, its replay {}", f.triangles);
+        }
+        writeln!(
+            t.quality,
+            "| {label} | {:.0}% | {level} | {n} | {ours:.3} | {scratch:.3} | {:.3} | {} | {degenerate} | {} |",
+            ratio * 100.0,
+            ours / scratch,
+            strips.len(),
+            f.strips
+        )?;
+    }
+
+    // The discrete chain: the full mesh, then meshoptimizer at every ratio; our
+    // matching levels: the first with at most as many triangles.
+    let mut chain: Vec<Vec<u32>> = vec![tris.iter().flatten().copied().collect()];
+    let mut levels = vec![0u32];
+    for ratio in CHAIN_RATIOS {
+        let target = ((tris.len() as f64) * ratio).round() as usize;
+        let (indices, _) = meshopt_simplify(mesh, &tris, target);
+        levels.push(sets.level_for_triangles((indices.len() / 3) as u64));
+        chain.push(indices);
+    }
+
+    let chain_bytes: usize = chain.iter().map(|c| 4 * c.len()).sum();
+    let sets_bytes = sets.memory_bytes() - positions_bytes;
+    let strip_bytes: usize = levels.iter().map(|&l| 4 * sets.strips_at(l).restart_len()).sum();
+    writeln!(
+        t.memory,
+        "| {label} | {chain_bytes} | {sets_bytes} | {:.2} | {strip_bytes} | {:.2} | {positions_bytes} | {} | {} |",
+        sets_bytes as f64 / chain_bytes as f64,
+        strip_bytes as f64 / chain_bytes as f64,
+        chain.len(),
+        sets.levels() as u64 + 1
+    )?;
+
+    // Down and back: 0 -> 1 -> .. -> 8 -> 7 -> .. -> 0, starting at 0.
+    let path: Vec<usize> = (1..chain.len()).chain((0..chain.len() - 1).rev()).collect();
+    let mut dst = vec![0u32; chain[0].len()];
+    let (chain_each, chain_pass) = time_switches(&path, args.rounds, |i| {
+        let src = &chain[i];
+        dst[..src.len()].copy_from_slice(src);
+        black_box(&dst);
+    });
+    let mut cursor = sets.cursor(0);
+    let (set_each, set_pass) = time_switches(&path, args.rounds, |i| {
+        black_box(cursor.set_level(levels[i]).len());
+    });
+    let mut cursor = sets.cursor(0);
+    let mut compact = Vec::new();
+    let (compact_each, compact_pass) = time_switches(&path, args.rounds, |i| {
+        cursor.set_level(levels[i]);
+        cursor.compact(u32::MAX, &mut compact);
+        black_box(&compact);
+    });
+    // What one pass uploads: the chain, every new level's list; SETS, the ranges of
+    // the strips that changed (of the padded buffer).
+    let chain_upload: usize = path.iter().map(|&i| 4 * chain[i].len()).sum();
+    let mut cursor = sets.cursor(0);
+    let mut sets_upload = 0;
+    for &i in &path {
+        let changed = cursor.set_level(levels[i]).to_vec();
+        sets_upload += changed.iter().map(|&s| 4 * cursor.strip_range(s as usize).len()).sum::<usize>();
+    }
+    writeln!(
+        t.switch,
+        "| {label} | {chain_each:.2} | {chain_pass:.1} | {set_each:.2} | {set_pass:.1} | {compact_each:.2} | {compact_pass:.1} | {} | {chain_upload} | {sets_upload} |",
+        path.len()
+    )?;
+
+    for (k, ratio) in CHAIN_RATIOS.iter().enumerate() {
+        let mo_tris: Vec<[u32; 3]> = chain[k + 1].chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        let mo_mesh = Mesh::from_triangles(mesh.positions.clone(), &mo_tris);
+        let d_mo = stripkit::distance::distance(mesh, &mo_mesh, args.samples)?;
+        let level = levels[k + 1];
+        let replay = built.sequence.replay(&built.mesh, level as usize)?;
+        let ours = Mesh::from_triangles(replay.positions, &replay.triangles);
+        let d = stripkit::distance::distance(mesh, &ours, args.samples)?;
+        let lower = |a: f64, b: f64| {
+            if b < a {
+                "SETS"
+            } else if a < b {
+                "meshopt"
+            } else {
+                "equal"
+            }
+        };
+        writeln!(
+            t.distance,
+            "| {label} | {:.0}% | {} | {level} | {} | {:.3e} | {:.3e} | {} | {:.3e} | {:.3e} | {} |",
+            ratio * 100.0,
+            mo_tris.len(),
+            sets.triangles_at(level),
+            d_mo.hausdorff,
+            d.hausdorff,
+            lower(d_mo.hausdorff, d.hausdorff),
+            d_mo.rms,
+            d.rms,
+            lower(d_mo.rms, d.rms)
+        )?;
+    }
+    Ok(())
+}
