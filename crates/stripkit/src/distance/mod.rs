@@ -151,26 +151,57 @@ fn check(mesh: &Mesh, name: &str) -> Result<()> {
 ///
 /// Fails when `samples` is 0 or above [`MAX_SAMPLES`].
 pub fn distance(a: &Mesh, b: &Mesh, samples: usize) -> Result<Distance> {
-    if samples == 0 || samples > MAX_SAMPLES {
-        return Err(Error::Invalid(format!(
-            "{samples} samples per surface is out of range: 1 to {MAX_SAMPLES} \
-             (each sample takes 24 bytes, on both surfaces)"
-        )));
+    Surface::new(a, samples)?.distance_to(b)
+}
+
+/// One side of [`distance`] prepared once (its BVH and its samples), to measure many
+/// other meshes against the same surface: [`Surface::distance_to`] gives exactly what
+/// [`distance`] gives with this mesh first.
+pub struct Surface {
+    bvh: Bvh,
+    samples: Vec<[f64; 3]>,
+    count: usize,
+    diagonal: f64,
+}
+
+impl Surface {
+    /// Prepares `mesh` with `samples` points (1 to [`MAX_SAMPLES`]).
+    pub fn new(mesh: &Mesh, samples: usize) -> Result<Surface> {
+        if samples == 0 || samples > MAX_SAMPLES {
+            return Err(Error::Invalid(format!(
+                "{samples} samples per surface is out of range: 1 to {MAX_SAMPLES} \
+                 (each sample takes 24 bytes, on both surfaces)"
+            )));
+        }
+        check(mesh, "first mesh")?;
+        let diagonal = mesh
+            .bounds()
+            .map(|(lo, hi)| (0..3).map(|k| ((hi[k] - lo[k]) as f64).powi(2)).sum::<f64>().sqrt())
+            .unwrap_or(0.0);
+        Ok(Surface {
+            bvh: Bvh::build(&mesh.positions, &mesh.triangulate().tris),
+            samples: sample_surface(mesh, samples, 0x5EED_0001),
+            count: samples,
+            diagonal,
+        })
     }
-    check(a, "first mesh")?;
-    check(b, "second mesh")?;
-    let threads = std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1).min(16);
-    let bvh_a = Bvh::build(&a.positions, &a.triangulate().tris);
-    let bvh_b = Bvh::build(&b.positions, &b.triangulate().tris);
-    let pa = sample_surface(a, samples, 0x5EED_0001);
-    let pb = sample_surface(b, samples, 0x5EED_0002);
-    let a_to_b = one_sided(&pa, &bvh_b, threads);
-    let b_to_a = one_sided(&pb, &bvh_a, threads);
-    let total = (pa.len() + pb.len()).max(1) as f64;
-    let rms = ((a_to_b.rms.powi(2) * pa.len() as f64 + b_to_a.rms.powi(2) * pb.len() as f64) / total).sqrt();
-    let diagonal = a
-        .bounds()
-        .map(|(lo, hi)| (0..3).map(|k| ((hi[k] - lo[k]) as f64).powi(2)).sum::<f64>().sqrt())
-        .unwrap_or(0.0);
-    Ok(Distance { hausdorff: a_to_b.max.max(b_to_a.max), rms, diagonal, a_to_b, b_to_a })
+
+    /// Bounding-box diagonal of the prepared mesh.
+    pub fn diagonal(&self) -> f64 {
+        self.diagonal
+    }
+
+    /// [`distance`] from the prepared mesh to `b`, with as many samples on `b`.
+    pub fn distance_to(&self, b: &Mesh) -> Result<Distance> {
+        check(b, "second mesh")?;
+        let threads = std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1).min(16);
+        let bvh_b = Bvh::build(&b.positions, &b.triangulate().tris);
+        let pb = sample_surface(b, self.count, 0x5EED_0002);
+        let pa = &self.samples;
+        let a_to_b = one_sided(pa, &bvh_b, threads);
+        let b_to_a = one_sided(&pb, &self.bvh, threads);
+        let total = (pa.len() + pb.len()).max(1) as f64;
+        let rms = ((a_to_b.rms.powi(2) * pa.len() as f64 + b_to_a.rms.powi(2) * pb.len() as f64) / total).sqrt();
+        Ok(Distance { hausdorff: a_to_b.max.max(b_to_a.max), rms, diagonal: self.diagonal, a_to_b, b_to_a })
+    }
 }
