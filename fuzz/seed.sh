@@ -97,4 +97,14 @@ for m in ico grid; do
         head -c -4 "$tmp/$f.sets" > "$z/$f"
     done
 done
+# 9. An animation model (three frames of one mesh), without its trailing CRC-32.
+z="$corpus/read_lodseq"
+mkdir -p "$z" "$tmp/anim"
+for f in 0 1 2; do
+    "$cli" gen icosphere 1 -o "$tmp/anim/frame-$f.obj" >/dev/null
+done
+"$cli" lod build-seq "$tmp/anim" -o "$tmp/anim.lodseq" --samples 200 >/dev/null
+"$cli" lod build-seq "$tmp/anim" -o "$tmp/anim_q.lodseq" --samples 200 --position-bits 12 >/dev/null
+head -c -4 "$tmp/anim.lodseq" > "$z/anim"
+head -c -4 "$tmp/anim_q.lodseq" > "$z/anim_q"
 echo "seeded: $(find "$corpus" -type f | wc -l) files in $corpus"

@@ -283,3 +283,115 @@ fn misuse_exits_2() {
         );
     }
 }
+
+/// A torus bending over four frames, plus a reference pose, as OBJ files.
+fn animation(name: &str) -> std::path::PathBuf {
+    let dir = tmp("lod", name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = stripkit::gen::torus(24, 8, 1.0, 0.3);
+    let pose = |t: f32| {
+        let mut m = base.clone();
+        for p in m.positions.iter_mut() {
+            let (s, c) = (t * p[0]).sin_cos();
+            *p = [c * p[0] - s * p[2], p[1], s * p[0] + c * p[2]];
+        }
+        m
+    };
+    for f in 0..4 {
+        write_mesh(&dir.join(format!("anim-{f:02}.obj")), &pose(f as f32 * 0.4));
+    }
+    write_mesh(&dir.join("anim-reference.obj"), &pose(0.6));
+    dir
+}
+
+#[test]
+fn animations_build_extract_and_bench() {
+    let dir = animation("anim");
+    let model = tmp("lod", "anim.lodseq");
+    let r = json(&stripkit(&[
+        "lod", "build-seq", dir.to_str().unwrap(), "-o", model.to_str().unwrap(), "--samples", "500", "--json",
+    ]));
+    assert_eq!(r["frames"], 4);
+    assert_eq!(r["triangles"], 384);
+    assert!(r["levels_checked"].as_u64().unwrap() > 100, "{r}");
+    let quality = r["quality"].as_array().unwrap();
+    assert_eq!(quality.len(), 4);
+    for q in quality {
+        for i in 0..2 {
+            assert!(q["chosen"]["hausdorff"][i].as_f64() <= q["reference"]["hausdorff"][i].as_f64(), "{q}");
+        }
+    }
+    // A frame, a fractional frame (morphed positions), every level spec.
+    for (frame, flag, value) in [("2", "--ratio", "0.3"), ("1.5", "--level", "40"), ("3", "--triangles", "50")] {
+        let out = tmp("lod", &format!("anim_{frame}.ply"));
+        let e = json(&stripkit(&[
+            "lod", "extract", model.to_str().unwrap(), "--frame", frame, flag, value, "-o", out.to_str().unwrap(), "--json",
+        ]));
+        assert_eq!(e["frame"].as_f64().unwrap(), frame.parse::<f64>().unwrap());
+        let back = stripkit::io::read(&out).unwrap();
+        assert_eq!(back.triangle_count() as u64, e["triangles"].as_u64().unwrap());
+    }
+    // The morphed frame lies between its key frames.
+    let mid = stripkit::io::read(&tmp("lod", "anim_1.5.ply")).unwrap();
+    let a = stripkit::io::read(&dir.join("anim-01.obj")).unwrap();
+    let b = stripkit::io::read(&dir.join("anim-02.obj")).unwrap();
+    for v in 0..a.positions.len() {
+        for d in 0..3 {
+            let want = 0.5 * (a.positions[v][d] + b.positions[v][d]);
+            assert!((mid.positions[v][d] - want).abs() < 1e-5);
+        }
+    }
+    let r = json(&stripkit(&["lod", "bench", model.to_str().unwrap(), "--rounds", "1", "--json"]));
+    let rows = r["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 7, "4 frame rows, 2 level rows, 1 play row");
+    assert!(rows.iter().all(|row| row["mean_us"].as_f64().unwrap() >= 0.0));
+    // Quantized positions: a smaller file that still extracts.
+    let small = tmp("lod", "anim_q.lodseq");
+    let q = json(&stripkit(&[
+        "lod", "build-seq", dir.to_str().unwrap(), "-o", small.to_str().unwrap(), "--samples", "500",
+        "--position-bits", "12", "--check", "sample", "--json",
+    ]));
+    assert!(q["bytes"].as_u64().unwrap() < std::fs::metadata(&model).unwrap().len());
+    let out = tmp("lod", "anim_q.glb");
+    let o = stripkit(&["lod", "extract", small.to_str().unwrap(), "--frame", "0", "--ratio", "0.5", "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
+fn animation_misuse_exits_2() {
+    let dir = animation("anim_misuse");
+    let model = tmp("lod", "misuse.lodseq");
+    let o = stripkit(&["lod", "build-seq", dir.to_str().unwrap(), "-o", model.to_str().unwrap(), "--samples", "300"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (sets, _) = build(&torus(), "not_anim.sets", &["--check", "off"]);
+    let out = tmp("lod", "misuse_anim.ply");
+    let _ = std::fs::remove_file(&out);
+    let mut bad = std::fs::read(&model).unwrap();
+    let mid = bad.len() / 2;
+    bad[mid] ^= 8;
+    let damaged = tmp("lod", "damaged.lodseq");
+    std::fs::write(&damaged, &bad).unwrap();
+    for args in [
+        // An animation needs --frame; a single model refuses it; frames in range.
+        vec!["lod", "extract", model.to_str().unwrap(), "--level", "3", "-o", out.to_str().unwrap()],
+        vec!["lod", "extract", sets.to_str().unwrap(), "--frame", "1", "--level", "3", "-o", out.to_str().unwrap()],
+        vec!["lod", "extract", model.to_str().unwrap(), "--frame", "4", "--level", "3", "-o", out.to_str().unwrap()],
+        vec!["lod", "extract", model.to_str().unwrap(), "--frame", "-1", "--level", "3", "-o", out.to_str().unwrap()],
+        vec!["lod", "extract", damaged.to_str().unwrap(), "--frame", "1", "--level", "3", "-o", out.to_str().unwrap()],
+        vec!["lod", "bench", damaged.to_str().unwrap()],
+        // Frames that do not share their faces; bad settings.
+        vec!["lod", "build-seq", "/no/such/folder", "-o", model.to_str().unwrap()],
+        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out.to_str().unwrap(), "--position-bits", "4"],
+        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out.to_str().unwrap(), "--tolerance", "0.5"],
+        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out.to_str().unwrap(), "--samples", "0"],
+    ] {
+        let o = stripkit(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+    assert!(!out.exists(), "nothing written");
+    write_mesh(&dir.join("anim-02.obj"), &stripkit::gen::torus(20, 8, 1.0, 0.3));
+    let o = stripkit(&["lod", "build-seq", dir.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("anim-02.obj"), "names the frame");
+}

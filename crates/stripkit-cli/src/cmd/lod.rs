@@ -9,7 +9,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stripkit::io::{self, Format};
-use stripkit::lod::{self, BuildOptions, Sets, Spacing};
+use stripkit::lod::{self, BuildOptions, LevelSpec, LodSeq, SeqOptions, Sets, Spacing};
 use stripkit::simplify::Placement;
 use stripkit::{Error, Mesh, StripSet};
 
@@ -33,7 +33,15 @@ enum What {
     /// search. Every level is checked against a replay of the collapses before the
     /// file is written.
     Build(BuildArgs),
-    /// Write the strips of one level of a `.sets` model (PLY `tristrips`, glTF
+    /// Build the level-of-detail strips of an animation: a folder of frames that
+    /// share one face list (`.obj.gz` and every mesh format; a file whose name
+    /// contains `reference` is the reference pose). One set of strips for every
+    /// frame; each frame's own simplification, and the reference pose's, measured on
+    /// every frame; a few kept (each a SETS model), each frame taking the best kept
+    /// one that is no worse than the reference pose's. Writes a `.lodseq`.
+    BuildSeq(BuildSeqArgs),
+    /// Write the strips of one level of a `.sets` model or of one frame of a
+    /// `.lodseq` (`--frame`) (PLY `tristrips`, glTF
     /// `TRIANGLE_STRIP` stitched, OBJ/OFF/STL as triangles, `.json` as strips).
     Extract(ExtractArgs),
     /// The paper's recovery tests on a `.sets` model: 1, 3, 6, 10, 15 and 20% of the
@@ -86,6 +94,48 @@ struct BuildArgs {
 }
 
 #[derive(clap::Args)]
+struct BuildSeqArgs {
+    /// The folder of frames.
+    folder: PathBuf,
+    /// Output (`.lodseq`).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Most simplification sequences to keep (each is one SETS model, about
+    /// 9 bytes per triangle).
+    #[arg(long, default_value_t = 8)]
+    max_sequences: usize,
+    /// Stop keeping sequences once every frame's Hausdorff distance, at 10% and 2%
+    /// of the triangles, is within this factor of its own simplification's.
+    #[arg(long, default_value_t = 1.25)]
+    tolerance: f64,
+    /// Samples per surface for the distances that choose the sequences (and the
+    /// quality table the report prints).
+    #[arg(long, default_value_t = 4000)]
+    samples: usize,
+    /// Candidate sequences: every frame's when there are at most this many frames,
+    /// else this many evenly spaced (the reference pose's is always one).
+    #[arg(long, default_value_t = 24)]
+    candidates: usize,
+    /// Store positions quantized to this many bits per coordinate (8 to 20) over the
+    /// animation's bounding box, as differences from the previous frame, deflated
+    /// (horse-gallop, 12 bits: about 22 KB per frame instead of 99 KB, within
+    /// 7e-5 of the diagonal). The frames are quantized first, so the sequences and
+    /// the quality table see the stored positions. Default: exact f32 positions.
+    #[arg(long, value_name = "BITS", value_parser = clap::value_parser!(u32).range(8..=20))]
+    position_bits: Option<u32>,
+    /// How many levels of each kept model to check against a replay before writing.
+    #[arg(long, value_enum, default_value = "all")]
+    check: CheckArg,
+    /// Print one JSON object on stdout (with the per-frame quality table).
+    #[arg(long)]
+    json: bool,
+    #[command(flatten)]
+    strip: super::strip::StripArgs,
+    #[command(flatten)]
+    read: super::ReadArgs,
+}
+
+#[derive(clap::Args)]
 #[command(group(clap::ArgGroup::new("which").required(true).args(["level", "triangles", "ratio"])))]
 struct ExtractArgs {
     /// The model (`.sets`).
@@ -100,6 +150,11 @@ struct ExtractArgs {
     /// simplify --ratio RATIO` stops. 0 to 1.
     #[arg(long)]
     ratio: Option<f64>,
+    /// Animations (.lodseq): the frame, 0 to frames - 1. A fraction morphs the
+    /// positions linearly between the two key frames around it; the level follows
+    /// the nearest key frame.
+    #[arg(long)]
+    frame: Option<f64>,
     /// Output file; the extension picks the format.
     #[arg(short, long)]
     output: PathBuf,
@@ -127,6 +182,7 @@ struct BenchArgs {
 pub fn run(args: Args) -> anyhow::Result<()> {
     match args.what {
         What::Build(a) => build(a),
+        What::BuildSeq(a) => build_seq(a),
         What::Extract(a) => extract(a),
         What::Bench(a) => bench(a),
     }
@@ -210,9 +266,115 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
 }
 
 #[derive(Serialize)]
+struct BuildSeqOut {
+    input: String,
+    output: String,
+    #[serde(flatten)]
+    report: lod::SeqReport,
+    bytes: usize,
+    /// Bytes of the file outside the models: the frames' positions, names, header.
+    position_bytes: usize,
+    /// Bytes of the models: the level-of-detail data.
+    lod_bytes: usize,
+    levels_checked: usize,
+    check_ms: f64,
+}
+
+fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
+    args.strip.check()?;
+    super::check_output_folder(&args.output)?;
+    anyhow::ensure!(args.max_sequences >= 1, "--max-sequences must be at least 1");
+    anyhow::ensure!(args.tolerance >= 1.0, "--tolerance {} must be 1 or more", args.tolerance);
+    anyhow::ensure!(args.samples >= 1, "--samples must be at least 1");
+    anyhow::ensure!(args.candidates >= 1, "--candidates must be at least 1");
+    let frames = lod::read_frames(&args.folder, &args.read.options())?;
+    let options = SeqOptions {
+        strip: args.strip.options(Some(&frames.mesh)),
+        max_sequences: args.max_sequences,
+        tolerance: args.tolerance,
+        samples: args.samples,
+        candidates: args.candidates,
+        position_bits: args.position_bits,
+    };
+    let bar = progress_bar(true, "simplify and measure");
+    let built = lod::build_seq(&frames, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
+        .with_context(|| format!("building the level-of-detail strips of {}", args.folder.display()))?;
+    bar.finish_and_clear();
+    let t = Instant::now();
+    let mut levels_checked = 0;
+    if args.check != CheckArg::Off {
+        let mesh = Mesh::from_triangles(frames.positions[0].clone(), &built.triangles);
+        for (sets, sequence) in built.seq.models().iter().zip(&built.sequences) {
+            let stride = if args.check == CheckArg::All { 1 } else { (sets.levels() as usize / 2000).max(1) };
+            levels_checked += lod::check_levels(sets, &mesh, sequence, stride, 20)?.levels_checked;
+        }
+    }
+    let check_ms = t.elapsed().as_secs_f64() * 1e3;
+    let bytes = built.seq.to_bytes();
+    if LodSeq::from_bytes(&args.output, &bytes)? != built.seq {
+        return Err(Error::Verification("the .lodseq bytes do not read back to the model".into()).into());
+    }
+    io::write_atomic(&args.output, &bytes)?;
+    // Each model is stored as its length (a varint) and its bytes.
+    let varint_len = |n: usize| (usize::BITS - n.max(1).leading_zeros()).div_ceil(7) as usize;
+    let lod_bytes: usize = built.seq.models().iter().map(|m| m.to_bytes().len()).map(|n| n + varint_len(n)).sum();
+    let position_bytes = bytes.len() - lod_bytes;
+    let out = BuildSeqOut {
+        input: args.folder.display().to_string(),
+        output: args.output.display().to_string(),
+        report: built.report,
+        bytes: bytes.len(),
+        position_bytes,
+        lod_bytes,
+        levels_checked,
+        check_ms,
+    };
+    super::print_report(args.json, &out, |w, o| {
+        let r = &o.report;
+        let f = r.frames as f64 * 1024.0;
+        writeln!(
+            w,
+            "{}: {} frames of {} vertices, {} triangles in {} strips; {} sequences kept of {} candidates: {}",
+            o.input,
+            r.frames,
+            r.vertices,
+            r.triangles,
+            r.strips,
+            r.sequences.len(),
+            r.candidates,
+            r.sequences.join(", ")
+        )?;
+        writeln!(
+            w,
+            "size: {} bytes, {:.1} KB per frame: positions {:.1} KB, level-of-detail data {:.1} KB",
+            o.bytes,
+            o.bytes as f64 / f,
+            o.position_bytes as f64 / f,
+            o.lod_bytes as f64 / f
+        )?;
+        let worst = |g: &dyn Fn(&lod::FrameQuality) -> f64| r.quality.iter().map(g).fold(0.0, f64::max);
+        for (i, pct) in ["10%", "2%"].iter().enumerate() {
+            writeln!(
+                w,
+                "worst frame at {pct} (Hausdorff / diagonal): this scheme {:.3e}, reference pose's sequence {:.3e}, each frame's own {:.3e}",
+                worst(&|q| q.chosen.hausdorff[i]),
+                worst(&|q| q.reference.hausdorff[i]),
+                worst(&|q| q.own.hausdorff[i])
+            )?;
+        }
+        writeln!(
+            w,
+            "checked: {} levels against the replay, {:.0} ms; times: simplify {:.0} ms, distances {:.0} ms, models {:.0} ms -> {}",
+            o.levels_checked, o.check_ms, r.simplify_ms, r.distance_ms, r.model_ms, o.output
+        )
+    })
+}
+
+#[derive(Serialize)]
 struct ExtractOut {
     input: String,
     output: String,
+    frame: Option<f64>,
     level: u32,
     levels: u32,
     triangles: u32,
@@ -241,17 +403,55 @@ fn extract(args: ExtractArgs) -> anyhow::Result<()> {
         anyhow::ensure!((0.0..=1.0).contains(&r), "--ratio {r} is out of range: 0 to 1");
     }
     super::check_output_folder(&args.output)?;
-    let sets = Sets::read(&args.file)?;
-    let level = match (args.level, args.triangles, args.ratio) {
-        (Some(l), _, _) => l.min(sets.levels()),
-        (_, Some(t), _) => sets.level_for_triangles(t),
-        (_, _, Some(r)) => sets.level_for_ratio(r),
+    let data = std::fs::read(&args.file).map_err(|source| Error::Io { path: args.file.clone(), source })?;
+    let spec = match (args.level, args.triangles, args.ratio) {
+        (Some(l), _, _) => LevelSpec::Level(l),
+        (_, Some(t), _) => LevelSpec::Triangles(t),
+        (_, _, Some(r)) => LevelSpec::Ratio(r),
         _ => anyhow::bail!("give one of --level, --triangles, --ratio"),
     };
+    let seq_model;
+    let sets_model;
     let start = Instant::now();
-    let cursor = sets.cursor(level);
+    // A .lodseq (by its header) needs --frame; a .sets refuses it.
+    let (sets, level, strips, positions, frame): (&Sets, u32, StripSet, Vec<[f32; 3]>, Option<f64>) =
+        if data.starts_with(lod::LODSEQ_MAGIC) {
+            seq_model = LodSeq::from_bytes(&args.file, &data)?;
+            let Some(t) = args.frame else {
+                return Err(Error::Invalid(format!(
+                    "{} is an animation (.lodseq): give --frame (0 to {}; fractions morph between key frames)",
+                    args.file.display(),
+                    seq_model.frame_count() - 1
+                ))
+                .into());
+            };
+            anyhow::ensure!(
+                t.is_finite() && t >= 0.0 && t <= (seq_model.frame_count() - 1) as f64,
+                "--frame {t} is out of range: 0 to {}",
+                seq_model.frame_count() - 1
+            );
+            let key = seq_model.nearest_frame(t);
+            let cursor = seq_model.cursor(key, spec);
+            let model = &seq_model.models()[seq_model.model_of(key)];
+            (model, cursor.level(), cursor.strips(), seq_model.morph(t), Some(t))
+        } else {
+            if args.frame.is_some() {
+                return Err(Error::Invalid(format!(
+                    "--frame applies to animations (.lodseq); {} is a single model",
+                    args.file.display()
+                ))
+                .into());
+            }
+            sets_model = Sets::from_bytes(&args.file, &data)?;
+            let level = match spec {
+                LevelSpec::Level(l) => l.min(sets_model.levels()),
+                LevelSpec::Triangles(t) => sets_model.level_for_triangles(t),
+                LevelSpec::Ratio(r) => sets_model.level_for_ratio(r),
+            };
+            let strips = sets_model.cursor(level).strips();
+            (&sets_model, level, strips, sets_model.positions().to_vec(), None)
+        };
     let us = start.elapsed().as_secs_f64() * 1e6;
-    let strips = cursor.strips();
     let triangles = stripkit::decode(&strips);
     if triangles.len() != sets.triangles_at(level) as usize {
         return Err(Error::Verification(format!(
@@ -265,18 +465,20 @@ fn extract(args: ExtractArgs) -> anyhow::Result<()> {
         None => {
             let obj = serde_json::json!({
                 "level": level,
+                "frame": frame,
                 "restart_index": u32::MAX,
                 "strips": strips.iter().collect::<Vec<_>>(),
             });
             serde_json::to_vec(&obj)?
         }
-        Some(format) => encode_level(&sets, &strips, &triangles, format, &args.output)?,
+        Some(format) => encode_level(positions, &strips, &triangles, format, &args.output)?,
     };
     io::write_encoded(&args.output, &bytes)?;
     let indices = strips.index_count();
     let out = ExtractOut {
         input: args.file.display().to_string(),
         output: args.output.display().to_string(),
+        frame,
         level,
         levels: sets.levels(),
         triangles: triangles.len() as u32,
@@ -297,13 +499,13 @@ fn extract(args: ExtractArgs) -> anyhow::Result<()> {
 
 /// The file bytes of one level, read back and compared with the strips' triangles.
 fn encode_level(
-    sets: &Sets,
+    positions: Vec<[f32; 3]>,
     strips: &StripSet,
     triangles: &[[u32; 3]],
     format: Format,
     path: &Path,
 ) -> anyhow::Result<Vec<u8>> {
-    let mesh = Mesh::from_triangles(sets.positions().to_vec(), triangles);
+    let mesh = Mesh::from_triangles(positions, triangles);
     let to_write = match format {
         Format::Ply => Some(strips.clone()),
         Format::Gltf | Format::Glb => Some(StripSet::from_strips(&[stripkit::encode_stitched(strips)])),
@@ -346,7 +548,11 @@ struct BenchOut {
 }
 
 fn bench(args: BenchArgs) -> anyhow::Result<()> {
-    let sets = Sets::read(&args.file)?;
+    let data = std::fs::read(&args.file).map_err(|source| Error::Io { path: args.file.clone(), source })?;
+    if data.starts_with(lod::LODSEQ_MAGIC) {
+        return bench_seq(&args, &LodSeq::from_bytes(&args.file, &data)?);
+    }
+    let sets = Sets::from_bytes(&args.file, &data)?;
     let mut rows = Vec::new();
     for percent in [1.0, 3.0, 6.0, 10.0, 15.0, 20.0] {
         for spacing in [Spacing::Linear, Spacing::Exponential] {
@@ -401,6 +607,118 @@ fn bench(args: BenchArgs) -> anyhow::Result<()> {
             "coarsest -> finest in one change: {:.1} us; a cursor from scratch at the finest: {:.1} us",
             o.coarsest_to_finest_us, o.from_scratch_us
         )
+    })
+}
+
+#[derive(Serialize)]
+struct SeqTiming {
+    /// What changes: "frame" (every frame of the animation in turn at a fixed
+    /// level), "level" (1% of the levels per step at a fixed frame), "play" (the
+    /// animation plays and the level changes every 24 frames).
+    test: &'static str,
+    /// The fixed ratio of triangles ("frame"), or the frame ("level").
+    at: String,
+    changes: usize,
+    mean_us: f64,
+    max_us: f64,
+    /// Mean strips re-uploaded per change.
+    strips_changed: f64,
+}
+
+#[derive(Serialize)]
+struct BenchSeqOut {
+    input: String,
+    frames: usize,
+    models: usize,
+    triangles: u32,
+    strips: usize,
+    rows: Vec<SeqTiming>,
+    /// A cursor made from scratch (every strip walked) at frame 0, full level.
+    from_scratch_us: f64,
+}
+
+fn time_changes(
+    cursor: &mut lod::SeqCursor<'_>,
+    steps: &[(usize, LevelSpec)],
+    rounds: usize,
+) -> (f64, f64, f64) {
+    let (mut total, mut max, mut changed) = (0.0f64, 0.0f64, 0usize);
+    for _ in 0..rounds.max(1) {
+        for &(f, spec) in steps {
+            let t = Instant::now();
+            changed += cursor.set(f, spec).len();
+            let us = t.elapsed().as_secs_f64() * 1e6;
+            total += us;
+            max = max.max(us);
+        }
+    }
+    let n = (steps.len() * rounds.max(1)).max(1) as f64;
+    (total / n, max, changed as f64 / n)
+}
+
+fn bench_seq(args: &BenchArgs, seq: &LodSeq) -> anyhow::Result<()> {
+    let frames = seq.frame_count();
+    let mut rows = Vec::new();
+    // Frame changes at a fixed level: the animation played at each ratio.
+    for ratio in [1.0, 0.5, 0.1, 0.02] {
+        let spec = LevelSpec::Ratio(ratio);
+        let mut cursor = seq.cursor(0, spec);
+        let steps: Vec<(usize, LevelSpec)> = (0..frames).map(|f| ((f + 1) % frames, spec)).collect();
+        time_changes(&mut cursor, &steps, 1); // every model's cursor made once
+        let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
+        rows.push(SeqTiming { test: "frame", at: format!("{}%", ratio * 100.0), changes: steps.len(), mean_us: mean, max_us: max, strips_changed: changed });
+    }
+    // Level changes at a fixed frame: 1% of the levels per step, down and back.
+    for f in [0, frames / 2] {
+        let levels = seq.models()[seq.model_of(f)].levels();
+        let step = (levels / 100).max(1);
+        let mut steps: Vec<(usize, LevelSpec)> = (0..=levels).step_by(step as usize).map(|l| (f, LevelSpec::Level(l))).collect();
+        let back: Vec<_> = steps.iter().rev().skip(1).copied().collect();
+        steps.extend(back);
+        let mut cursor = seq.cursor(f, LevelSpec::Level(0));
+        let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
+        rows.push(SeqTiming { test: "level", at: format!("frame {f}"), changes: steps.len(), mean_us: mean, max_us: max, strips_changed: changed });
+    }
+    // The paper's Fig. 5b: the animation plays, the level moves every 24 frames
+    // (100% -> 2% -> 100% in ten steps each way).
+    let ratios: Vec<f64> = (0..=10).map(|i| 1.0 - 0.098 * i as f64).chain((0..10).rev().map(|i| 1.0 - 0.098 * i as f64)).collect();
+    let steps: Vec<(usize, LevelSpec)> =
+        (0..ratios.len() * 24).map(|i| (i % frames, LevelSpec::Ratio(ratios[i / 24]))).collect();
+    let mut cursor = seq.cursor(0, LevelSpec::Ratio(1.0));
+    time_changes(&mut cursor, &steps, 1);
+    let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
+    rows.push(SeqTiming { test: "play", at: "level every 24 frames".into(), changes: steps.len(), mean_us: mean, max_us: max, strips_changed: changed });
+    let mut scratch = Vec::new();
+    for _ in 0..args.rounds.max(1) {
+        let t = Instant::now();
+        let c = seq.cursor(0, LevelSpec::Level(0));
+        scratch.push(t.elapsed().as_secs_f64() * 1e6);
+        drop(c);
+    }
+    let out = BenchSeqOut {
+        input: args.file.display().to_string(),
+        frames,
+        models: seq.models().len(),
+        triangles: seq.models()[0].triangles_at(0),
+        strips: seq.models()[0].strip_count(),
+        rows,
+        from_scratch_us: median(&mut scratch),
+    };
+    super::print_report(args.json, &out, |w, o| {
+        writeln!(
+            w,
+            "{}: {} frames, {} models, {} triangles, {} strips; microseconds per change (extraction only, CPU)",
+            o.input, o.frames, o.models, o.triangles, o.strips
+        )?;
+        writeln!(w, "{:>6} {:>22} {:>8} {:>10} {:>10} {:>14}", "test", "at", "changes", "mean", "max", "strips changed")?;
+        for r in &o.rows {
+            writeln!(
+                w,
+                "{:>6} {:>22} {:>8} {:>10.1} {:>10.1} {:>14.1}",
+                r.test, r.at, r.changes, r.mean_us, r.max_us, r.strips_changed
+            )?;
+        }
+        writeln!(w, "a cursor from scratch (every strip walked): {:.1} us", o.from_scratch_us)
     })
 }
 

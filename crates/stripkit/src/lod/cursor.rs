@@ -90,6 +90,11 @@ impl<'a> Cursor<'a> {
         &self.changed
     }
 
+    /// The strips the last [`Cursor::set_level`] changed (empty for a new cursor).
+    pub fn changed(&self) -> &[u32] {
+        &self.changed
+    }
+
     /// Walks strip `s` at the current level into its range and updates its validity
     /// interval.
     fn rewalk(&mut self, s: usize) {

@@ -10,6 +10,9 @@ use std::path::Path;
 pub const SETS_MAGIC: &[u8; 8] = b"SKLODSET";
 const FORMAT_VERSION: u32 = 1;
 const FLAG_OPTIMAL: u32 = 1;
+/// The positions section is absent (a model inside a `.lodseq`, whose frames hold
+/// the positions); only with endpoint placement.
+const FLAG_NO_POSITIONS: u32 = 2;
 
 impl Sets {
     /// The `.sets` encoding (docs/sets-format.md). Level-0 versions and beginnings
@@ -19,12 +22,14 @@ impl Sets {
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(64 + 12 * self.positions.len() + 3 * self.version_count());
         out.extend_from_slice(SETS_MAGIC);
-        let flags = if self.placement == Placement::Optimal { FLAG_OPTIMAL } else { 0 };
+        let positionless = self.positions.is_empty() && self.input_vertices > 0;
+        let flags = if self.placement == Placement::Optimal { FLAG_OPTIMAL } else { 0 }
+            | if positionless { FLAG_NO_POSITIONS } else { 0 };
         for x in [
             FORMAT_VERSION,
             flags,
             self.input_vertices,
-            self.positions.len() as u32,
+            if positionless { self.input_vertices } else { self.positions.len() as u32 },
             self.levels(),
             self.strip_count() as u32,
             self.slot_count() as u32,
@@ -124,7 +129,8 @@ impl Sets {
             return Err(fmt(8, format!("format version {version}; this stripkit reads version {FORMAT_VERSION}")));
         }
         let flags = r.u32()?;
-        if flags & !FLAG_OPTIMAL != 0 {
+        let positionless = flags & FLAG_NO_POSITIONS != 0;
+        if flags & !(FLAG_OPTIMAL | FLAG_NO_POSITIONS) != 0 || (positionless && flags & FLAG_OPTIMAL != 0) {
             return Err(fmt(12, format!("unknown flags {flags:#x}")));
         }
         let placement = if flags & FLAG_OPTIMAL != 0 { Placement::Optimal } else { Placement::Endpoint };
@@ -143,10 +149,11 @@ impl Sets {
         if versions < slots || beginnings < strips || slots == END {
             return Err(fmt(36, "fewer versions than slots or beginnings than strips".into()));
         }
-        // Positions: 12 bytes each, all present.
-        r.need(position_count as usize * 12, "the positions")?;
-        let mut positions = Vec::with_capacity(position_count as usize);
-        for _ in 0..position_count {
+        // Positions: 12 bytes each, all present (none in a positionless model).
+        let stored = if positionless { 0 } else { position_count };
+        r.need(stored as usize * 12, "the positions")?;
+        let mut positions = Vec::with_capacity(stored as usize);
+        for _ in 0..stored {
             let p = [r.f32()?, r.f32()?, r.f32()?];
             if !p.iter().all(|c| c.is_finite()) {
                 return Err(fmt(r.at - 12, format!("vertex {} has a NaN or infinite coordinate", positions.len())));
@@ -370,4 +377,223 @@ fn zigzag(v: i64) -> u64 {
 
 fn unzigzag(v: u64) -> i64 {
     ((v >> 1) as i64) ^ -((v & 1) as i64)
+}
+
+/// The first eight bytes of a `.lodseq` file.
+pub const LODSEQ_MAGIC: &[u8; 8] = b"SKLODSEQ";
+/// Longest frame name a `.lodseq` holds, in bytes.
+const MAX_NAME: u64 = 4096;
+
+impl super::seq::LodSeq {
+    /// The `.lodseq` encoding (docs/sets-format.md): frame names and models, every
+    /// frame's positions, then each model as a positionless `.sets`.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let n = self.positions.first().map_or(0, |p| p.len());
+        let mut out = Vec::with_capacity(32 + self.positions.len() * n * 12);
+        out.extend_from_slice(LODSEQ_MAGIC);
+        let bits = self.quantization.map_or(0, |q| q.bits);
+        for x in [FORMAT_VERSION, self.names.len() as u32, n as u32, self.models.len() as u32, bits] {
+            out.extend_from_slice(&x.to_le_bytes());
+        }
+        for (name, &m) in self.names.iter().zip(&self.frame_model) {
+            let name = &name.as_bytes()[..name.len().min(MAX_NAME as usize)];
+            varint(&mut out, name.len() as u64);
+            out.extend_from_slice(name);
+            varint(&mut out, m as u64);
+        }
+        match self.quantization {
+            None => {
+                for frame in &self.positions {
+                    for p in frame {
+                        for c in p {
+                            out.extend_from_slice(&c.to_le_bytes());
+                        }
+                    }
+                }
+            }
+            Some(q) => {
+                for x in q.lo.iter().chain(&q.step) {
+                    out.extend_from_slice(&x.to_le_bytes());
+                }
+                // Grid indices: the first frame against the previous vertex, every
+                // later frame against the previous frame; zigzag varints, deflated.
+                let mut raw = Vec::new();
+                for (f, frame) in self.positions.iter().enumerate() {
+                    for (i, p) in frame.iter().enumerate() {
+                        for d in 0..3 {
+                            let base = match (f, i) {
+                                (0, 0) => 0,
+                                (0, _) => q.index(&frame[i - 1], d),
+                                _ => q.index(&self.positions[f - 1][i], d),
+                            };
+                            varint(&mut raw, zigzag(q.index(p, d) as i64 - base as i64));
+                        }
+                    }
+                }
+                let mut z = flate2::write::DeflateEncoder::new(Vec::new(), flate2::Compression::best());
+                use std::io::Write;
+                let packed = z.write_all(&raw).and_then(|_| z.finish()).unwrap_or_default();
+                varint(&mut out, packed.len() as u64);
+                out.extend_from_slice(&packed);
+            }
+        }
+        for model in &self.models {
+            let bytes = model.to_bytes();
+            varint(&mut out, bytes.len() as u64);
+            out.extend_from_slice(&bytes);
+        }
+        let mut crc = flate2::Crc::new();
+        crc.update(&out);
+        out.extend_from_slice(&crc.sum().to_le_bytes());
+        out
+    }
+
+    /// Writes the `.lodseq` file atomically.
+    pub fn write(&self, path: &Path) -> Result<()> {
+        crate::io::write_atomic(path, &self.to_bytes())
+    }
+
+    /// Reads a `.lodseq` file ([`LodSeq::from_bytes`](super::seq::LodSeq::from_bytes)).
+    pub fn read(path: &Path) -> Result<super::seq::LodSeq> {
+        let bytes = std::fs::read(path).map_err(|source| Error::Io { path: path.to_path_buf(), source })?;
+        Self::from_bytes(path, &bytes)
+    }
+
+    /// Decodes a `.lodseq` file as untrusted input: the checksum first, every count
+    /// against the bytes left, each model as [`Sets::from_bytes`] checks it, every
+    /// model positionless over the frames' vertex count with the same strip layout.
+    pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<super::seq::LodSeq> {
+        let fmt = |at: usize, what: String| Error::Format { path: path.to_path_buf(), at: format!("byte {at}"), what };
+        if bytes.len() < 8 + 20 + 4 {
+            return Err(fmt(0, format!("{} bytes is too short for a .lodseq file", bytes.len())));
+        }
+        if &bytes[..8] != LODSEQ_MAGIC {
+            return Err(fmt(0, "not a stripkit .lodseq file (bad magic)".into()));
+        }
+        let (body, tail) = bytes.split_at(bytes.len() - 4);
+        let mut crc = flate2::Crc::new();
+        crc.update(body);
+        if crc.sum().to_le_bytes() != tail {
+            return Err(fmt(body.len(), "checksum mismatch: the file is damaged or truncated".into()));
+        }
+        let mut r = Reader { bytes: body, at: 8, fmt: &fmt };
+        let version = r.u32()?;
+        if version != FORMAT_VERSION {
+            return Err(fmt(8, format!("format version {version}; this stripkit reads version {FORMAT_VERSION}")));
+        }
+        let (frames, vertices, models, bits) = (r.u32()?, r.u32()?, r.u32()?, r.u32()?);
+        if frames == 0 || models == 0 {
+            return Err(fmt(12, "a sequence needs at least one frame and one model".into()));
+        }
+        if bits != 0 && !(8..=20).contains(&bits) {
+            return Err(fmt(24, format!("{bits} bits per coordinate (0 for exact positions, else 8 to 20)")));
+        }
+        r.need(frames as usize * 2, "the frame names")?;
+        let mut names = Vec::with_capacity(frames as usize);
+        let mut frame_model = Vec::with_capacity(frames as usize);
+        for _ in 0..frames {
+            let len = r.varint("a frame name's length")?;
+            if len > MAX_NAME {
+                return Err(fmt(r.at, format!("a frame name of {len} bytes (at most {MAX_NAME})")));
+            }
+            r.need(len as usize, "a frame name")?;
+            let name = String::from_utf8_lossy(&r.bytes[r.at..r.at + len as usize]).into_owned();
+            r.at += len as usize;
+            names.push(name);
+            frame_model.push(r.index(models, "a frame's model")?);
+        }
+        let total = (frames as usize).saturating_mul(vertices as usize);
+        let mut positions = Vec::with_capacity(frames as usize);
+        let mut quantization = None;
+        if bits == 0 {
+            r.need(total.saturating_mul(12), "the frames' positions")?;
+            for f in 0..frames as usize {
+                let mut p = Vec::with_capacity(vertices as usize);
+                for _ in 0..vertices {
+                    let v = [r.f32()?, r.f32()?, r.f32()?];
+                    if !v.iter().all(|c| c.is_finite()) {
+                        return Err(fmt(r.at - 12, format!("frame {f}: a NaN or infinite coordinate")));
+                    }
+                    p.push(v);
+                }
+                positions.push(p);
+            }
+        } else {
+            let mut grid = [0f32; 6];
+            for x in &mut grid {
+                *x = r.f32()?;
+            }
+            let q = super::seq::Quantization { bits, lo: [grid[0], grid[1], grid[2]], step: [grid[3], grid[4], grid[5]] };
+            if !grid.iter().all(|x| x.is_finite()) || q.step.iter().any(|&s| s <= 0.0) {
+                return Err(fmt(r.at, "the position grid is not finite and positive".into()));
+            }
+            let len = r.varint("the positions' length")?;
+            r.need(len as usize, "the positions")?;
+            let packed = &r.bytes[r.at..r.at + len as usize];
+            r.at += len as usize;
+            // At most 64 bytes of positions per byte stored (real animations take 3
+            // to 6): a small file cannot claim a huge mesh.
+            if total.saturating_mul(12) > packed.len().saturating_mul(64) + (1 << 20) {
+                return Err(fmt(r.at, format!("{frames} frames of {vertices} vertices cannot come from {len} bytes")));
+            }
+            let mut raw = Vec::new();
+            use std::io::Read;
+            flate2::read::DeflateDecoder::new(packed)
+                .take(total.saturating_mul(15) as u64)
+                .read_to_end(&mut raw)
+                .map_err(|e| fmt(r.at, format!("the positions do not inflate: {e}")))?;
+            let mut v = Reader { bytes: &raw, at: 0, fmt: &fmt };
+            let top = (1i64 << bits) - 1;
+            let mut prev: Vec<[u32; 3]> = Vec::new();
+            for f in 0..frames as usize {
+                let mut cur: Vec<[u32; 3]> = Vec::with_capacity((vertices as usize).min(raw.len() / 3 + 1));
+                for i in 0..vertices as usize {
+                    let mut g = [0u32; 3];
+                    for (d, gd) in g.iter_mut().enumerate() {
+                        let base = match (f, i) {
+                            (0, 0) => 0,
+                            (0, _) => cur[i - 1][d],
+                            _ => prev[i][d],
+                        } as i64;
+                        let x = base + unzigzag(v.varint("a position")?);
+                        if !(0..=top).contains(&x) {
+                            return Err(fmt(r.at, format!("frame {f}: a position off its {bits}-bit grid")));
+                        }
+                        *gd = x as u32;
+                    }
+                    cur.push(g);
+                }
+                positions.push(cur.iter().map(|g| [0, 1, 2].map(|d| q.value(g[d], d))).collect());
+                prev = cur;
+            }
+            if v.at != raw.len() {
+                return Err(fmt(r.at, "bytes follow the last position".into()));
+            }
+            quantization = Some(q);
+        }
+        r.need(models as usize, "the models")?;
+        let mut sets: Vec<Sets> = Vec::with_capacity(models as usize);
+        for m in 0..models {
+            let len = r.varint("a model's length")?;
+            r.need(len as usize, "a model")?;
+            let at = r.at;
+            let model = Sets::from_bytes(path, &r.bytes[at..at + len as usize]).map_err(|e| match e {
+                Error::Format { at: inner, what, .. } => fmt(at, format!("model {m}, {inner}: {what}")),
+                e => e,
+            })?;
+            r.at += len as usize;
+            if model.input_vertices != vertices || !model.positions.is_empty() || model.placement != Placement::Endpoint
+            {
+                return Err(fmt(at, format!("model {m} is not a positionless endpoint model over {vertices} vertices")));
+            }
+            if sets.first().is_some_and(|first| first.strip_slots != model.strip_slots) {
+                return Err(fmt(at, format!("model {m} lays its strips out unlike model 0")));
+            }
+            sets.push(model);
+        }
+        if r.at != body.len() {
+            return Err(fmt(r.at, format!("{} bytes follow the last model", body.len() - r.at)));
+        }
+        Ok(super::seq::LodSeq { names, positions, frame_model, models: sets, quantization })
+    }
 }

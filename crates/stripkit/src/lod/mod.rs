@@ -21,12 +21,17 @@ mod build;
 mod check;
 mod cursor;
 mod file;
+mod seq;
 mod sets;
 
 pub use build::{build, BuildOptions, BuildReport, Built};
 pub use check::{check_levels, LevelCheck};
 pub use cursor::{bench_levels, Cursor, Spacing};
-pub use file::SETS_MAGIC;
+pub use file::{LODSEQ_MAGIC, SETS_MAGIC};
+pub use seq::{
+    build_seq, read_frames, BuiltSeq, FrameQuality, Frames, LevelSpec, LodSeq, Quality, SeqCursor, SeqOptions, SeqReport,
+    QUALITY_RATIOS,
+};
 pub use sets::{Sets, END};
 
 #[cfg(test)]

@@ -1,0 +1,224 @@
+//! Level-of-detail strips for deforming meshes through the public API: a procedural
+//! animation written as frame files, every model checked at every level, the cursor
+//! against fresh walks over random (frame, level) moves, the quality guarantee
+//! against the reference pose's sequence, the `.lodseq` file and its refusals.
+
+mod support;
+
+use std::path::{Path, PathBuf};
+use stripkit::lod::{self, LevelSpec, LodSeq, SeqOptions};
+use stripkit::{gen, Mesh};
+
+/// A torus that bends and swells over `frames` frames, written as OBJ files (and a
+/// reference pose) into a fresh folder.
+fn animation(name: &str, frames: usize) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stripkit-lodseq-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = gen::torus(28, 10, 1.0, 0.3);
+    let pose = |t: f32| -> Mesh {
+        let mut m = base.clone();
+        for p in m.positions.iter_mut() {
+            // Bend around the y axis by an angle growing with x, and swell one side.
+            let a = t * p[0] * 0.9;
+            let (s, c) = a.sin_cos();
+            let (x, z) = (p[0], p[2] * (1.0 + 0.4 * t * (p[1] > 0.0) as i32 as f32));
+            *p = [c * x - s * z, p[1], s * x + c * z];
+        }
+        m
+    };
+    for f in 0..frames {
+        let t = f as f32 / (frames - 1).max(1) as f32;
+        stripkit::io::write(&dir.join(format!("{name}-{f:02}.obj")), &pose(t), None).unwrap();
+    }
+    stripkit::io::write(&dir.join(format!("{name}-reference.obj")), &pose(0.5), None).unwrap();
+    dir
+}
+
+fn options() -> SeqOptions {
+    SeqOptions { samples: 800, ..SeqOptions::default() }
+}
+
+#[test]
+fn every_model_draws_its_replay_at_every_level() {
+    let dir = animation("levels", 6);
+    let frames = lod::read_frames(&dir, &Default::default()).unwrap();
+    assert_eq!(frames.positions.len(), 6);
+    assert!(frames.reference.is_some());
+    let b = lod::build_seq(&frames, &options(), &mut |_| {}).unwrap();
+    assert_eq!(b.seq.frame_count(), 6);
+    assert_eq!(b.sequences.len(), b.seq.models().len());
+    let mesh = Mesh::from_triangles(frames.positions[0].clone(), &b.triangles);
+    for (m, (sets, sequence)) in b.seq.models().iter().zip(&b.sequences).enumerate() {
+        let r = lod::check_levels(sets, &mesh, sequence, 1, 10).unwrap_or_else(|e| panic!("model {m}: {e}"));
+        assert_eq!(r.levels_checked, sets.levels() as usize + 1);
+        // All models lay their strips out alike.
+        assert_eq!(sets.slot_count(), b.seq.models()[0].slot_count());
+    }
+    // (a) is never worse than (b), in all four figures, and never better than... its
+    // own measurement: the frame's chosen sequence is one of the candidates.
+    for q in &b.report.quality {
+        for r in 0..2 {
+            assert!(q.chosen.hausdorff[r] <= q.reference.hausdorff[r], "{}: {q:?}", q.frame);
+            assert!(q.chosen.rms[r] <= q.reference.rms[r], "{}: {q:?}", q.frame);
+        }
+    }
+}
+
+#[test]
+fn the_cursor_follows_frames_and_levels() {
+    let dir = animation("cursor", 5);
+    let frames = lod::read_frames(&dir, &Default::default()).unwrap();
+    let b = lod::build_seq(&frames, &SeqOptions { tolerance: 1.0, ..options() }, &mut |_| {}).unwrap();
+    let seq = &b.seq;
+    assert!(seq.models().len() >= 2, "frames with different sequences: {:?}", b.report.sequences);
+    let mut cursor = seq.cursor(0, LevelSpec::Level(0));
+    let mut previous = cursor.buffer().to_vec();
+    let mut x = 0x9E3779B97F4A7C15u64;
+    for step in 0..200 {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        let frame = (x % 5) as usize;
+        let spec = match step % 4 {
+            0 => LevelSpec::Level((x >> 8) as u32 % 700),
+            1 => LevelSpec::Ratio(((x >> 16) % 100) as f64 / 100.0),
+            2 => LevelSpec::Triangles((x >> 24) % 600),
+            _ => LevelSpec::Level(cursor.level()),
+        };
+        let changed = cursor.set(frame, spec).to_vec();
+        let model = &seq.models()[seq.model_of(frame)];
+        let level = seq.level(frame, spec);
+        assert_eq!(cursor.level(), level);
+        let fresh = model.cursor(level);
+        assert_eq!(cursor.buffer(), fresh.buffer(), "step {step}: frame {frame}, {spec:?}");
+        assert_eq!(cursor.strips(), model.strips_at(level));
+        // Exactly the strips whose range differs are reported.
+        for s in 0..model.strip_count() {
+            let r = fresh.strip_range(s);
+            let differs = previous[r.clone()] != cursor.buffer()[r];
+            assert_eq!(differs, changed.contains(&(s as u32)), "step {step}: strip {s}");
+        }
+        previous = cursor.buffer().to_vec();
+    }
+}
+
+#[test]
+fn morphing_between_key_frames() {
+    let dir = animation("morph", 3);
+    let frames = lod::read_frames(&dir, &Default::default()).unwrap();
+    let b = lod::build_seq(&frames, &options(), &mut |_| {}).unwrap();
+    let seq = &b.seq;
+    let m = seq.morph(1.25);
+    for (v, p) in m.iter().enumerate() {
+        for (d, &x) in p.iter().enumerate() {
+            let want = 0.75 * seq.positions(1)[v][d] + 0.25 * seq.positions(2)[v][d];
+            assert!((x - want).abs() < 1e-6);
+        }
+    }
+    assert_eq!(seq.morph(2.0), seq.positions(2));
+    assert_eq!(seq.morph(9.0), seq.positions(2), "clamped");
+    assert_eq!(seq.nearest_frame(1.25), 1);
+    assert_eq!(seq.nearest_frame(1.5), 2);
+    assert_eq!(seq.nearest_frame(-3.0), 0);
+}
+
+#[test]
+fn frames_must_share_their_faces() {
+    let dir = animation("faces", 4);
+    // A frame with other faces: named in the error.
+    let mut other = gen::torus(28, 10, 1.0, 0.3);
+    other.face_indices.swap(0, 1);
+    stripkit::io::write(&dir.join("faces-02.obj"), &other, None).unwrap();
+    let e = lod::read_frames(&dir, &Default::default()).unwrap_err().to_string();
+    assert!(e.contains("faces-02.obj") && e.contains("face 0"), "{e}");
+    // Another vertex count.
+    stripkit::io::write(&dir.join("faces-02.obj"), &gen::torus(20, 10, 1.0, 0.3), None).unwrap();
+    let e = lod::read_frames(&dir, &Default::default()).unwrap_err().to_string();
+    assert!(e.contains("faces-02.obj") && e.contains("vertices"), "{e}");
+    // Nothing to read.
+    let empty = dir.join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    assert!(lod::read_frames(&empty, &Default::default()).is_err());
+    assert!(lod::read_frames(Path::new("/no/such/folder"), &Default::default()).is_err());
+}
+
+#[test]
+fn lodseq_files_round_trip_and_refuse_damage() {
+    let dir = animation("file", 4);
+    let frames = lod::read_frames(&dir, &Default::default()).unwrap();
+    for bits in [None, Some(12)] {
+        let b = lod::build_seq(&frames, &SeqOptions { position_bits: bits, ..options() }, &mut |_| {}).unwrap();
+        let bytes = b.seq.to_bytes();
+        let path = Path::new("anim.lodseq");
+        assert_eq!(LodSeq::from_bytes(path, &bytes).unwrap(), b.seq);
+        for cut in [0, 8, 20, bytes.len() / 3, bytes.len() - 1] {
+            assert!(LodSeq::from_bytes(path, &bytes[..cut]).is_err(), "cut at {cut}");
+        }
+        let mut bad = bytes.clone();
+        bad[bytes.len() / 2] ^= 4;
+        assert!(LodSeq::from_bytes(path, &bad).unwrap_err().to_string().contains("checksum"));
+        // A .sets is not a .lodseq, and the other way round.
+        assert!(LodSeq::from_bytes(path, &b.seq.models()[0].to_bytes()).is_err());
+        assert!(lod::Sets::from_bytes(path, &bytes).is_err());
+        // Damage behind a valid checksum: an error or a sequence, never a panic.
+        let mut x = 0x2545F4914F6CDD1Du64;
+        for _ in 0..300 {
+            let mut bad = bytes.clone();
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let at = 8 + (x as usize >> 8) % (bad.len() - 12);
+            bad[at] = (x & 0xff) as u8;
+            let n = bad.len() - 4;
+            let mut crc = flate2::Crc::new();
+            crc.update(&bad[..n]);
+            bad[n..].copy_from_slice(&crc.sum().to_le_bytes());
+            if let Ok(s) = LodSeq::from_bytes(path, &bad) {
+                let mut c = s.cursor(0, LevelSpec::Ratio(0.5));
+                c.set(s.frame_count() - 1, LevelSpec::Level(u32::MAX));
+            }
+        }
+    }
+}
+
+#[test]
+fn quantized_positions_round_trip_exactly() {
+    let dir = animation("quantized", 4);
+    let frames = lod::read_frames(&dir, &Default::default()).unwrap();
+    let exact = lod::build_seq(&frames, &options(), &mut |_| {}).unwrap();
+    for bits in [8, 12, 16, 20] {
+        let b = lod::build_seq(&frames, &SeqOptions { position_bits: Some(bits), ..options() }, &mut |_| {}).unwrap();
+        let bytes = b.seq.to_bytes();
+        let back = LodSeq::from_bytes(Path::new("q.lodseq"), &bytes).unwrap();
+        assert_eq!(back, b.seq, "{bits} bits: the file holds exactly the quantized positions");
+        // Within half a grid step of the input (the torus spans about 2.6 units).
+        let step = 2.7 / ((1u64 << bits) - 1) as f32;
+        for f in 0..frames.positions.len() {
+            for (p, q) in frames.positions[f].iter().zip(b.seq.positions(f)) {
+                for d in 0..3 {
+                    assert!((p[d] - q[d]).abs() <= step, "{bits} bits: {p:?} -> {q:?}");
+                }
+            }
+        }
+        assert!(bytes.len() < exact.seq.to_bytes().len(), "{bits} bits: smaller than exact positions");
+    }
+    let e = lod::build_seq(&frames, &SeqOptions { position_bits: Some(4), ..options() }, &mut |_| {});
+    assert!(e.is_err());
+}
+
+#[test]
+fn research_sequence_cat() {
+    let Some(dir) = support::models_dir().map(|d| d.join("sequences/cat-poses")) else { return };
+    if !dir.is_dir() {
+        eprintln!("skipped: {} is absent", dir.display());
+        return;
+    }
+    let frames = lod::read_frames(&dir, &Default::default()).unwrap();
+    assert_eq!(frames.positions.len(), 9);
+    let b = lod::build_seq(&frames, &SeqOptions { samples: 1000, ..SeqOptions::default() }, &mut |_| {}).unwrap();
+    let mesh = Mesh::from_triangles(frames.positions[0].clone(), &b.triangles);
+    for (sets, sequence) in b.seq.models().iter().zip(&b.sequences) {
+        lod::check_levels(sets, &mesh, sequence, 1, 5).unwrap();
+    }
+}
