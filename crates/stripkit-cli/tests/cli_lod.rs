@@ -10,20 +10,9 @@ fn torus() -> std::path::PathBuf {
     path
 }
 
-fn build(
-    input: &std::path::Path,
-    name: &str,
-    extra: &[&str],
-) -> (std::path::PathBuf, serde_json::Value) {
+fn build(input: &std::path::Path, name: &str, extra: &[&str]) -> (std::path::PathBuf, serde_json::Value) {
     let model = tmp("lod", name);
-    let mut args = vec![
-        "lod",
-        "build",
-        input.to_str().unwrap(),
-        "-o",
-        model.to_str().unwrap(),
-        "--json",
-    ];
+    let mut args = vec!["lod", "build", input.to_str().unwrap(), "-o", model.to_str().unwrap(), "--json"];
     args.extend_from_slice(extra);
     let r = json(&stripkit(&args));
     (model, r)
@@ -36,15 +25,8 @@ fn build_checks_every_level_and_extract_matches_simplify() {
     assert_eq!(r["triangles"], 768);
     let levels = r["levels"].as_u64().unwrap();
     assert!(levels > 300, "{r}");
-    assert_eq!(
-        r["check"]["levels_checked"].as_u64().unwrap(),
-        levels + 1,
-        "every level checked"
-    );
-    assert_eq!(
-        r["bytes"].as_u64().unwrap(),
-        std::fs::metadata(&model).unwrap().len()
-    );
+    assert_eq!(r["check"]["levels_checked"].as_u64().unwrap(), levels + 1, "every level checked");
+    assert_eq!(r["bytes"].as_u64().unwrap(), std::fs::metadata(&model).unwrap().len());
     // --ratio stops where `stripkit simplify --ratio` stops: same triangles.
     for ratio in ["0.5", "0.1"] {
         let out = tmp("lod", &format!("level_{ratio}.ply"));
@@ -99,8 +81,7 @@ fn build_checks_every_level_and_extract_matches_simplify() {
             "t100.gltf" => assert!(e["triangles"].as_u64().unwrap() <= 100),
             "last.obj" => assert_eq!(e["level"].as_u64().unwrap(), levels),
             _ => {
-                let j: serde_json::Value =
-                    serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+                let j: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
                 assert_eq!(j["level"], e["level"]);
             }
         }
@@ -110,45 +91,19 @@ fn build_checks_every_level_and_extract_matches_simplify() {
 #[test]
 fn optimal_placement_and_other_stripifiers() {
     let input = torus();
-    for extra in [
-        &["--placement", "optimal"][..],
-        &["--algo", "cache"],
-        &["--algo", "single", "--check", "sample"],
-    ] {
+    for extra in [&["--placement", "optimal"][..], &["--algo", "cache"], &["--algo", "single", "--check", "sample"]] {
         let (model, r) = build(&input, "other.sets", extra);
-        assert!(
-            r["check"]["levels_checked"].as_u64().unwrap() > 0,
-            "{extra:?}: {r}"
-        );
+        assert!(r["check"]["levels_checked"].as_u64().unwrap() > 0, "{extra:?}: {r}");
         let out = tmp("lod", "other.ply");
-        let o = stripkit(&[
-            "lod",
-            "extract",
-            model.to_str().unwrap(),
-            "--ratio",
-            "0.3",
-            "-o",
-            out.to_str().unwrap(),
-        ]);
-        assert!(
-            o.status.success(),
-            "{extra:?}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        let o = stripkit(&["lod", "extract", model.to_str().unwrap(), "--ratio", "0.3", "-o", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&o.stderr));
     }
 }
 
 #[test]
 fn bench_prints_the_papers_tests() {
     let (model, _) = build(&torus(), "bench.sets", &[]);
-    let r = json(&stripkit(&[
-        "lod",
-        "bench",
-        model.to_str().unwrap(),
-        "--rounds",
-        "1",
-        "--json",
-    ]));
+    let r = json(&stripkit(&["lod", "bench", model.to_str().unwrap(), "--rounds", "1", "--json"]));
     let rows = r["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 12, "6 percentages x 2 spacings");
     for row in rows {
@@ -157,10 +112,7 @@ fn bench_prints_the_papers_tests() {
     }
     let o = stripkit(&["lod", "bench", model.to_str().unwrap(), "--rounds", "1"]);
     let text = String::from_utf8_lossy(&o.stdout);
-    assert!(
-        text.contains("exponential") && text.contains("20%"),
-        "{text}"
-    );
+    assert!(text.contains("exponential") && text.contains("20%"), "{text}");
 }
 
 #[test]
@@ -189,28 +141,12 @@ fn damaged_models_exit_2_and_write_nothing() {
         let bad = tmp("lod", "bad.sets");
         std::fs::write(&bad, &data).unwrap();
         for args in [
-            vec![
-                "lod",
-                "extract",
-                bad.to_str().unwrap(),
-                "--level",
-                "3",
-                "-o",
-                out.to_str().unwrap(),
-            ],
+            vec!["lod", "extract", bad.to_str().unwrap(), "--level", "3", "-o", out.to_str().unwrap()],
             vec!["lod", "bench", bad.to_str().unwrap()],
         ] {
             let o = stripkit(&args);
-            assert_eq!(
-                o.status.code(),
-                Some(2),
-                "{what}: {}",
-                String::from_utf8_lossy(&o.stderr)
-            );
-            assert!(
-                String::from_utf8_lossy(&o.stderr).contains("bad.sets"),
-                "{what}: names the file"
-            );
+            assert_eq!(o.status.code(), Some(2), "{what}: {}", String::from_utf8_lossy(&o.stderr));
+            assert!(String::from_utf8_lossy(&o.stderr).contains("bad.sets"), "{what}: names the file");
         }
         assert!(!out.exists(), "{what}: nothing written");
     }
@@ -222,65 +158,15 @@ fn misuse_exits_2() {
     let (model, _) = build(&input, "misuse.sets", &[]);
     let out = tmp("lod", "misuse.ply");
     for args in [
-        vec![
-            "lod",
-            "extract",
-            model.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-        ],
-        vec![
-            "lod",
-            "extract",
-            model.to_str().unwrap(),
-            "--ratio",
-            "1.5",
-            "-o",
-            out.to_str().unwrap(),
-        ],
-        vec![
-            "lod",
-            "extract",
-            model.to_str().unwrap(),
-            "--level",
-            "2",
-            "--ratio",
-            "0.5",
-            "-o",
-            out.to_str().unwrap(),
-        ],
-        vec![
-            "lod",
-            "extract",
-            model.to_str().unwrap(),
-            "--level",
-            "2",
-            "-o",
-            "/tmp/x.unknown",
-        ],
-        vec![
-            "lod",
-            "build",
-            input.to_str().unwrap(),
-            "-o",
-            "/no/such/folder/x.sets",
-        ],
-        vec![
-            "lod",
-            "build",
-            input.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--refine",
-        ],
+        vec!["lod", "extract", model.to_str().unwrap(), "-o", out.to_str().unwrap()],
+        vec!["lod", "extract", model.to_str().unwrap(), "--ratio", "1.5", "-o", out.to_str().unwrap()],
+        vec!["lod", "extract", model.to_str().unwrap(), "--level", "2", "--ratio", "0.5", "-o", out.to_str().unwrap()],
+        vec!["lod", "extract", model.to_str().unwrap(), "--level", "2", "-o", "/tmp/x.unknown"],
+        vec!["lod", "build", input.to_str().unwrap(), "-o", "/no/such/folder/x.sets"],
+        vec!["lod", "build", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--refine"],
     ] {
         let o = stripkit(&args);
-        assert_eq!(
-            o.status.code(),
-            Some(2),
-            "{args:?}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
     }
 }
 
@@ -310,7 +196,14 @@ fn animations_build_extract_and_bench() {
     let dir = animation("anim");
     let model = tmp("lod", "anim.lodseq");
     let r = json(&stripkit(&[
-        "lod", "build-seq", dir.to_str().unwrap(), "-o", model.to_str().unwrap(), "--samples", "500", "--json",
+        "lod",
+        "build-seq",
+        dir.to_str().unwrap(),
+        "-o",
+        model.to_str().unwrap(),
+        "--samples",
+        "500",
+        "--json",
     ]));
     assert_eq!(r["frames"], 4);
     assert_eq!(r["triangles"], 384);
@@ -326,7 +219,16 @@ fn animations_build_extract_and_bench() {
     for (frame, flag, value) in [("2", "--ratio", "0.3"), ("1.5", "--level", "40"), ("3", "--triangles", "50")] {
         let out = tmp("lod", &format!("anim_{frame}.ply"));
         let e = json(&stripkit(&[
-            "lod", "extract", model.to_str().unwrap(), "--frame", frame, flag, value, "-o", out.to_str().unwrap(), "--json",
+            "lod",
+            "extract",
+            model.to_str().unwrap(),
+            "--frame",
+            frame,
+            flag,
+            value,
+            "-o",
+            out.to_str().unwrap(),
+            "--json",
         ]));
         assert_eq!(e["frame"].as_f64().unwrap(), frame.parse::<f64>().unwrap());
         let back = stripkit::io::read(&out).unwrap();
@@ -344,17 +246,37 @@ fn animations_build_extract_and_bench() {
     }
     let r = json(&stripkit(&["lod", "bench", model.to_str().unwrap(), "--rounds", "1", "--json"]));
     let rows = r["rows"].as_array().unwrap();
-    assert_eq!(rows.len(), 7, "4 frame rows, 2 level rows, 1 play row");
+    assert_eq!(rows.len(), 8, "4 frame rows, 3 level rows, 1 play row");
     assert!(rows.iter().all(|row| row["mean_us"].as_f64().unwrap() >= 0.0));
     // Quantized positions: a smaller file that still extracts.
     let small = tmp("lod", "anim_q.lodseq");
     let q = json(&stripkit(&[
-        "lod", "build-seq", dir.to_str().unwrap(), "-o", small.to_str().unwrap(), "--samples", "500",
-        "--position-bits", "12", "--check", "sample", "--json",
+        "lod",
+        "build-seq",
+        dir.to_str().unwrap(),
+        "-o",
+        small.to_str().unwrap(),
+        "--samples",
+        "500",
+        "--position-bits",
+        "12",
+        "--check",
+        "sample",
+        "--json",
     ]));
     assert!(q["bytes"].as_u64().unwrap() < std::fs::metadata(&model).unwrap().len());
     let out = tmp("lod", "anim_q.glb");
-    let o = stripkit(&["lod", "extract", small.to_str().unwrap(), "--frame", "0", "--ratio", "0.5", "-o", out.to_str().unwrap()]);
+    let o = stripkit(&[
+        "lod",
+        "extract",
+        small.to_str().unwrap(),
+        "--frame",
+        "0",
+        "--ratio",
+        "0.5",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 

@@ -390,8 +390,7 @@ fn extract(args: ExtractArgs) -> anyhow::Result<()> {
         Some((f, _)) => Some(f),
         None if is_json(&args.output) => None,
         None => {
-            return Err(
-            Error::Invalid(format!(
+            return Err(Error::Invalid(format!(
                 "cannot tell the format of {} from its extension (use {} or .json)",
                 args.output.display(),
                 io::supported_write_extensions()
@@ -613,8 +612,9 @@ fn bench(args: BenchArgs) -> anyhow::Result<()> {
 #[derive(Serialize)]
 struct SeqTiming {
     /// What changes: "frame" (every frame of the animation in turn at a fixed
-    /// level), "level" (1% of the levels per step at a fixed frame), "play" (the
-    /// animation plays and the level changes every 24 frames).
+    /// level), "level" (1% of the levels per step, or one level up and back, at a
+    /// fixed frame), "play" (the animation plays and the level changes every 24
+    /// frames).
     test: &'static str,
     /// The fixed ratio of triangles ("frame"), or the frame ("level").
     at: String,
@@ -637,11 +637,7 @@ struct BenchSeqOut {
     from_scratch_us: f64,
 }
 
-fn time_changes(
-    cursor: &mut lod::SeqCursor<'_>,
-    steps: &[(usize, LevelSpec)],
-    rounds: usize,
-) -> (f64, f64, f64) {
+fn time_changes(cursor: &mut lod::SeqCursor<'_>, steps: &[(usize, LevelSpec)], rounds: usize) -> (f64, f64, f64) {
     let (mut total, mut max, mut changed) = (0.0f64, 0.0f64, 0usize);
     for _ in 0..rounds.max(1) {
         for &(f, spec) in steps {
@@ -666,28 +662,67 @@ fn bench_seq(args: &BenchArgs, seq: &LodSeq) -> anyhow::Result<()> {
         let steps: Vec<(usize, LevelSpec)> = (0..frames).map(|f| ((f + 1) % frames, spec)).collect();
         time_changes(&mut cursor, &steps, 1); // every model's cursor made once
         let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
-        rows.push(SeqTiming { test: "frame", at: format!("{}%", ratio * 100.0), changes: steps.len(), mean_us: mean, max_us: max, strips_changed: changed });
+        rows.push(SeqTiming {
+            test: "frame",
+            at: format!("{}%", ratio * 100.0),
+            changes: steps.len(),
+            mean_us: mean,
+            max_us: max,
+            strips_changed: changed,
+        });
     }
     // Level changes at a fixed frame: 1% of the levels per step, down and back.
     for f in [0, frames / 2] {
         let levels = seq.models()[seq.model_of(f)].levels();
         let step = (levels / 100).max(1);
-        let mut steps: Vec<(usize, LevelSpec)> = (0..=levels).step_by(step as usize).map(|l| (f, LevelSpec::Level(l))).collect();
+        let mut steps: Vec<(usize, LevelSpec)> =
+            (0..=levels).step_by(step as usize).map(|l| (f, LevelSpec::Level(l))).collect();
         let back: Vec<_> = steps.iter().rev().skip(1).copied().collect();
         steps.extend(back);
         let mut cursor = seq.cursor(f, LevelSpec::Level(0));
         let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
-        rows.push(SeqTiming { test: "level", at: format!("frame {f}"), changes: steps.len(), mean_us: mean, max_us: max, strips_changed: changed });
+        rows.push(SeqTiming {
+            test: "level",
+            at: format!("frame {f}, 1% steps"),
+            changes: steps.len(),
+            mean_us: mean,
+            max_us: max,
+            strips_changed: changed,
+        });
     }
+    // One level up and back at 100 points of the range, at frame 0.
+    let levels = seq.models()[seq.model_of(0)].levels();
+    let steps: Vec<(usize, LevelSpec)> = (0..levels)
+        .step_by((levels as usize / 100).max(1))
+        .flat_map(|l| [(0, LevelSpec::Level(l + 1)), (0, LevelSpec::Level(l))])
+        .collect();
+    let mut cursor = seq.cursor(0, LevelSpec::Level(0));
+    let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
+    rows.push(SeqTiming {
+        test: "level",
+        at: "frame 0, one level".into(),
+        changes: steps.len(),
+        mean_us: mean,
+        max_us: max,
+        strips_changed: changed,
+    });
     // The paper's Fig. 5b: the animation plays, the level moves every 24 frames
     // (100% -> 2% -> 100% in ten steps each way).
-    let ratios: Vec<f64> = (0..=10).map(|i| 1.0 - 0.098 * i as f64).chain((0..10).rev().map(|i| 1.0 - 0.098 * i as f64)).collect();
+    let ratios: Vec<f64> =
+        (0..=10).map(|i| 1.0 - 0.098 * i as f64).chain((0..10).rev().map(|i| 1.0 - 0.098 * i as f64)).collect();
     let steps: Vec<(usize, LevelSpec)> =
         (0..ratios.len() * 24).map(|i| (i % frames, LevelSpec::Ratio(ratios[i / 24]))).collect();
     let mut cursor = seq.cursor(0, LevelSpec::Ratio(1.0));
     time_changes(&mut cursor, &steps, 1);
     let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
-    rows.push(SeqTiming { test: "play", at: "level every 24 frames".into(), changes: steps.len(), mean_us: mean, max_us: max, strips_changed: changed });
+    rows.push(SeqTiming {
+        test: "play",
+        at: "level every 24 frames".into(),
+        changes: steps.len(),
+        mean_us: mean,
+        max_us: max,
+        strips_changed: changed,
+    });
     let mut scratch = Vec::new();
     for _ in 0..args.rounds.max(1) {
         let t = Instant::now();
@@ -710,7 +745,11 @@ fn bench_seq(args: &BenchArgs, seq: &LodSeq) -> anyhow::Result<()> {
             "{}: {} frames, {} models, {} triangles, {} strips; microseconds per change (extraction only, CPU)",
             o.input, o.frames, o.models, o.triangles, o.strips
         )?;
-        writeln!(w, "{:>6} {:>22} {:>8} {:>10} {:>10} {:>14}", "test", "at", "changes", "mean", "max", "strips changed")?;
+        writeln!(
+            w,
+            "{:>6} {:>22} {:>8} {:>10} {:>10} {:>14}",
+            "test", "at", "changes", "mean", "max", "strips changed"
+        )?;
         for r in &o.rows {
             writeln!(
                 w,

@@ -75,11 +75,7 @@ pub fn build(mesh: &Mesh, options: &BuildOptions, progress: &mut dyn FnMut(f64))
     positions.extend_from_slice(&strips.added_positions);
     let simplified_mesh = Mesh::from_triangles(positions, &strips.triangles);
     let t = Instant::now();
-    let simplify_options = Options {
-        target: Target::Triangles(0),
-        placement: options.placement,
-        ..Options::default()
-    };
+    let simplify_options = Options { target: Target::Triangles(0), placement: options.placement, ..Options::default() };
     let simplified = simplify(&simplified_mesh, &simplify_options, progress)?;
     let simplify_ms = t.elapsed().as_secs_f64() * 1e3;
     let t = Instant::now();

@@ -35,7 +35,13 @@ pub struct LevelCheck {
 ///
 /// O(levels x valence + checked levels x the strips they change). The first
 /// difference is [`Error::Verification`], naming the level and a triangle.
-pub fn check_levels(sets: &Sets, mesh: &Mesh, sequence: &CollapseSequence, stride: usize, replays: usize) -> Result<LevelCheck> {
+pub fn check_levels(
+    sets: &Sets,
+    mesh: &Mesh,
+    sequence: &CollapseSequence,
+    stride: usize,
+    replays: usize,
+) -> Result<LevelCheck> {
     let start = Instant::now();
     let tris = mesh.triangulate().tris;
     let n = mesh.positions.len();
@@ -178,9 +184,7 @@ fn compare_with_replay(
             if sets.positions[name[v as usize] as usize] != replay.positions[v as usize] {
                 return Err(Error::Verification(format!(
                     "level {level}: vertex {v} is at {:?} in the replay but the model's vertex {} is at {:?}",
-                    replay.positions[v as usize],
-                    name[v as usize],
-                    sets.positions[name[v as usize] as usize]
+                    replay.positions[v as usize], name[v as usize], sets.positions[name[v as usize] as usize]
                 )));
             }
         }

@@ -144,7 +144,10 @@ impl Sets {
             Placement::Optimal => input_vertices as u64 + levels as u64,
         };
         if position_count as u64 != expected_positions || position_count == END {
-            return Err(fmt(20, format!("{position_count} positions for {input_vertices} vertices and {levels} levels")));
+            return Err(fmt(
+                20,
+                format!("{position_count} positions for {input_vertices} vertices and {levels} levels"),
+            ));
         }
         if versions < slots || beginnings < strips || slots == END {
             return Err(fmt(36, "fewer versions than slots or beginnings than strips".into()));
@@ -523,7 +526,8 @@ impl super::seq::LodSeq {
             for x in &mut grid {
                 *x = r.f32()?;
             }
-            let q = super::seq::Quantization { bits, lo: [grid[0], grid[1], grid[2]], step: [grid[3], grid[4], grid[5]] };
+            let q =
+                super::seq::Quantization { bits, lo: [grid[0], grid[1], grid[2]], step: [grid[3], grid[4], grid[5]] };
             if !grid.iter().all(|x| x.is_finite()) || q.step.iter().any(|&s| s <= 0.0) {
                 return Err(fmt(r.at, "the position grid is not finite and positive".into()));
             }
@@ -584,7 +588,10 @@ impl super::seq::LodSeq {
             r.at += len as usize;
             if model.input_vertices != vertices || !model.positions.is_empty() || model.placement != Placement::Endpoint
             {
-                return Err(fmt(at, format!("model {m} is not a positionless endpoint model over {vertices} vertices")));
+                return Err(fmt(
+                    at,
+                    format!("model {m} is not a positionless endpoint model over {vertices} vertices"),
+                ));
             }
             if sets.first().is_some_and(|first| first.strip_slots != model.strip_slots) {
                 return Err(fmt(at, format!("model {m} lays its strips out unlike model 0")));

@@ -29,8 +29,8 @@ pub use check::{check_levels, LevelCheck};
 pub use cursor::{bench_levels, Cursor, Spacing};
 pub use file::{LODSEQ_MAGIC, SETS_MAGIC};
 pub use seq::{
-    build_seq, read_frames, BuiltSeq, FrameQuality, Frames, LevelSpec, LodSeq, Quality, SeqCursor, SeqOptions, SeqReport,
-    QUALITY_RATIOS,
+    build_seq, read_frames, BuiltSeq, FrameQuality, Frames, LevelSpec, LodSeq, Quality, SeqCursor, SeqOptions,
+    SeqReport, QUALITY_RATIOS,
 };
 pub use sets::{Sets, END};
 

@@ -165,7 +165,9 @@ impl Sets {
         self.change_level.clear();
         for s in 0..strips {
             levels.clear();
-            levels.extend_from_slice(&self.begin_level[self.begin_offsets[s] as usize..self.begin_offsets[s + 1] as usize]);
+            levels.extend_from_slice(
+                &self.begin_level[self.begin_offsets[s] as usize..self.begin_offsets[s + 1] as usize],
+            );
             let slots = self.strip_slots[s] as usize..self.strip_slots[s + 1] as usize;
             levels.extend(
                 self.versions[self.version_offsets[slots.start] as usize..self.version_offsets[slots.end] as usize]
@@ -181,9 +183,9 @@ impl Sets {
         let mut t = self.triangles0;
         self.triangles_at.push(t);
         for (i, &r) in self.removed_triangles.iter().enumerate() {
-            t = t.checked_sub(r).ok_or_else(|| {
-                Error::Invalid(format!("collapse {i} removes {r} triangles, more than the {t} left"))
-            })?;
+            t = t
+                .checked_sub(r)
+                .ok_or_else(|| Error::Invalid(format!("collapse {i} removes {r} triangles, more than the {t} left")))?;
             self.triangles_at.push(t);
         }
         Ok(())

@@ -16,13 +16,8 @@ fn paper_example_sequences() {
     let sets = Sets::build(&positions, &strips, &seq, Placement::Endpoint).unwrap();
     let (a, b, d, e, f, g, h) = (0, 1, 3, 4, 5, 6, 7);
     let _ = (a, b, f, g);
-    let want: [&[u32]; 5] = [
-        &[0, 1, 2, 3, 4, 5, 6, 7],
-        &[a, b, d, d, e, f, g, h],
-        &[d, d, e, f, g, h],
-        &[e, d, g, h],
-        &[e, d, h],
-    ];
+    let want: [&[u32]; 5] =
+        [&[0, 1, 2, 3, 4, 5, 6, 7], &[a, b, d, d, e, f, g, h], &[d, d, e, f, g, h], &[e, d, g, h], &[e, d, h]];
     for (level, w) in want.iter().enumerate() {
         assert_eq!(sets.strips_at(level as u32).strip(0), *w, "level {level}");
     }
