@@ -16,6 +16,10 @@
 //!   read as untrusted input.
 //! * [`check_levels`] proves a model against an independent replay of the collapses,
 //!   level by level.
+//! * Deforming meshes ([`read_frames`], [`build_seq`], [`LodSeq`], [`SeqCursor`]):
+//!   one strip connectivity for every frame of an animation, a few shared
+//!   sequences chosen by measuring them on every frame, any (frame, level)
+//!   recovered, positions morphed between key frames.
 
 mod build;
 mod check;

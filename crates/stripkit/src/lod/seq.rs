@@ -105,7 +105,8 @@ pub fn read_frames(folder: &Path, options: &ReadOptions) -> Result<Frames> {
 pub struct SeqOptions {
     /// The stripifier of the shared level-0 strips (one that adds no vertices).
     pub strip: StripOptions,
-    /// Most sequences to keep (each is one [`Sets`] model). Default 8.
+    /// Most sequences to choose (each is one [`Sets`] model), besides the reference
+    /// pose's, which is kept too when a frame falls back to it. Default 8.
     pub max_sequences: usize,
     /// Stop adding sequences once every frame's Hausdorff distance is within this
     /// factor of its own sequence's, at both [`QUALITY_RATIOS`]. Default 1.25.
@@ -354,9 +355,18 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
         progress(0.4 + 0.5 * (f + 1) as f64 / f_count as f64);
     }
     let distance_ms = t.elapsed().as_secs_f64() * 1e3;
-    // Greedy k-center on the worse Hausdorff factor against the frame's own.
-    let factor = |c: usize, f: usize| quality[c][f].factor(&own_quality[f]);
-    let mut chosen = vec![0usize];
+    // Greedy k-center on the worse Hausdorff factor against the frame's own. A
+    // sequence counts for a frame only where it is no worse than the reference
+    // pose's (candidate 0), which every frame may fall back to; so the objective
+    // is the one the assignment below sees.
+    let factor = |c: usize, f: usize| {
+        if c == 0 || quality[c][f].within(&quality[0][f]) {
+            quality[c][f].factor(&own_quality[f])
+        } else {
+            f64::INFINITY
+        }
+    };
+    let mut chosen: Vec<usize> = Vec::new();
     let mut best: Vec<f64> = (0..f_count).map(|f| factor(0, f)).collect();
     while chosen.len() < options.max_sequences {
         let worst = best.iter().copied().fold(0.0, f64::max);
@@ -367,14 +377,14 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
             let v: Vec<f64> = (0..f_count).map(|f| best[f].min(factor(c, f))).collect();
             (v.iter().copied().fold(0.0, f64::max), v.iter().sum::<f64>())
         };
-        let Some((c, (max, _))) = (0..candidates.len())
+        let Some((c, (max, sum))) = (0..candidates.len())
             .filter(|c| !chosen.contains(c))
             .map(|c| (c, score(c)))
             .min_by(|a, b| a.1 .0.total_cmp(&b.1 .0).then(a.1 .1.total_cmp(&b.1 .1)))
         else {
             break;
         };
-        if max >= worst && score(c).1 >= best.iter().sum::<f64>() {
+        if max >= worst && sum >= best.iter().sum::<f64>() {
             break;
         }
         chosen.push(c);
@@ -382,13 +392,13 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
             *b = b.min(factor(c, f));
         }
     }
-    // Each frame: the best chosen sequence among those no worse than the reference's.
+    // Each frame: the best of the chosen sequences and the reference pose's.
     let assign: Vec<usize> = (0..f_count)
         .map(|f| {
             chosen
                 .iter()
                 .copied()
-                .filter(|&c| quality[c][f].within(&quality[0][f]))
+                .chain([0])
                 .min_by(|&a, &b| factor(a, f).total_cmp(&factor(b, f)))
                 .unwrap_or(0)
         })
