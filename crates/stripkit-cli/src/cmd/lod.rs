@@ -637,18 +637,25 @@ struct BenchSeqOut {
     from_scratch_us: f64,
 }
 
-fn time_changes(cursor: &mut lod::SeqCursor<'_>, steps: &[(usize, LevelSpec)], rounds: usize) -> (f64, f64, f64) {
-    let (mut total, mut max, mut changed) = (0.0f64, 0.0f64, 0usize);
+/// Times `cursor.set` over `steps`, `rounds` times: mean and max microseconds and
+/// mean strips changed per timed step. A step whose flag is false only positions
+/// the cursor (untimed).
+fn time_changes(cursor: &mut lod::SeqCursor<'_>, steps: &[(usize, LevelSpec, bool)], rounds: usize) -> (f64, f64, f64) {
+    let (mut total, mut max, mut changed, mut n) = (0.0f64, 0.0f64, 0usize, 0usize);
     for _ in 0..rounds.max(1) {
-        for &(f, spec) in steps {
+        for &(f, spec, timed) in steps {
             let t = Instant::now();
-            changed += cursor.set(f, spec).len();
+            let c = cursor.set(f, spec).len();
             let us = t.elapsed().as_secs_f64() * 1e6;
-            total += us;
-            max = max.max(us);
+            if timed {
+                total += us;
+                max = max.max(us);
+                changed += c;
+                n += 1;
+            }
         }
     }
-    let n = (steps.len() * rounds.max(1)).max(1) as f64;
+    let n = n.max(1) as f64;
     (total / n, max, changed as f64 / n)
 }
 
@@ -659,7 +666,7 @@ fn bench_seq(args: &BenchArgs, seq: &LodSeq) -> anyhow::Result<()> {
     for ratio in [1.0, 0.5, 0.1, 0.02] {
         let spec = LevelSpec::Ratio(ratio);
         let mut cursor = seq.cursor(0, spec);
-        let steps: Vec<(usize, LevelSpec)> = (0..frames).map(|f| ((f + 1) % frames, spec)).collect();
+        let steps: Vec<(usize, LevelSpec, bool)> = (0..frames).map(|f| ((f + 1) % frames, spec, true)).collect();
         time_changes(&mut cursor, &steps, 1); // every model's cursor made once
         let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
         rows.push(SeqTiming {
@@ -675,8 +682,8 @@ fn bench_seq(args: &BenchArgs, seq: &LodSeq) -> anyhow::Result<()> {
     for f in [0, frames / 2] {
         let levels = seq.models()[seq.model_of(f)].levels();
         let step = (levels / 100).max(1);
-        let mut steps: Vec<(usize, LevelSpec)> =
-            (0..=levels).step_by(step as usize).map(|l| (f, LevelSpec::Level(l))).collect();
+        let mut steps: Vec<(usize, LevelSpec, bool)> =
+            (0..=levels).step_by(step as usize).map(|l| (f, LevelSpec::Level(l), true)).collect();
         let back: Vec<_> = steps.iter().rev().skip(1).copied().collect();
         steps.extend(back);
         let mut cursor = seq.cursor(f, LevelSpec::Level(0));
@@ -692,16 +699,19 @@ fn bench_seq(args: &BenchArgs, seq: &LodSeq) -> anyhow::Result<()> {
     }
     // One level up and back at 100 points of the range, at frame 0.
     let levels = seq.models()[seq.model_of(0)].levels();
-    let steps: Vec<(usize, LevelSpec)> = (0..levels)
+    // Placed at each point untimed, then one level down and back up, timed.
+    let steps: Vec<(usize, LevelSpec, bool)> = (0..levels)
         .step_by((levels as usize / 100).max(1))
-        .flat_map(|l| [(0, LevelSpec::Level(l + 1)), (0, LevelSpec::Level(l))])
+        .flat_map(|l| {
+            [(0, LevelSpec::Level(l), false), (0, LevelSpec::Level(l + 1), true), (0, LevelSpec::Level(l), true)]
+        })
         .collect();
     let mut cursor = seq.cursor(0, LevelSpec::Level(0));
     let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
     rows.push(SeqTiming {
         test: "level",
         at: "frame 0, one level".into(),
-        changes: steps.len(),
+        changes: 2 * steps.len() / 3,
         mean_us: mean,
         max_us: max,
         strips_changed: changed,
@@ -710,8 +720,8 @@ fn bench_seq(args: &BenchArgs, seq: &LodSeq) -> anyhow::Result<()> {
     // (100% -> 2% -> 100% in ten steps each way).
     let ratios: Vec<f64> =
         (0..=10).map(|i| 1.0 - 0.098 * i as f64).chain((0..10).rev().map(|i| 1.0 - 0.098 * i as f64)).collect();
-    let steps: Vec<(usize, LevelSpec)> =
-        (0..ratios.len() * 24).map(|i| (i % frames, LevelSpec::Ratio(ratios[i / 24]))).collect();
+    let steps: Vec<(usize, LevelSpec, bool)> =
+        (0..ratios.len() * 24).map(|i| (i % frames, LevelSpec::Ratio(ratios[i / 24]), true)).collect();
     let mut cursor = seq.cursor(0, LevelSpec::Ratio(1.0));
     time_changes(&mut cursor, &steps, 1);
     let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
