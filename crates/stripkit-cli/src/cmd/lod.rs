@@ -100,9 +100,10 @@ struct BuildSeqArgs {
     /// Output (`.lodseq`).
     #[arg(short, long)]
     output: PathBuf,
-    /// Most simplification sequences to keep (each is one SETS model, about
-    /// 9 bytes per triangle).
-    #[arg(long, default_value_t = 8)]
+    /// Most simplification sequences to choose (each is one SETS model, about
+    /// 9 bytes per triangle), besides the reference pose's, which is kept too when
+    /// a frame falls back to it.
+    #[arg(long, default_value_t = 16)]
     max_sequences: usize,
     /// Stop keeping sequences once every frame's Hausdorff distance, at 10% and 2%
     /// of the triangles, is within this factor of its own simplification's.

@@ -106,7 +106,7 @@ pub struct SeqOptions {
     /// The stripifier of the shared level-0 strips (one that adds no vertices).
     pub strip: StripOptions,
     /// Most sequences to choose (each is one [`Sets`] model), besides the reference
-    /// pose's, which is kept too when a frame falls back to it. Default 8.
+    /// pose's, which is kept too when a frame falls back to it. Default 16.
     pub max_sequences: usize,
     /// Stop adding sequences once every frame's Hausdorff distance is within this
     /// factor of its own sequence's, at both [`QUALITY_RATIOS`]. Default 1.25.
@@ -129,7 +129,7 @@ impl Default for SeqOptions {
     fn default() -> Self {
         SeqOptions {
             strip: StripOptions::default(),
-            max_sequences: 8,
+            max_sequences: 16,
             tolerance: 1.25,
             samples: 4000,
             candidates: 24,
