@@ -86,9 +86,7 @@ impl Sets {
                 varint(&mut out, slot);
             }
         }
-        let mut crc = flate2::Crc::new();
-        crc.update(&out);
-        out.extend_from_slice(&crc.sum().to_le_bytes());
+        seal(&mut out);
         out
     }
 
@@ -111,23 +109,8 @@ impl Sets {
     /// bounds or loop. A failure is [`Error::Format`] with the byte offset.
     pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Sets> {
         let fmt = |at: usize, what: String| Error::Format { path: path.to_path_buf(), at: format!("byte {at}"), what };
-        if bytes.len() < SETS_MAGIC.len() + 44 {
-            return Err(fmt(0, format!("{} bytes is too short for a .sets file", bytes.len())));
-        }
-        if &bytes[..8] != SETS_MAGIC {
-            return Err(fmt(0, "not a stripkit .sets file (bad magic)".into()));
-        }
-        let (body, tail) = bytes.split_at(bytes.len() - 4);
-        let mut crc = flate2::Crc::new();
-        crc.update(body);
-        if crc.sum().to_le_bytes() != tail {
-            return Err(fmt(body.len(), "checksum mismatch: the file is damaged or truncated".into()));
-        }
-        let mut r = Reader { bytes: body, at: 8, fmt: &fmt };
-        let version = r.u32()?;
-        if version != FORMAT_VERSION {
-            return Err(fmt(8, format!("format version {version}; this stripkit reads version {FORMAT_VERSION}")));
-        }
+        let mut r = Reader::open(bytes, SETS_MAGIC, 40, ".sets", &fmt)?;
+        let body = r.bytes;
         let flags = r.u32()?;
         let positionless = flags & FLAG_NO_POSITIONS != 0;
         if flags & !(FLAG_OPTIMAL | FLAG_NO_POSITIONS) != 0 || (positionless && flags & FLAG_OPTIMAL != 0) {
@@ -317,7 +300,37 @@ struct Reader<'a> {
     fmt: &'a dyn Fn(usize, String) -> Error,
 }
 
-impl Reader<'_> {
+impl<'a> Reader<'a> {
+    /// Checks a file's length (the magic, `header` more bytes and the checksum),
+    /// its magic, its trailing CRC-32 (before anything else is read, so that damage
+    /// says so) and its format version; reads the body after the version.
+    fn open(
+        bytes: &'a [u8],
+        magic: &[u8; 8],
+        header: usize,
+        kind: &str,
+        fmt: &'a dyn Fn(usize, String) -> Error,
+    ) -> Result<Reader<'a>> {
+        if bytes.len() < magic.len() + header + 4 {
+            return Err(fmt(0, format!("{} bytes is too short for a {kind} file", bytes.len())));
+        }
+        if &bytes[..8] != magic {
+            return Err(fmt(0, format!("not a stripkit {kind} file (bad magic)")));
+        }
+        let (body, tail) = bytes.split_at(bytes.len() - 4);
+        let mut crc = flate2::Crc::new();
+        crc.update(body);
+        if crc.sum().to_le_bytes() != tail {
+            return Err(fmt(body.len(), "checksum mismatch: the file is damaged or truncated".into()));
+        }
+        let mut r = Reader { bytes: body, at: 8, fmt };
+        let version = r.u32()?;
+        if version != FORMAT_VERSION {
+            return Err(fmt(8, format!("format version {version}; this stripkit reads version {FORMAT_VERSION}")));
+        }
+        Ok(r)
+    }
+
     fn left(&self) -> usize {
         self.bytes.len() - self.at
     }
@@ -364,6 +377,14 @@ impl Reader<'_> {
         }
         Ok(v as u32)
     }
+}
+
+/// Appends the CRC-32 of everything before it.
+fn seal(out: &mut Vec<u8>) {
+    let mut crc = flate2::Crc::new();
+    crc.update(out);
+    let sum = crc.sum();
+    out.extend_from_slice(&sum.to_le_bytes());
 }
 
 fn varint(out: &mut Vec<u8>, mut v: u64) {
@@ -445,9 +466,7 @@ impl super::seq::LodSeq {
             varint(&mut out, bytes.len() as u64);
             out.extend_from_slice(&bytes);
         }
-        let mut crc = flate2::Crc::new();
-        crc.update(&out);
-        out.extend_from_slice(&crc.sum().to_le_bytes());
+        seal(&mut out);
         out
     }
 
@@ -467,23 +486,8 @@ impl super::seq::LodSeq {
     /// model positionless over the frames' vertex count with the same strip layout.
     pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<super::seq::LodSeq> {
         let fmt = |at: usize, what: String| Error::Format { path: path.to_path_buf(), at: format!("byte {at}"), what };
-        if bytes.len() < 8 + 20 + 4 {
-            return Err(fmt(0, format!("{} bytes is too short for a .lodseq file", bytes.len())));
-        }
-        if &bytes[..8] != LODSEQ_MAGIC {
-            return Err(fmt(0, "not a stripkit .lodseq file (bad magic)".into()));
-        }
-        let (body, tail) = bytes.split_at(bytes.len() - 4);
-        let mut crc = flate2::Crc::new();
-        crc.update(body);
-        if crc.sum().to_le_bytes() != tail {
-            return Err(fmt(body.len(), "checksum mismatch: the file is damaged or truncated".into()));
-        }
-        let mut r = Reader { bytes: body, at: 8, fmt: &fmt };
-        let version = r.u32()?;
-        if version != FORMAT_VERSION {
-            return Err(fmt(8, format!("format version {version}; this stripkit reads version {FORMAT_VERSION}")));
-        }
+        let mut r = Reader::open(bytes, LODSEQ_MAGIC, 20, ".lodseq", &fmt)?;
+        let body = r.bytes;
         let (frames, vertices, models, bits) = (r.u32()?, r.u32()?, r.u32()?, r.u32()?);
         if frames == 0 || models == 0 {
             return Err(fmt(12, "a sequence needs at least one frame and one model".into()));

@@ -43,3 +43,13 @@ fn removals_keep_triangles() {
     // Nothing to remove in a clean strip.
     assert_eq!(find_removal(&[0, 1, 2, 3, 4, 5, 6], true, true), None);
 }
+
+/// An empty strip set under an empty sequence: the smallest `.sets` file reads back.
+#[test]
+fn empty_model_round_trips() {
+    let sets = Sets::build(&[], &StripSet::new(), &CollapseSequence::new(0, 0), Placement::Endpoint).unwrap();
+    let bytes = sets.to_bytes();
+    assert_eq!(bytes.len(), 8 + 40 + 4);
+    assert_eq!(Sets::from_bytes(std::path::Path::new("empty.sets"), &bytes).unwrap(), sets);
+    assert!(sets.strips_at(0).is_empty());
+}
