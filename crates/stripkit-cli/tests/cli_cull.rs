@@ -68,3 +68,32 @@ fn refuses_bad_flags() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("--view"), "{err}");
 }
+
+#[test]
+fn frustum_culling_skips_what_a_narrow_camera_leaves_out() {
+    let mesh = tmp("torus_frustum.ply");
+    let (code, _, err) = stripkit(&["gen", "torus", "-o", mesh.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["cull", mesh.to_str().unwrap(), "--views", "40", "--repeat", "1", "--json"];
+        args.extend_from_slice(extra);
+        let (code, out, err) = stripkit(&args);
+        assert_eq!(code, 0, "{extra:?}: {err}");
+        let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+        j
+    };
+    let plain = run(&[]);
+    let wide = run(&["--frustum"]);
+    assert_eq!(wide["mean"]["outside"], 0.0, "the path's 60 degrees hold the whole torus");
+    assert_eq!(wide["mean"]["segments"], plain["mean"]["segments"]);
+    let narrow = run(&["--frustum", "--fov", "15"]);
+    assert!(narrow["mean"]["outside"].as_f64().unwrap() > 0.0, "{}", narrow["mean"]);
+    assert!(narrow["mean"]["drawn"].as_f64().unwrap() < plain["mean"]["drawn"].as_f64().unwrap());
+    assert_eq!(narrow["fov"], 15.0);
+    for bad in [&["--fov", "20"][..], &["--frustum", "--fov", "0"], &["--frustum", "--fov", "200"]] {
+        let mut args = vec!["cull", mesh.to_str().unwrap(), "--views", "4"];
+        args.extend_from_slice(bad);
+        let (code, _, err) = stripkit(&args);
+        assert_eq!(code, 2, "{bad:?}: {err}");
+    }
+}

@@ -7,7 +7,10 @@
 mod support;
 
 use std::collections::HashMap;
-use stripkit::cull::{helix_eyes, CullOptions, Culled, Facing, FacingCounter, RenderFront, SegmentTree, HELIX_VIEWS, NONE};
+use stripkit::cull::{
+    bounding_sphere, helix_eyes, CullOptions, Culled, Facing, FacingCounter, Frustum, RenderFront, SegmentTree, Side,
+    HELIX_VIEWS, NONE,
+};
 use stripkit::{gen, stripify, Algorithm, Mesh, SingleOptions, StripOptions, Strips, Weights};
 
 struct Rng(u64);
@@ -303,9 +306,9 @@ fn greedy_strips_and_small_leaves_keep_the_front_equal() {
         let s = strip_with(&mesh, Algorithm::greedy());
         check_strips(&format!("{name} greedy"), &s, &mesh, CullOptions::default());
         let s = single(&mesh, Weights::Cull);
-        check_strips(&format!("{name} min 8"), &s, &mesh, CullOptions { min_triangles: 8, max_gap: 0 });
-        check_strips(&format!("{name} gap 6"), &s, &mesh, CullOptions { min_triangles: 0, max_gap: 6 });
-        check_strips(&format!("{name} min 4 gap 30"), &s, &mesh, CullOptions { min_triangles: 4, max_gap: 30 });
+        check_strips(&format!("{name} min 8"), &s, &mesh, CullOptions { min_triangles: 8, max_gap: 0, frustum: None });
+        check_strips(&format!("{name} gap 6"), &s, &mesh, CullOptions { min_triangles: 0, max_gap: 6, frustum: None });
+        check_strips(&format!("{name} min 4 gap 30"), &s, &mesh, CullOptions { min_triangles: 4, max_gap: 30, frustum: None });
     }
 }
 
@@ -402,4 +405,68 @@ fn fandisk_cull_weights_need_fewer_segments() {
     };
     let (cull, uniform) = (mean(Weights::Cull), mean(Weights::Uniform));
     assert!(cull < 60.0 && cull * 2.5 < uniform, "cull {cull}, uniform {uniform}");
+}
+
+/// Frustum culling: a narrow camera along the helix skips what lies outside its
+/// frustum, never a front-facing triangle with a vertex well inside, gives the same
+/// ranges from the roots and from the render front, and a wide one changes nothing.
+#[test]
+fn frustum_culling_skips_only_what_lies_outside() {
+    for (name, mesh) in meshes() {
+        let strips = single(&mesh, Weights::Cull);
+        let pos = strips.with_added_vertices(&mesh.positions);
+        let tree = SegmentTree::build(&strips.strips, &pos);
+        let (center, radius) = bounding_sphere(&pos);
+        let idx = &strips.strips.indices;
+        let mut front = RenderFront::new(&tree);
+        let (mut a, mut b, mut plain) = (Culled::default(), Culled::default(), Culled::default());
+        let mut outside_views = 0;
+        for (v, eye) in helix_eyes(center, radius, 60).into_iter().enumerate() {
+            // The helix's own camera (60 degrees) holds the whole model: no change.
+            let wide = Frustum::perspective(eye, center, [0.0, 1.0, 0.0], 60.0, 1.0, 0.01, 100.0 * radius).unwrap();
+            tree.cull(eye, &CullOptions::default(), &mut plain);
+            tree.cull(eye, &CullOptions { frustum: Some(wide), ..CullOptions::default() }, &mut a);
+            assert_eq!(a.ranges, plain.ranges, "{name}: view {v}");
+            assert_eq!(a.outside_triangles, 0);
+            // A 12-degree camera aimed off-centre.
+            let target = [center[0] + 0.3 * radius, center[1], center[2]];
+            let narrow = Frustum::perspective(eye, target, [0.0, 1.0, 0.0], 12.0, 1.5, 0.01, 100.0 * radius).unwrap();
+            let options = CullOptions { frustum: Some(narrow), ..CullOptions::default() };
+            tree.cull(eye, &options, &mut a);
+            front.cull(&tree, eye, &options, &mut b);
+            assert_eq!(a.ranges, b.ranges, "{name}: view {v}: the front equals the root traversal");
+            assert_eq!(a.reused + b.reused, 0, "no reuse with a frustum");
+            outside_views += (a.outside_triangles > 0) as usize;
+            assert!(a.drawn_triangles <= plain.drawn_triangles);
+            // Every front-facing triangle with a vertex inside the frustum (by a
+            // margin) is drawn.
+            let drawn = |i: usize| a.ranges.iter().any(|r| r.start as usize <= i && i + 3 <= r.end as usize);
+            let inside = |p: [f32; 3]| {
+                narrow.planes.iter().all(|pl| {
+                    pl[0] as f64 * p[0] as f64 + pl[1] as f64 * p[1] as f64 + pl[2] as f64 * p[2] as f64 + pl[3] as f64
+                        > 1e-3 * radius as f64
+                })
+            };
+            for (si, strip) in strips.strips.iter().enumerate() {
+                let base = strips.strips.offsets[si] as usize;
+                for i in 0..strip.len().saturating_sub(2) {
+                    let t = strip_triangle(strip, i);
+                    if drawable(t) && facing(t, &pos, eye) > 1e-4 && t.iter().any(|&x| inside(pos[x as usize])) {
+                        assert!(drawn(base + i), "{name}: view {v}: visible triangle {t:?} culled");
+                    }
+                }
+            }
+            let _ = idx;
+        }
+        assert!(outside_views > 30, "{name}: the narrow camera leaves parts out ({outside_views} of 60 views)");
+    }
+    // Spheres against planes, and bad cameras.
+    let f = Frustum::perspective([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 60.0, 1.0, 0.1, 100.0).unwrap();
+    assert_eq!(f.side([0.0; 3], 0.5), Side::Inside);
+    assert_eq!(f.side([0.0, 0.0, 10.0], 0.5), Side::Outside, "behind the eye");
+    assert_eq!(f.side([50.0, 0.0, 0.0], 1.0), Side::Outside);
+    assert_eq!(f.side([2.88, 0.0, 0.0], 0.1), Side::Crossing, "on the right plane");
+    assert!(Frustum::perspective([0.0; 3], [0.0; 3], [0.0, 1.0, 0.0], 60.0, 1.0, 0.1, 10.0).is_none());
+    assert!(Frustum::perspective([0.0, 0.0, 5.0], [0.0; 3], [0.0, 0.0, 1.0], 60.0, 1.0, 0.1, 10.0).is_none());
+    assert!(Frustum::perspective([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], 180.0, 1.0, 0.1, 10.0).is_none());
 }

@@ -7,7 +7,7 @@ use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
-use stripkit::cull::{helix_eyes, CullOptions, Culled, FacingCounter, RenderFront, SegmentTree, HELIX_VIEWS};
+use stripkit::cull::{helix_eyes, CullOptions, Culled, FacingCounter, Frustum, RenderFront, SegmentTree, HELIX_VIEWS};
 use stripkit::{Algorithm, SingleOptions, StripOptions, Weights};
 
 /// Arguments of `stripkit cull`.
@@ -60,6 +60,16 @@ pub struct Args {
     /// fewer draws for a few more triangles (0: only neighbouring drawn nodes join).
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub max_gap: u32,
+    /// Also cull by the view frustum, with the tree's bounding spheres: the path's
+    /// camera looks at the mesh's centre, +Y up, square viewport, near 0.01 and far
+    /// 100 bounding radii. Nodes wholly outside are skipped ("outside"); the render
+    /// front then tests every node again (the frustum turns with the camera).
+    #[arg(long)]
+    pub frustum: bool,
+    /// With --frustum: the camera's vertical field of view in degrees (the path's is
+    /// 60, which holds the whole mesh; a narrower one leaves parts out).
+    #[arg(long, value_name = "DEG", requires = "frustum")]
+    pub fov: Option<f32>,
     /// Runs of the path for the times (each view's best is kept).
     #[arg(long, value_name = "N", default_value_t = 5)]
     pub repeat: usize,
@@ -92,6 +102,8 @@ pub struct View {
     pub back_culled: usize,
     pub back_drawn: usize,
     pub front_missed: usize,
+    /// Triangles skipped as outside the frustum (--frustum).
+    pub outside: usize,
     pub visited_root: usize,
     pub visited_front: usize,
     pub reused_front: usize,
@@ -111,6 +123,9 @@ pub struct Report {
     pub tree_depth: usize,
     pub build_ms: f64,
     pub views: usize,
+    /// Frustum culling on, and the camera's vertical field of view.
+    pub frustum: bool,
+    pub fov: f32,
     pub mean: Averages,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub per_view: Vec<View>,
@@ -125,6 +140,7 @@ pub struct Averages {
     pub back_culled: f64,
     pub back_drawn: f64,
     pub front_missed: f64,
+    pub outside: f64,
     pub visited_root: f64,
     pub visited_front: f64,
     pub reused_front: f64,
@@ -156,14 +172,24 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let eyes = match args.path {
         PathKind::Spiral => helix_eyes(center, radius, args.views),
     };
-    let cull = CullOptions { min_triangles: args.min_triangles, max_gap: args.max_gap };
+    let fov = args.fov.unwrap_or(60.0);
+    anyhow::ensure!(fov > 0.0 && fov < 179.0, "--fov {fov} is out of range: more than 0 and less than 179 degrees");
+    let base = CullOptions { min_triangles: args.min_triangles, max_gap: args.max_gap, frustum: None };
+    let near_far = (0.01 * radius.max(1e-6), 100.0 * radius.max(1e-6));
+    let cull_at = |eye: [f32; 3]| CullOptions {
+        frustum: args
+            .frustum
+            .then(|| Frustum::perspective(eye, center, [0.0, 1.0, 0.0], fov, 1.0, near_far.0, near_far.1))
+            .flatten(),
+        ..base
+    };
     let counter = FacingCounter::new(&strips.strips, &positions);
 
     let mut views = vec![View::default(); eyes.len()];
     let mut out = Culled::default();
     let mut backs = 0usize;
     for (v, &eye) in eyes.iter().enumerate() {
-        tree.cull(eye, &cull, &mut out);
+        tree.cull(eye, &cull_at(eye), &mut out);
         let c = counter.count(eye, &out.ranges);
         backs += c.back;
         views[v] = View {
@@ -172,6 +198,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             back_culled: c.back_culled(),
             back_drawn: c.back_drawn,
             front_missed: c.front - c.front_drawn,
+            outside: out.outside_triangles,
             visited_root: out.visited,
             us_root: f64::MAX,
             us_front: f64::MAX,
@@ -185,12 +212,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let mut check = Culled::default();
     for _ in 0..args.repeat.max(1) {
         for (v, &eye) in eyes.iter().enumerate() {
+            let cull = cull_at(eye);
             let t = Instant::now();
             tree.cull(eye, &cull, &mut out);
             views[v].us_root = views[v].us_root.min(t.elapsed().as_secs_f64() * 1e6);
         }
         let mut front = RenderFront::new(&tree);
         for (v, &eye) in eyes.iter().enumerate() {
+            let cull = cull_at(eye);
             let t = Instant::now();
             front.cull(&tree, eye, &cull, &mut check);
             views[v].us_front = views[v].us_front.min(t.elapsed().as_secs_f64() * 1e6);
@@ -208,6 +237,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         back_culled: mean(|v| v.back_culled as f64),
         back_drawn: mean(|v| v.back_drawn as f64),
         front_missed: mean(|v| v.front_missed as f64),
+        outside: mean(|v| v.outside as f64),
         visited_root: mean(|v| v.visited_root as f64),
         visited_front: mean(|v| v.visited_front as f64),
         reused_front: mean(|v| v.reused_front as f64),
@@ -225,10 +255,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         tree_depth: tree.depth(),
         build_ms,
         views: views.len(),
+        frustum: args.frustum,
+        fov,
         mean: averages,
         per_view: if args.json { views } else { Vec::new() },
     };
-    anyhow::ensure!(report.mean.front_missed == 0.0, "front-facing triangles were culled");
+    // Outside the frustum, front-facing triangles are culled on purpose (the library's
+    // tests check that none with a vertex inside is).
+    anyhow::ensure!(args.frustum || report.mean.front_missed == 0.0, "front-facing triangles were culled");
     super::print_report(args.json, &report, |w, r| {
         use std::io::Write;
         let m = &r.mean;
@@ -238,6 +272,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         writeln!(w, "segments      {:.1}", m.segments)?;
         writeln!(w, "drawn         {:.1} triangles", m.drawn)?;
         writeln!(w, "back-facing   {:.1}: {:.1} culled, {:.1} drawn (leak)", m.back, m.back_culled, m.back_drawn)?;
+        if r.frustum {
+            writeln!(w, "outside       {:.1} triangles skipped outside the frustum ({:.0} degrees)", m.outside, r.fov)?;
+        }
         writeln!(
             w,
             "visited       {:.1} nodes from the roots, {:.1} from the front ({:.1} front nodes kept untested)",

@@ -193,6 +193,19 @@ struct Hot {
 }
 
 impl Hot {
+    /// [`Hot::classify`] combined with the options' frustum: a node outside it faces
+    /// "back" (is skipped; the flag says it was the frustum). With a frustum the reach
+    /// is negative (no reuse).
+    #[inline(always)]
+    fn classify_in(&self, eye: [f32; 3], options: &CullOptions) -> (Facing, f32, bool) {
+        let (facing, reach) = self.classify(eye);
+        let Some(frustum) = &options.frustum else { return (facing, reach, false) };
+        match frustum.side(self.center, self.radius) {
+            Side::Outside => (Facing::Back, -1.0, facing != Facing::Back),
+            _ => (facing, -1.0, false),
+        }
+    }
+
     /// The facing and how far the eye may move keeping it (after rounding).
     #[inline(always)]
     fn classify(&self, eye: [f32; 3]) -> (Facing, f32) {
@@ -254,6 +267,103 @@ pub struct CullOptions {
     /// are drawn as one range, the back-facing triangles between them included (fewer
     /// draws for a few more triangles; 0: only neighbouring drawn nodes are joined).
     pub max_gap: u32,
+    /// Frustum culling with the nodes' bounding spheres: a node wholly outside one
+    /// plane is skipped ([`Culled::outside_triangles`]); one that crosses a plane is
+    /// classified as without a frustum (a front-facing one is drawn whole and clipped
+    /// by the GPU, so the ranges do not multiply at the frustum's edges). The frustum turns with the camera, which the eye
+    /// point alone does not tell, so [`RenderFront`] tests every front node again
+    /// when a frustum is given (no reuse).
+    pub frustum: Option<Frustum>,
+}
+
+/// A view frustum: six planes `(n, d)` with unit `n` pointing inside, a point `p`
+/// inside all of them when `n . p + d >= 0` for each.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Frustum {
+    /// Left, right, bottom, top, near, far.
+    pub planes: [[f32; 4]; 6],
+}
+
+/// Where a sphere lies against a [`Frustum`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    /// Wholly outside one plane.
+    Outside,
+    /// Wholly inside every plane.
+    Inside,
+    /// Neither: it crosses a plane.
+    Crossing,
+}
+
+impl Frustum {
+    /// The frustum of a perspective camera at `eye` looking at `target` with `up`
+    /// (any vector not along the view), `fov_y` degrees of vertical field of view,
+    /// `aspect` = width / height, and near and far distances. A degenerate camera
+    /// (target at the eye, up along the view) gives `None`.
+    pub fn perspective(
+        eye: [f32; 3],
+        target: [f32; 3],
+        up: [f32; 3],
+        fov_y: f32,
+        aspect: f32,
+        near: f32,
+        far: f32,
+    ) -> Option<Frustum> {
+        if !(fov_y > 0.0 && fov_y < 179.0 && aspect > 0.0 && near >= 0.0 && far > near && far.is_finite()) {
+            return None;
+        }
+        let p = |a: [f32; 3]| a.map(|x| x as f64);
+        let e = p(eye);
+        let f = unit(sub(p(target), e))?;
+        let r = unit(cross(f, p(up)))?;
+        let u = cross(r, f);
+        let half = (fov_y as f64).to_radians() / 2.0;
+        let (ty, tx) = (half.tan(), half.tan() * aspect as f64);
+        // A direction v is inside the right plane when v . r <= tx (v . f), and so on:
+        // inward normals of the four side planes through the eye.
+        let scaled = |t: f64| [f[0] * t, f[1] * t, f[2] * t];
+        let normals = [
+            unit(add(scaled(tx), r))?,
+            unit(sub(scaled(tx), r))?,
+            unit(add(scaled(ty), u))?,
+            unit(sub(scaled(ty), u))?,
+        ];
+        let mut planes = [[0f32; 4]; 6];
+        for (k, n) in normals.iter().enumerate() {
+            planes[k] = [n[0] as f32, n[1] as f32, n[2] as f32, -dot(*n, e) as f32];
+        }
+        let nf = f;
+        planes[4] = [nf[0] as f32, nf[1] as f32, nf[2] as f32, (-dot(nf, e) - near as f64) as f32];
+        planes[5] = [-nf[0] as f32, -nf[1] as f32, -nf[2] as f32, (dot(nf, e) + far as f64) as f32];
+        Some(Frustum { planes })
+    }
+
+    /// Where the sphere `(center, radius)` lies.
+    #[inline]
+    pub fn side(&self, center: [f32; 3], radius: f32) -> Side {
+        let mut crossing = false;
+        for pl in &self.planes {
+            let s = pl[0] * center[0] + pl[1] * center[1] + pl[2] * center[2] + pl[3];
+            // A little slack against rounding: never call outside what may touch.
+            let slack = 1e-5 * (center[0].abs() + center[1].abs() + center[2].abs() + radius + pl[3].abs());
+            if s < -radius - slack {
+                return Side::Outside;
+            }
+            if s < radius + slack {
+                crossing = true;
+            }
+        }
+        if crossing {
+            Side::Crossing
+        } else {
+            Side::Inside
+        }
+    }
+
+    /// Whether the point may be inside (within the same slack as [`Frustum::side`]).
+    pub fn holds(&self, p: [f32; 3]) -> bool {
+        self.side(p, 0.0) != Side::Outside
+    }
 }
 
 /// What one view draws: the output of [`SegmentTree::cull`] and [`RenderFront::cull`].
@@ -265,8 +375,12 @@ pub struct Culled {
     pub ranges: Vec<Range<u32>>,
     /// Triangles in the drawn ranges (swaps not counted).
     pub drawn_triangles: usize,
-    /// Triangles in the skipped nodes (all of them back-facing or edge-on).
+    /// Triangles in the skipped nodes (all of them back-facing or edge-on, or outside
+    /// the frustum).
     pub culled_triangles: usize,
+    /// Of those, triangles in nodes skipped only because they lie outside the
+    /// [`CullOptions::frustum`].
+    pub outside_triangles: usize,
     /// Nodes classified.
     pub visited: usize,
     /// Drawn nodes that were split (leaves or small nodes across the silhouette).
@@ -291,6 +405,7 @@ impl Culled {
         self.ranges.clear();
         self.drawn_triangles = 0;
         self.culled_triangles = 0;
+        self.outside_triangles = 0;
         self.visited = 0;
         self.split_drawn = 0;
         self.reused = 0;
@@ -745,9 +860,12 @@ impl SegmentTree {
         // the right one waits on the stack.
         while let Some((id, parent_reach)) = next.or_else(|| stack.pop()) {
             let h = &self.hot[id as usize];
-            let (facing, reach) = h.classify(eye);
+            let (facing, reach, outside) = h.classify_in(eye, options);
             out.visited += 1;
             if facing != Facing::Split || h.right == NONE || h.triangles <= options.min_triangles {
+                if outside {
+                    out.outside_triangles += h.triangles as usize;
+                }
                 out.emit(h, facing);
                 if let Some(f) = front.as_deref_mut() {
                     f.push(Entry::new(id, h, facing, eye, reach.min(parent_reach)));
@@ -844,7 +962,7 @@ impl RenderFront {
         let mut covered_to = 0u32;
         // The last parent tested: whether it stopped, its facing and reach (siblings
         // share it).
-        let mut tested: (u32, bool, Facing, f32) = (NONE, false, Facing::Split, 0.0);
+        let mut tested: (u32, bool, Facing, f32, bool) = (NONE, false, Facing::Split, 0.0, false);
         for e in &self.nodes {
             let x = e.node;
             if x < covered_to {
@@ -859,23 +977,23 @@ impl RenderFront {
                 continue;
             }
             // Merge up while the parent stops the traversal.
-            let (mut top, mut top_facing, mut top_reach) = (x, None, f32::INFINITY);
+            let (mut top, mut top_facing, mut top_reach, mut top_outside) = (x, None, f32::INFINITY, false);
             let mut parent_reach = f32::INFINITY;
             loop {
                 let p = tree.hot[top as usize].parent;
                 if p == NONE {
                     break;
                 }
-                let (stops, facing, reach) = if tested.0 == p {
-                    (tested.1, tested.2, tested.3)
+                let (stops, facing, reach, outside) = if tested.0 == p {
+                    (tested.1, tested.2, tested.3, tested.4)
                 } else {
                     let h = &tree.hot[p as usize];
-                    let (facing, reach) = h.classify(eye);
+                    let (facing, reach, outside) = h.classify_in(eye, options);
                     out.visited += 1;
                     // A parent is never a leaf.
                     let stops = facing != Facing::Split || h.triangles <= options.min_triangles;
-                    tested = (p, stops, facing, reach);
-                    (stops, facing, reach)
+                    tested = (p, stops, facing, reach, outside);
+                    (stops, facing, reach, outside)
                 };
                 if !stops {
                     parent_reach = reach;
@@ -884,10 +1002,14 @@ impl RenderFront {
                 top = p;
                 top_facing = Some(facing);
                 top_reach = reach;
+                top_outside = outside;
             }
             match top_facing {
                 Some(facing) => {
                     let t = &tree.hot[top as usize];
+                    if top_outside {
+                        out.outside_triangles += t.triangles as usize;
+                    }
                     out.emit(t, facing);
                     new.push(Entry::new(top, t, facing, eye, top_reach.min(parent_reach)));
                     covered_to = t.subtree_end;
