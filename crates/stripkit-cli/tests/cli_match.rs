@@ -74,7 +74,11 @@ fn matches_the_dual_graph_of_a_mesh() {
     let f = tmp("ico2.obj");
     stripkit::io::write(&f, &mesh, None).unwrap();
     for w in ["uniform", "random", "normal-angle"] {
-        let v = json(&["match", "--dual", f.to_str().unwrap(), "--weights", w, "--seed", "5", "--json"]);
+        let mut args = vec!["match", "--dual", f.to_str().unwrap(), "--weights", w, "--json"];
+        if w == "random" {
+            args.extend(["--seed", "5"]);
+        }
+        let v = json(&args);
         assert_eq!(v["nodes"], 320);
         assert_eq!(v["edges"], 480);
         assert_eq!(v["perfect"], true);
@@ -83,6 +87,19 @@ fn matches_the_dual_graph_of_a_mesh() {
         if w == "uniform" {
             assert_eq!(v["total_weight"], 160);
         }
+    }
+    // Flags that do not apply exit 2: a seed for other weights, weights or a seed for
+    // a graph file (which carries its own).
+    let hex = tmp("pair.dimacs");
+    std::fs::write(&hex, "p edge 2 1\ne 1 2 5\n").unwrap();
+    for bad in [
+        vec!["match", "--dual", f.to_str().unwrap(), "--weights", "uniform", "--seed", "5"],
+        vec!["match", hex.to_str().unwrap(), "--weights", "random"],
+        vec!["match", hex.to_str().unwrap(), "--seed", "3"],
+    ] {
+        let (code, _, err) = stripkit(&bad);
+        assert_eq!(code, 2, "{bad:?}: {err}");
+        assert!(err.contains("appl"), "{err}");
     }
     // The seed changes random weights, deterministically.
     let a = json(&["match", "--dual", f.to_str().unwrap(), "--seed", "1", "--json"]);

@@ -143,3 +143,24 @@ fn help_explains_the_million_triangle_command() {
     let help = String::from_utf8_lossy(&out.stdout);
     assert!(help.contains("catmull-clark") && help.contains("--levels"), "{help}");
 }
+
+#[test]
+fn gen_prints_json_and_qstrip_refuses_a_mesh_without_quads() {
+    let out = support::tmp("gen_json", "ico.obj");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_stripkit"))
+        .args(["gen", "icosphere", "2", "-o", out.to_str().unwrap(), "--json"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!((j["triangles"].as_u64(), j["vertices"].as_u64()), (Some(320), Some(162)));
+    // --algo qstrip on triangles would silently run greedy: refused, nothing written.
+    let strips = support::tmp("gen_json", "never.ply");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_stripkit"))
+        .args(["strip", out.to_str().unwrap(), "-o", strips.to_str().unwrap(), "--algo", "qstrip"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("has none"));
+    assert!(!strips.exists());
+}

@@ -20,6 +20,10 @@ Quad meshes: stripkit gen torus --quads --major 200 --minor 100 -o torus.obj,
 pub struct Args {
     #[command(subcommand)]
     what: What,
+    /// Print one JSON object (output, what, vertices, faces, triangles, ms) on
+    /// stdout instead of the line of text.
+    #[arg(long, global = true)]
+    json: bool,
 }
 
 /// Largest output we agree to build (face indices), about 4 GB of indices: keeps
@@ -159,16 +163,28 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let built = Instant::now();
     stripkit::io::write(&output, &mesh, None)?;
     let written = Instant::now();
-    println!(
-        "wrote {}: {what}: {} vertices, {} faces ({} triangles) in {:.0} ms (+{:.0} ms to write)",
-        output.display(),
-        mesh.vertex_count(),
-        mesh.face_count(),
-        mesh.triangle_count(),
-        (built - start).as_secs_f64() * 1e3,
-        (written - built).as_secs_f64() * 1e3,
-    );
-    Ok(())
+    let report = serde_json::json!({
+        "output": output.display().to_string(),
+        "what": what,
+        "vertices": mesh.vertex_count(),
+        "faces": mesh.face_count(),
+        "triangles": mesh.triangle_count(),
+        "ms": (built - start).as_secs_f64() * 1e3,
+        "write_ms": (written - built).as_secs_f64() * 1e3,
+    });
+    super::print_report(args.json, &report, |w, _| {
+        use std::io::Write;
+        writeln!(
+            w,
+            "wrote {}: {what}: {} vertices, {} faces ({} triangles) in {:.0} ms (+{:.0} ms to write)",
+            output.display(),
+            mesh.vertex_count(),
+            mesh.face_count(),
+            mesh.triangle_count(),
+            (built - start).as_secs_f64() * 1e3,
+            (written - built).as_secs_f64() * 1e3,
+        )
+    })
 }
 
 /// Subdivides level by level with a progress bar (hidden when stderr is not a terminal).

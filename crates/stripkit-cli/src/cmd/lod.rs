@@ -204,6 +204,7 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
     args.strip.check()?;
     super::check_output_folder(&args.output)?;
     let mesh = args.read.read(&args.file)?;
+    args.strip.check_mesh(&mesh, &args.file)?;
     let placement = match args.placement {
         PlacementArg::Endpoint => Placement::Endpoint,
         PlacementArg::Optimal => Placement::Optimal,
@@ -289,6 +290,7 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
     anyhow::ensure!(args.samples >= 1, "--samples must be at least 1");
     anyhow::ensure!(args.candidates >= 1, "--candidates must be at least 1");
     let frames = lod::read_frames(&args.folder, &args.read.options())?;
+    args.strip.check_mesh(&frames.mesh, &args.folder)?;
     let options = SeqOptions {
         strip: args.strip.options(Some(&frames.mesh)),
         max_sequences: args.max_sequences,

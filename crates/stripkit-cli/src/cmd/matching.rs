@@ -34,12 +34,13 @@ pub struct Args {
     /// oriented mesh edge.
     #[arg(long, value_name = "MESHFILE")]
     pub dual: Option<PathBuf>,
-    /// Edge weights of the dual graph (with --dual).
-    #[arg(long, value_enum, default_value = "random", requires = "dual")]
-    pub weights: WeightKind,
-    /// Seed for --weights random.
-    #[arg(long, default_value_t = 1, requires = "dual")]
-    pub seed: u64,
+    /// Edge weights of the dual graph (with --dual; a graph file has its own).
+    /// Default `random`.
+    #[arg(long, value_enum, requires = "dual")]
+    pub weights: Option<WeightKind>,
+    /// Seed for --weights random (with --dual). Default 1.
+    #[arg(long, requires = "dual")]
+    pub seed: Option<u64>,
     /// Minimise the total weight (minimum-cost perfect matching) instead of maximising it.
     #[arg(long)]
     pub minimize: bool,
@@ -56,12 +57,22 @@ pub struct Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    // Clap's `requires` lets these through without --dual: say so instead of
+    // ignoring them (a graph file carries its own weights).
+    anyhow::ensure!(
+        args.dual.is_some() || (args.weights.is_none() && args.seed.is_none()),
+        "--weights and --seed apply to --dual (a graph file carries its own weights)"
+    );
     let t0 = Instant::now();
     let (graph, source) = if let Some(mesh_path) = &args.dual {
         let mesh = args.read.read(mesh_path)?;
-        let w = match args.weights {
+        anyhow::ensure!(
+            args.seed.is_none() || matches!(args.weights, None | Some(WeightKind::Random)),
+            "--seed applies to --weights random"
+        );
+        let w = match args.weights.unwrap_or(WeightKind::Random) {
             WeightKind::Uniform => DualWeights::Uniform,
-            WeightKind::Random => DualWeights::Random { seed: args.seed },
+            WeightKind::Random => DualWeights::Random { seed: args.seed.unwrap_or(1) },
             WeightKind::NormalAngle => DualWeights::NormalAngle,
         };
         let g = matching::mesh_dual_graph(&mesh, w)

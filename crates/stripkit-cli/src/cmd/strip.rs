@@ -410,9 +410,22 @@ impl StripArgs {
         input: &Path,
         more: impl FnOnce(StripOptions) -> StripOptions,
     ) -> anyhow::Result<stripkit::Strips> {
+        self.check_mesh(mesh, input)?;
         let mut stripifier =
             Stripifier::new(more(self.options(Some(mesh)))).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
         stripifier.stripify(mesh).map_err(|e| anyhow::anyhow!(flag_names(e)).context(format!("{}", input.display())))
+    }
+
+    /// Flags that cannot apply to this mesh: `--algo qstrip` on a mesh without a quad
+    /// would silently run greedy.
+    pub fn check_mesh(&self, mesh: &stripkit::Mesh, input: &Path) -> Result<(), Error> {
+        if self.algo == Algo::Qstrip && !mesh.faces().any(|f| f.len() == 4) {
+            return Err(Error::Invalid(format!(
+                "{}: --algo qstrip strips quads and this mesh has none (it would run greedy); use --algo greedy or cache",
+                input.display()
+            )));
+        }
+        Ok(())
     }
 
     /// The heuristic greedy ran with, for reports: `None` for other algorithms.
