@@ -73,3 +73,18 @@ for w in uniform cull cache direction:0,0,1; do
     render "horse-single-$tag" 320x240 "$MODELS/horse.ply" --algo single --weights "$w" --color order \
         --view 1,-0.5,0.3 --up 0,0,1
 done
+
+# 6. SETS (stripkit lod): the level-0 strips kept through the collapses, drawn at the
+# levels of section 3 with their own strips (compare: section 3 strips each level anew).
+"$S" lod build "$BUNNY" -o "$TMP/bunny.sets" --check off >/dev/null
+for ratio in 1 0.25 0.05 0.01; do
+    render "bunny-sets-$ratio" 240x240 "$TMP/bunny.sets" --ratio "$ratio"
+done
+
+# 7. The horse gallop's level-of-detail strips (stripkit lod build-seq): frames 1, 7, 13
+# and 19 at 10% of the triangles, each with the simplification sequence chosen for it,
+# on one strip connectivity.
+"$S" lod build-seq "$GALLOP" -o "$TMP/gallop.lodseq" --position-bits 12 --max-sequences 7 --check off >/dev/null
+for f in 0 6 12 18; do
+    render "gallop-lod-$f" 320x200 "$TMP/gallop.lodseq" --frame "$f" --ratio 0.1 --view 1,0.15,0.05
+done

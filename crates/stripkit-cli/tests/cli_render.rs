@@ -356,3 +356,50 @@ fn single_strip_draws_the_same_surface_in_one_colour() {
     let nm = pm.drawn().count() as f64;
     assert!(nm > 0.0 && (pm.mean_x() - 100.0).abs() < 3.0, "{nm} pixels at x {}", pm.mean_x());
 }
+
+/// A `.sets` level and a `.lodseq` frame draw with their own strips: as many colours
+/// as the level's strips, fewer triangles at a coarser level; the level flags are
+/// refused on a mesh, `--frame` on a `.sets`.
+#[test]
+fn levels_of_detail_draw_their_own_strips() {
+    let mesh = tmp("render", "lod-torus.obj");
+    write_mesh(&mesh, &stripkit::gen::torus(32, 12, 1.0, 0.3));
+    let model = tmp("render", "lod-torus.sets");
+    let o = stripkit(&["lod", "build", mesh.to_str().unwrap(), "-o", model.to_str().unwrap(), "--check", "off"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let sets = stripkit::lod::Sets::read(&model).unwrap();
+    let png = tmp("render", "lod-torus.png");
+    let Some(full) = render(&[model.to_str().unwrap(), "-o", png.to_str().unwrap(), "--level", "0"]) else { return };
+    assert_eq!(full["triangles"], 768);
+    let level = sets.level_for_ratio(0.25);
+    let r = render(&[model.to_str().unwrap(), "-o", png.to_str().unwrap(), "--ratio", "0.25", "--color", "strips"]).unwrap();
+    assert_eq!(r["triangles"].as_u64().unwrap(), sets.triangles_at(level) as u64);
+    assert_eq!(r["strips"].as_u64().unwrap() as usize, sets.strips_at(level).len());
+    assert!(r["lod"].as_str().unwrap().contains(&format!("level {level}")));
+    assert!(Picture::read(&png).colors().len() >= 2);
+    // An animation frame, morphed between key frames.
+    let dir = tmp("render", "lod-anim");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in 0..3 {
+        let mut m = stripkit::gen::torus(24, 8, 1.0, 0.3);
+        for p in m.positions.iter_mut() {
+            p[2] += 0.2 * f as f32 * p[0];
+        }
+        write_mesh(&dir.join(format!("a-{f}.obj")), &m);
+    }
+    let anim = tmp("render", "lod-anim.lodseq");
+    let o = stripkit(&["lod", "build-seq", dir.to_str().unwrap(), "-o", anim.to_str().unwrap(), "--samples", "300"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = render(&[anim.to_str().unwrap(), "-o", png.to_str().unwrap(), "--frame", "1.5", "--ratio", "0.5"]).unwrap();
+    assert!(r["lod"].as_str().unwrap().starts_with("frame 1.5"));
+    for bad in [
+        vec![mesh.to_str().unwrap(), "-o", png.to_str().unwrap(), "--level", "3"],
+        vec![model.to_str().unwrap(), "-o", png.to_str().unwrap(), "--frame", "1"],
+        vec![anim.to_str().unwrap(), "-o", png.to_str().unwrap(), "--frame", "7"],
+    ] {
+        let mut args = vec!["render"];
+        args.extend(bad.iter().copied());
+        assert_eq!(stripkit(&args).status.code(), Some(2), "{bad:?}");
+    }
+}

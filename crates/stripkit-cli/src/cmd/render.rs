@@ -61,7 +61,9 @@ software renderer (Debian, Ubuntu: apt-get install libegl1 libegl-mesa0 libgles2
 Exit status: 0 success, 1 the strips failed verification, 2 bad input or argument, or no EGL (nothing written)."
 )]
 pub struct Args {
-    /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz); polygons are fanned into triangles.
+    /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz); polygons are
+    /// fanned into triangles. Or a `.sets` / `.lodseq` model (`stripkit lod`), drawn with
+    /// its own strips at `--level` / `--ratio` (and `--frame`).
     pub input: PathBuf,
     /// Output picture (.png), replaced atomically.
     #[arg(short, long, value_name = "OUT.png")]
@@ -113,6 +115,18 @@ pub struct Args {
     /// `--morph`: 0 draws MESH, 1 draws OTHER, in between the linear blend. Default 0.5.
     #[arg(long, value_name = "T", requires = "morph", value_parser = parse_unit)]
     pub t: Option<f32>,
+    /// A `.sets` or `.lodseq` input (`stripkit lod`): draw its own strips at this level
+    /// (collapses applied; default 0, the input).
+    #[arg(long, value_name = "L", conflicts_with = "ratio")]
+    pub level: Option<u32>,
+    /// A `.sets` or `.lodseq` input: draw the first level with at most
+    /// ceil(R x triangles) triangles.
+    #[arg(long, value_name = "R", value_parser = parse_unit)]
+    pub ratio: Option<f32>,
+    /// A `.lodseq` input: the frame (a fraction morphs between key frames; the level
+    /// follows the nearest one). Default 0.
+    #[arg(long, value_name = "F")]
+    pub frame: Option<f64>,
     /// Print one JSON object (counts, sizes, timings, renderer) on stdout instead of the summary.
     #[arg(long)]
     pub json: bool,
@@ -188,6 +202,9 @@ fn parse_rgb(text: &str) -> Result<[u8; 3], String> {
 #[derive(Serialize)]
 struct Report<'a> {
     input: &'a Path,
+    /// A `.sets` / `.lodseq` input: the level (and frame) drawn.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    lod: Option<String>,
     output: &'a Path,
     algo: &'static str,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -243,6 +260,63 @@ fn check(args: &Args) -> anyhow::Result<()> {
         return Err(Error::Invalid("--cull-view applies to --color cull".into()).into());
     }
     args.strip.validate(|o| o)
+}
+
+/// A level (and frame) of a `.sets` / `.lodseq` input: the positions its strips
+/// index, its strips, and a description.
+type Level = (Vec<[f32; 3]>, stripkit::StripSet, String);
+
+/// The strips of a `.sets` or `.lodseq` input at `--level` / `--ratio` (and
+/// `--frame`); `None` for a mesh.
+fn read_lod(args: &Args) -> anyhow::Result<Option<Level>> {
+    use stripkit::lod::{LevelSpec, LodSeq, Sets, LODSEQ_MAGIC, SETS_MAGIC};
+    let lod_flags = args.level.is_some() || args.ratio.is_some() || args.frame.is_some();
+    let mut head = [0u8; 8];
+    let is_lod = std::fs::File::open(&args.input)
+        .and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head))
+        .is_ok()
+        && (&head == SETS_MAGIC || &head == LODSEQ_MAGIC);
+    if !is_lod {
+        if lod_flags {
+            return Err(Error::Invalid("--level, --ratio and --frame apply to .sets and .lodseq inputs".into()).into());
+        }
+        return Ok(None);
+    }
+    if args.morph.is_some() {
+        return Err(Error::Invalid("--morph applies to meshes; a .lodseq morphs with --frame".into()).into());
+    }
+    let data = std::fs::read(&args.input).map_err(|source| Error::Io { path: args.input.clone(), source })?;
+    let spec = match (args.level, args.ratio) {
+        (_, Some(r)) => LevelSpec::Ratio(r as f64),
+        (l, None) => LevelSpec::Level(l.unwrap_or(0)),
+    };
+    if &head == SETS_MAGIC {
+        if args.frame.is_some() {
+            return Err(Error::Invalid("--frame applies to animations (.lodseq)".into()).into());
+        }
+        let sets = Sets::from_bytes(&args.input, &data)?;
+        let level = match spec {
+            LevelSpec::Ratio(r) => sets.level_for_ratio(r),
+            LevelSpec::Level(l) => l.min(sets.levels()),
+            LevelSpec::Triangles(n) => sets.level_for_triangles(n),
+        };
+        let what = format!("level {level} of {}, {} triangles", sets.levels(), sets.triangles_at(level));
+        return Ok(Some((sets.positions().to_vec(), sets.cursor(level).strips(), what)));
+    }
+    let seq = LodSeq::from_bytes(&args.input, &data)?;
+    let last = (seq.frame_count() - 1) as f64;
+    let t = args.frame.unwrap_or(0.0);
+    anyhow::ensure!(t.is_finite() && (0.0..=last).contains(&t), "--frame {t} is out of range: 0 to {last}");
+    let key = seq.nearest_frame(t);
+    let cursor = seq.cursor(key, spec);
+    let model = &seq.models()[seq.model_of(key)];
+    let what = format!(
+        "frame {t} (key frame {key}), level {} of {}, {} triangles",
+        cursor.level(),
+        model.levels(),
+        model.triangles_at(cursor.level())
+    );
+    Ok(Some((seq.morph(t), cursor.strips(), what)))
 }
 
 /// The mesh, and the `--morph` mesh when given (same vertex count).
@@ -347,7 +421,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let progress = indicatif::ProgressBar::new_spinner();
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
-    let (mesh, target) = read_meshes(&args)?;
+    let lod = read_lod(&args)?;
+    let (mesh, target) = match &lod {
+        Some((positions, strips, _)) => (stripkit::Mesh::from_triangles(positions.clone(), &stripkit::decode(strips)), None),
+        None => read_meshes(&args)?,
+    };
     let t = if target.is_some() { args.t.unwrap_or(0.5) } else { 0.0 };
 
     // The camera frames every vertex a face uses, of both meshes when morphing, so
@@ -368,10 +446,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let start_time = start.elapsed();
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
-    let strips = args.strip.stripify(&mesh, &args.input, |o| o)?;
-    // `single` may add vertices (edge midpoints): every per-vertex array gets them.
-    let positions = strips.with_added_vertices(&mesh.positions);
-    let target_positions = target.as_ref().map(|o| strips.with_added_vertices(&o.positions));
+    // A level of detail draws its own strips; a mesh goes through the door.
+    let door = match &lod {
+        Some(_) => None,
+        None => Some(args.strip.stripify(&mesh, &args.input, |o| o)?),
+    };
+    let (strip_set, positions, target_positions) = match (&door, &lod) {
+        // `single` may add vertices (edge midpoints): every per-vertex array gets them.
+        (Some(strips), _) => (
+            strips.strips.clone(),
+            strips.with_added_vertices(&mesh.positions),
+            target.as_ref().map(|o| strips.with_added_vertices(&o.positions)),
+        ),
+        (None, Some((positions, strips, _))) => (strips.clone(), positions.clone(), None),
+        (None, None) => unreachable!("a mesh goes through the door"),
+    };
     let blended: Option<Vec<[f32; 3]>> = target_positions.as_ref().map(|other| {
         positions
             .iter()
@@ -392,7 +481,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         },
         ColorArg::None => Paint::None,
     };
-    let exploded = paint::explode(&strips.strips, drawn, paint);
+    let exploded = paint::explode(&strip_set, drawn, paint);
     if exploded.triangles() == 0 {
         return Err(
             Error::Invalid(format!("no faces in {} (every triangle is degenerate)", args.input.display())).into()
@@ -420,18 +509,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let report = Report {
         input: &args.input,
         output: &args.output,
-        algo: strips.algorithm.name(),
-        heuristic: args.strip.heuristic_used(&strips.algorithm),
+        algo: door.as_ref().map_or("lod", |s| s.algorithm.name()),
+        heuristic: door.as_ref().and_then(|s| args.strip.heuristic_used(&s.algorithm)),
         color: args.color,
         shading: args.shading,
         width: w,
         height: h,
-        strips: strips.figures.strips,
+        strips: strip_set.iter().filter(|s| !s.is_empty()).count(),
         triangles: exploded.triangles(),
         front: (args.color == ColorArg::Cull).then_some(exploded.front),
         pixels,
         edges,
-        stripify_ms: strips.stripify_time.as_secs_f64() * 1e3,
+        stripify_ms: door.as_ref().map_or(0.0, |s| s.stripify_time.as_secs_f64() * 1e3),
+        lod: lod.as_ref().map(|l| l.2.clone()),
         start_ms: start_time.as_secs_f64() * 1e3,
         draw_ms: draw_time.as_secs_f64() * 1e3,
         write_ms: write_time.as_secs_f64() * 1e3,
@@ -456,6 +546,9 @@ fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
         r.height,
         r.t.map(|t| format!(", morph t = {t}")).unwrap_or_default()
     )?;
+    if let Some(l) = &r.lod {
+        writeln!(out, "  lod            {l}")?;
+    }
     writeln!(out, "  strips         {:>10}", r.strips)?;
     writeln!(out, "  triangles      {:>10}", r.triangles)?;
     if let Some(e) = r.edges {
