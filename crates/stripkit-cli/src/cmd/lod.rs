@@ -81,16 +81,8 @@ struct BuildArgs {
     /// Survivor placement of the collapses.
     #[arg(long, value_enum, default_value = "endpoint")]
     placement: PlacementArg,
-    /// How many levels to check against the replay before writing.
-    #[arg(long, value_enum, default_value = "all")]
-    check: CheckArg,
-    /// Print one JSON object on stdout.
-    #[arg(long)]
-    json: bool,
     #[command(flatten)]
-    strip: super::strip::StripArgs,
-    #[command(flatten)]
-    read: super::ReadArgs,
+    common: CommonArgs,
 }
 
 #[derive(clap::Args)]
@@ -124,10 +116,18 @@ struct BuildSeqArgs {
     /// the quality table see the stored positions. Default: exact f32 positions.
     #[arg(long, value_name = "BITS", value_parser = clap::value_parser!(u32).range(8..=20))]
     position_bits: Option<u32>,
-    /// How many levels of each kept model to check against a replay before writing.
+    #[command(flatten)]
+    common: CommonArgs,
+}
+
+/// What `lod build` and `lod build-seq` share.
+#[derive(clap::Args)]
+struct CommonArgs {
+    /// How many levels of each model to check against a replay of its collapses
+    /// before the file is written.
     #[arg(long, value_enum, default_value = "all")]
     check: CheckArg,
-    /// Print one JSON object on stdout (with the per-frame quality table).
+    /// Print one JSON object on stdout (`build-seq`: with the per-frame quality table).
     #[arg(long)]
     json: bool,
     #[command(flatten)]
@@ -201,23 +201,24 @@ struct BuildOut {
 }
 
 fn build(args: BuildArgs) -> anyhow::Result<()> {
-    args.strip.check()?;
+    args.common.strip.check()?;
     super::check_output_folder(&args.output)?;
-    let mesh = args.read.read(&args.file)?;
-    args.strip.check_mesh(&mesh, &args.file)?;
+    let mesh = args.common.read.read(&args.file)?;
+    args.common.strip.check_mesh(&mesh, &args.file)?;
     let placement = match args.placement {
         PlacementArg::Endpoint => Placement::Endpoint,
         PlacementArg::Optimal => Placement::Optimal,
     };
-    let options = BuildOptions { strip: args.strip.options(Some(&mesh)), placement };
+    let options = BuildOptions { strip: args.common.strip.options(Some(&mesh)), placement };
     let bar = progress_bar(mesh.triangle_count() > 200_000, "simplify");
     let built = lod::build(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the model of {}", args.file.display()))?;
     bar.finish_and_clear();
-    let check = match args.check {
+    let check = match args.common.check {
         CheckArg::Off => None,
         CheckArg::All | CheckArg::Sample => {
-            let stride = if args.check == CheckArg::All { 1 } else { (built.sets.levels() as usize / 2000).max(1) };
+            let stride =
+                if args.common.check == CheckArg::All { 1 } else { (built.sets.levels() as usize / 2000).max(1) };
             Some(lod::check_levels(&built.sets, &built.mesh, &built.sequence, stride, 100)?)
         }
     };
@@ -239,7 +240,7 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
         bytes: bytes.len(),
         check,
     };
-    super::print_report(args.json, &out, |w, o| {
+    super::print_report(args.common.json, &out, |w, o| {
         let r = &o.report;
         writeln!(
             w,
@@ -283,16 +284,16 @@ struct BuildSeqOut {
 }
 
 fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
-    args.strip.check()?;
+    args.common.strip.check()?;
     super::check_output_folder(&args.output)?;
     anyhow::ensure!(args.max_sequences >= 1, "--max-sequences must be at least 1");
     anyhow::ensure!(args.tolerance >= 1.0, "--tolerance {} must be 1 or more", args.tolerance);
     anyhow::ensure!(args.samples >= 1, "--samples must be at least 1");
     anyhow::ensure!(args.candidates >= 1, "--candidates must be at least 1");
-    let frames = lod::read_frames(&args.folder, &args.read.options())?;
-    args.strip.check_mesh(&frames.mesh, &args.folder)?;
+    let frames = lod::read_frames(&args.folder, &args.common.read.options())?;
+    args.common.strip.check_mesh(&frames.mesh, &args.folder)?;
     let options = SeqOptions {
-        strip: args.strip.options(Some(&frames.mesh)),
+        strip: args.common.strip.options(Some(&frames.mesh)),
         max_sequences: args.max_sequences,
         tolerance: args.tolerance,
         samples: args.samples,
@@ -305,10 +306,10 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
     bar.finish_and_clear();
     let t = Instant::now();
     let mut levels_checked = 0;
-    if args.check != CheckArg::Off {
+    if args.common.check != CheckArg::Off {
         let mesh = Mesh::from_triangles(frames.positions[0].clone(), &built.triangles);
         for (sets, sequence) in built.seq.models().iter().zip(&built.sequences) {
-            let stride = if args.check == CheckArg::All { 1 } else { (sets.levels() as usize / 2000).max(1) };
+            let stride = if args.common.check == CheckArg::All { 1 } else { (sets.levels() as usize / 2000).max(1) };
             levels_checked += lod::check_levels(sets, &mesh, sequence, stride, 20)?.levels_checked;
         }
     }
@@ -332,7 +333,7 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
         levels_checked,
         check_ms,
     };
-    super::print_report(args.json, &out, |w, o| {
+    super::print_report(args.common.json, &out, |w, o| {
         let r = &o.report;
         let f = r.frames as f64 * 1024.0;
         writeln!(
