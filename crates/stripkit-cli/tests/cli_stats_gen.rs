@@ -164,3 +164,38 @@ fn gen_prints_json_and_qstrip_refuses_a_mesh_without_quads() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("has none"));
     assert!(!strips.exists());
 }
+
+#[test]
+fn ascii_ply_from_every_writer_and_refused_elsewhere() {
+    let run = |args: &[&str]| std::process::Command::new(env!("CARGO_BIN_EXE_stripkit")).args(args).output().unwrap();
+    let dir = |name: &str| support::tmp("ascii", name);
+    let (ico, strips, simple, model, level) =
+        (dir("ico.ply"), dir("strips.ply"), dir("simple.ply"), dir("ico.sets"), dir("level.ply"));
+    let p = |x: &std::path::PathBuf| x.to_str().unwrap().to_string();
+    for args in [
+        vec!["gen".to_string(), "icosphere".into(), "2".into(), "-o".into(), p(&ico), "--ascii".into()],
+        vec!["strip".into(), p(&ico), "-o".into(), p(&strips), "--ascii".into()],
+        vec!["simplify".into(), p(&ico), "--ratio".into(), "0.5".into(), "-o".into(), p(&simple), "--ascii".into()],
+        vec!["lod".into(), "build".into(), p(&ico), "-o".into(), p(&model)],
+        vec!["lod".into(), "extract".into(), p(&model), "--ratio".into(), "0.5".into(), "-o".into(), p(&level), "--ascii".into()],
+    ] {
+        let args: Vec<&str> = args.iter().map(|s| s.as_str()).collect();
+        let o = run(&args);
+        assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+    for (file, triangles) in [(&ico, 320), (&strips, 320), (&simple, 160), (&level, 160)] {
+        let text = std::fs::read(file).unwrap();
+        assert!(text.starts_with(b"ply\nformat ascii 1.0\n"), "{}", file.display());
+        assert_eq!(stripkit::io::read(file).unwrap().triangle_count(), triangles, "{}", file.display());
+    }
+    // Where it would do nothing: exit 2, nothing written.
+    let glb = dir("never.glb");
+    for args in [
+        vec!["strip", ico.to_str().unwrap(), "-o", glb.to_str().unwrap(), "--ascii"],
+        vec!["gen", "icosphere", "1", "-o", glb.to_str().unwrap(), "--ascii"],
+        vec!["simplify", ico.to_str().unwrap(), "--ratio", "0.5", "-o", glb.to_str().unwrap(), "--ascii"],
+    ] {
+        assert_eq!(run(&args).status.code(), Some(2), "{args:?}");
+    }
+    assert!(!glb.exists());
+}

@@ -386,6 +386,11 @@ impl Strips {
     /// [`Strips::for_format`]), read back with the library's own reader and checked
     /// against [`Strips::triangles`] before they are returned.
     pub fn to_file_bytes(&self, mesh: &Mesh, format: Format) -> Result<Vec<u8>> {
+        self.to_file_bytes_with(mesh, format, &WriteOptions::default())
+    }
+
+    /// [`Strips::to_file_bytes`] with write options (ASCII PLY).
+    pub fn to_file_bytes_with(&self, mesh: &Mesh, format: Format, options: &WriteOptions) -> Result<Vec<u8>> {
         let changed;
         let mesh = if !self.changes_mesh() {
             mesh
@@ -398,7 +403,7 @@ impl Strips {
                 "{format:?} files cannot hold strips; write PLY, glTF or GLB (or JSON)"
             )));
         };
-        let bytes = io::write_bytes(format, mesh, Some(&to_write), &WriteOptions::default())?;
+        let bytes = io::write_bytes(format, mesh, Some(&to_write), options)?;
         let name = format!("the {format:?} bytes to be written");
         let back = io::read_bytes(std::path::Path::new(&name), format, &bytes)?;
         let v = strip::verify_triangles(&self.triangles, &back.triangulate().tris);

@@ -24,6 +24,9 @@ pub struct Args {
     /// stdout instead of the line of text.
     #[arg(long, global = true)]
     json: bool,
+    /// Write PLY as ASCII text instead of binary (PLY outputs only).
+    #[arg(long, global = true)]
+    ascii: bool,
 }
 
 /// Largest output we agree to build (face indices), about 4 GB of indices: keeps
@@ -161,7 +164,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     };
     let built = Instant::now();
-    stripkit::io::write(&output, &mesh, None)?;
+    let write_options = super::write_options(args.ascii, &output)?;
+    stripkit::io::write_with(&output, &mesh, None, &write_options)?;
     let written = Instant::now();
     let report = serde_json::json!({
         "output": output.display().to_string(),

@@ -162,6 +162,9 @@ struct ExtractArgs {
     /// Print one JSON object on stdout.
     #[arg(long)]
     json: bool,
+    /// Write PLY as ASCII text instead of binary (PLY outputs only).
+    #[arg(long)]
+    ascii: bool,
 }
 
 #[derive(clap::Args)]
@@ -405,6 +408,7 @@ fn extract(args: ExtractArgs) -> anyhow::Result<()> {
     if let Some(r) = args.ratio {
         anyhow::ensure!((0.0..=1.0).contains(&r), "--ratio {r} is out of range: 0 to 1");
     }
+    let write_options = super::write_options(args.ascii, &args.output)?;
     super::check_output_folder(&args.output)?;
     let data = std::fs::read(&args.file).map_err(|source| Error::Io { path: args.file.clone(), source })?;
     let spec = match (args.level, args.triangles, args.ratio) {
@@ -474,7 +478,7 @@ fn extract(args: ExtractArgs) -> anyhow::Result<()> {
             });
             serde_json::to_vec(&obj)?
         }
-        Some(format) => encode_level(positions, &strips, &triangles, format, &args.output)?,
+        Some(format) => encode_level(positions, &strips, &triangles, format, &args.output, &write_options)?,
     };
     io::write_encoded(&args.output, &bytes)?;
     let indices = strips.index_count();
@@ -507,6 +511,7 @@ fn encode_level(
     triangles: &[[u32; 3]],
     format: Format,
     path: &Path,
+    options: &io::WriteOptions,
 ) -> anyhow::Result<Vec<u8>> {
     let mesh = Mesh::from_triangles(positions, triangles);
     let to_write = match format {
@@ -514,7 +519,7 @@ fn encode_level(
         Format::Gltf | Format::Glb => Some(StripSet::from_strips(&[stripkit::encode_stitched(strips)])),
         _ => None,
     };
-    let bytes = io::write_bytes(format, &mesh, to_write.as_ref(), &io::WriteOptions::default())?;
+    let bytes = io::write_bytes(format, &mesh, to_write.as_ref(), options)?;
     let name = format!("the {format:?} bytes of {}", path.display());
     let back = io::read_bytes(Path::new(&name), format, &bytes)?;
     let v = stripkit::verify_triangles(triangles, &back.triangulate().tris);

@@ -71,6 +71,19 @@ impl ReadArgs {
     }
 }
 
+/// The write options of `--ascii` for `output`: ASCII PLY, refused (exit 2) for an
+/// output that is not PLY, where it would do nothing.
+pub fn write_options(ascii: bool, output: &Path) -> Result<stripkit::io::WriteOptions, stripkit::Error> {
+    let is_ply = matches!(stripkit::io::Format::from_path(output), Some((stripkit::io::Format::Ply, _)));
+    if ascii && !is_ply {
+        return Err(stripkit::Error::Invalid(format!(
+            "--ascii applies to PLY outputs; {} is not one",
+            output.display()
+        )));
+    }
+    Ok(stripkit::io::WriteOptions { ply_ascii: ascii })
+}
+
 /// Refuses, before any work, an output whose folder does not exist.
 pub fn check_output_folder(output: &Path) -> Result<(), stripkit::Error> {
     match output.parent().filter(|d| !d.as_os_str().is_empty()) {

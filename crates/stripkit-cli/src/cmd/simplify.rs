@@ -53,6 +53,9 @@ pub struct Args {
     /// Output mesh; vertex ids are kept (removed vertices stay, unreferenced).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Write PLY as ASCII text instead of binary (PLY outputs only).
+    #[arg(long)]
+    pub ascii: bool,
     /// Write the collapse sequence here: `.json` for JSON, anything else for the
     /// compact binary format. Must not be the same file as `-o`. Both outputs are
     /// encoded and written in full to temporary files before either is renamed into
@@ -97,6 +100,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             "--pair-distance {d} is out of range: a finite distance, 0 or more"
         );
     }
+    let write_options = super::write_options(args.ascii, &args.output)?;
     let mesh = args.read.read(&args.file)?;
     let options = Options {
         target,
@@ -123,7 +127,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // Every output encoded before any is written; then all staged on disk before any
     // is renamed into place, the sequence first and the mesh (-o) last.
     let mesh_bytes =
-        stripkit::io::encode_file(&args.output, &result.mesh, None, &stripkit::io::WriteOptions::default())?;
+        stripkit::io::encode_file(&args.output, &result.mesh, None, &write_options)?;
     match &args.sequence {
         Some(seq) => {
             let seq_bytes = result.sequence.encode(seq)?;

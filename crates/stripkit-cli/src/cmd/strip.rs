@@ -218,6 +218,9 @@ pub struct Args {
     /// Output file: .ply, .json, .gltf or .glb (see below).
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
+    /// Write PLY as ASCII text instead of binary (PLY outputs only).
+    #[arg(long)]
+    pub ascii: bool,
     #[command(flatten)]
     pub strip: StripArgs,
     /// How strips are joined in the output: `restart` (one buffer with a restart index),
@@ -444,6 +447,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let kind = output_kind(&args.output)?;
     // Fail before the work when the output cannot be written at all.
     super::check_output_folder(&args.output)?;
+    let write_options = super::write_options(args.ascii, &args.output)?;
     // Arguments are checked before the file is read.
     args.strip.validate(|o| with_join(&args, o))?;
     // A spinner on a terminal (indicatif draws nothing when stderr is not one):
@@ -481,7 +485,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             bytes.push(b'\n');
             bytes
         }
-        OutKind::Mesh(format) => strips.to_file_bytes(&mesh, format)?,
+        OutKind::Mesh(format) => strips.to_file_bytes_with(&mesh, format, &write_options)?,
     };
     io::write_encoded(&args.output, &bytes)?;
     progress.finish_and_clear();
