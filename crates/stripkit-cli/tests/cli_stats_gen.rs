@@ -199,3 +199,45 @@ fn ascii_ply_from_every_writer_and_refused_elsewhere() {
     }
     assert!(!glb.exists());
 }
+
+#[test]
+fn meshes_read_from_standard_input_with_format() {
+    use std::io::Write;
+    use std::process::Stdio;
+    let feed = |args: &[&str], data: &[u8]| {
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_stripkit"))
+            .args(args)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // A command that fails early may not read its input: a closed pipe is fine.
+        let _ = child.stdin.take().unwrap().write_all(data);
+        child.wait_with_output().unwrap()
+    };
+    let obj = support::tmp("stdin", "ico.obj");
+    let mesh = stripkit::gen::icosphere(2);
+    stripkit::io::write(&obj, &mesh, None).unwrap();
+    let bytes = std::fs::read(&obj).unwrap();
+    let out = support::tmp("stdin", "ico.ply");
+    let o = feed(&["strip", "-", "--format", "obj", "-o", out.to_str().unwrap(), "--json"], &bytes);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["triangles"], 320);
+    assert_eq!(stripkit::io::read(&out).unwrap().triangle_count(), 320);
+    // The same mesh as binary PLY through stdin, for stats.
+    let ply = std::fs::read(&out).unwrap();
+    let o = feed(&["stats", "-", "--format", "ply", "--json"], &ply);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // Without --format, with --format on a file, with gzip data: exit 2.
+    for (args, data) in [
+        (vec!["stats", "-"], bytes.clone()),
+        (vec!["stats", obj.to_str().unwrap(), "--format", "obj"], Vec::new()),
+        (vec!["stats", "-", "--format", "obj"], vec![0x1f, 0x8b, 8, 0, 0, 0]),
+        (vec!["stats", "-", "--format", "xyz"], Vec::new()),
+    ] {
+        let o = feed(&args, &data);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+}

@@ -51,6 +51,25 @@ pub struct ReadArgs {
     /// bounds their memory. A refusal names the limit; raise it with this flag.
     #[arg(long, value_name = "SIZE", value_parser = parse_size)]
     pub max_memory: Option<u64>,
+    /// The format of a mesh read from standard input, given as `-`: obj, ply, off,
+    /// stl, gltf or glb (uncompressed; a glTF from standard input may only embed its
+    /// buffers). A file's extension names its own format.
+    #[arg(long, value_name = "FORMAT", value_parser = parse_format)]
+    pub format: Option<stripkit::io::Format>,
+}
+
+/// Parses a mesh format name (the extensions stripkit reads, without `.gz`).
+pub fn parse_format(text: &str) -> Result<stripkit::io::Format, String> {
+    use stripkit::io::Format;
+    match text.trim().trim_start_matches('.').to_ascii_lowercase().as_str() {
+        "obj" => Ok(Format::Obj),
+        "ply" => Ok(Format::Ply),
+        "off" => Ok(Format::Off),
+        "stl" => Ok(Format::Stl),
+        "gltf" => Ok(Format::Gltf),
+        "glb" => Ok(Format::Glb),
+        _ => Err(format!("`{text}` is not a mesh format: obj, ply, off, stl, gltf or glb")),
+    }
 }
 
 impl ReadArgs {
@@ -65,9 +84,43 @@ impl ReadArgs {
         options
     }
 
-    /// Reads a mesh under these limits.
+    /// Reads a mesh under these limits; `-` reads standard input in `--format`.
     pub fn read(&self, path: &Path) -> stripkit::Result<stripkit::Mesh> {
-        stripkit::io::read_with(path, &self.options())
+        use std::io::Read;
+        let options = self.options();
+        if path.as_os_str() != "-" {
+            if self.format.is_some() {
+                return Err(stripkit::Error::Invalid(format!(
+                    "--format applies to standard input (-); {} names its format by its extension",
+                    path.display()
+                )));
+            }
+            return stripkit::io::read_with(path, &options);
+        }
+        let Some(format) = self.format else {
+            return Err(stripkit::Error::Invalid(
+                "reading a mesh from standard input (-) needs --format obj, ply, off, stl, gltf or glb".into(),
+            ));
+        };
+        let name = Path::new("<standard input>");
+        let cap = options.max_decompressed_bytes;
+        let mut data = Vec::new();
+        std::io::stdin()
+            .lock()
+            .take(cap.saturating_add(1))
+            .read_to_end(&mut data)
+            .map_err(|source| stripkit::Error::Io { path: name.to_path_buf(), source })?;
+        if data.len() as u64 > cap {
+            return Err(stripkit::Error::Invalid(format!(
+                "standard input holds more than {cap} bytes (--max-memory raises the limit)"
+            )));
+        }
+        if data.starts_with(&[0x1f, 0x8b]) {
+            return Err(stripkit::Error::Invalid(
+                "standard input is gzip-compressed: pipe it through gunzip, or name the .gz file".into(),
+            ));
+        }
+        stripkit::io::read_bytes_with(name, format, &data, &options)
     }
 }
 
