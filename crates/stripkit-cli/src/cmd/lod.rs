@@ -9,7 +9,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stripkit::io::{self, Format};
-use stripkit::lod::{self, BuildOptions, LevelSpec, LodSeq, SeqOptions, Sets, Spacing};
+use stripkit::lod::{self, BuildOptions, Extracted, LevelSpec, LodSeq, Model, SeqOptions, Sets, Spacing};
 use stripkit::simplify::Placement;
 use stripkit::{Error, Mesh, StripSet};
 
@@ -410,61 +410,24 @@ fn extract(args: ExtractArgs) -> anyhow::Result<()> {
     }
     let write_options = super::write_options(args.ascii, &args.output)?;
     super::check_output_folder(&args.output)?;
-    let data = std::fs::read(&args.file).map_err(|source| Error::Io { path: args.file.clone(), source })?;
+    let model = read_model(&args.file)?;
     let spec = match (args.level, args.triangles, args.ratio) {
         (Some(l), _, _) => LevelSpec::Level(l),
         (_, Some(t), _) => LevelSpec::Triangles(t),
         (_, _, Some(r)) => LevelSpec::Ratio(r),
         _ => anyhow::bail!("give one of --level, --triangles, --ratio"),
     };
-    let seq_model;
-    let sets_model;
-    let start = Instant::now();
     // A .lodseq (by its header) needs --frame; a .sets refuses it.
-    let (sets, level, strips, positions, frame): (&Sets, u32, StripSet, Vec<[f32; 3]>, Option<f64>) =
-        if data.starts_with(lod::LODSEQ_MAGIC) {
-            seq_model = LodSeq::from_bytes(&args.file, &data)?;
-            let Some(t) = args.frame else {
-                return Err(Error::Invalid(format!(
-                    "{} is an animation (.lodseq): give --frame (0 to {}; fractions morph between key frames)",
-                    args.file.display(),
-                    seq_model.frame_count() - 1
-                ))
-                .into());
-            };
-            anyhow::ensure!(
-                t.is_finite() && t >= 0.0 && t <= (seq_model.frame_count() - 1) as f64,
-                "--frame {t} is out of range: 0 to {}",
-                seq_model.frame_count() - 1
-            );
-            let key = seq_model.nearest_frame(t);
-            let cursor = seq_model.cursor(key, spec);
-            let model = &seq_model.models()[seq_model.model_of(key)];
-            (model, cursor.level(), cursor.strips(), seq_model.morph(t), Some(t))
-        } else {
-            if args.frame.is_some() {
-                return Err(Error::Invalid(format!(
-                    "--frame applies to animations (.lodseq); {} is a single model",
-                    args.file.display()
-                ))
-                .into());
-            }
-            sets_model = Sets::from_bytes(&args.file, &data)?;
-            let level = match spec {
-                LevelSpec::Level(l) => l.min(sets_model.levels()),
-                LevelSpec::Triangles(t) => sets_model.level_for_triangles(t),
-                LevelSpec::Ratio(r) => sets_model.level_for_ratio(r),
-            };
-            let strips = sets_model.cursor(level).strips();
-            (&sets_model, level, strips, sets_model.positions().to_vec(), None)
-        };
+    let start = Instant::now();
+    let Extracted { positions, strips, level, levels, triangles: expected, frame } =
+        model.extract(spec, args.frame).with_context(|| format!("{} (--frame)", args.file.display()))?;
     let us = start.elapsed().as_secs_f64() * 1e6;
+    let frame = frame.map(|(t, _)| t);
     let triangles = stripkit::decode(&strips);
-    if triangles.len() != sets.triangles_at(level) as usize {
+    if triangles.len() != expected as usize {
         return Err(Error::Verification(format!(
-            "level {level}: the strips draw {} triangles, the model says {}",
-            triangles.len(),
-            sets.triangles_at(level)
+            "level {level}: the strips draw {} triangles, the model says {expected}",
+            triangles.len()
         ))
         .into());
     }
@@ -487,7 +450,7 @@ fn extract(args: ExtractArgs) -> anyhow::Result<()> {
         output: args.output.display().to_string(),
         frame,
         level,
-        levels: sets.levels(),
+        levels,
         triangles: triangles.len() as u32,
         strips: strips.len(),
         indices,
@@ -529,6 +492,18 @@ fn encode_level(
     Ok(bytes)
 }
 
+/// A `.sets` or `.lodseq` file; anything else is a format error naming it.
+fn read_model(path: &Path) -> anyhow::Result<Model> {
+    Model::read(path)?.ok_or_else(|| {
+        Error::Format {
+            path: path.to_path_buf(),
+            at: "byte 0".into(),
+            what: "not a stripkit .sets or .lodseq file (bad magic)".into(),
+        }
+        .into()
+    })
+}
+
 fn is_json(path: &Path) -> bool {
     path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"))
 }
@@ -556,11 +531,10 @@ struct BenchOut {
 }
 
 fn bench(args: BenchArgs) -> anyhow::Result<()> {
-    let data = std::fs::read(&args.file).map_err(|source| Error::Io { path: args.file.clone(), source })?;
-    if data.starts_with(lod::LODSEQ_MAGIC) {
-        return bench_seq(&args, &LodSeq::from_bytes(&args.file, &data)?);
-    }
-    let sets = Sets::from_bytes(&args.file, &data)?;
+    let sets = match read_model(&args.file)? {
+        Model::Seq(seq) => return bench_seq(&args, &seq),
+        Model::Sets(sets) => sets,
+    };
     let mut rows = Vec::new();
     for percent in [1.0, 3.0, 6.0, 10.0, 15.0, 20.0] {
         for spacing in [Spacing::Linear, Spacing::Exponential] {

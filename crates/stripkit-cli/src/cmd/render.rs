@@ -267,56 +267,35 @@ fn check(args: &Args) -> anyhow::Result<()> {
 type Level = (Vec<[f32; 3]>, stripkit::StripSet, String);
 
 /// The strips of a `.sets` or `.lodseq` input at `--level` / `--ratio` (and
-/// `--frame`); `None` for a mesh.
+/// `--frame`, default 0 for an animation); `None` for a mesh (or standard input).
 fn read_lod(args: &Args) -> anyhow::Result<Option<Level>> {
-    use stripkit::lod::{LevelSpec, LodSeq, Sets, LODSEQ_MAGIC, SETS_MAGIC};
-    let lod_flags = args.level.is_some() || args.ratio.is_some() || args.frame.is_some();
-    let mut head = [0u8; 8];
-    let is_lod = std::fs::File::open(&args.input)
-        .and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head))
-        .is_ok()
-        && (&head == SETS_MAGIC || &head == LODSEQ_MAGIC);
-    if !is_lod {
-        if lod_flags {
+    use anyhow::Context;
+    use stripkit::lod::{LevelSpec, Model};
+    let model = if args.input.as_os_str() == "-" { None } else { Model::read(&args.input)? };
+    let Some(model) = model else {
+        if args.level.is_some() || args.ratio.is_some() || args.frame.is_some() {
             return Err(Error::Invalid("--level, --ratio and --frame apply to .sets and .lodseq inputs".into()).into());
         }
         return Ok(None);
-    }
+    };
     if args.morph.is_some() {
         return Err(Error::Invalid("--morph applies to meshes; a .lodseq morphs with --frame".into()).into());
     }
-    let data = std::fs::read(&args.input).map_err(|source| Error::Io { path: args.input.clone(), source })?;
     let spec = match (args.level, args.ratio) {
         (_, Some(r)) => LevelSpec::Ratio(r as f64),
         (l, None) => LevelSpec::Level(l.unwrap_or(0)),
     };
-    if &head == SETS_MAGIC {
-        if args.frame.is_some() {
-            return Err(Error::Invalid("--frame applies to animations (.lodseq)".into()).into());
-        }
-        let sets = Sets::from_bytes(&args.input, &data)?;
-        let level = match spec {
-            LevelSpec::Ratio(r) => sets.level_for_ratio(r),
-            LevelSpec::Level(l) => l.min(sets.levels()),
-            LevelSpec::Triangles(n) => sets.level_for_triangles(n),
-        };
-        let what = format!("level {level} of {}, {} triangles", sets.levels(), sets.triangles_at(level));
-        return Ok(Some((sets.positions().to_vec(), sets.cursor(level).strips(), what)));
-    }
-    let seq = LodSeq::from_bytes(&args.input, &data)?;
-    let last = (seq.frame_count() - 1) as f64;
-    let t = args.frame.unwrap_or(0.0);
-    anyhow::ensure!(t.is_finite() && (0.0..=last).contains(&t), "--frame {t} is out of range: 0 to {last}");
-    let key = seq.nearest_frame(t);
-    let cursor = seq.cursor(key, spec);
-    let model = &seq.models()[seq.model_of(key)];
-    let what = format!(
-        "frame {t} (key frame {key}), level {} of {}, {} triangles",
-        cursor.level(),
-        model.levels(),
-        model.triangles_at(cursor.level())
-    );
-    Ok(Some((seq.morph(t), cursor.strips(), what)))
+    let frame = match model {
+        Model::Seq(_) => Some(args.frame.unwrap_or(0.0)),
+        Model::Sets(_) => args.frame,
+    };
+    let x = model.extract(spec, frame).with_context(|| format!("{} (--frame)", args.input.display()))?;
+    let level = format!("level {} of {}, {} triangles", x.level, x.levels, x.triangles);
+    let what = match x.frame {
+        Some((t, key)) => format!("frame {t} (key frame {key}), {level}"),
+        None => level,
+    };
+    Ok(Some((x.positions, x.strips, what)))
 }
 
 /// The mesh, and the `--morph` mesh when given (same vertex count).

@@ -25,6 +25,7 @@ mod build;
 mod check;
 mod cursor;
 mod file;
+mod model;
 mod seq;
 mod sets;
 
@@ -32,11 +33,12 @@ pub use build::{build, BuildOptions, BuildReport, Built};
 pub use check::{check_levels, LevelCheck};
 pub use cursor::{bench_levels, Cursor, Spacing};
 pub use file::{LODSEQ_MAGIC, SETS_MAGIC};
+pub use model::{Extracted, Model};
 pub use seq::{
-    build_seq, read_frames, BuiltSeq, FrameQuality, Frames, LevelSpec, LodSeq, Quality, SeqCursor, SeqOptions,
+    build_seq, read_frames, BuiltSeq, FrameQuality, Frames, LodSeq, Quality, SeqCursor, SeqOptions,
     SeqReport, QUALITY_RATIOS,
 };
-pub use sets::{Sets, END};
+pub use sets::{LevelSpec, Sets, END};
 
 #[cfg(test)]
 mod tests;

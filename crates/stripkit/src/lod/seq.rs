@@ -16,7 +16,7 @@
 //! levels by updating only what differs.
 
 use super::cursor::Cursor;
-use super::sets::Sets;
+use super::sets::{LevelSpec, Sets};
 use crate::distance::{Distance, Surface};
 use crate::error::{Error, Result};
 use crate::io::{self, Format, ReadOptions};
@@ -458,17 +458,6 @@ fn level_for_ratio(seq: &CollapseSequence, triangles: usize, ratio: f64) -> usiz
     seq.len()
 }
 
-/// Which level [`SeqCursor::set`] recovers.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum LevelSpec {
-    /// Collapses of the frame's sequence applied (past the coarsest: the coarsest).
-    Level(u32),
-    /// The first level with at most this many triangles.
-    Triangles(u64),
-    /// The first level with at most `ceil(ratio x triangles)` triangles.
-    Ratio(f64),
-}
-
 impl LodSeq {
     /// Number of frames.
     pub fn frame_count(&self) -> usize {
@@ -520,12 +509,7 @@ impl LodSeq {
 
     /// Resolves `spec` for frame `f`'s model.
     pub fn level(&self, f: usize, spec: LevelSpec) -> u32 {
-        let m = &self.models[self.model_of(f)];
-        match spec {
-            LevelSpec::Level(l) => l.min(m.levels()),
-            LevelSpec::Triangles(n) => m.level_for_triangles(n),
-            LevelSpec::Ratio(r) => m.level_for_ratio(r),
-        }
+        self.models[self.model_of(f)].level_of(spec)
     }
 
     /// A cursor at frame `f` and `spec`.

@@ -42,6 +42,18 @@ pub(crate) struct Version {
     pub(crate) next: u32,
 }
 
+/// Which level to recover: [`Sets::level_of`], [`crate::lod::SeqCursor::set`],
+/// [`crate::lod::Model::extract`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LevelSpec {
+    /// Collapses of the frame's sequence applied (past the coarsest: the coarsest).
+    Level(u32),
+    /// The first level with at most this many triangles.
+    Triangles(u64),
+    /// The first level with at most `ceil(ratio x triangles)` triangles.
+    Ratio(f64),
+}
+
 /// A multiresolution strip model: the strips of every level of a collapse sequence.
 ///
 /// Build one with [`Sets::build`] (or [`crate::lod::build`] from a mesh), recover
@@ -251,6 +263,15 @@ impl Sets {
     pub fn level_for_ratio(&self, ratio: f64) -> u32 {
         let r = if ratio.is_nan() { 1.0 } else { ratio.clamp(0.0, 1.0) };
         self.level_for_triangles((self.triangles0 as f64 * r).ceil() as u64)
+    }
+
+    /// The level `spec` names (clamped to the coarsest).
+    pub fn level_of(&self, spec: LevelSpec) -> u32 {
+        match spec {
+            LevelSpec::Level(l) => l.min(self.levels()),
+            LevelSpec::Triangles(n) => self.level_for_triangles(n),
+            LevelSpec::Ratio(r) => self.level_for_ratio(r),
+        }
     }
 
     /// Bytes the model holds in memory (its tables, derived ones included).
