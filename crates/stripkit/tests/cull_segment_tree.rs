@@ -417,7 +417,6 @@ fn frustum_culling_skips_only_what_lies_outside() {
         let pos = strips.with_added_vertices(&mesh.positions);
         let tree = SegmentTree::build(&strips.strips, &pos);
         let (center, radius) = bounding_sphere(&pos);
-        let idx = &strips.strips.indices;
         let mut front = RenderFront::new(&tree);
         let (mut a, mut b, mut plain) = (Culled::default(), Culled::default(), Culled::default());
         let mut outside_views = 0;
@@ -456,7 +455,6 @@ fn frustum_culling_skips_only_what_lies_outside() {
                     }
                 }
             }
-            let _ = idx;
         }
         assert!(outside_views > 30, "{name}: the narrow camera leaves parts out ({outside_views} of 60 views)");
     }

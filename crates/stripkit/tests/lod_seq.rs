@@ -55,8 +55,8 @@ fn every_model_draws_its_replay_at_every_level() {
         // All models lay their strips out alike.
         assert_eq!(sets.slot_count(), b.seq.models()[0].slot_count());
     }
-    // (a) is never worse than (b), in all four figures, and never better than... its
-    // own measurement: the frame's chosen sequence is one of the candidates.
+    // (a) is never worse than (b), in all four figures: every frame falls back to
+    // the reference pose's sequence.
     for q in &b.report.quality {
         for r in 0..2 {
             assert!(q.chosen.hausdorff[r] <= q.reference.hausdorff[r], "{}: {q:?}", q.frame);

@@ -67,7 +67,7 @@ enum CheckArg {
     All,
     /// 2,000 levels spread over the range, plus the coarsest.
     Sample,
-    /// No check (the builder's output is still what the tests check).
+    /// Only the library's own check: 17 levels spread over the range.
     Off,
 }
 
@@ -213,7 +213,7 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
         PlacementArg::Optimal => Placement::Optimal,
     };
     let options = BuildOptions { strip: args.common.strip.options(Some(&mesh)), placement };
-    let bar = progress_bar(mesh.triangle_count() > 200_000, "simplify");
+    let bar = super::progress_bar(mesh.triangle_count() > 200_000, "simplify");
     let built = lod::build(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the model of {}", args.file.display()))?;
     bar.finish_and_clear();
@@ -303,7 +303,7 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
         candidates: args.candidates,
         position_bits: args.position_bits,
     };
-    let bar = progress_bar(true, "simplify and measure");
+    let bar = super::progress_bar(true, "simplify and measure");
     let built = lod::build_seq(&frames, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the level-of-detail strips of {}", args.folder.display()))?;
     bar.finish_and_clear();
@@ -759,14 +759,3 @@ fn median(v: &mut [f64]) -> f64 {
     v.get(v.len() / 2).copied().unwrap_or(0.0)
 }
 
-fn progress_bar(show: bool, what: &str) -> indicatif::ProgressBar {
-    if !show {
-        return indicatif::ProgressBar::hidden();
-    }
-    let bar = indicatif::ProgressBar::with_draw_target(Some(1000), indicatif::ProgressDrawTarget::stderr());
-    bar.set_style(
-        indicatif::ProgressStyle::with_template(&format!("{what} {{bar:40}} {{percent:>3}}% {{elapsed}}"))
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
-    bar
-}

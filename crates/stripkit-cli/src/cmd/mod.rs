@@ -137,6 +137,20 @@ pub fn write_options(ascii: bool, output: &Path) -> Result<stripkit::io::WriteOp
     Ok(stripkit::io::WriteOptions { ply_ascii: ascii })
 }
 
+/// A progress bar of 1,000 steps on stderr, `WHAT [bar] percent elapsed`; hidden
+/// unless `show` (short runs draw nothing).
+pub fn progress_bar(show: bool, what: &str) -> indicatif::ProgressBar {
+    if !show {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::with_draw_target(Some(1000), indicatif::ProgressDrawTarget::stderr());
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(&format!("{what} {{bar:40}} {{percent:>3}}% {{elapsed}}"))
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    bar
+}
+
 /// Refuses, before any work, an output whose folder does not exist.
 pub fn check_output_folder(output: &Path) -> Result<(), stripkit::Error> {
     match output.parent().filter(|d| !d.as_os_str().is_empty()) {

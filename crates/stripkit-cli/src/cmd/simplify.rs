@@ -109,18 +109,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         pair_distance: args.pair_distance,
         max_collapses: None,
     };
-    let bar = indicatif::ProgressBar::with_draw_target(Some(1000), indicatif::ProgressDrawTarget::stderr());
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("simplify {bar:40} {percent:>3}% {elapsed}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
-    let show = mesh.triangle_count() > 200_000;
+    let bar = super::progress_bar(mesh.triangle_count() > 200_000, "simplify");
     let start = Instant::now();
-    let result = simplify(&mesh, &options, &mut |f| {
-        if show {
-            bar.set_position((f * 1000.0) as u64);
-        }
-    })
+    let result = simplify(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
     .with_context(|| format!("simplifying {}", args.file.display()))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     bar.finish_and_clear();

@@ -69,10 +69,11 @@ impl Frustum {
     #[inline]
     pub fn side(&self, center: [f32; 3], radius: f32) -> Side {
         let mut crossing = false;
+        let scale = center[0].abs() + center[1].abs() + center[2].abs() + radius;
         for pl in &self.planes {
             let s = pl[0] * center[0] + pl[1] * center[1] + pl[2] * center[2] + pl[3];
             // A little slack against rounding: never call outside what may touch.
-            let slack = 1e-5 * (center[0].abs() + center[1].abs() + center[2].abs() + radius + pl[3].abs());
+            let slack = 1e-5 * (scale + pl[3].abs());
             if s < -radius - slack {
                 return Side::Outside;
             }

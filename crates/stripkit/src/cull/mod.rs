@@ -202,10 +202,9 @@ impl Hot {
     fn classify_in(&self, eye: [f32; 3], options: &CullOptions) -> (Facing, f32, bool) {
         let (facing, reach) = self.classify(eye);
         let Some(frustum) = &options.frustum else { return (facing, reach, false) };
-        match frustum.side(self.center, self.radius) {
-            Side::Outside => (Facing::Back, -1.0, facing != Facing::Back),
-            _ => (facing, -1.0, false),
-        }
+        // A back-facing node is skipped anyway: only the others meet the planes.
+        let outside = facing != Facing::Back && frustum.side(self.center, self.radius) == Side::Outside;
+        (if outside { Facing::Back } else { facing }, -1.0, outside)
     }
 
     /// The facing and how far the eye may move keeping it (after rounding).

@@ -1,6 +1,7 @@
 //! From a mesh to a model: the door's strips, the simplifier's full collapse sequence,
 //! then [`Sets::build`].
 
+use super::check::check_levels;
 use super::sets::Sets;
 use crate::error::Result;
 use crate::mesh::Mesh;
@@ -24,7 +25,7 @@ pub struct BuildOptions {
 pub struct BuildReport {
     /// The stripifier that ran.
     pub algorithm: String,
-    /// Non-degenerate triangles at level 0 and at the coarsest level.
+    /// Non-degenerate triangles at level 0.
     pub triangles: u32,
     /// Triangles at the coarsest level.
     pub coarsest_triangles: u32,
@@ -32,7 +33,7 @@ pub struct BuildReport {
     pub levels: u32,
     /// Strips at level 0.
     pub strips: usize,
-    /// Slots (level-0 strip indices), versions and beginnings stored.
+    /// Slots (level-0 strip indices).
     pub slots: usize,
     /// Slot versions stored.
     pub versions: usize,
@@ -40,12 +41,14 @@ pub struct BuildReport {
     pub beginnings: usize,
     /// Bytes in memory ([`Sets::memory_bytes`]).
     pub memory_bytes: usize,
-    /// Milliseconds of the stripifier, the simplifier and the model's builder.
+    /// Milliseconds of the stripifier.
     pub strip_ms: f64,
     /// Milliseconds of the simplification.
     pub simplify_ms: f64,
     /// Milliseconds of [`Sets::build`].
     pub build_ms: f64,
+    /// Milliseconds of the check of 17 levels against the replay.
+    pub check_ms: f64,
 }
 
 /// A model with what it was built from.
@@ -66,7 +69,9 @@ pub struct Built {
 
 /// Strips `mesh` through the door, simplifies the triangles the strips draw as far
 /// as the simplifier goes (its defaults, with `options.placement`), and builds the
-/// [`Sets`] model of both. `progress` gets the simplifier's fraction done.
+/// [`Sets`] model of both, checked at 17 levels against the replay
+/// ([`check_levels`]; a failure is [`crate::Error::Verification`]). `progress` gets
+/// the simplifier's fraction done.
 pub fn build(mesh: &Mesh, options: &BuildOptions, progress: &mut dyn FnMut(f64)) -> Result<Built> {
     let t = Instant::now();
     let strips = stripify(mesh, &options.strip)?;
@@ -81,6 +86,12 @@ pub fn build(mesh: &Mesh, options: &BuildOptions, progress: &mut dyn FnMut(f64))
     let t = Instant::now();
     let sets = Sets::build(&simplified_mesh.positions, &strips.strips, &simplified.sequence, options.placement)?;
     let build_ms = t.elapsed().as_secs_f64() * 1e3;
+    // Checked before it is returned, as every output of the library: 17 levels
+    // spread over the range (and the coarsest) against the replay, 2 of them
+    // against a replay from scratch. `check_levels` with a stride of 1 checks all.
+    let t = Instant::now();
+    check_levels(&sets, &simplified_mesh, &simplified.sequence, (sets.levels() as usize / 16).max(1), 2)?;
+    let check_ms = t.elapsed().as_secs_f64() * 1e3;
     let report = BuildReport {
         algorithm: strips.algorithm.name().to_string(),
         triangles: sets.triangles_at(0),
@@ -94,6 +105,7 @@ pub fn build(mesh: &Mesh, options: &BuildOptions, progress: &mut dyn FnMut(f64))
         strip_ms,
         simplify_ms,
         build_ms,
+        check_ms,
     };
     Ok(Built { sets, mesh: simplified_mesh, sequence: simplified.sequence, report })
 }

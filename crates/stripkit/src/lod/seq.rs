@@ -185,7 +185,7 @@ pub struct FrameQuality {
 /// What [`build_seq`] did.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct SeqReport {
-    /// Frames, vertices, triangles.
+    /// Frames of the animation.
     pub frames: usize,
     /// Vertices per frame.
     pub vertices: usize,
@@ -199,11 +199,11 @@ pub struct SeqReport {
     pub sequences: Vec<String>,
     /// Per frame: (a), (b), (c).
     pub quality: Vec<FrameQuality>,
-    /// Milliseconds: simplifications, distances, models.
+    /// Milliseconds of the simplifications.
     pub simplify_ms: f64,
     /// Milliseconds of the distance matrix.
     pub distance_ms: f64,
-    /// Milliseconds of the SETS models.
+    /// Milliseconds of the SETS models (built, and checked at 17 levels each).
     pub model_ms: f64,
 }
 
@@ -277,7 +277,9 @@ pub struct BuiltSeq {
 
 /// Strips the shared connectivity once, simplifies every frame (and the reference
 /// pose), measures the candidate sequences on every frame and keeps a few (see the
-/// module documentation). `progress` gets the fraction done.
+/// module documentation). Each kept model is checked at 17 levels against the
+/// replay of its sequence ([`crate::lod::check_levels`]). `progress` gets the
+/// fraction done.
 pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut(f64)) -> Result<BuiltSeq> {
     let quantized;
     let (frames, quantization) = match options.position_bits {
@@ -328,8 +330,11 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
     let simplify_ms = t.elapsed().as_secs_f64() * 1e3;
     // Candidates: 0 is the reference; then frames.
     let step = f_count.div_ceil(options.candidates.min(f_count)).max(1);
-    let mut candidates: Vec<(String, &CollapseSequence)> = vec![(reference_name.clone(), &reference)];
-    candidates.extend((0..f_count).step_by(step).map(|f| (frames.names[f].clone(), &own[f])));
+    // (name, sequence, the pose it was simplified on).
+    let reference_pose = frames.reference.as_deref().unwrap_or(&frames.positions[0]);
+    let mut candidates: Vec<(String, &CollapseSequence, &[[f32; 3]])> =
+        vec![(reference_name.clone(), &reference, reference_pose)];
+    candidates.extend((0..f_count).step_by(step).map(|f| (frames.names[f].clone(), &own[f], &frames.positions[f][..])));
     // The distance matrix: quality[c][f], and each frame's own.
     let t = Instant::now();
     let mut quality = vec![vec![Quality::default(); f_count]; candidates.len()];
@@ -340,7 +345,7 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
         let measure = |seq: &CollapseSequence| -> Result<Quality> {
             let mut d = [Distance::default(); 2];
             for (r, &ratio) in QUALITY_RATIOS.iter().enumerate() {
-                let level = level_for_ratio(seq, tris.len(), ratio);
+                let level = seq.level_for_ratio(tris.len(), ratio);
                 // Endpoint collapses keep the survivor's own position: the frame's,
                 // not the one recorded in the sequence (another pose's).
                 let replayed = seq.replay(&mesh, level)?;
@@ -349,7 +354,7 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
             Ok(Quality::from(d))
         };
         own_quality.push(measure(&own[f])?);
-        for (c, (_, seq)) in candidates.iter().enumerate() {
+        for (c, (_, seq, _)) in candidates.iter().enumerate() {
             quality[c][f] = measure(seq)?;
         }
         progress(0.4 + 0.5 * (f + 1) as f64 / f_count as f64);
@@ -411,10 +416,14 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
     let mut models = Vec::with_capacity(used.len());
     let mut sequences = Vec::with_capacity(used.len());
     for &c in &used {
-        let mut sets = Sets::build(&frames.mesh.positions, &strips.strips, candidates[c].1, Placement::Endpoint)?;
+        let (_, sequence, pose) = candidates[c];
+        let mut sets = Sets::build(pose, &strips.strips, sequence, Placement::Endpoint)?;
+        // Checked before it is returned: 17 levels against the replay on the pose
+        // the sequence was made on (whose positions the replay's survivors keep).
+        super::check::check_levels(&sets, &frame_mesh(pose), sequence, (sets.levels() as usize / 16).max(1), 1)?;
         sets.positions = Vec::new();
         models.push(sets);
-        sequences.push(candidates[c].1.clone());
+        sequences.push(sequence.clone());
     }
     let model_ms = t.elapsed().as_secs_f64() * 1e3;
     progress(1.0);
@@ -442,20 +451,6 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
     let seq =
         LodSeq { names: frames.names.clone(), positions: frames.positions.clone(), frame_model, models, quantization };
     Ok(BuiltSeq { seq, triangles: tris, sequences, report })
-}
-
-/// The first level of `seq` with at most `ceil(ratio x triangles)` triangles left
-/// (where `simplify` with that ratio stops).
-fn level_for_ratio(seq: &CollapseSequence, triangles: usize, ratio: f64) -> usize {
-    let target = (triangles as f64 * ratio).ceil() as usize;
-    let mut live = triangles;
-    for i in 0..seq.len() {
-        if live <= target {
-            return i;
-        }
-        live = live.saturating_sub(seq.removed_by(i).len());
-    }
-    seq.len()
 }
 
 impl LodSeq {

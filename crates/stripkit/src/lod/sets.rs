@@ -262,7 +262,7 @@ impl Sets {
     /// `ratio` is clamped to 0..=1.
     pub fn level_for_ratio(&self, ratio: f64) -> u32 {
         let r = if ratio.is_nan() { 1.0 } else { ratio.clamp(0.0, 1.0) };
-        self.level_for_triangles((self.triangles0 as f64 * r).ceil() as u64)
+        self.level_for_triangles(crate::simplify::ratio_target(self.triangles0 as usize, r) as u64)
     }
 
     /// The level `spec` names (clamped to the coarsest).

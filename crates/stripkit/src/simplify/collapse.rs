@@ -1008,7 +1008,7 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
     }
 
     let (target, max_cost) = match options.target {
-        Target::Ratio(r) => (((triangles_in as f64) * r).ceil() as usize, f64::INFINITY),
+        Target::Ratio(r) => (super::ratio_target(triangles_in, r), f64::INFINITY),
         Target::Triangles(t) => (t, f64::INFINITY),
         Target::Error(e) => (0, e),
     };

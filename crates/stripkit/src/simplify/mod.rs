@@ -68,6 +68,13 @@ pub enum Target {
     Error(f64),
 }
 
+/// The triangle count [`Target::Ratio`] stops at: `ceil(ratio x triangles)`, the one
+/// definition that `simplify`, [`CollapseSequence::level_for_ratio`] and the
+/// level-of-detail models share.
+pub fn ratio_target(triangles: usize, ratio: f64) -> usize {
+    (triangles as f64 * ratio).ceil() as usize
+}
+
 /// Options of [`simplify`].
 #[derive(Clone, Debug)]
 pub struct Options {

@@ -75,6 +75,22 @@ impl CollapseSequence {
         self.collapses.is_empty()
     }
 
+    /// The first level (collapses applied) with at most
+    /// [`ratio_target`](super::ratio_target)`(triangles, ratio)` of the `triangles`
+    /// non-degenerate input triangles left: where [`super::simplify`] with
+    /// [`super::Target::Ratio`] stops. The last level when none has so few.
+    pub fn level_for_ratio(&self, triangles: usize, ratio: f64) -> usize {
+        let target = super::ratio_target(triangles, ratio);
+        let mut live = triangles;
+        for i in 0..self.len() {
+            if live <= target {
+                return i;
+            }
+            live = live.saturating_sub(self.removed_by(i).len());
+        }
+        self.len()
+    }
+
     /// The triangles removed by collapse `i`.
     pub fn removed_by(&self, i: usize) -> &[u32] {
         &self.removed_triangles[self.removed_offsets[i] as usize..self.removed_offsets[i + 1] as usize]
