@@ -247,7 +247,16 @@ fn animations_build_extract_and_bench() {
     let r = json(&stripkit(&["lod", "bench", model.to_str().unwrap(), "--rounds", "1", "--json"]));
     let rows = r["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 8, "4 frame rows, 3 level rows, 1 play row");
-    assert!(rows.iter().all(|row| row["mean_us"].as_f64().unwrap() >= 0.0));
+    for row in rows {
+        let changed = row["strips_changed"].as_f64().unwrap();
+        match (row["test"].as_str().unwrap(), row["at"].as_str().unwrap()) {
+            // At level 0 every frame's strips are the level-0 strips: nothing to copy.
+            ("frame", "100%") => assert_eq!(changed, 0.0, "{row}"),
+            ("level", _) | ("play", _) => assert!(changed > 0.0, "{row}"),
+            _ => {}
+        }
+        assert!(row["changes"].as_u64().unwrap() > 0 && row["max_us"].as_f64() >= row["mean_us"].as_f64(), "{row}");
+    }
     // Quantized positions: a smaller file that still extracts.
     let small = tmp("lod", "anim_q.lodseq");
     let q = json(&stripkit(&[

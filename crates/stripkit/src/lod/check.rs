@@ -127,13 +127,18 @@ pub fn check_levels(
         let (old_r, old_k) = (name[r], name[k]);
         name[k] = target;
         let moved = std::mem::take(&mut adj[r]);
-        let mut touched = moved.clone();
-        if sets.placement == Placement::Optimal {
-            touched.extend_from_slice(&adj[k]);
-            touched.sort_unstable();
-            touched.dedup();
-        }
-        for &t in &touched {
+        // Endpoint: r's triangles change; optimal: k's too (renamed to the new vertex).
+        let both;
+        let touched: &[u32] = if sets.placement == Placement::Optimal {
+            let mut all = [moved.as_slice(), adj[k].as_slice()].concat();
+            all.sort_unstable();
+            all.dedup();
+            both = all;
+            &both
+        } else {
+            &moved
+        };
+        for &t in touched {
             let before = cur[t as usize];
             if !alive(&before) {
                 continue;
