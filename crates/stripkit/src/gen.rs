@@ -335,7 +335,7 @@ fn split_triangles_in_four(mesh: &Mesh, map: &EdgeMap, positions: Vec<[f32; 3]>)
         face_indices.extend_from_slice(&[a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca]);
     }
     let face_offsets = (0..=4 * fcount as u32).map(|f| 3 * f).collect();
-    Mesh { positions, face_offsets, face_indices }
+    Mesh { positions, face_offsets, face_indices, ..Mesh::new() }
 }
 
 /// Catmull-Clark subdivision, `levels` times, of any polygon mesh: a face of k
@@ -454,7 +454,7 @@ fn catmull_clark_step(mesh: &Mesh, map: &EdgeMap) -> Mesh {
         }
     }
     let face_offsets = (0..=fi.len() as u32).map(|q| 4 * q).collect();
-    Mesh { positions, face_offsets, face_indices }
+    Mesh { positions, face_offsets, face_indices, ..Mesh::new() }
 }
 
 fn check_no_repeated_index(mesh: &Mesh) -> Result<()> {
@@ -555,6 +555,7 @@ pub fn renumber_vertices(mesh: &Mesh, seed: u64) -> Mesh {
         positions,
         face_offsets: mesh.face_offsets.clone(),
         face_indices: mesh.face_indices.iter().map(|&v| perm.get(v as usize).copied().unwrap_or(v)).collect(),
+        ..Mesh::new()
     }
 }
 

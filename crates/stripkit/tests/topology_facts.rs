@@ -230,7 +230,7 @@ fn malformed_meshes_are_errors_not_panics() {
     let bad_index = Mesh::from_triangles(vec![[0.0; 3]; 3], &[[0, 1, 3]]);
     let err = MeshFacts::of(&bad_index).unwrap_err().to_string();
     assert!(err.contains("face 0") && err.contains("vertex 3"), "{err}");
-    let bad_offsets = Mesh { positions: vec![[0.0; 3]; 3], face_offsets: vec![0, 2], face_indices: vec![0, 1] };
+    let bad_offsets = Mesh { positions: vec![[0.0; 3]; 3], face_offsets: vec![0, 2], face_indices: vec![0, 1], ..Mesh::new() };
     assert!(MeshFacts::of(&bad_offsets).is_err());
     let empty = facts(&Mesh::new());
     assert_eq!(empty.faces, 0);

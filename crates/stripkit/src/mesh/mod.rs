@@ -8,8 +8,14 @@
 //!
 //! Vertex indices are stable: unreferenced vertices are kept (and reported by the
 //! topology module), so strips written out refer to the same vertices as the input.
+//!
+//! Besides positions, a vertex may carry named [`Attribute`]s (normals, UV sets,
+//! colours, ...), and faces may belong to [`Group`]s (materials); see [`attr`].
 
+pub mod attr;
 pub mod io;
+
+pub use attr::{Attribute, Group, Scalar};
 
 /// A polygon mesh: positions and faces of three or more vertices.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,6 +27,13 @@ pub struct Mesh {
     pub face_offsets: Vec<u32>,
     /// Vertex indices of all faces, concatenated.
     pub face_indices: Vec<u32>,
+    /// Other per-vertex data (normals, UVs, colours, ...), each with one value per
+    /// vertex.
+    pub attributes: Vec<Attribute>,
+    /// The group of each face, or empty when every face is in group 0.
+    pub face_groups: Vec<u32>,
+    /// The groups (materials) faces refer to; may be empty when `face_groups` is.
+    pub groups: Vec<Group>,
 }
 
 /// Triangles of a mesh, one `[a, b, c]` per triangle, each remembering its face.
@@ -42,17 +55,21 @@ impl Default for Mesh {
 impl Mesh {
     /// An empty mesh (no vertices, no faces).
     pub fn new() -> Self {
-        Mesh { positions: Vec::new(), face_offsets: vec![0], face_indices: Vec::new() }
+        Mesh {
+            positions: Vec::new(),
+            face_offsets: vec![0],
+            face_indices: Vec::new(),
+            attributes: Vec::new(),
+            face_groups: Vec::new(),
+            groups: Vec::new(),
+        }
     }
 
     /// A mesh whose faces are the given triangles.
     pub fn from_triangles(positions: Vec<[f32; 3]>, tris: &[[u32; 3]]) -> Self {
-        let mut mesh = Mesh {
-            positions,
-            face_offsets: Vec::with_capacity(tris.len() + 1),
-            face_indices: Vec::with_capacity(tris.len() * 3),
-        };
-        mesh.face_offsets.push(0);
+        let mut mesh = Mesh { positions, ..Mesh::new() };
+        mesh.face_offsets.reserve(tris.len());
+        mesh.face_indices.reserve(tris.len() * 3);
         for t in tris {
             mesh.push_face(t);
         }
@@ -80,8 +97,10 @@ impl Mesh {
 
     /// Checks that the faces are well formed: offsets from 0 to the end of
     /// `face_indices`, never decreasing; every face of at least 3 corners; every index
-    /// below the vertex count, which fits 32 bits. [`Error::Invalid`] names the first
-    /// face at fault. (Coordinates are not checked.) O(faces + indices).
+    /// below the vertex count, which fits 32 bits; every attribute one value per
+    /// vertex; face groups empty or one per face, each naming a group.
+    /// [`Error::Invalid`] names the first fault. (Coordinates are not checked.)
+    /// O(faces + indices).
     ///
     /// [`Error::Invalid`]: crate::Error::Invalid
     pub fn check_faces(&self) -> crate::Result<()> {
@@ -105,7 +124,70 @@ impl Mesh {
                 return Err(Error::Invalid(format!("face {f} refers to vertex {v} but the mesh has {n} vertices")));
             }
         }
-        Ok(())
+        attr::check(&self.attributes, &self.face_groups, &self.groups, n, self.face_count())
+    }
+
+    /// The attribute of this name, if the mesh has one.
+    pub fn attribute(&self, name: &str) -> Option<&Attribute> {
+        self.attributes.iter().find(|a| a.name == name)
+    }
+
+    /// Number of face groups: at least 1 (every face in group 0 when `face_groups` is empty).
+    pub fn group_count(&self) -> usize {
+        self.groups.len().max(1)
+    }
+
+    /// The group of face `f`.
+    pub fn group_of(&self, f: usize) -> u32 {
+        self.face_groups.get(f).copied().unwrap_or(0)
+    }
+
+    /// True when faces fall in more than one group, so strips must be built per group.
+    pub fn has_groups(&self) -> bool {
+        self.face_groups.iter().any(|&g| g != self.face_groups[0])
+    }
+
+    /// The vertices `map[0], map[1], ...` of this mesh (positions and attributes), with
+    /// no faces: the start of a renumbered or partial copy.
+    pub fn gather_vertices(&self, map: &[u32]) -> Mesh {
+        Mesh {
+            positions: map.iter().map(|&v| self.positions[v as usize]).collect(),
+            attributes: self.attributes.iter().map(|a| a.gather(map)).collect(),
+            groups: self.groups.clone(),
+            ..Mesh::new()
+        }
+    }
+
+    /// Appends the vertex `(1 - t) * a + t * b`, attributes blended by
+    /// [`Attribute::push_lerp`]; returns its id.
+    pub fn push_vertex_lerp(&mut self, a: u32, b: u32, t: f64) -> u32 {
+        let (pa, pb) = (self.positions[a as usize], self.positions[b as usize]);
+        self.positions.push([0, 1, 2].map(|k| ((1.0 - t) * pa[k] as f64 + t * pb[k] as f64) as f32));
+        for at in &mut self.attributes {
+            at.push_lerp(a as usize, b as usize, t);
+        }
+        (self.positions.len() - 1) as u32
+    }
+
+    /// The mesh without unreferenced vertices, kept in their order, and for every old
+    /// vertex its new id (`u32::MAX` where dropped). Faces, groups and attributes follow.
+    pub fn compact(&self) -> (Mesh, Vec<u32>) {
+        let mut new_id = vec![u32::MAX; self.vertex_count()];
+        for &v in &self.face_indices {
+            new_id[v as usize] = 0;
+        }
+        let mut map = Vec::new();
+        for (v, id) in new_id.iter_mut().enumerate() {
+            if *id == 0 {
+                *id = map.len() as u32;
+                map.push(v as u32);
+            }
+        }
+        let mut out = self.gather_vertices(&map);
+        out.face_offsets = self.face_offsets.clone();
+        out.face_indices = self.face_indices.iter().map(|&v| new_id[v as usize]).collect();
+        out.face_groups = self.face_groups.clone();
+        (out, new_id)
     }
 
     /// Number of vertex records (referenced or not).
