@@ -19,13 +19,21 @@ use crate::Error;
 /// The scalar type of an attribute's components.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Scalar {
+    /// `i8` (PLY `char`, glTF `BYTE`).
     I8,
+    /// `u8` (PLY `uchar`, glTF `UNSIGNED_BYTE`).
     U8,
+    /// `i16` (PLY `short`, glTF `SHORT`).
     I16,
+    /// `u16` (PLY `ushort`, glTF `UNSIGNED_SHORT`).
     U16,
+    /// `i32` (PLY `int`).
     I32,
+    /// `u32` (PLY `uint`, glTF `UNSIGNED_INT`).
     U32,
+    /// `f32` (PLY `float`, glTF `FLOAT`).
     F32,
+    /// `f64` (PLY `double`).
     F64,
 }
 
