@@ -3,6 +3,7 @@
 
 mod batch;
 mod cull;
+mod cull_gpu;
 mod batch_strips;
 mod probe_variants;
 mod gpu;
@@ -42,6 +43,9 @@ enum Command {
     Single(single::Args),
     /// Back-face culling along the helix: single strips with segment trees next to greedy strips and meshoptimizer's meshlets.
     Cull(cull::Args),
+    /// Frame time along the helix on the GPU (or llvmpipe): single strips (cull, cache,
+    /// uniform weights) drawn whole against the segment tree's ranges.
+    CullGpu(cull_gpu::Args),
     /// SETS multiresolution strips: size, strips of a level against greedy from scratch, and next
     /// to a discrete LoD chain of meshoptimizer's simplify (memory, levels, switch time, distances).
     Lod(lod::Args),
@@ -67,6 +71,7 @@ fn main() -> anyhow::Result<()> {
         Command::BatchStrips(a) => batch_strips::run(a),
         Command::Single(a) => single::run(a),
         Command::Cull(a) => cull::run(a),
+        Command::CullGpu(a) => cull_gpu::run(a),
         Command::Lod(a) => lod::run(a),
     }
 }
