@@ -20,7 +20,7 @@ fi
 (nvidia-smi --query-gpu=name,driver_version,clocks.max.graphics --format=csv 2>&1 || true) | tee "$out/gpu.txt"
 (lscpu | grep -E "Model name|^CPU\(s\)" || true) | tee -a "$out/gpu.txt"
 b=.gpu/stripkit-bench
-timeout ${SMALL_LIMIT:-200} "$b" cull-gpu --models .gpu/models --out "$out/cull-gpu.md" --json "$out/cull-gpu.json" \
+timeout ${SMALL_LIMIT:-200} "$b" cull-gpu --models .gpu/models ${ONLY:+--only "$ONLY"} --out "$out/cull-gpu.md" --json "$out/cull-gpu.json" \
     2> "$out/log-cull.txt" >/dev/null
 echo "models: exit $?"
 tail -n 2 "$out/log-cull.txt"
