@@ -50,9 +50,19 @@ pub struct Args {
     /// larger one pairs almost everything and is refused).
     #[arg(long)]
     pub pair_distance: Option<f64>,
-    /// Output mesh; vertex ids are kept (removed vertices stay, unreferenced).
+    /// Output mesh; `-` writes standard output in --output-format (the report then
+    /// goes to standard error). Vertices no face uses any more are dropped and the
+    /// others keep their order (--keep-unreferenced keeps every input vertex id).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// The format written to standard output (`-o -`): obj, ply, off, stl, gltf or glb.
+    /// Default: the --format of a standard input.
+    #[arg(long, value_name = "FORMAT", value_parser = super::parse_format)]
+    pub output_format: Option<stripkit::io::Format>,
+    /// Keep the vertices the collapses left unreferenced, so that the output's vertex
+    /// ids are the input's (what the collapse sequence's ids refer to).
+    #[arg(long)]
+    pub keep_unreferenced: bool,
     /// Write PLY as ASCII text instead of binary (PLY outputs only).
     #[arg(long)]
     pub ascii: bool,
@@ -63,7 +73,8 @@ pub struct Args {
     /// files as they were.
     #[arg(long)]
     pub sequence: Option<PathBuf>,
-    /// Print one JSON object (triangles_in, triangles_out, collapses, max_error, ms) on stdout.
+    /// Print one JSON object (triangles_in, triangles_out, vertices_in, vertices_out,
+    /// collapses, max_error, placement, ms) on stdout.
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]
@@ -100,7 +111,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             "--pair-distance {d} is out of range: a finite distance, 0 or more"
         );
     }
-    let write_options = super::write_options(args.ascii, &args.output)?;
+    let format = super::output_format(&args.output, args.output_format, Some((&args.file, &args.read)))?;
+    let write_options = super::write_options(args.ascii, &args.output, Some(format))?;
+    super::check_output_folder(&args.output)?;
     let mesh = args.read.read(&args.file)?;
     let options = Options {
         target,
@@ -117,35 +130,59 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     bar.finish_and_clear();
     // Every output encoded before any is written; then all staged on disk before any
     // is renamed into place, the sequence first and the mesh (-o) last.
-    let mesh_bytes =
-        stripkit::io::encode_file(&args.output, &result.mesh, None, &write_options)?;
+    let compacted;
+    let out_mesh = if args.keep_unreferenced {
+        &result.mesh
+    } else {
+        compacted = result.mesh.compact().0;
+        &compacted
+    };
+    let mesh_bytes = if super::is_dash(&args.output) {
+        stripkit::io::write_bytes(format, out_mesh, None, &write_options)?
+    } else {
+        stripkit::io::encode_file(&args.output, out_mesh, None, &write_options)?
+    };
     match &args.sequence {
+        Some(seq) if super::is_dash(&args.output) => {
+            stripkit::io::write_atomic(seq, &result.sequence.encode(seq)?)?;
+            super::write_output(&args.output, &mesh_bytes)?;
+        }
         Some(seq) => {
             let seq_bytes = result.sequence.encode(seq)?;
             stripkit::io::write_atomic_all(&[(seq, &seq_bytes), (&args.output, &mesh_bytes)])?;
         }
+        None if super::is_dash(&args.output) => super::write_output(&args.output, &mesh_bytes)?,
+        // Already compressed for a .gz name.
         None => stripkit::io::write_atomic(&args.output, &mesh_bytes)?,
     }
+    let sink = super::Sink::for_output(&args.output);
     if args.json {
         let out = serde_json::json!({
             "triangles_in": result.triangles_in,
             "triangles_out": result.triangles_out(),
+            "vertices_in": mesh.vertex_count(),
+            "vertices_out": out_mesh.vertex_count(),
             "collapses": result.sequence.len(),
             "max_error": result.max_error,
             "placement": format!("{:?}", placement).to_lowercase(),
             "ms": ms,
         });
-        println!("{out}");
+        super::print_report_to(&sink, true, &out, |_, _| Ok(()))
     } else {
-        println!(
-            "{}: {} -> {} triangles, {} collapses, max error {:.3e}, {:.1} ms",
-            args.file.display(),
-            result.triangles_in,
-            result.triangles_out(),
-            result.sequence.len(),
-            result.max_error,
-            ms
-        );
+        super::print_report_to(&sink, false, &(), |w, _| {
+            use std::io::Write;
+            writeln!(
+                w,
+                "{}: {} -> {} triangles, {} -> {} vertices, {} collapses, max error {:.3e}, {:.1} ms",
+                args.file.display(),
+                result.triangles_in,
+                result.triangles_out(),
+                mesh.vertex_count(),
+                out_mesh.vertex_count(),
+                result.sequence.len(),
+                result.max_error,
+                ms
+            )
+        })
     }
-    Ok(())
 }

@@ -14,7 +14,7 @@ use clap::ValueEnum;
 use serde::Serialize;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use stripkit::io::{self, Format};
+use stripkit::io::Format;
 use stripkit::{
     Algorithm, CacheKind, CacheModel, Error, Figures, GreedyOptions, Heuristic, Split, StripOptions, Stripifier,
     DEFAULT_RESTART,
@@ -108,7 +108,7 @@ impl From<Join> for stripkit::Join {
 /// The strip options: which stripifier and its settings. `stripkit strip` and
 /// `stripkit render` both take them (flattened), so that a picture shows the strips
 /// `strip` writes.
-#[derive(clap::Args, Debug)]
+#[derive(clap::Args, Clone, Debug)]
 pub struct StripArgs {
     /// Stripifying algorithm.
     #[arg(long, value_enum, default_value = "auto")]
@@ -205,7 +205,7 @@ pub enum MatchingArg {
 }
 
 /// Arguments of `stripkit strip`.
-#[derive(clap::Args, Debug)]
+#[derive(clap::Args, Clone, Debug)]
 #[command(after_help = "Output by extension of OUT:\n  \
     .ply   vertices plus a `tristrips` element (-1 ends a strip); --join degenerate writes one stitched strip\n  \
     .json  {\"strips\": [[...], ...], \"figures\": {...}} (with --join restart also \"indices\" and \"restart_index\")\n  \
@@ -213,11 +213,20 @@ pub enum MatchingArg {
     (--join separate: one primitive per strip)\n\
 Exit status: 0 success, 1 verification failed (nothing written), 2 bad input or argument.")]
 pub struct Args {
-    /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz); polygons are fanned into triangles.
+    /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz); polygons are
+    /// fanned into triangles. `-` reads standard input (with --format). A folder strips
+    /// every mesh file in it (not its subfolders) into the folder -o names.
     pub input: PathBuf,
-    /// Output file: .ply, .json, .gltf or .glb (see below).
+    /// Output file: .ply, .json, .gltf or .glb (see below); `-` writes standard output
+    /// in --output-format (the report then goes to standard error). For a folder input,
+    /// a folder (created if missing) that gets one NAME.EXT per input, EXT from
+    /// --output-format (default glb).
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
+    /// The format written to standard output (`-o -`) or into an output folder: ply,
+    /// gltf or glb. Default for `-o -`: the --format of a standard input.
+    #[arg(long, value_name = "FORMAT", value_parser = super::parse_format)]
+    pub output_format: Option<Format>,
     /// Write PLY as ASCII text instead of binary (PLY outputs only).
     #[arg(long)]
     pub ascii: bool,
@@ -235,6 +244,9 @@ pub struct Args {
     pub json: bool,
     #[command(flatten)]
     pub read: super::ReadArgs,
+    /// Set by a folder run: report one line per file above this progress bar.
+    #[arg(skip)]
+    pub batch: Option<indicatif::ProgressBar>,
 }
 
 /// The JSON object printed by `--json` (and embedded in `.json` outputs).
@@ -263,6 +275,10 @@ struct Report<'a> {
     /// `single` only: Steiner vertices, swaps, pieces merged, times.
     #[serde(skip_serializing_if = "Option::is_none")]
     single: Option<&'a stripkit::SingleReport>,
+    /// `balanced` only, when its `--max-acmr` was out of reach: the misses per
+    /// triangle reached instead (FIFO of `--cache` entries).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    max_acmr_unreached: Option<f64>,
 }
 
 enum OutKind {
@@ -270,7 +286,13 @@ enum OutKind {
     Mesh(Format),
 }
 
-fn output_kind(path: &Path) -> anyhow::Result<OutKind> {
+fn output_kind(path: &Path, stdout_format: Option<Format>) -> anyhow::Result<OutKind> {
+    if let Some(format) = stdout_format.filter(|_| super::is_dash(path)) {
+        return match format {
+            Format::Ply | Format::Gltf | Format::Glb => Ok(OutKind::Mesh(format)),
+            _ => Err(Error::Invalid(format!("--output-format {format:?} cannot hold strips; use ply, gltf or glb")).into()),
+        };
+    }
     let name = path
         .file_name()
         .and_then(|n| n.to_str())
@@ -442,17 +464,40 @@ fn with_join(args: &Args, options: StripOptions) -> StripOptions {
     options.join(args.join.into()).restart_index(args.restart_index)
 }
 
-/// Runs the command: read -> door -> encode -> write.
+/// Runs the command: read -> door -> encode -> write; a folder input runs every file.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let kind = output_kind(&args.output)?;
+    if args.input.is_dir() {
+        return super::batch::strip_folder(args);
+    }
+    let stdout_format = if super::is_dash(&args.output) {
+        Some(super::output_format(&args.output, args.output_format, Some((&args.input, &args.read)))?)
+    } else {
+        anyhow::ensure!(
+            args.output_format.is_none() || args.batch.is_some(),
+            "--output-format applies to standard output (-o -) and folder outputs; {} names its format by its extension",
+            args.output.display()
+        );
+        None
+    };
+    let kind = output_kind(&args.output, stdout_format)?;
     // Fail before the work when the output cannot be written at all.
     super::check_output_folder(&args.output)?;
-    let write_options = super::write_options(args.ascii, &args.output)?;
+    let write_options = super::write_options(
+        args.ascii,
+        &args.output,
+        match kind {
+            OutKind::Mesh(format) => Some(format),
+            OutKind::Json => None,
+        },
+    )?;
     // Arguments are checked before the file is read.
     args.strip.validate(|o| with_join(&args, o))?;
     // A spinner on a terminal (indicatif draws nothing when stderr is not one):
     // balanced and --refine take seconds on meshes of a million triangles.
-    let progress = indicatif::ProgressBar::new_spinner();
+    let progress = match args.batch {
+        Some(_) => indicatif::ProgressBar::hidden(),
+        None => indicatif::ProgressBar::new_spinner(),
+    };
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
     let mesh = args.read.read(&args.input)?;
@@ -476,7 +521,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         quads: strips.quads,
         indices_per_quad: strips.indices_per_quad(),
         single: strips.single.as_ref(),
+        max_acmr_unreached: unreached_acmr(&strips, mesh.vertex_count()),
     };
+    if let (Some(reached), Algorithm::Balanced { max_acmr }) = (report.max_acmr_unreached, &strips.algorithm) {
+        eprintln!(
+            "stripkit: warning: {}: --max-acmr {max_acmr} is below what balanced reaches on this mesh; \
+             its strips have {reached:.3} misses per triangle (FIFO of {} entries)",
+            args.input.display(),
+            args.strip.cache
+        );
+    }
     let bytes = match kind {
         OutKind::Json => {
             let mut obj = strips.to_json();
@@ -487,10 +541,33 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         OutKind::Mesh(format) => strips.to_file_bytes_with(&mesh, format, &write_options)?,
     };
-    io::write_encoded(&args.output, &bytes)?;
+    super::write_output(&args.output, &bytes)?;
     progress.finish_and_clear();
 
-    super::print_report(args.json, &report, |out, r| print_summary(out, r))
+    let sink = match &args.batch {
+        Some(bar) => super::Sink::Batch(bar.clone()),
+        None => super::Sink::for_output(&args.output),
+    };
+    super::print_report_to(&sink, args.json, &report, |out, r| match args.batch {
+        Some(_) => print_line(out, r),
+        None => print_summary(out, r),
+    })
+}
+
+/// `balanced`'s misses per triangle (FIFO of the cache size it ran with) where they
+/// exceed its `max_acmr` bound, which the strips then did not reach; `None` otherwise.
+fn unreached_acmr(strips: &stripkit::Strips, vertex_count: usize) -> Option<f64> {
+    let Algorithm::Balanced { max_acmr } = strips.algorithm else { return None };
+    let cache = strips.figures.cache;
+    let reached = if cache.kind == CacheKind::Fifo {
+        strips.figures.acmr
+    } else {
+        let order = stripkit::decode(&strips.strips);
+        let vertices = vertex_count + strips.added_positions.len();
+        stripkit::acmr(&order, vertices, cache.size, CacheKind::Fifo)
+    };
+    // A relative slack for the float sums behind the two figures.
+    (reached > max_acmr * (1.0 + 1e-9)).then_some(reached)
 }
 
 /// The library names its settings; the user typed flags: say which.
@@ -507,6 +584,23 @@ pub fn flag_names(e: Error) -> Error {
         ),
         other => other,
     }
+}
+
+/// A folder run's line for one file.
+fn print_line(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
+    let f = r.figures;
+    writeln!(
+        out,
+        "{} -> {}: {} triangles, {} strips, {} indices ({:.3} per triangle), acmr16 {:.3}, {:.1} ms",
+        r.input.display(),
+        r.output.display(),
+        f.triangles,
+        f.strips,
+        f.indices_restart,
+        f.indices_per_triangle,
+        f.acmr16,
+        r.ms
+    )
 }
 
 fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
