@@ -51,10 +51,7 @@ pub fn strip_folder(args: super::strip::Args) -> anyhow::Result<()> {
         extension(format)
     );
     anyhow::ensure!(args.read.format.is_none(), "--format applies to standard input (-), not to a folder");
-    anyhow::ensure!(
-        !super::is_dash(&args.output),
-        "a folder input writes a folder: -o names it, not standard output"
-    );
+    anyhow::ensure!(!super::is_dash(&args.output), "a folder input writes a folder: -o names it, not standard output");
     anyhow::ensure!(
         !args.output.is_file(),
         "{} is a file; a folder input needs an output folder",

@@ -106,10 +106,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // Checked before reading the mesh, so a typo fails at once (NaN, negative and
     // infinite distances were silently taken as "no pairs").
     if let Some(d) = args.pair_distance {
-        anyhow::ensure!(
-            d >= 0.0 && d.is_finite(),
-            "--pair-distance {d} is out of range: a finite distance, 0 or more"
-        );
+        anyhow::ensure!(d >= 0.0 && d.is_finite(), "--pair-distance {d} is out of range: a finite distance, 0 or more");
     }
     let format = super::output_format(&args.output, args.output_format, Some((&args.file, &args.read)))?;
     let write_options = super::write_options(args.ascii, &args.output, Some(format))?;
@@ -125,7 +122,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let bar = super::progress_bar(mesh.triangle_count() > 200_000, "simplify");
     let start = Instant::now();
     let result = simplify(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
-    .with_context(|| format!("simplifying {}", args.file.display()))?;
+        .with_context(|| format!("simplifying {}", args.file.display()))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     bar.finish_and_clear();
     // Every output encoded before any is written; then all staged on disk before any
