@@ -237,3 +237,41 @@ fn simplify_drops_unreferenced_vertices_unless_asked_to_keep_them() {
     assert_eq!(v["vertices_out"], 121);
     assert_eq!(stripkit::io::read(&o).unwrap().vertex_count(), 121);
 }
+
+#[test]
+fn gltf_outputs_number_vertices_in_first_use_order_by_default() {
+    // A grid listed backwards with an unused vertex: first use renumbers and drops it.
+    let grid = stripkit::gen::grid(5, 4);
+    let n = grid.vertex_count() as u32;
+    let mut positions = vec![[7.0, 7.0, 7.0]];
+    positions.extend(grid.positions.iter().rev());
+    let faces: Vec<Vec<u32>> = grid.faces().map(|f| f.iter().map(|&v| n - v).collect()).collect();
+    let input = path("order.obj");
+    write_mesh(&input, &stripkit::Mesh::from_polygons(positions, &faces));
+    let glb = path("order.glb");
+    let v = json(&stripkit(&["strip", s(&input), "-o", s(&glb), "--json"]));
+    assert_eq!(v["vertex_order"], "first-use");
+    assert_eq!(v["vertices"], n);
+    let back = stripkit::io::read(&glb).unwrap();
+    assert_eq!(back.vertex_count(), n as usize);
+    // Read back in strip order, each vertex is new only as the next id.
+    let mut next = 0;
+    for t in back.triangulate().tris {
+        for v in t {
+            assert!(v <= next, "vertex {v} before {next}");
+            next = next.max(v + 1);
+        }
+    }
+    assert_eq!(next, n);
+    // Input order keeps every vertex; PLY keeps input order by default.
+    let v = json(&stripkit(&["strip", s(&input), "-o", s(&glb), "--json", "--vertex-order", "input"]));
+    assert_eq!((v["vertex_order"].as_str(), v["vertices"].as_u64()), (Some("input"), Some(n as u64 + 1)));
+    assert_eq!(stripkit::io::read(&glb).unwrap().vertex_count(), n as usize + 1);
+    let ply = path("order.ply");
+    let v = json(&stripkit(&["strip", s(&input), "-o", s(&ply), "--json"]));
+    assert_eq!(v["vertex_order"], "input");
+    assert_eq!(stripkit::io::read(&ply).unwrap().vertex_count(), n as usize + 1);
+    let v = json(&stripkit(&["strip", s(&input), "-o", s(&ply), "--json", "--vertex-order", "first-use"]));
+    assert_eq!(v["vertices"], n);
+    refused(&["strip", s(&input), "-o", "x.json", "--vertex-order", "first-use"], "holds no vertices");
+}

@@ -191,6 +191,17 @@ pub struct StripArgs {
     pub matching: Option<MatchingArg>,
 }
 
+/// The order of the vertices in the output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum VertexOrder {
+    /// Renumbered in the order the strips first use them; vertices no face uses are
+    /// dropped (meshoptimizer's `optimizeVertexFetch`).
+    FirstUse,
+    /// As in the input, every vertex kept (ids stay the input's).
+    Input,
+}
+
 /// How `--algo single` matches the dual graph.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -236,6 +247,13 @@ pub struct Args {
     /// `degenerate` (one stitched strip), `separate` (one list per strip).
     #[arg(long, value_enum, default_value = "restart")]
     pub join: Join,
+    /// Order of the written vertices: `first-use` renumbers them in the order the
+    /// strips first use them and drops unreferenced ones (the GPU then reads the
+    /// vertex buffer front to back); `input` keeps the input's ids. Default
+    /// `first-use` for .gltf and .glb outputs, `input` for PLY (.json holds no
+    /// vertices: `input` only).
+    #[arg(long, value_enum)]
+    pub vertex_order: Option<VertexOrder>,
     /// Primitive-restart index for `--join restart`; must not be a vertex id of the mesh.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_RESTART)]
     pub restart_index: u32,
@@ -258,6 +276,7 @@ struct Report<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     heuristic: Option<HeuristicArg>,
     join: Join,
+    vertex_order: VertexOrder,
     vertices: usize,
     #[serde(flatten)]
     figures: &'a Figures,
@@ -492,6 +511,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     )?;
     // Arguments are checked before the file is read.
     args.strip.validate(|o| with_join(&args, o))?;
+    let vertex_order = match (args.vertex_order, &kind) {
+        (Some(VertexOrder::FirstUse), OutKind::Json) => {
+            return Err(Error::Invalid(format!(
+                "--vertex-order first-use applies to mesh outputs; {} holds no vertices",
+                args.output.display()
+            ))
+            .into())
+        }
+        (Some(order), _) => order,
+        (None, OutKind::Mesh(Format::Gltf | Format::Glb)) => VertexOrder::FirstUse,
+        (None, _) => VertexOrder::Input,
+    };
     // A spinner on a terminal (indicatif draws nothing when stderr is not one):
     // balanced and --refine take seconds on meshes of a million triangles.
     let progress = match args.batch {
@@ -504,6 +535,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
     let strips = args.strip.stripify(&mesh, &args.input, |o| with_join(&args, o))?;
+    let (mesh, strips) = match (vertex_order, &kind) {
+        (VertexOrder::FirstUse, OutKind::Mesh(format)) => strips.in_first_use_order(&mesh, *format),
+        _ => (mesh, strips),
+    };
 
     progress.set_message(format!("writing {}", args.output.display()));
     let figures = &strips.figures;
@@ -513,6 +548,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         algo: strips.algorithm.name(),
         heuristic: args.strip.heuristic_used(&strips.algorithm),
         join: args.join,
+        vertex_order,
         vertices: mesh.vertex_count() + strips.added_positions.len(),
         figures,
         ms: strips.stripify_time.as_secs_f64() * 1e3,
