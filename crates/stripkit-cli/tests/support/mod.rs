@@ -6,7 +6,10 @@ use std::process::{Command, Output};
 /// Runs the built `stripkit` binary with `args`.
 #[allow(dead_code)] // not every test binary runs it
 pub fn stripkit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_stripkit")).args(args).output().expect("runs")
+    Command::new(env!("CARGO_BIN_EXE_stripkit"))
+        .args(args)
+        .output()
+        .expect("runs")
 }
 
 /// A path for file `name` in this test binary's own temporary folder `group`.
@@ -20,7 +23,11 @@ pub fn tmp(group: &str, name: &str) -> PathBuf {
 /// The one JSON object a successful run printed on stdout.
 #[allow(dead_code)] // not every test binary prints JSON
 pub fn json(out: &Output) -> serde_json::Value {
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).expect("one JSON object")
 }
 
