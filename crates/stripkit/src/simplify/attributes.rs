@@ -1,0 +1,59 @@
+//! Attributes through simplification: the survivor of a collapse keeps its own values
+//! at its own position (endpoint placement) and is interpolated along the collapsed
+//! edge elsewhere; seam vertices (two used vertices at one position: the sides of a
+//! UV or normal seam) are never removed nor moved, so a seam cannot open and no
+//! triangle takes values from the other side.
+
+use super::quadric::{dot, sub, V3};
+use crate::mesh::Mesh;
+use crate::Attribute;
+use std::collections::HashMap;
+
+/// The seam vertices of `mesh` (kept in place by the collapses): used vertices at the same
+/// position as another used vertex. Empty when the mesh has no attributes (nothing
+/// tells a seam from a mesh that is merely unwelded there).
+pub(super) fn seam_vertices(mesh: &Mesh) -> Vec<bool> {
+    if mesh.attributes.is_empty() {
+        return Vec::new();
+    }
+    let mut used = vec![false; mesh.vertex_count()];
+    mesh.face_indices.iter().for_each(|&v| used[v as usize] = true);
+    let mut first: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut locked = vec![false; mesh.vertex_count()];
+    for (v, p) in mesh.positions.iter().enumerate().filter(|&(v, _)| used[v]) {
+        // +0.0 and -0.0 are one position.
+        let key = p.map(|x| if x == 0.0 { 0 } else { x.to_bits() });
+        match first.entry(key) {
+            std::collections::hash_map::Entry::Occupied(o) => {
+                locked[*o.get() as usize] = true;
+                locked[v] = true;
+            }
+            std::collections::hash_map::Entry::Vacant(e) => {
+                e.insert(v as u32);
+            }
+        }
+    }
+    locked
+}
+
+/// The attributes of survivor `k` after the collapse r -> k at `p`, where `ends` are
+/// k's and r's positions before it: k's own values when p is k's position (endpoint
+/// placement), else interpolated towards r's by p's projection onto the edge.
+pub(super) fn carry(attributes: &mut [Attribute], r: u32, k: u32, ends: [V3; 2], p: V3) {
+    if p == ends[0] {
+        return;
+    }
+    let e = sub(ends[1], ends[0]);
+    let len2 = dot(e, e);
+    let t = if len2 > 0.0 { (dot(sub(p, ends[0]), e) / len2).clamp(0.0, 1.0) } else { 0.5 };
+    for a in attributes.iter_mut() {
+        // Appended, read back into k, then dropped: push_lerp's rule by kind
+        // (normalized and float values blend, integer ones take the nearer end).
+        let last = a.len();
+        a.push_lerp(k as usize, r as usize, t);
+        let stride = a.stride();
+        let value = a.data[last * stride..].to_vec();
+        a.data[k as usize * stride..(k as usize + 1) * stride].copy_from_slice(&value);
+        a.data.truncate(last * stride);
+    }
+}
