@@ -12,7 +12,7 @@ use std::collections::HashMap;
 /// The seam vertices of `mesh` (kept in place by the collapses): used vertices at the same
 /// position as another used vertex. Empty when the mesh has no attributes (nothing
 /// tells a seam from a mesh that is merely unwelded there).
-pub(super) fn seam_vertices(mesh: &Mesh) -> Vec<bool> {
+pub(crate) fn seam_vertices(mesh: &Mesh) -> Vec<bool> {
     if mesh.attributes.is_empty() {
         return Vec::new();
     }

@@ -39,7 +39,7 @@
 //! Vertex ids never change: the output keeps all vertex records (removed ones become
 //! unreferenced), triangles keep their input order.
 
-mod attributes;
+pub(crate) mod attributes;
 mod collapse;
 mod heap;
 pub mod quadric;
