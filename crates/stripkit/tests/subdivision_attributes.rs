@@ -38,8 +38,8 @@ fn check(input: &Mesh, out: &Mesh, children: impl Fn(usize) -> usize, what: &str
     assert_eq!(p.len(), out.vertex_count(), "{what}");
     let mut worst = 0f64;
     for (v, pos) in out.positions.iter().enumerate() {
-        for c in 0..3 {
-            worst = worst.max((p.get(v, c) - pos[c] as f64).abs());
+        for (c, &x) in pos.iter().enumerate() {
+            worst = worst.max((p.get(v, c) - x as f64).abs());
         }
     }
     assert!(worst < 1e-5, "{what}: P differs from the position by {worst}");
