@@ -88,6 +88,9 @@ fn options_that_do_not_apply_exit_2() {
     refused(&["strip", g, "-o", o, "--algo", "balanced", "--refine"], "--refine applies to --algo cache");
     refused(&["strip", g, "-o", o, "--algo", "greedy", "--diagonals", "qstrip"], "--diagonals qstrip applies to");
     refused(&["strip", g, "-o", o, "--algo", "qstrip"], "this mesh has none");
+    for algo in ["greedy", "batch", "single", "qstrip", "quad-single"] {
+        refused(&["strip", g, "-o", o, "--algo", algo, "--diagonals", "auto"], "--diagonals auto applies to");
+    }
     refused(&["strip", g, "-o", o, "--algo", "cache", "--tunnel", "2"], "--heuristic and --tunnel apply");
     refused(&["strip", g, "-o", o, "--algo", "greedy", "--weights", "cull"], "apply to --algo single");
     refused(&["match", "--weights", "random", g], "--weights");

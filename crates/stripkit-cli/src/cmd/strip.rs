@@ -340,6 +340,9 @@ impl StripArgs {
         if self.max_acmr.is_some() && self.algo != Algo::Balanced {
             return bad("--max-acmr applies to --algo balanced");
         }
+        if self.diagonals == Some(DiagonalsArg::Auto) && !matches!(self.algo, Algo::Cache | Algo::Balanced | Algo::Auto) {
+            return bad("--diagonals auto applies to --algo cache and balanced (the others split quads their own way)");
+        }
         if (self.heuristic.is_some() || self.tunnel.is_some()) && !matches!(self.algo, Algo::Greedy | Algo::Auto) {
             return bad("--heuristic and --tunnel apply to --algo greedy (and auto on meshes that are not quad-dominant)");
         }
