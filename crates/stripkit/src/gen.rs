@@ -397,7 +397,8 @@ fn neighbours(mesh: &Mesh, map: &EdgeMap) -> (Vec<Vec<u32>>, Vec<Vec<u32>>) {
 
 /// `mesh`'s attributes at new vertices, each a weighted blend of input vertices
 /// ([`crate::Attribute::push_blend`]: floats and normalized integers blended, other
-/// integers from the heaviest vertex). Empty without attributes (stencils unused).
+/// integers from the heaviest vertex; normals and tangents made unit again). Empty
+/// without attributes (stencils unused).
 fn blend_attributes(mesh: &Mesh, stencils: &[Vec<(usize, f64)>]) -> Vec<crate::Attribute> {
     mesh.attributes
         .iter()
@@ -409,6 +410,8 @@ fn blend_attributes(mesh: &Mesh, stencils: &[Vec<(usize, f64)>]) -> Vec<crate::A
                 work.push_blend(parts);
             }
             work.data.drain(..a.len() * a.stride());
+            let n = work.len();
+            crate::simplify::attributes::unit_directions(&mut work, 0..n);
             work
         })
         .collect()

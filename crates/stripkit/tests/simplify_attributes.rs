@@ -175,3 +175,26 @@ fn without_attributes_nothing_is_locked() {
     let without = simplify(&mesh, &options, &mut |_| {}).unwrap().triangles_out();
     assert!(without < with, "{without} vs {with}");
 }
+
+#[test]
+fn moved_survivors_get_unit_normals_between_their_ends() {
+    // On a unit sphere the normal is the position; optimal placement moves survivors
+    // and blends their normals, which come back unit and near the new position's.
+    let mut mesh = stripkit::gen::icosphere(3);
+    let normals: Vec<f32> = mesh.positions.iter().flatten().copied().collect();
+    mesh.attributes.push(Attribute::from_f32("NORMAL", 3, &normals));
+    let options = Options { target: Target::Ratio(0.1), placement: Placement::Optimal, ..Options::default() };
+    let out = simplify(&mesh, &options, &mut |_| {}).unwrap().mesh;
+    let n = out.attribute("NORMAL").unwrap();
+    let mut moved = 0;
+    for v in out.face_indices.iter().map(|&v| v as usize) {
+        let a = n.value(v);
+        let len = a.iter().map(|x| x * x).sum::<f64>().sqrt();
+        assert!((len - 1.0).abs() < 1e-6, "normal {v} has length {len}");
+        let p = out.positions[v].map(|x| x as f64);
+        let plen = p.iter().map(|x| x * x).sum::<f64>().sqrt();
+        assert!((0..3).map(|c| a[c] * p[c]).sum::<f64>() / plen > 0.97, "normal {v} points away");
+        moved += (out.positions[v] != mesh.positions[v]) as usize;
+    }
+    assert!(moved > 0, "optimal placement moved no vertex");
+}

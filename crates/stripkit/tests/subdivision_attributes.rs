@@ -149,3 +149,36 @@ fn a_uv_seam_stays_closed_and_each_side_keeps_its_own_uvs() {
         }
     }
 }
+
+#[test]
+fn blended_normals_and_tangents_are_unit_again() {
+    // On a unit sphere the normal is the position: blends of unit normals are
+    // shorter than 1, and come back unit, pointing about where the new vertex is.
+    let mut mesh = gen::icosphere(1);
+    let normals: Vec<f32> = mesh.positions.iter().flatten().copied().collect();
+    let tangents: Vec<f32> = mesh.positions.iter().flat_map(|p| [-p[1], p[0], 0.0, -1.0]).collect();
+    mesh.attributes.push(Attribute::from_f32("NORMAL", 3, &normals));
+    mesh.attributes.push(Attribute::from_f32("TANGENT", 4, &tangents));
+    for (out, what) in [
+        (gen::subdivide_loop(&mesh, 2).unwrap(), "loop"),
+        (gen::subdivide_catmull_clark(&mesh, 1).unwrap(), "catmull-clark"),
+    ] {
+        let n = out.attribute("NORMAL").unwrap();
+        let t = out.attribute("TANGENT").unwrap();
+        for v in 0..out.vertex_count() {
+            let a = n.value(v);
+            let len = a.iter().map(|x| x * x).sum::<f64>().sqrt();
+            assert!((len - 1.0).abs() < 1e-6, "{what}: normal {v} has length {len}");
+            let p = out.positions[v].map(|x| x as f64);
+            let plen = p.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let cos = (0..3).map(|c| a[c] * p[c]).sum::<f64>() / plen;
+            assert!(cos > 0.98, "{what}: normal {v} points away ({cos})");
+            let b = t.value(v);
+            let tlen = b[..3].iter().map(|x| x * x).sum::<f64>().sqrt();
+            if tlen > 0.0 {
+                assert!((tlen - 1.0).abs() < 1e-6, "{what}: tangent {v} has length {tlen}");
+            }
+            assert_eq!(b[3], -1.0, "{what}: tangent {v}'s sign");
+        }
+    }
+}

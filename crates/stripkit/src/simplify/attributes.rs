@@ -55,5 +55,34 @@ pub(super) fn carry(attributes: &mut [Attribute], r: u32, k: u32, ends: [V3; 2],
         let value = a.data[last * stride..].to_vec();
         a.data[k as usize * stride..(k as usize + 1) * stride].copy_from_slice(&value);
         a.data.truncate(last * stride);
+        unit_directions(a, k as usize..k as usize + 1);
+    }
+}
+
+/// Blends of unit vectors are shorter than 1: makes `NORMAL` (x, y, z) and `TANGENT`
+/// (x, y, z; w back to +1 or -1) unit again at `vertices`, as glTF requires; other
+/// attributes are left alone. A zero-length blend stays as it is.
+pub(crate) fn unit_directions(a: &mut Attribute, vertices: std::ops::Range<usize>) {
+    let tangent = match a.name.as_str() {
+        "NORMAL" if a.components >= 3 => false,
+        "TANGENT" if a.components == 4 => true,
+        _ => return,
+    };
+    if !(a.scalar.is_float() || a.normalized) {
+        return;
+    }
+    let unit = a.unit();
+    for v in vertices {
+        let xyz = [0, 1, 2].map(|c| a.get(v, c) * unit);
+        let len = dot(xyz, xyz).sqrt();
+        if len > 0.0 {
+            for (c, x) in xyz.iter().enumerate() {
+                a.set(v, c, x / len / unit);
+            }
+        }
+        if tangent {
+            let w = if a.get(v, 3) < 0.0 { -1.0 } else { 1.0 };
+            a.set(v, 3, w / unit);
+        }
     }
 }
