@@ -158,6 +158,10 @@ fn dash_writes_standard_output_and_the_report_goes_to_stderr() {
     assert_eq!((back.vertex_count(), back.triangle_count()), (42, 80));
     let report: serde_json::Value = serde_json::from_slice(&out.stderr).unwrap();
     assert_eq!(report["triangles"], 80);
+    let out = stripkit_stdin(&["gen", "subdivide", "-", "--format", "obj", "--scheme", "loop", "-o", "-"], &obj);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let back = stripkit::io::read_bytes(Path::new("g.obj"), stripkit::io::Format::Obj, &out.stdout).unwrap();
+    assert_eq!(back.triangle_count(), 96);
 }
 
 #[test]

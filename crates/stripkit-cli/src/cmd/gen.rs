@@ -28,7 +28,8 @@ pub struct Args {
     #[arg(long, global = true)]
     ascii: bool,
     /// The format written to standard output (`-o -`): obj, ply, off, stl, gltf or
-    /// glb. The report then goes to standard error.
+    /// glb (default for `subdivide -`: its --format). The report then goes to
+    /// standard error.
     #[arg(long, global = true, value_name = "FORMAT", value_parser = super::parse_format)]
     output_format: Option<stripkit::io::Format>,
 }
@@ -126,14 +127,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let start = Instant::now();
     // The output is checked before any work: a typo must not cost a long build.
     let (format, ascii) = {
-        let output = match &args.what {
+        let (output, input) = match &args.what {
             What::Grid { output, .. }
             | What::Icosphere { output, .. }
             | What::Torus { output, .. }
-            | What::Cube { output, .. }
-            | What::Subdivide { output, .. } => output,
+            | What::Cube { output, .. } => (output, None),
+            What::Subdivide { output, file, read, .. } => (output, Some((file.as_path(), read))),
         };
-        let format = super::output_format(output, args.output_format, None)?;
+        let format = super::output_format(output, args.output_format, input)?;
         super::check_output_folder(output)?;
         (format, super::write_options(args.ascii, output, Some(format))?)
     };
