@@ -309,7 +309,10 @@ fn output_kind(path: &Path, stdout_format: Option<Format>) -> anyhow::Result<Out
     if let Some(format) = stdout_format.filter(|_| super::is_dash(path)) {
         return match format {
             Format::Ply | Format::Gltf | Format::Glb => Ok(OutKind::Mesh(format)),
-            _ => Err(Error::Invalid(format!("--output-format {format:?} cannot hold strips; use ply, gltf or glb")).into()),
+            _ => {
+                let name = format!("{format:?}").to_lowercase();
+                Err(Error::Invalid(format!("--output-format {name} cannot hold strips; use ply, gltf or glb")).into())
+            }
         };
     }
     let name = path
@@ -340,7 +343,8 @@ impl StripArgs {
         if self.max_acmr.is_some() && self.algo != Algo::Balanced {
             return bad("--max-acmr applies to --algo balanced");
         }
-        if self.diagonals == Some(DiagonalsArg::Auto) && !matches!(self.algo, Algo::Cache | Algo::Balanced | Algo::Auto) {
+        let splits_quads = matches!(self.algo, Algo::Cache | Algo::Balanced | Algo::Auto);
+        if self.diagonals == Some(DiagonalsArg::Auto) && !splits_quads {
             return bad("--diagonals auto applies to --algo cache and balanced (the others split quads their own way)");
         }
         if (self.heuristic.is_some() || self.tunnel.is_some()) && !matches!(self.algo, Algo::Greedy | Algo::Auto) {
@@ -496,7 +500,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else {
         anyhow::ensure!(
             args.output_format.is_none() || args.batch.is_some(),
-            "--output-format applies to standard output (-o -) and folder outputs; {} names its format by its extension",
+            "--output-format applies to standard output (-o -) and folder outputs; \
+             {} names its format by its extension",
             args.output.display()
         );
         None
