@@ -210,6 +210,28 @@ fn a_folder_in_gives_a_folder_out_and_one_bad_file_does_not_stop_the_rest() {
     refused(&["strip", s(&none), "-o", s(&out_dir)], "no mesh files in");
     refused(&["strip", s(&dir), "-o", s(&dir.join("a.obj"))], "is a file");
     refused(&["strip", s(&dir), "-o", s(&out_dir), "--output-format", "obj"], "cannot hold strips");
+
+    // simplify: each file in its own format (or --output-format), the same reporting.
+    let simplified = path("batch_simplified");
+    let out = stripkit(&["simplify", s(&dir), "--ratio", "0.5", "-o", s(&simplified), "--json"]);
+    assert_eq!(out.status.code(), Some(2));
+    let lines: Vec<serde_json::Value> =
+        String::from_utf8_lossy(&out.stdout).lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(lines.len(), 2);
+    // At most half: a collapse removes two triangles at once.
+    let (a_out, b_out) = (lines[0]["triangles_out"].as_u64().unwrap(), lines[1]["triangles_out"].as_u64().unwrap());
+    assert!((4..=6).contains(&a_out) && (38..=40).contains(&b_out), "{a_out} {b_out}");
+    assert!(lines[1]["output"].as_str().unwrap().ends_with("b.ply"));
+    assert_eq!(stripkit::io::read(&simplified.join("a.obj")).unwrap().triangle_count() as u64, a_out);
+    assert_eq!(stripkit::io::read(&simplified.join("b.ply")).unwrap().triangle_count() as u64, b_out);
+    let plys = path("batch_simplified_ply");
+    let out = stripkit(&["simplify", s(&dir), "--ratio", "0.5", "-o", s(&plys), "--output-format", "ply", "--ascii"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(std::fs::read(plys.join("a.ply")).unwrap().starts_with(b"ply\nformat ascii"));
+    refused(
+        &["simplify", s(&dir), "--ratio", "0.5", "-o", s(&plys), "--sequence", "x.json"],
+        "--sequence names one file",
+    );
 }
 
 #[test]

@@ -19,10 +19,12 @@ pub enum PlacementArg {
 }
 
 /// Arguments of `stripkit simplify`.
-#[derive(clap::Args)]
+#[derive(clap::Args, Clone)]
 #[command(group(clap::ArgGroup::new("target").required(true).args(["ratio", "triangles", "error"])))]
 pub struct Args {
-    /// Input mesh (OBJ, OFF, ...; `.gz` is decompressed). Polygons are fanned into triangles.
+    /// Input mesh (OBJ, OFF, ...; `.gz` is decompressed). Polygons are fanned into
+    /// triangles. A folder simplifies every mesh file in it into the folder -o names
+    /// (each in its own format, or --output-format).
     pub file: PathBuf,
     /// Keep at most this fraction of the triangles (0 to 1), e.g. 0.1.
     #[arg(long)]
@@ -73,16 +75,22 @@ pub struct Args {
     /// files as they were.
     #[arg(long)]
     pub sequence: Option<PathBuf>,
-    /// Print one JSON object (triangles_in, triangles_out, vertices_in, vertices_out,
-    /// collapses, max_error, placement, ms) on stdout.
+    /// Print one JSON object (input, output, triangles_in, triangles_out, vertices_in,
+    /// vertices_out, collapses, max_error, placement, ms) on stdout.
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]
     pub read: super::ReadArgs,
+    /// Set by a folder run: report above this progress bar.
+    #[arg(skip)]
+    pub batch: Option<indicatif::ProgressBar>,
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if args.file.is_dir() {
+        return super::batch::simplify_folder(args);
+    }
     let target = match (args.ratio, args.triangles, args.error) {
         (Some(r), _, _) => Target::Ratio(r),
         (_, Some(t), _) => Target::Triangles(t),
@@ -119,7 +127,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         pair_distance: args.pair_distance,
         max_collapses: None,
     };
-    let bar = super::progress_bar(mesh.triangle_count() > 200_000, "simplify");
+    let bar = super::progress_bar(mesh.triangle_count() > 200_000 && args.batch.is_none(), "simplify");
     let start = Instant::now();
     let result = simplify(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("simplifying {}", args.file.display()))?;
@@ -152,9 +160,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         // Already compressed for a .gz name.
         None => stripkit::io::write_atomic(&args.output, &mesh_bytes)?,
     }
-    let sink = super::Sink::for_output(&args.output);
+    let sink = match &args.batch {
+        Some(bar) => super::Sink::Batch(bar.clone()),
+        None => super::Sink::for_output(&args.output),
+    };
     if args.json {
         let out = serde_json::json!({
+            "input": args.file.display().to_string(),
+            "output": args.output.display().to_string(),
             "triangles_in": result.triangles_in,
             "triangles_out": result.triangles_out(),
             "vertices_in": mesh.vertex_count(),
