@@ -182,3 +182,23 @@ fn blended_normals_and_tangents_are_unit_again() {
         }
     }
 }
+
+#[test]
+fn attributes_that_do_not_fit_the_mesh_are_refused() {
+    let mut short = gen::icosphere(0);
+    short.attributes.push(Attribute::from_f32("TEXCOORD_0", 2, &[0.0; 10]));
+    let mut groups = gen::icosphere(0);
+    groups.face_groups = vec![0; 3];
+    let mut ids = gen::icosphere(0);
+    ids.face_groups = vec![5; 20];
+    let options = stripkit::simplify::Options::default();
+    for (mesh, needle) in [(&short, "attribute TEXCOORD_0"), (&groups, "3 face groups"), (&ids, "face group 5")] {
+        for err in [
+            gen::subdivide_loop(mesh, 1).unwrap_err(),
+            gen::subdivide_catmull_clark(mesh, 1).unwrap_err(),
+            stripkit::simplify::simplify(mesh, &options, &mut |_| {}).unwrap_err(),
+        ] {
+            assert!(err.to_string().contains(needle), "{err}");
+        }
+    }
+}
