@@ -3,7 +3,7 @@
 //! for index buffers). A GPU then reads the vertex buffer nearly front to back.
 
 use crate::io::Format;
-use crate::{Mesh, StripSet, Strips};
+use crate::{Error, Mesh, Result, StripSet, Strips};
 
 /// Renumbers `mesh`'s vertices in the order `strips` first use them. Vertices that
 /// only faces use (a degenerate triangle no strip draws) follow in face order; vertices
@@ -11,24 +11,28 @@ use crate::{Mesh, StripSet, Strips};
 /// and groups), the strips in the new ids, and for every old vertex its new id
 /// (`u32::MAX` where dropped).
 ///
-/// Strip indices must be vertex ids of `mesh` (no restart index: a [`StripSet`] keeps
-/// its strips apart).
+/// A strip or face index that is not a vertex of `mesh` is [`Error::Invalid`] (a
+/// [`StripSet`] keeps its strips apart: no restart index in it).
 ///
 /// ```
 /// use stripkit::{gen, first_use_order, stripify, StripOptions};
 /// let mut mesh = gen::grid(3, 3);
 /// mesh.positions.push([9.0, 9.0, 9.0]); // used by no face
 /// let strips = stripify(&mesh, &StripOptions::default())?;
-/// let (ordered, set, new_id) = first_use_order(&mesh, &strips.strips);
+/// let (ordered, set, new_id) = first_use_order(&mesh, &strips.strips)?;
 /// assert_eq!(ordered.vertex_count(), 16);
 /// assert_eq!(new_id[16], u32::MAX);
 /// assert_eq!(set.indices[0], 0);
 /// # Ok::<(), stripkit::Error>(())
 /// ```
-pub fn first_use_order(mesh: &Mesh, strips: &StripSet) -> (Mesh, StripSet, Vec<u32>) {
+pub fn first_use_order(mesh: &Mesh, strips: &StripSet) -> Result<(Mesh, StripSet, Vec<u32>)> {
+    let n = mesh.vertex_count();
+    if let Some(&v) = strips.indices.iter().chain(&mesh.face_indices).find(|&&v| v as usize >= n) {
+        return Err(Error::Invalid(format!("index {v} is not a vertex of the mesh ({n} vertices)")));
+    }
     let new_id = first_use_ids(mesh, &strips.indices);
     let (out, set) = renumbered(mesh, strips, &new_id);
-    (out, set, new_id)
+    Ok((out, set, new_id))
 }
 
 /// For every vertex of `mesh`, its rank of first use in `stream` then in the faces
@@ -138,9 +142,11 @@ mod tests {
         assert!(crate::verify_triangles(&ordered.triangulate().tris, &crate::decode(&s.strips)).ok());
         s.to_file_bytes(&ordered, crate::io::Format::Glb).unwrap();
         // The free function orders by the strips themselves.
-        let (_, set, ids) = first_use_order(&mesh, &strips.strips);
+        let (_, set, ids) = first_use_order(&mesh, &strips.strips).unwrap();
         assert_eq!(set.indices[0], 0);
         assert_eq!(ids[strips.strips.indices[0] as usize], 0);
         assert_eq!(ids[0], u32::MAX);
+        let bad = StripSet::from_strips(&[[0, 1, n + 1]]);
+        assert!(first_use_order(&mesh, &bad).unwrap_err().to_string().contains("index"));
     }
 }
