@@ -5,7 +5,7 @@
 
 mod cmd;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 use std::process::ExitCode;
 
 /// Triangle strips for meshes: build them, verify them, measure them.
@@ -36,6 +36,12 @@ enum Command {
     Cull(cmd::cull::Args),
     /// Multiresolution strips (SETS): build a model of every level of detail, extract a level, time level changes.
     Lod(cmd::lod::Args),
+    /// Print a shell completion script on stdout, e.g.
+    /// `stripkit completions bash > ~/.local/share/bash-completion/completions/stripkit`.
+    Completions {
+        /// The shell: bash, elvish, fish, powershell or zsh.
+        shell: clap_complete::Shell,
+    },
 }
 
 fn main() -> ExitCode {
@@ -50,6 +56,13 @@ fn main() -> ExitCode {
         Command::Render(a) => cmd::render::run(a),
         Command::Cull(a) => cmd::cull::run(a),
         Command::Lod(a) => cmd::lod::run(a),
+        Command::Completions { shell } => {
+            use std::io::Write;
+            // Built first, then written: a closed pipe is not an error.
+            let mut script = Vec::new();
+            clap_complete::generate(shell, &mut Cli::command(), "stripkit", &mut script);
+            cmd::ignore_closed_pipe(std::io::stdout().lock().write_all(&script))
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -49,6 +49,8 @@ fn build_checks_every_level_and_extract_matches_simplify() {
             "-o",
             simplified.to_str().unwrap(),
             "--json",
+            // lod extract keeps the input's vertex ids.
+            "--keep-unreferenced",
         ]));
         assert_eq!(e["triangles"], s["triangles_out"], "ratio {ratio}");
         assert_eq!(e["level"], s["collapses"], "ratio {ratio}");

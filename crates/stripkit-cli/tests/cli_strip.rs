@@ -138,22 +138,17 @@ fn text_summary_says_verified() {
 }
 
 #[test]
-fn mesh_without_triangles_gives_empty_valid_outputs() {
+fn mesh_without_faces_is_refused_and_nothing_is_written() {
+    // Issue #15: an empty output with exit status 0 read as success.
     let empty = tmp("empty.off");
     std::fs::write(&empty, "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n").unwrap();
     for out_name in ["empty.json", "empty.ply"] {
         let out_path = tmp(out_name);
-        let v = json(&stripkit(&[
-            "strip",
-            empty.to_str().unwrap(),
-            "-o",
-            out_path.to_str().unwrap(),
-            "--json",
-        ]));
-        assert_eq!(v["strips"], 0);
-        assert_eq!(v["triangles"], 0);
-        assert_eq!(v["verified"], true);
-        assert!(out_path.exists());
+        let out = stripkit(&["strip", empty.to_str().unwrap(), "-o", out_path.to_str().unwrap(), "--json"]);
+        assert_eq!(out.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(&format!("no faces in {}", empty.display())), "{err}");
+        assert!(!out_path.exists());
     }
 }
 
@@ -220,19 +215,42 @@ fn help_explains_every_option() {
 fn gltf_outputs_hold_the_stitched_strip() {
     let input = stripkit::io::read(Path::new(&spot())).unwrap();
     let tris = input.triangulate().tris;
+    // Each triangle by its corners' positions, from its lowest corner (winding kept).
+    let by_position = |mesh: &stripkit::Mesh, tris: &[[u32; 3]]| {
+        let mut out: Vec<[[u32; 3]; 3]> = tris
+            .iter()
+            .map(|t| {
+                let p = t.map(|v| mesh.positions[v as usize].map(f32::to_bits));
+                let first = (0..3).min_by_key(|&i| p[i]).unwrap();
+                [p[first], p[(first + 1) % 3], p[(first + 2) % 3]]
+            })
+            .collect();
+        out.sort();
+        out
+    };
+    let want = by_position(&input, &tris);
     for name in ["spot.glb", "spot.gltf"] {
         let out_path = tmp(name);
-        let v = json(&stripkit(&[
-            "strip",
-            &spot(),
-            "-o",
-            out_path.to_str().unwrap(),
-            "--json",
-        ]));
-        assert_eq!(v["verified"], true);
-        let back = stripkit::io::read(&out_path).unwrap();
-        let check = stripkit::verify_triangles(&tris, &back.triangulate().tris);
-        assert!(check.ok(), "{name}: {check}");
+        // Input vertex order keeps the ids; first use (the default) renumbers them.
+        for order in ["input", "first-use"] {
+            let v = json(&stripkit(&[
+                "strip",
+                &spot(),
+                "-o",
+                out_path.to_str().unwrap(),
+                "--json",
+                "--vertex-order",
+                order,
+            ]));
+            assert_eq!(v["verified"], true);
+            let back = stripkit::io::read(&out_path).unwrap();
+            let back_tris = back.triangulate().tris;
+            if order == "input" {
+                let check = stripkit::verify_triangles(&tris, &back_tris);
+                assert!(check.ok(), "{name}: {check}");
+            }
+            assert_eq!(by_position(&back, &back_tris), want, "{name}, {order}");
+        }
     }
 }
 

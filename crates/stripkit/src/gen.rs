@@ -17,6 +17,12 @@
 //! | [`cube`]`()` | 8 | 6 quads |
 //! | [`subdivide_loop`]`(mesh, k)` | V + E per level | F·4^k triangles |
 //! | [`subdivide_catmull_clark`]`(mesh, k)` | V + E + F per level | Σ face sizes quads per level |
+//!
+//! Subdivision carries vertex attributes (normals, UVs, colours, ...) with the
+//! positions' own stencil weights ([`crate::Attribute::push_blend`]) and face groups
+//! to the child faces. An attribute seam (two vertices at one position) is a
+//! boundary on each side, so both sides follow the same crease rule; where a seam
+//! meets another crease, its vertices stay fixed so that the seam stays closed.
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
@@ -253,6 +259,7 @@ pub fn cube_grid(n: u32) -> Mesh {
 /// repeated vertex, and when the result would not fit `u32` indices.
 pub fn subdivide_loop(mesh: &Mesh, levels: u32) -> Result<Mesh> {
     validate(mesh)?;
+    crate::simplify::attributes::check(mesh)?;
     if let Some((f, face)) = mesh.faces().enumerate().find(|(_, face)| face.len() != 3) {
         return Err(Error::Invalid(format!(
             "Loop subdivision needs a triangle mesh, but face {f} has {} vertices (use catmull-clark)",
@@ -302,9 +309,11 @@ fn loop_step(mesh: &Mesh, map: &EdgeMap) -> Mesh {
         };
         positions.push(to_f32(edge_point));
     }
+    let corner = seam_corners(mesh, map);
     for v in 0..vcount {
         let pv = to_f64(mesh.positions[v]);
         let new = match crease_count[v] {
+            2 if is_set(&corner, v) => pv,
             0 if ring_count[v] > 0 => {
                 let n = ring_count[v] as f64;
                 let c = 0.375 + 0.25 * (std::f64::consts::TAU / n).cos();
@@ -316,7 +325,107 @@ fn loop_step(mesh: &Mesh, map: &EdgeMap) -> Mesh {
         };
         positions[v] = to_f32(new);
     }
-    split_triangles_in_four(mesh, map, positions)
+    let mut out = split_triangles_in_four(mesh, map, positions);
+    if !mesh.attributes.is_empty() {
+        out.attributes = blend_attributes(mesh, &loop_stencils(mesh, map));
+    }
+    carry_groups(mesh, &mut out, |_| 4);
+    out
+}
+
+/// Loop's stencils (input vertices and their weights) of every output vertex: the
+/// rules of `loop_step`, for attributes.
+fn loop_stencils(mesh: &Mesh, map: &EdgeMap) -> Vec<Vec<(usize, f64)>> {
+    let fi = &mesh.face_indices;
+    let (ring, crease) = neighbours(mesh, map);
+    let corner = seam_corners(mesh, map);
+    let mut stencils: Vec<Vec<(usize, f64)>> = (0..mesh.vertex_count())
+        .map(|v| match crease[v].len() {
+            2 if is_set(&corner, v) => vec![(v, 1.0)],
+            0 if !ring[v].is_empty() => {
+                let n = ring[v].len() as f64;
+                let c = 0.375 + 0.25 * (std::f64::consts::TAU / n).cos();
+                let beta = (0.625 - c * c) / n;
+                std::iter::once((v, 1.0 - n * beta)).chain(ring[v].iter().map(|&u| (u as usize, beta))).collect()
+            }
+            2 => vec![(v, 0.75), (crease[v][0] as usize, 0.125), (crease[v][1] as usize, 0.125)],
+            _ => vec![(v, 1.0)],
+        })
+        .collect();
+    for (e, &[a, b]) in map.edges.iter().enumerate() {
+        let hs = map.halfedges(e);
+        let (a, b) = (a as usize, b as usize);
+        stencils.push(if hs.len() == 2 {
+            let opp = |h: u32| fi[map.halfedge_next[map.halfedge_next[h as usize] as usize] as usize] as usize;
+            vec![(a, 0.375), (b, 0.375), (opp(hs[0]), 0.125), (opp(hs[1]), 0.125)]
+        } else {
+            vec![(a, 0.5), (b, 0.5)]
+        });
+    }
+    stencils
+}
+
+/// Where a mesh has attributes, the seam vertices (two used vertices at one position:
+/// the sides of a UV or normal seam) where the seam meets another crease, such as an
+/// open boundary: each side would follow its own boundary curve there and the seam
+/// would open, so they stay fixed, like a corner. Empty (nothing fixed) without
+/// attributes.
+fn seam_corners(mesh: &Mesh, map: &EdgeMap) -> Vec<bool> {
+    let seam = crate::simplify::attributes::seam_vertices(mesh);
+    if seam.is_empty() {
+        return seam;
+    }
+    let (_, crease) = neighbours(mesh, map);
+    (0..mesh.vertex_count()).map(|v| seam[v] && crease[v].iter().any(|&u| !seam[u as usize])).collect()
+}
+
+fn is_set(flags: &[bool], v: usize) -> bool {
+    flags.get(v).copied().unwrap_or(false)
+}
+
+/// Per vertex, its neighbours across edges with two faces, and across crease edges
+/// (any other count), in edge order.
+fn neighbours(mesh: &Mesh, map: &EdgeMap) -> (Vec<Vec<u32>>, Vec<Vec<u32>>) {
+    let mut ring = vec![Vec::new(); mesh.vertex_count()];
+    let mut crease = vec![Vec::new(); mesh.vertex_count()];
+    for (e, &[a, b]) in map.edges.iter().enumerate() {
+        let list = if map.halfedges(e).len() == 2 { &mut ring } else { &mut crease };
+        list[a as usize].push(b);
+        list[b as usize].push(a);
+    }
+    (ring, crease)
+}
+
+/// `mesh`'s attributes at new vertices, each a weighted blend of input vertices
+/// ([`crate::Attribute::push_blend`]: floats and normalized integers blended, other
+/// integers from the heaviest vertex; normals and tangents made unit again). Empty
+/// without attributes (stencils unused).
+fn blend_attributes(mesh: &Mesh, stencils: &[Vec<(usize, f64)>]) -> Vec<crate::Attribute> {
+    mesh.attributes
+        .iter()
+        .map(|a| {
+            // Blended after the input's own values, which are then dropped.
+            let mut work = a.clone();
+            work.data.reserve(stencils.len() * a.stride());
+            for parts in stencils {
+                work.push_blend(parts);
+            }
+            work.data.drain(..a.len() * a.stride());
+            let n = work.len();
+            crate::simplify::attributes::unit_directions(&mut work, 0..n);
+            work
+        })
+        .collect()
+}
+
+/// The face groups of `out`, whose faces come `children(f)` at a time from each
+/// input face `f` in order.
+fn carry_groups(mesh: &Mesh, out: &mut Mesh, children: impl Fn(usize) -> usize) {
+    out.groups = mesh.groups.clone();
+    if !mesh.face_groups.is_empty() {
+        out.face_groups =
+            (0..mesh.face_count()).flat_map(|f| std::iter::repeat_n(mesh.group_of(f), children(f))).collect();
+    }
 }
 
 /// Splits every triangle of a triangle mesh into four using edge vertices numbered
@@ -354,6 +463,7 @@ fn split_triangles_in_four(mesh: &Mesh, map: &EdgeMap, positions: Vec<[f32; 3]>)
 /// would not fit `u32` indices.
 pub fn subdivide_catmull_clark(mesh: &Mesh, levels: u32) -> Result<Mesh> {
     validate(mesh)?;
+    crate::simplify::attributes::check(mesh)?;
     check_no_repeated_index(mesh)?;
     let mut current = mesh.clone();
     for _ in 0..levels {
@@ -419,9 +529,11 @@ fn catmull_clark_step(mesh: &Mesh, map: &EdgeMap) -> Mesh {
         };
         positions.push(to_f32(edge_point));
     }
+    let corner = seam_corners(mesh, map);
     for v in 0..vcount {
         let s = to_f64(mesh.positions[v]);
         let new = match crease_count[v] {
+            2 if is_set(&corner, v) => s,
             0 if mid_count[v] > 0 && face_count[v] > 0 => {
                 let n = mid_count[v] as f64;
                 let fc = face_count[v] as f64;
@@ -454,7 +566,62 @@ fn catmull_clark_step(mesh: &Mesh, map: &EdgeMap) -> Mesh {
         }
     }
     let face_offsets = (0..=fi.len() as u32).map(|q| 4 * q).collect();
-    Mesh { positions, face_offsets, face_indices, ..Mesh::new() }
+    let mut out = Mesh { positions, face_offsets, face_indices, ..Mesh::new() };
+    if !mesh.attributes.is_empty() {
+        out.attributes = blend_attributes(mesh, &catmull_clark_stencils(mesh, map));
+    }
+    carry_groups(mesh, &mut out, |f| mesh.face(f).len());
+    out
+}
+
+/// Catmull-Clark's stencils (input vertices and their weights) of every output
+/// vertex: the rules of `catmull_clark_step`, for attributes.
+fn catmull_clark_stencils(mesh: &Mesh, map: &EdgeMap) -> Vec<Vec<(usize, f64)>> {
+    let fi = &mesh.face_indices;
+    let face_point = |f: usize, w: f64| {
+        let face = mesh.face(f);
+        face.iter().map(move |&u| (u as usize, w / face.len() as f64))
+    };
+    let (ring, crease) = neighbours(mesh, map);
+    // The faces around each vertex, one per corner.
+    let mut faces_of = vec![Vec::new(); mesh.vertex_count()];
+    for (h, &v) in fi.iter().enumerate() {
+        faces_of[v as usize].push(map.halfedge_face[h] as usize);
+    }
+    let corner = seam_corners(mesh, map);
+    let mut stencils: Vec<Vec<(usize, f64)>> = (0..mesh.vertex_count())
+        .map(|v| match crease[v].len() {
+            2 if is_set(&corner, v) => vec![(v, 1.0)],
+            0 if !ring[v].is_empty() && !faces_of[v].is_empty() => {
+                // (Q + 2R + (n - 3)S) / n: Q the mean face point, R the mean midpoint.
+                let n = ring[v].len() as f64;
+                let fc = faces_of[v].len() as f64;
+                let mut parts = vec![(v, (n - 3.0) / n + 1.0 / n)];
+                parts.extend(ring[v].iter().map(|&u| (u as usize, 1.0 / (n * n))));
+                for &f in &faces_of[v] {
+                    parts.extend(face_point(f, 1.0 / (n * fc)));
+                }
+                parts
+            }
+            2 => vec![(v, 0.75), (crease[v][0] as usize, 0.125), (crease[v][1] as usize, 0.125)],
+            _ => vec![(v, 1.0)],
+        })
+        .collect();
+    for (e, &[a, b]) in map.edges.iter().enumerate() {
+        let hs = map.halfedges(e);
+        let (a, b) = (a as usize, b as usize);
+        stencils.push(if hs.len() == 2 {
+            let mut parts = vec![(a, 0.25), (b, 0.25)];
+            for &h in hs {
+                parts.extend(face_point(map.halfedge_face[h as usize] as usize, 0.25));
+            }
+            parts
+        } else {
+            vec![(a, 0.5), (b, 0.5)]
+        });
+    }
+    stencils.extend((0..mesh.face_count()).map(|f| face_point(f, 1.0).collect()));
+    stencils
 }
 
 fn check_no_repeated_index(mesh: &Mesh) -> Result<()> {

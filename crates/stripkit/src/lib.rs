@@ -79,6 +79,7 @@ mod strip;
 mod stripify;
 mod topology;
 mod vec3;
+mod vertex_order;
 
 pub mod cull;
 pub mod distance;
@@ -107,3 +108,4 @@ pub use stripify::greedy::{GreedyOptions, Heuristic};
 pub use stripify::quad::{Policy, QuadOptions};
 pub use stripify::single::{MatchingMode, SingleOptions, SingleReport, Weights, EXACT_MATCHING_NODES};
 pub use topology::{validate, MeshFacts};
+pub use vertex_order::first_use_order;

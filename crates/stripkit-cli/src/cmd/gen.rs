@@ -27,6 +27,11 @@ pub struct Args {
     /// Write PLY as ASCII text instead of binary (PLY outputs only).
     #[arg(long, global = true)]
     ascii: bool,
+    /// The format written to standard output (`-o -`): obj, ply, off, stl, gltf or
+    /// glb (default for `subdivide -`: its --format). The report then goes to
+    /// standard error.
+    #[arg(long, global = true, value_name = "FORMAT", value_parser = super::parse_format)]
+    output_format: Option<stripkit::io::Format>,
 }
 
 /// Largest output we agree to build (face indices), about 4 GB of indices: keeps
@@ -120,6 +125,19 @@ enum Scheme {
 /// Runs the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let start = Instant::now();
+    // The output is checked before any work: a typo must not cost a long build.
+    let (format, ascii) = {
+        let (output, input) = match &args.what {
+            What::Grid { output, .. }
+            | What::Icosphere { output, .. }
+            | What::Torus { output, .. }
+            | What::Cube { output, .. } => (output, None),
+            What::Subdivide { output, file, read, .. } => (output, Some((file.as_path(), read))),
+        };
+        let format = super::output_format(output, args.output_format, input)?;
+        super::check_output_folder(output)?;
+        (format, super::write_options(args.ascii, output, Some(format))?)
+    };
     let (mesh, output, what) = match args.what {
         What::Grid { w, h, quads, output } => {
             anyhow::ensure!(w >= 1 && h >= 1, "a grid needs W and H of at least 1 (got {w} x {h})");
@@ -164,8 +182,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     };
     let built = Instant::now();
-    let write_options = super::write_options(args.ascii, &output)?;
-    stripkit::io::write_with(&output, &mesh, None, &write_options)?;
+    // Compressed by write_output for a .gz name.
+    super::write_output(&output, &stripkit::io::write_bytes(format, &mesh, None, &ascii)?)?;
     let written = Instant::now();
     let report = serde_json::json!({
         "output": output.display().to_string(),
@@ -176,7 +194,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "ms": (built - start).as_secs_f64() * 1e3,
         "write_ms": (written - built).as_secs_f64() * 1e3,
     });
-    super::print_report(args.json, &report, |w, _| {
+    super::print_report_to(&super::Sink::for_output(&output), args.json, &report, |w, _| {
         use std::io::Write;
         writeln!(
             w,

@@ -294,6 +294,9 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
     anyhow::ensure!(args.samples >= 1, "--samples must be at least 1");
     anyhow::ensure!(args.candidates >= 1, "--candidates must be at least 1");
     let frames = lod::read_frames(&args.folder, &args.common.read.options())?;
+    if frames.mesh.face_count() == 0 {
+        return Err(stripkit::Error::Invalid(format!("no faces in {}", args.folder.display())).into());
+    }
     args.common.strip.check_mesh(&frames.mesh, &args.folder)?;
     let options = SeqOptions {
         strip: args.common.strip.options(Some(&frames.mesh)),
@@ -408,7 +411,7 @@ fn extract(args: ExtractArgs) -> anyhow::Result<()> {
     if let Some(r) = args.ratio {
         anyhow::ensure!((0.0..=1.0).contains(&r), "--ratio {r} is out of range: 0 to 1");
     }
-    let write_options = super::write_options(args.ascii, &args.output)?;
+    let write_options = super::write_options(args.ascii, &args.output, super::path_format(&args.output))?;
     super::check_output_folder(&args.output)?;
     let model = read_model(&args.file)?;
     let spec = match (args.level, args.triangles, args.ratio) {
@@ -758,4 +761,3 @@ fn median(v: &mut [f64]) -> f64 {
     v.sort_by(f64::total_cmp);
     v.get(v.len() / 2).copied().unwrap_or(0.0)
 }
-

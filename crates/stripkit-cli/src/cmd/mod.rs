@@ -1,5 +1,6 @@
 //! One module per subcommand; each has an `Args` (clap) and a `run`.
 
+pub mod batch;
 pub mod cull;
 pub mod distance;
 pub mod gen;
@@ -12,6 +13,7 @@ pub mod strip;
 
 use std::path::Path;
 use std::process::ExitCode;
+use stripkit::io::Format;
 
 /// Prints a command's report on stdout: one line of JSON with `--json`, else its text
 /// summary. A closed pipe (`... | head`) is not an error of ours.
@@ -22,11 +24,8 @@ pub fn print_report<R: serde::Serialize>(
 ) -> anyhow::Result<()> {
     use std::io::Write;
     let mut stdout = std::io::stdout().lock();
-    let printed = if json {
-        writeln!(stdout, "{}", serde_json::to_string(report)?)
-    } else {
-        summary(&mut stdout, report)
-    };
+    let printed =
+        if json { writeln!(stdout, "{}", serde_json::to_string(report)?) } else { summary(&mut stdout, report) };
     ignore_closed_pipe(printed)
 }
 
@@ -84,8 +83,20 @@ impl ReadArgs {
         options
     }
 
-    /// Reads a mesh under these limits; `-` reads standard input in `--format`.
+    /// Reads a mesh under these limits; `-` reads standard input in `--format`. A mesh
+    /// with no faces is refused ("no faces in FILE"): no command has anything to do
+    /// with one, and an empty output written with exit status 0 reads as success.
     pub fn read(&self, path: &Path) -> stripkit::Result<stripkit::Mesh> {
+        let mesh = self.read_any(path)?;
+        if mesh.face_count() == 0 {
+            let name = if path.as_os_str() == "-" { "<standard input>".into() } else { path.display().to_string() };
+            return Err(stripkit::Error::Invalid(format!("no faces in {name}")));
+        }
+        Ok(mesh)
+    }
+
+    /// [`ReadArgs::read`] without the check for faces.
+    fn read_any(&self, path: &Path) -> stripkit::Result<stripkit::Mesh> {
         use std::io::Read;
         let options = self.options();
         if path.as_os_str() != "-" {
@@ -124,17 +135,120 @@ impl ReadArgs {
     }
 }
 
-/// The write options of `--ascii` for `output`: ASCII PLY, refused (exit 2) for an
-/// output that is not PLY, where it would do nothing.
-pub fn write_options(ascii: bool, output: &Path) -> Result<stripkit::io::WriteOptions, stripkit::Error> {
-    let is_ply = matches!(stripkit::io::Format::from_path(output), Some((stripkit::io::Format::Ply, _)));
-    if ascii && !is_ply {
+/// The write options of `--ascii` for `output` of `format` (its extension's, or
+/// [`output_format`]'s for `-o -`): ASCII PLY, refused (exit 2) for an output that is
+/// not PLY, where it would do nothing.
+pub fn write_options(
+    ascii: bool,
+    output: &Path,
+    format: Option<Format>,
+) -> Result<stripkit::io::WriteOptions, stripkit::Error> {
+    if ascii && format != Some(Format::Ply) {
         return Err(stripkit::Error::Invalid(format!(
             "--ascii applies to PLY outputs; {} is not one",
             output.display()
         )));
     }
     Ok(stripkit::io::WriteOptions { ply_ascii: ascii })
+}
+
+/// The format a file's extension names (through `.gz`), if any.
+pub fn path_format(path: &Path) -> Option<Format> {
+    Format::from_path(path).map(|(f, _)| f)
+}
+
+/// Whether `path` is `-`, standard input or output.
+pub fn is_dash(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
+/// The format of a mesh output: its extension names it, or for `-o -` (standard output)
+/// `--output-format`, else the `--format` of a standard input that is also `-`.
+/// `--output-format` with a named file is refused, as is `-o -` with neither flag.
+pub fn output_format(
+    output: &Path,
+    output_format: Option<Format>,
+    input: Option<(&Path, &ReadArgs)>,
+) -> Result<Format, stripkit::Error> {
+    if !is_dash(output) {
+        if output_format.is_some() {
+            return Err(stripkit::Error::Invalid(format!(
+                "--output-format applies to standard output (-o -); {} names its format by its extension",
+                output.display()
+            )));
+        }
+        return Format::from_path(output).map(|(f, _)| f).ok_or_else(|| {
+            stripkit::Error::Invalid(format!(
+                "{}: unknown output format; name it .obj, .ply, .off, .stl, .gltf or .glb (optionally .gz)",
+                output.display()
+            ))
+        });
+    }
+    let stdin_format = input.filter(|(path, _)| is_dash(path)).and_then(|(_, read)| read.format);
+    output_format.or(stdin_format).ok_or_else(|| {
+        stripkit::Error::Invalid(
+            "writing to standard output (-o -) needs --output-format obj, ply, off, stl, gltf or glb".into(),
+        )
+    })
+}
+
+/// Writes encoded bytes to `output`: standard output for `-`, else atomically to the
+/// file (gzip-compressed for a `.gz` name).
+pub fn write_output(output: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    use std::io::Write;
+    if is_dash(output) {
+        let mut out = std::io::stdout().lock();
+        return ignore_closed_pipe(out.write_all(bytes).and_then(|()| out.flush()));
+    }
+    stripkit::io::write_encoded(output, bytes)?;
+    Ok(())
+}
+
+/// Where a command's report goes: standard output, or standard error when the
+/// output mesh itself goes to standard output (`-o -`), or one line above a batch's
+/// progress bar.
+#[derive(Clone, Debug)]
+pub enum Sink {
+    /// Standard output.
+    Stdout,
+    /// Standard error (the mesh is on standard output).
+    Stderr,
+    /// Standard output, printed with the batch's progress bar suspended.
+    Batch(indicatif::ProgressBar),
+}
+
+impl Sink {
+    /// Standard error for an output of `-`, else standard output.
+    pub fn for_output(output: &Path) -> Sink {
+        if is_dash(output) {
+            Sink::Stderr
+        } else {
+            Sink::Stdout
+        }
+    }
+}
+
+/// [`print_report`] to a [`Sink`]: the text is built first, then written at once.
+pub fn print_report_to<R: serde::Serialize>(
+    sink: &Sink,
+    json: bool,
+    report: &R,
+    summary: impl FnOnce(&mut Vec<u8>, &R) -> std::io::Result<()>,
+) -> anyhow::Result<()> {
+    use std::io::Write;
+    let mut text = Vec::new();
+    if json {
+        serde_json::to_writer(&mut text, report)?;
+        text.push(b'\n');
+    } else {
+        summary(&mut text, report)?;
+    }
+    let written = match sink {
+        Sink::Stderr => std::io::stderr().lock().write_all(&text),
+        Sink::Stdout => std::io::stdout().lock().write_all(&text),
+        Sink::Batch(bar) => bar.suspend(|| std::io::stdout().lock().write_all(&text)),
+    };
+    ignore_closed_pipe(written)
 }
 
 /// A progress bar of 1,000 steps on stderr, `WHAT [bar] percent elapsed`; hidden

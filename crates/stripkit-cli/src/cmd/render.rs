@@ -301,9 +301,6 @@ fn read_lod(args: &Args) -> anyhow::Result<Option<Level>> {
 /// The mesh, and the `--morph` mesh when given (same vertex count).
 fn read_meshes(args: &Args) -> anyhow::Result<(stripkit::Mesh, Option<stripkit::Mesh>)> {
     let mesh = args.read.read(&args.input)?;
-    if mesh.face_count() == 0 {
-        return Err(Error::Invalid(format!("no faces in {}", args.input.display())).into());
-    }
     let Some(path) = &args.morph else { return Ok((mesh, None)) };
     let other = args.read.read(path)?;
     if other.vertex_count() != mesh.vertex_count() {
@@ -402,7 +399,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     progress.set_message(format!("reading {}", args.input.display()));
     let lod = read_lod(&args)?;
     let (mesh, target) = match &lod {
-        Some((positions, strips, _)) => (stripkit::Mesh::from_triangles(positions.clone(), &stripkit::decode(strips)), None),
+        Some((positions, strips, _)) => {
+            (stripkit::Mesh::from_triangles(positions.clone(), &stripkit::decode(strips)), None)
+        }
         None => read_meshes(&args)?,
     };
     let t = if target.is_some() { args.t.unwrap_or(0.5) } else { 0.0 };
@@ -441,11 +440,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (None, None) => unreachable!("a mesh goes through the door"),
     };
     let blended: Option<Vec<[f32; 3]>> = target_positions.as_ref().map(|other| {
-        positions
-            .iter()
-            .zip(other)
-            .map(|(a, b)| std::array::from_fn(|d| a[d] + (b[d] - a[d]) * t))
-            .collect()
+        positions.iter().zip(other).map(|(a, b)| std::array::from_fn(|d| a[d] + (b[d] - a[d]) * t)).collect()
     });
     let drawn = blended.as_deref().unwrap_or(&positions);
 
@@ -467,14 +462,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         );
     }
     let draw_start = Instant::now();
-    let scene = Scene {
-        framing,
-        exploded,
-        positions: &positions,
-        target: target_positions.as_deref(),
-        drawn,
-        t,
-    };
+    let scene = Scene { framing, exploded, positions: &positions, target: target_positions.as_deref(), drawn, t };
     let (image, edges) = draw(&mut renderer, &args, &scene)?;
     let draw_time = draw_start.elapsed();
     let pixels = image.pixels_other_than(args.background);

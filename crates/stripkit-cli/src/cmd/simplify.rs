@@ -19,10 +19,12 @@ pub enum PlacementArg {
 }
 
 /// Arguments of `stripkit simplify`.
-#[derive(clap::Args)]
+#[derive(clap::Args, Clone)]
 #[command(group(clap::ArgGroup::new("target").required(true).args(["ratio", "triangles", "error"])))]
 pub struct Args {
-    /// Input mesh (OBJ, OFF, ...; `.gz` is decompressed). Polygons are fanned into triangles.
+    /// Input mesh (OBJ, OFF, ...; `.gz` is decompressed). Polygons are fanned into
+    /// triangles. A folder simplifies every mesh file in it into the folder -o names
+    /// (each in its own format, or --output-format).
     pub file: PathBuf,
     /// Keep at most this fraction of the triangles (0 to 1), e.g. 0.1.
     #[arg(long)]
@@ -50,9 +52,19 @@ pub struct Args {
     /// larger one pairs almost everything and is refused).
     #[arg(long)]
     pub pair_distance: Option<f64>,
-    /// Output mesh; vertex ids are kept (removed vertices stay, unreferenced).
+    /// Output mesh; `-` writes standard output in --output-format (the report then
+    /// goes to standard error). Vertices no face uses any more are dropped and the
+    /// others keep their order (--keep-unreferenced keeps every input vertex id).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// The format written to standard output (`-o -`): obj, ply, off, stl, gltf or glb.
+    /// Default: the --format of a standard input.
+    #[arg(long, value_name = "FORMAT", value_parser = super::parse_format)]
+    pub output_format: Option<stripkit::io::Format>,
+    /// Keep the vertices the collapses left unreferenced, so that the output's vertex
+    /// ids are the input's (what the collapse sequence's ids refer to).
+    #[arg(long)]
+    pub keep_unreferenced: bool,
     /// Write PLY as ASCII text instead of binary (PLY outputs only).
     #[arg(long)]
     pub ascii: bool,
@@ -63,15 +75,22 @@ pub struct Args {
     /// files as they were.
     #[arg(long)]
     pub sequence: Option<PathBuf>,
-    /// Print one JSON object (triangles_in, triangles_out, collapses, max_error, ms) on stdout.
+    /// Print one JSON object (input, output, triangles_in, triangles_out, vertices_in,
+    /// vertices_out, collapses, max_error, placement, ms) on stdout.
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]
     pub read: super::ReadArgs,
+    /// Set by a folder run: report above this progress bar.
+    #[arg(skip)]
+    pub batch: Option<indicatif::ProgressBar>,
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if args.file.is_dir() {
+        return super::batch::simplify_folder(args);
+    }
     let target = match (args.ratio, args.triangles, args.error) {
         (Some(r), _, _) => Target::Ratio(r),
         (_, Some(t), _) => Target::Triangles(t),
@@ -95,12 +114,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // Checked before reading the mesh, so a typo fails at once (NaN, negative and
     // infinite distances were silently taken as "no pairs").
     if let Some(d) = args.pair_distance {
-        anyhow::ensure!(
-            d >= 0.0 && d.is_finite(),
-            "--pair-distance {d} is out of range: a finite distance, 0 or more"
-        );
+        anyhow::ensure!(d >= 0.0 && d.is_finite(), "--pair-distance {d} is out of range: a finite distance, 0 or more");
     }
-    let write_options = super::write_options(args.ascii, &args.output)?;
+    let format = super::output_format(&args.output, args.output_format, Some((&args.file, &args.read)))?;
+    let write_options = super::write_options(args.ascii, &args.output, Some(format))?;
+    super::check_output_folder(&args.output)?;
     let mesh = args.read.read(&args.file)?;
     let options = Options {
         target,
@@ -109,43 +127,72 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         pair_distance: args.pair_distance,
         max_collapses: None,
     };
-    let bar = super::progress_bar(mesh.triangle_count() > 200_000, "simplify");
+    let bar = super::progress_bar(mesh.triangle_count() > 200_000 && args.batch.is_none(), "simplify");
     let start = Instant::now();
     let result = simplify(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
-    .with_context(|| format!("simplifying {}", args.file.display()))?;
+        .with_context(|| format!("simplifying {}", args.file.display()))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     bar.finish_and_clear();
     // Every output encoded before any is written; then all staged on disk before any
     // is renamed into place, the sequence first and the mesh (-o) last.
-    let mesh_bytes =
-        stripkit::io::encode_file(&args.output, &result.mesh, None, &write_options)?;
+    let compacted;
+    let out_mesh = if args.keep_unreferenced {
+        &result.mesh
+    } else {
+        compacted = result.mesh.compact().0;
+        &compacted
+    };
+    let mesh_bytes = if super::is_dash(&args.output) {
+        stripkit::io::write_bytes(format, out_mesh, None, &write_options)?
+    } else {
+        stripkit::io::encode_file(&args.output, out_mesh, None, &write_options)?
+    };
     match &args.sequence {
+        Some(seq) if super::is_dash(&args.output) => {
+            stripkit::io::write_atomic(seq, &result.sequence.encode(seq)?)?;
+            super::write_output(&args.output, &mesh_bytes)?;
+        }
         Some(seq) => {
             let seq_bytes = result.sequence.encode(seq)?;
             stripkit::io::write_atomic_all(&[(seq, &seq_bytes), (&args.output, &mesh_bytes)])?;
         }
+        None if super::is_dash(&args.output) => super::write_output(&args.output, &mesh_bytes)?,
+        // Already compressed for a .gz name.
         None => stripkit::io::write_atomic(&args.output, &mesh_bytes)?,
     }
+    let sink = match &args.batch {
+        Some(bar) => super::Sink::Batch(bar.clone()),
+        None => super::Sink::for_output(&args.output),
+    };
     if args.json {
         let out = serde_json::json!({
+            "input": args.file.display().to_string(),
+            "output": args.output.display().to_string(),
             "triangles_in": result.triangles_in,
             "triangles_out": result.triangles_out(),
+            "vertices_in": mesh.vertex_count(),
+            "vertices_out": out_mesh.vertex_count(),
             "collapses": result.sequence.len(),
             "max_error": result.max_error,
             "placement": format!("{:?}", placement).to_lowercase(),
             "ms": ms,
         });
-        println!("{out}");
+        super::print_report_to(&sink, true, &out, |_, _| Ok(()))
     } else {
-        println!(
-            "{}: {} -> {} triangles, {} collapses, max error {:.3e}, {:.1} ms",
-            args.file.display(),
-            result.triangles_in,
-            result.triangles_out(),
-            result.sequence.len(),
-            result.max_error,
-            ms
-        );
+        super::print_report_to(&sink, false, &(), |w, _| {
+            use std::io::Write;
+            writeln!(
+                w,
+                "{}: {} -> {} triangles, {} -> {} vertices, {} collapses, max error {:.3e}, {:.1} ms",
+                args.file.display(),
+                result.triangles_in,
+                result.triangles_out(),
+                mesh.vertex_count(),
+                out_mesh.vertex_count(),
+                result.sequence.len(),
+                result.max_error,
+                ms
+            )
+        })
     }
-    Ok(())
 }

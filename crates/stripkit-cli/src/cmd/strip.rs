@@ -14,7 +14,7 @@ use clap::ValueEnum;
 use serde::Serialize;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use stripkit::io::{self, Format};
+use stripkit::io::Format;
 use stripkit::{
     Algorithm, CacheKind, CacheModel, Error, Figures, GreedyOptions, Heuristic, Split, StripOptions, Stripifier,
     DEFAULT_RESTART,
@@ -108,7 +108,7 @@ impl From<Join> for stripkit::Join {
 /// The strip options: which stripifier and its settings. `stripkit strip` and
 /// `stripkit render` both take them (flattened), so that a picture shows the strips
 /// `strip` writes.
-#[derive(clap::Args, Debug)]
+#[derive(clap::Args, Clone, Debug)]
 pub struct StripArgs {
     /// Stripifying algorithm.
     #[arg(long, value_enum, default_value = "auto")]
@@ -191,6 +191,17 @@ pub struct StripArgs {
     pub matching: Option<MatchingArg>,
 }
 
+/// The order of the vertices in the output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum VertexOrder {
+    /// Renumbered in the order the strips first use them; vertices no face uses are
+    /// dropped (meshoptimizer's `optimizeVertexFetch`).
+    FirstUse,
+    /// As in the input, every vertex kept (ids stay the input's).
+    Input,
+}
+
 /// How `--algo single` matches the dual graph.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -205,7 +216,7 @@ pub enum MatchingArg {
 }
 
 /// Arguments of `stripkit strip`.
-#[derive(clap::Args, Debug)]
+#[derive(clap::Args, Clone, Debug)]
 #[command(after_help = "Output by extension of OUT:\n  \
     .ply   vertices plus a `tristrips` element (-1 ends a strip); --join degenerate writes one stitched strip\n  \
     .json  {\"strips\": [[...], ...], \"figures\": {...}} (with --join restart also \"indices\" and \"restart_index\")\n  \
@@ -213,11 +224,20 @@ pub enum MatchingArg {
     (--join separate: one primitive per strip)\n\
 Exit status: 0 success, 1 verification failed (nothing written), 2 bad input or argument.")]
 pub struct Args {
-    /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz); polygons are fanned into triangles.
+    /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz); polygons are
+    /// fanned into triangles. `-` reads standard input (with --format). A folder strips
+    /// every mesh file in it (not its subfolders) into the folder -o names.
     pub input: PathBuf,
-    /// Output file: .ply, .json, .gltf or .glb (see below).
+    /// Output file: .ply, .json, .gltf or .glb (see below); `-` writes standard output
+    /// in --output-format (the report then goes to standard error). For a folder input,
+    /// a folder (created if missing) that gets one NAME.EXT per input, EXT from
+    /// --output-format (default glb).
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
+    /// The format written to standard output (`-o -`) or into an output folder: ply,
+    /// gltf or glb. Default for `-o -`: the --format of a standard input.
+    #[arg(long, value_name = "FORMAT", value_parser = super::parse_format)]
+    pub output_format: Option<Format>,
     /// Write PLY as ASCII text instead of binary (PLY outputs only).
     #[arg(long)]
     pub ascii: bool,
@@ -227,6 +247,13 @@ pub struct Args {
     /// `degenerate` (one stitched strip), `separate` (one list per strip).
     #[arg(long, value_enum, default_value = "restart")]
     pub join: Join,
+    /// Order of the written vertices: `first-use` renumbers them in the order the
+    /// strips first use them and drops unreferenced ones (the GPU then reads the
+    /// vertex buffer front to back); `input` keeps the input's ids. Default
+    /// `first-use` for .gltf and .glb outputs, `input` for PLY (.json holds no
+    /// vertices: `input` only).
+    #[arg(long, value_enum)]
+    pub vertex_order: Option<VertexOrder>,
     /// Primitive-restart index for `--join restart`; must not be a vertex id of the mesh.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_RESTART)]
     pub restart_index: u32,
@@ -235,6 +262,9 @@ pub struct Args {
     pub json: bool,
     #[command(flatten)]
     pub read: super::ReadArgs,
+    /// Set by a folder run: report one line per file above this progress bar.
+    #[arg(skip)]
+    pub batch: Option<indicatif::ProgressBar>,
 }
 
 /// The JSON object printed by `--json` (and embedded in `.json` outputs).
@@ -246,6 +276,7 @@ struct Report<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     heuristic: Option<HeuristicArg>,
     join: Join,
+    vertex_order: VertexOrder,
     vertices: usize,
     #[serde(flatten)]
     figures: &'a Figures,
@@ -263,6 +294,10 @@ struct Report<'a> {
     /// `single` only: Steiner vertices, swaps, pieces merged, times.
     #[serde(skip_serializing_if = "Option::is_none")]
     single: Option<&'a stripkit::SingleReport>,
+    /// `balanced` only, when its `--max-acmr` was out of reach: the misses per
+    /// triangle reached instead (FIFO of `--cache` entries).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    max_acmr_unreached: Option<f64>,
 }
 
 enum OutKind {
@@ -270,7 +305,16 @@ enum OutKind {
     Mesh(Format),
 }
 
-fn output_kind(path: &Path) -> anyhow::Result<OutKind> {
+fn output_kind(path: &Path, stdout_format: Option<Format>) -> anyhow::Result<OutKind> {
+    if let Some(format) = stdout_format.filter(|_| super::is_dash(path)) {
+        return match format {
+            Format::Ply | Format::Gltf | Format::Glb => Ok(OutKind::Mesh(format)),
+            _ => {
+                let name = format!("{format:?}").to_lowercase();
+                Err(Error::Invalid(format!("--output-format {name} cannot hold strips; use ply, gltf or glb")).into())
+            }
+        };
+    }
     let name = path
         .file_name()
         .and_then(|n| n.to_str())
@@ -298,6 +342,10 @@ impl StripArgs {
         }
         if self.max_acmr.is_some() && self.algo != Algo::Balanced {
             return bad("--max-acmr applies to --algo balanced");
+        }
+        let splits_quads = matches!(self.algo, Algo::Cache | Algo::Balanced | Algo::Auto);
+        if self.diagonals == Some(DiagonalsArg::Auto) && !splits_quads {
+            return bad("--diagonals auto applies to --algo cache and balanced (the others split quads their own way)");
         }
         if (self.heuristic.is_some() || self.tunnel.is_some()) && !matches!(self.algo, Algo::Greedy | Algo::Auto) {
             return bad("--heuristic and --tunnel apply to --algo greedy (and auto on meshes that are not quad-dominant)");
@@ -442,23 +490,63 @@ fn with_join(args: &Args, options: StripOptions) -> StripOptions {
     options.join(args.join.into()).restart_index(args.restart_index)
 }
 
-/// Runs the command: read -> door -> encode -> write.
+/// Runs the command: read -> door -> encode -> write; a folder input runs every file.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let kind = output_kind(&args.output)?;
+    if args.input.is_dir() {
+        return super::batch::strip_folder(args);
+    }
+    let stdout_format = if super::is_dash(&args.output) {
+        Some(super::output_format(&args.output, args.output_format, Some((&args.input, &args.read)))?)
+    } else {
+        anyhow::ensure!(
+            args.output_format.is_none() || args.batch.is_some(),
+            "--output-format applies to standard output (-o -) and folder outputs; \
+             {} names its format by its extension",
+            args.output.display()
+        );
+        None
+    };
+    let kind = output_kind(&args.output, stdout_format)?;
     // Fail before the work when the output cannot be written at all.
     super::check_output_folder(&args.output)?;
-    let write_options = super::write_options(args.ascii, &args.output)?;
+    let write_options = super::write_options(
+        args.ascii,
+        &args.output,
+        match kind {
+            OutKind::Mesh(format) => Some(format),
+            OutKind::Json => None,
+        },
+    )?;
     // Arguments are checked before the file is read.
     args.strip.validate(|o| with_join(&args, o))?;
+    let vertex_order = match (args.vertex_order, &kind) {
+        (Some(VertexOrder::FirstUse), OutKind::Json) => {
+            return Err(Error::Invalid(format!(
+                "--vertex-order first-use applies to mesh outputs; {} holds no vertices",
+                args.output.display()
+            ))
+            .into())
+        }
+        (Some(order), _) => order,
+        (None, OutKind::Mesh(Format::Gltf | Format::Glb)) => VertexOrder::FirstUse,
+        (None, _) => VertexOrder::Input,
+    };
     // A spinner on a terminal (indicatif draws nothing when stderr is not one):
     // balanced and --refine take seconds on meshes of a million triangles.
-    let progress = indicatif::ProgressBar::new_spinner();
+    let progress = match args.batch {
+        Some(_) => indicatif::ProgressBar::hidden(),
+        None => indicatif::ProgressBar::new_spinner(),
+    };
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
     let mesh = args.read.read(&args.input)?;
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
     let strips = args.strip.stripify(&mesh, &args.input, |o| with_join(&args, o))?;
+    let (mesh, strips) = match (vertex_order, &kind) {
+        (VertexOrder::FirstUse, OutKind::Mesh(format)) => strips.in_first_use_order(&mesh, *format),
+        _ => (mesh, strips),
+    };
 
     progress.set_message(format!("writing {}", args.output.display()));
     let figures = &strips.figures;
@@ -468,6 +556,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         algo: strips.algorithm.name(),
         heuristic: args.strip.heuristic_used(&strips.algorithm),
         join: args.join,
+        vertex_order,
         vertices: mesh.vertex_count() + strips.added_positions.len(),
         figures,
         ms: strips.stripify_time.as_secs_f64() * 1e3,
@@ -476,7 +565,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         quads: strips.quads,
         indices_per_quad: strips.indices_per_quad(),
         single: strips.single.as_ref(),
+        max_acmr_unreached: unreached_acmr(&strips, mesh.vertex_count()),
     };
+    if let (Some(reached), Algorithm::Balanced { max_acmr }) = (report.max_acmr_unreached, &strips.algorithm) {
+        eprintln!(
+            "stripkit: warning: {}: --max-acmr {max_acmr} is below what balanced reaches on this mesh; \
+             its strips have {reached:.3} misses per triangle (FIFO of {} entries)",
+            args.input.display(),
+            args.strip.cache
+        );
+    }
     let bytes = match kind {
         OutKind::Json => {
             let mut obj = strips.to_json();
@@ -487,10 +585,33 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         OutKind::Mesh(format) => strips.to_file_bytes_with(&mesh, format, &write_options)?,
     };
-    io::write_encoded(&args.output, &bytes)?;
+    super::write_output(&args.output, &bytes)?;
     progress.finish_and_clear();
 
-    super::print_report(args.json, &report, |out, r| print_summary(out, r))
+    let sink = match &args.batch {
+        Some(bar) => super::Sink::Batch(bar.clone()),
+        None => super::Sink::for_output(&args.output),
+    };
+    super::print_report_to(&sink, args.json, &report, |out, r| match args.batch {
+        Some(_) => print_line(out, r),
+        None => print_summary(out, r),
+    })
+}
+
+/// `balanced`'s misses per triangle (FIFO of the cache size it ran with) where they
+/// exceed its `max_acmr` bound, which the strips then did not reach; `None` otherwise.
+fn unreached_acmr(strips: &stripkit::Strips, vertex_count: usize) -> Option<f64> {
+    let Algorithm::Balanced { max_acmr } = strips.algorithm else { return None };
+    let cache = strips.figures.cache;
+    let reached = if cache.kind == CacheKind::Fifo {
+        strips.figures.acmr
+    } else {
+        let order = stripkit::decode(&strips.strips);
+        let vertices = vertex_count + strips.added_positions.len();
+        stripkit::acmr(&order, vertices, cache.size, CacheKind::Fifo)
+    };
+    // A relative slack for the float sums behind the two figures.
+    (reached > max_acmr * (1.0 + 1e-9)).then_some(reached)
 }
 
 /// The library names its settings; the user typed flags: say which.
@@ -507,6 +628,23 @@ pub fn flag_names(e: Error) -> Error {
         ),
         other => other,
     }
+}
+
+/// A folder run's line for one file.
+fn print_line(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
+    let f = r.figures;
+    writeln!(
+        out,
+        "{} -> {}: {} triangles, {} strips, {} indices ({:.3} per triangle), acmr16 {:.3}, {:.1} ms",
+        r.input.display(),
+        r.output.display(),
+        f.triangles,
+        f.strips,
+        f.indices_restart,
+        f.indices_per_triangle,
+        f.acmr16,
+        r.ms
+    )
 }
 
 fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {

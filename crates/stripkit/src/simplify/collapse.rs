@@ -111,6 +111,11 @@ struct State {
     tri_stamp: u32,
     /// Scratch buffer of the hub paths.
     hub_tris: Vec<u32>,
+    /// Attribute seams (empty when the mesh has no attributes): vertices that share
+    /// their position with another used vertex, the two sides of a UV or normal seam.
+    /// A seam vertex is never removed nor moved, so both sides stay where they were
+    /// and the seam cannot open.
+    locked: Vec<bool>,
 }
 
 const NONE: u32 = u32::MAX;
@@ -243,6 +248,19 @@ impl State {
         let (pu, pv) = (self.pos[u as usize], self.pos[v as usize]);
         let scale = self.scale(u, v);
         let (cu, cv) = (q.eval(pu) * scale, q.eval(pv) * scale);
+        if self.is_locked(u) || self.is_locked(v) {
+            // A seam vertex is only kept, in place; an edge between two never collapses.
+            if self.is_locked(u) && self.is_locked(v) {
+                return (f64::INFINITY, u, v, pv, CHOICE_END);
+            }
+            let (mut c, r, k, p) = if self.is_locked(u) { (cu, v, u, pu) } else { (cv, u, v, pv) };
+            if exact {
+                let ring = self.gather_ring(u, v);
+                c += self.fan_weight * fan_distance2(&ring, [pu, pv], p, f64::INFINITY);
+                self.ring = ring;
+            }
+            return (c, r, k, p, CHOICE_END);
+        }
         if self.hubs && (self.is_hub(u) || self.is_hub(v)) {
             // A hub stays where it is and is never removed: one placement, or none
             // between two hubs.
@@ -454,7 +472,15 @@ impl State {
         dot(n1, n0) > MIN_TURN_COS * (dot(n1, n1) * dot(n0, n0)).sqrt() && dot(n1, self.ancestor_normal[t]) > 0.0
     }
 
+    /// Whether `v` is a seam vertex (see `State::locked`).
+    fn is_locked(&self, v: u32) -> bool {
+        self.locked.get(v as usize).copied().unwrap_or(false)
+    }
+
     fn check(&mut self, r: u32, k: u32, p: V3, pair: bool) -> Verdict {
+        if self.is_locked(r) || (self.is_locked(k) && p != self.pos[k as usize]) {
+            return Verdict::Refused;
+        }
         let hub = self.hubs && self.is_hub(k);
         if self.hubs && (self.is_hub(r) || (hub && p != self.pos[k as usize])) {
             return Verdict::Refused;
@@ -816,7 +842,9 @@ fn round(p: V3) -> V3 {
 
 pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64)) -> crate::Result<Simplified> {
     let n = mesh.positions.len();
-    let all = mesh.triangulate().tris;
+    let crate::mesh::Triangles { tris: all, face_of } = mesh.triangulate();
+    // The survivors' attributes, updated collapse by collapse.
+    let mut attributes = mesh.attributes.clone();
     let triangle_count = all.len();
     let tri_alive: Vec<bool> = all.iter().map(|t| t[0] != t[1] && t[1] != t[2] && t[2] != t[0]).collect();
     let triangles_in = tri_alive.iter().filter(|&&a| a).count();
@@ -886,6 +914,7 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
         tri_mark: Vec::new(),
         tri_stamp: 0,
         hub_tris: Vec::new(),
+        locked: super::attributes::seam_vertices(mesh),
     };
     let mut live_tris = vec![0u32; n];
     for (t, tri) in st.tris.iter().enumerate() {
@@ -1075,6 +1104,9 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
             }
             Verdict::Ok => {}
         }
+        if !attributes.is_empty() {
+            super::attributes::carry(&mut attributes, r, k, [st.pos[k as usize], st.pos[r as usize]], p);
+        }
         let removed = st.collapse(r, k, p);
         live -= removed;
         max_error = max_error.max(cost);
@@ -1113,8 +1145,14 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
         }
     }
     let positions = st.pos.iter().map(|p| p.map(|x| x as f32)).collect();
+    let mut out = Mesh::from_triangles(positions, &out_tris);
+    out.attributes = attributes;
+    if !mesh.face_groups.is_empty() {
+        out.face_groups = triangle_ids.iter().map(|&t| mesh.group_of(face_of[t as usize] as usize)).collect();
+    }
+    out.groups = mesh.groups.clone();
     Ok(Simplified {
-        mesh: Mesh::from_triangles(positions, &out_tris),
+        mesh: out,
         triangle_ids,
         sequence,
         triangles_in,

@@ -28,11 +28,18 @@
 //!   survivor at the cheapest (by the cost above) of the quadric's minimiser, both
 //!   ends and the midpoint.
 //!
+//! * Vertex attributes (normals, UVs, colours, ...) follow the survivor: its own at
+//!   its own position, interpolated along the edge by the new position's projection
+//!   otherwise. Where the mesh has attributes, vertices sharing a position with
+//!   another (the two sides of a seam) are kept in place, so seams stay closed. Face
+//!   groups follow their triangles.
+//!
 //! Every collapse is recorded in a [`CollapseSequence`]; [`CollapseSequence::replay`]
 //! of its first `k` records rebuilds exactly the simplifier's mesh after `k` collapses.
 //! Vertex ids never change: the output keeps all vertex records (removed ones become
 //! unreferenced), triangles keep their input order.
 
+pub(crate) mod attributes;
 mod collapse;
 mod heap;
 pub mod quadric;
@@ -113,8 +120,8 @@ impl Default for Options {
 #[derive(Clone, Debug)]
 pub struct Simplified {
     /// The simplified triangle mesh: all input vertex records (removed vertices
-    /// unreferenced, survivors at their final positions), surviving triangles in input
-    /// order.
+    /// unreferenced, survivors at their final positions, with their attributes),
+    /// surviving triangles in input order with their face groups.
     pub mesh: Mesh,
     /// The input triangle id (`Mesh::triangulate` order) of each output triangle.
     pub triangle_ids: Vec<u32>,
@@ -161,5 +168,6 @@ pub fn simplify(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64)) -
     if mesh.positions.iter().flatten().any(|x| !x.is_finite()) {
         return Err(Error::Invalid("a vertex position is not a finite number".into()));
     }
+    attributes::check(mesh)?;
     collapse::run(mesh, options, progress)
 }

@@ -1,0 +1,118 @@
+//! Attributes through simplification: the survivor of a collapse keeps its own values
+//! at its own position (endpoint placement) and is interpolated along the collapsed
+//! edge elsewhere; seam vertices (two used vertices at one position: the sides of a
+//! UV or normal seam) are never removed nor moved, so a seam cannot open and no
+//! triangle takes values from the other side.
+
+use super::quadric::{dot, sub, V3};
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+use crate::Attribute;
+use std::collections::HashMap;
+
+/// The seam vertices of `mesh` (kept in place by the collapses): used vertices at the same
+/// position as another used vertex. Empty when the mesh has no attributes (nothing
+/// tells a seam from a mesh that is merely unwelded there).
+pub(crate) fn seam_vertices(mesh: &Mesh) -> Vec<bool> {
+    if mesh.attributes.is_empty() {
+        return Vec::new();
+    }
+    let mut used = vec![false; mesh.vertex_count()];
+    mesh.face_indices.iter().for_each(|&v| used[v as usize] = true);
+    let mut first: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut locked = vec![false; mesh.vertex_count()];
+    for (v, p) in mesh.positions.iter().enumerate().filter(|&(v, _)| used[v]) {
+        // +0.0 and -0.0 are one position.
+        let key = p.map(|x| if x == 0.0 { 0 } else { x.to_bits() });
+        match first.entry(key) {
+            std::collections::hash_map::Entry::Occupied(o) => {
+                locked[*o.get() as usize] = true;
+                locked[v] = true;
+            }
+            std::collections::hash_map::Entry::Vacant(e) => {
+                e.insert(v as u32);
+            }
+        }
+    }
+    locked
+}
+
+/// The attributes of survivor `k` after the collapse r -> k at `p`, where `ends` are
+/// k's and r's positions before it: k's own values when p is k's position (endpoint
+/// placement), else interpolated towards r's by p's projection onto the edge.
+pub(super) fn carry(attributes: &mut [Attribute], r: u32, k: u32, ends: [V3; 2], p: V3) {
+    if p == ends[0] {
+        return;
+    }
+    let e = sub(ends[1], ends[0]);
+    let len2 = dot(e, e);
+    let t = if len2 > 0.0 { (dot(sub(p, ends[0]), e) / len2).clamp(0.0, 1.0) } else { 0.5 };
+    for a in attributes.iter_mut() {
+        // Appended, read back into k, then dropped: push_lerp's rule by kind
+        // (normalized and float values blend, integer ones take the nearer end).
+        let last = a.len();
+        a.push_lerp(k as usize, r as usize, t);
+        let stride = a.stride();
+        let value = a.data[last * stride..].to_vec();
+        a.data[k as usize * stride..(k as usize + 1) * stride].copy_from_slice(&value);
+        a.data.truncate(last * stride);
+        unit_directions(a, k as usize..k as usize + 1);
+    }
+}
+
+/// Blends of unit vectors are shorter than 1: makes `NORMAL` (x, y, z) and `TANGENT`
+/// (x, y, z; w back to +1 or -1) unit again at `vertices`, as glTF requires; other
+/// attributes are left alone. A zero-length blend stays as it is.
+pub(crate) fn unit_directions(a: &mut Attribute, vertices: std::ops::Range<usize>) {
+    let tangent = match a.name.as_str() {
+        "NORMAL" if a.components >= 3 => false,
+        "TANGENT" if a.components == 4 => true,
+        _ => return,
+    };
+    if !(a.scalar.is_float() || a.normalized) {
+        return;
+    }
+    let unit = a.unit();
+    for v in vertices {
+        let xyz = [0, 1, 2].map(|c| a.get(v, c) * unit);
+        let len = dot(xyz, xyz).sqrt();
+        if len > 0.0 {
+            for (c, x) in xyz.iter().enumerate() {
+                a.set(v, c, x / len / unit);
+            }
+        }
+        if tangent {
+            let w = if a.get(v, 3) < 0.0 { -1.0 } else { 1.0 };
+            a.set(v, 3, w / unit);
+        }
+    }
+}
+
+/// Refuses attributes and face groups that do not match the mesh (an attribute
+/// without a whole value per vertex, a face group per face or none, group ids in
+/// range), before anything indexes them.
+pub(crate) fn check(mesh: &Mesh) -> Result<()> {
+    let n = mesh.vertex_count();
+    for a in &mesh.attributes {
+        if a.stride() == 0 || a.data.len() != n.saturating_mul(a.stride()) {
+            return Err(Error::Invalid(format!(
+                "attribute {} holds {} bytes, not {} values of {} bytes (one per vertex)",
+                a.name,
+                a.data.len(),
+                n,
+                a.stride()
+            )));
+        }
+    }
+    if !mesh.face_groups.is_empty() && mesh.face_groups.len() != mesh.face_count() {
+        return Err(Error::Invalid(format!(
+            "{} face groups for {} faces (one per face, or none)",
+            mesh.face_groups.len(),
+            mesh.face_count()
+        )));
+    }
+    if let Some(&g) = mesh.face_groups.iter().find(|&&g| g as usize >= mesh.group_count()) {
+        return Err(Error::Invalid(format!("face group {g} is not one of the mesh's {} groups", mesh.group_count())));
+    }
+    Ok(())
+}
