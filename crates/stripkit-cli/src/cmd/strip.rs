@@ -210,12 +210,13 @@ pub enum MatchingArg {
     .ply   vertices plus a `tristrips` element (-1 ends a strip); --join degenerate writes one stitched strip\n  \
     .json  {\"strips\": [[...], ...], \"figures\": {...}} (with --join restart also \"indices\" and \"restart_index\")\n  \
     .gltf, .glb  core glTF has no restart index: one TRIANGLE_STRIP primitive holding the stitched strip\n               \
-    (--join separate: one primitive per strip)\n\
+    (--join separate: one primitive per strip)\n  \
+    .obj   no strips in OBJ: the strips' triangles in strip order, per group (g/usemtl), with vt/vn\n\
 Exit status: 0 success, 1 verification failed (nothing written), 2 bad input or argument.")]
 pub struct Args {
     /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz); polygons are fanned into triangles.
     pub input: PathBuf,
-    /// Output file: .ply, .json, .gltf or .glb (see below).
+    /// Output file: .ply, .json, .gltf, .glb or .obj (see below).
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
     /// Write PLY as ASCII text instead of binary (PLY outputs only).
@@ -280,9 +281,9 @@ fn output_kind(path: &Path) -> anyhow::Result<OutKind> {
         return Ok(OutKind::Json);
     }
     match Format::from_path(path) {
-        Some((f @ (Format::Ply | Format::Gltf | Format::Glb), _)) => Ok(OutKind::Mesh(f)),
+        Some((f @ (Format::Ply | Format::Gltf | Format::Glb | Format::Obj), _)) => Ok(OutKind::Mesh(f)),
         _ => Err(Error::Invalid(format!(
-            "{}: cannot hold strips; the output must end in .ply, .json, .gltf or .glb",
+            "{}: cannot hold strips; the output must end in .ply, .json, .gltf, .glb or .obj (triangles in strip order)",
             path.display()
         ))
         .into()),
