@@ -162,8 +162,9 @@ fn resolve(src: Src, ln: usize, part: &[u8], tok: &[u8], defined: usize, what: &
     Ok(zero_based as u32)
 }
 
-/// Parses an OBJ file held in memory.
-pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
+/// Parses an OBJ file held in memory; `positions_only`: no attributes, no groups, the
+/// file's vertex ids (see [`super::ReadOptions::positions_only`]).
+pub(crate) fn read(path: &Path, data: &[u8], positions_only: bool) -> Result<Mesh> {
     let src = Src { path };
     let mut mesh = Mesh::new();
     let mut uvs: Vec<[f32; 2]> = Vec::new();
@@ -193,6 +194,7 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
                 }
                 mesh.positions.push(p);
             }
+            Some(b"vt" | b"vn") if positions_only => recognised = true,
             Some(b"vt") => {
                 recognised = true;
                 let t = coords::<2>(src, &mut c, ln, "texture coordinate", 1)?;
@@ -217,6 +219,10 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
                     let v = resolve(src, ln, vpart, tok, mesh.positions.len(), "vertex")?;
                     max_index = max_index.max(v as u64);
                     let k = mesh.face_indices.len();
+                    if positions_only {
+                        mesh.face_indices.push(v);
+                        continue;
+                    }
                     if let Some(p) = parts.next().filter(|p| !p.is_empty()) {
                         let t = resolve(src, ln, p, tok, uvs.len(), "texture coordinate")?;
                         max_vt = max_vt.max(Some(t));
@@ -299,7 +305,7 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
         }
     }
     // One group without a name or material says nothing: leave the mesh ungrouped.
-    if mesh.groups.len() == 1 && mesh.groups[0] == Group::default() {
+    if positions_only || (mesh.groups.len() == 1 && mesh.groups[0] == Group::default()) {
         mesh.groups.clear();
         mesh.face_groups.clear();
     }
@@ -553,7 +559,7 @@ mod tests {
     use crate::error::Error;
 
     fn parse(text: &str) -> Result<Mesh> {
-        read(Path::new("t.obj"), text.as_bytes())
+        read(Path::new("t.obj"), text.as_bytes(), false)
     }
 
     fn format_error(text: &str) -> (String, String) {
@@ -689,7 +695,7 @@ vn 0 1
     fn written_text_reads_back_exactly() {
         let positions = vec![[0.1, -2.5, 3.0], [1e-7, 1e30, -0.0], [f32::MIN_POSITIVE, 7.0, 12345.678]];
         let mesh = Mesh::from_polygons(positions, &[vec![0, 1, 2], vec![2, 1, 0]]);
-        let back = read(Path::new("t.obj"), &write(&mesh)).unwrap();
+        let back = read(Path::new("t.obj"), &write(&mesh), false).unwrap();
         assert_eq!(back, mesh);
         for (a, b) in back.positions.iter().flatten().zip(mesh.positions.iter().flatten()) {
             assert_eq!(a.to_bits(), b.to_bits());

@@ -480,8 +480,9 @@ impl Body for Binary<'_> {
     }
 }
 
-/// Parses a PLY file held in memory.
-pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
+/// Parses a PLY file held in memory; `positions_only`: vertex properties other than
+/// x, y, z skipped.
+pub(crate) fn read(path: &Path, data: &[u8], positions_only: bool) -> Result<Mesh> {
     let src = Src { path };
     let header = parse_header(src, data)?;
     let body = &data[header.body..];
@@ -490,16 +491,16 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
             // Line numbers continue from the header.
             let first = header.lines + 1;
             let mut r = Ascii { data: body, pos: 0, line: first, token_line: first };
-            read_body(src, &header, &mut r)
+            read_body(src, &header, &mut r, positions_only)
         }
         Encoding::LittleEndian | Encoding::BigEndian => {
             let mut r = Binary { data, pos: header.body, big: header.encoding == Encoding::BigEndian };
-            read_body(src, &header, &mut r)
+            read_body(src, &header, &mut r, positions_only)
         }
     }
 }
 
-fn read_body<B: Body>(src: Src, header: &Header, r: &mut B) -> Result<Mesh> {
+fn read_body<B: Body>(src: Src, header: &Header, r: &mut B, positions_only: bool) -> Result<Mesh> {
     let binary = header.encoding != Encoding::Ascii;
     let vertex_count = header.elements.iter().find(|e| e.name == "vertex").map_or(0, |e| e.count);
     if vertex_count > u32::MAX as u64 {
@@ -553,7 +554,11 @@ fn read_body<B: Body>(src: Src, header: &Header, r: &mut B) -> Result<Mesh> {
                 }
                 let reserve = capped(element.count, r.remaining() + 1, min_record.max(1));
                 mesh.positions.reserve_exact(reserve);
-                let (mut attributes, slots) = vertex_attributes(&element.props, [x, y, z], reserve);
+                let (mut attributes, slots) = if positions_only {
+                    (Vec::new(), vec![None; element.props.len()])
+                } else {
+                    vertex_attributes(&element.props, [x, y, z], reserve)
+                };
                 for v in 0..element.count {
                     let mut p = [0.0f32; 3];
                     for a in &mut attributes {
@@ -935,7 +940,7 @@ mod tests {
     use super::*;
 
     fn parse(bytes: &[u8]) -> Result<Mesh> {
-        read(Path::new("t.ply"), bytes)
+        read(Path::new("t.ply"), bytes, false)
     }
 
     fn format_error(bytes: &[u8]) -> (String, String) {
