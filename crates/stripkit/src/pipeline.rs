@@ -709,7 +709,10 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     }
     // The joined form is checked here and rebuilt on demand (`Strips::joined`): for
     // two of the three joins it is the strips themselves.
-    let v = strip::verify(&triangles, &joined(&strips, &[0..strips.len()], options.join, options.restart_index));
+    let v = strip::verify(
+        &triangles,
+        &joined(&strips, std::slice::from_ref(&(0..strips.len())), options.join, options.restart_index),
+    );
     if !v.ok() {
         return Err(fail(&format!("the strips joined by {}", options.join.name()), &v));
     }
@@ -727,7 +730,7 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
         single: single_report,
         added_positions,
         added_from,
-        group_ranges: vec![0..strips_len],
+        group_ranges: std::iter::once(0..strips_len).collect(),
     })
 }
 
