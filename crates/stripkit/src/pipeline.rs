@@ -515,13 +515,29 @@ impl Strips {
     }
 
     /// The strips as JSON: `{"join", "strips": [[..], ..]}` (the joined strips), plus
-    /// `"restart_index"` and `"indices"` (the restart buffer) with [`Join::Restart`].
+    /// `"restart_index"` and `"indices"` (the restart buffer) with [`Join::Restart`], and
+    /// with several face groups `"groups": [[start, end], ..]`, the entries of
+    /// `"strips"` each group draws.
     pub fn to_json(&self) -> serde_json::Map<String, serde_json::Value> {
         let mut obj = serde_json::Map::new();
         obj.insert("join".into(), self.join.name().into());
         let strips: Vec<serde_json::Value> =
             self.joined().iter().map(|s| s.iter().map(|&i| serde_json::Value::from(i)).collect()).collect();
         obj.insert("strips".into(), strips.into());
+        if self.group_ranges.len() > 1 {
+            let mut next = 0;
+            let groups: Vec<serde_json::Value> = self
+                .group_ranges
+                .iter()
+                .map(|r| {
+                    // Join::Degenerate stitches each non-empty group into one strip.
+                    let n = if self.join == Join::Degenerate { usize::from(!r.is_empty()) } else { r.len() };
+                    next += n;
+                    serde_json::json!([next - n, next])
+                })
+                .collect();
+            obj.insert("groups".into(), groups.into());
+        }
         if self.join == Join::Restart {
             obj.insert("restart_index".into(), self.restart_index.into());
             obj.insert("indices".into(), self.restart_buffer().into());

@@ -192,6 +192,19 @@ fn no_strip_crosses_two_materials() {
             if join == Join::Degenerate {
                 assert_eq!(s.joined().len(), 2, "one stitched strip per material");
             }
+            let json = s.to_json();
+            let groups = json["groups"].as_array().unwrap();
+            let strips = json["strips"].as_array().unwrap();
+            assert_eq!(groups.len(), 2);
+            for (g, range) in groups.iter().enumerate() {
+                let (a, b) = (range[0].as_u64().unwrap() as usize, range[1].as_u64().unwrap() as usize);
+                for strip in &strips[a..b] {
+                    let strip: Vec<u32> =
+                        strip.as_array().unwrap().iter().map(|i| i.as_u64().unwrap() as u32).collect();
+                    for_each_triangle(&strip, |t| assert_eq!(group_of[&canonical(t)], g as u32));
+                }
+            }
+            assert_eq!(groups[1][1].as_u64().unwrap() as usize, strips.len());
         }
     }
     // The test can fail: without the groups some strip of greedy crosses the seam line.
