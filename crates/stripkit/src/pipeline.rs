@@ -504,14 +504,30 @@ impl Strips {
 
     /// The mesh the strips draw: `mesh` itself, or, where the algorithm changed it
     /// ([`Algorithm::Single`]), its positions plus [`Strips::added_positions`] and
-    /// [`Strips::triangles`] as faces.
+    /// [`Strips::triangles`] as faces. Attributes follow: an added vertex gets the
+    /// blend of the two it splits ([`Attribute::push_lerp`] at one half); so do the
+    /// mesh's group (single takes one) and material libraries.
+    ///
+    /// [`Attribute::push_lerp`]: crate::Attribute::push_lerp
     pub fn changed_mesh(&self, mesh: &Mesh) -> Mesh {
         if !self.changes_mesh() {
             return mesh.clone();
         }
         let mut positions = mesh.positions.clone();
         positions.extend_from_slice(&self.added_positions);
-        Mesh::from_triangles(positions, &self.triangles)
+        let mut out = Mesh::from_triangles(positions, &self.triangles);
+        out.attributes = mesh.attributes.clone();
+        for a in &mut out.attributes {
+            for &[x, y] in &self.added_from {
+                a.push_lerp(x as usize, y as usize, 0.5);
+            }
+        }
+        out.groups = mesh.groups.clone();
+        if !out.groups.is_empty() && mesh.face_count() > 0 {
+            out.face_groups = vec![mesh.group_of(0); out.face_count()];
+        }
+        out.material_libraries = mesh.material_libraries.clone();
+        out
     }
 
     /// The strips as JSON: `{"join", "strips": [[..], ..]}` (the joined strips), plus

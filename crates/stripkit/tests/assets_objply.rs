@@ -427,3 +427,49 @@ fn bad_attribute_input_is_refused_clearly() {
     let e = io::read_bytes(Path::new("lies.ply"), Format::Ply, &bytes).unwrap_err();
     assert!(e.to_string().contains("1000") && e.to_string().contains("200 bytes"), "{e}");
 }
+
+#[test]
+fn single_carries_attributes_to_its_steiner_vertices() {
+    // Jittered icospheres, until one needs edge splits; normals are the positions,
+    // colours normalized bytes.
+    let (mesh, s) = (1..40)
+        .find_map(|seed| {
+            let mut rng = Rng(seed);
+            let mut mesh = stripkit::gen::icosphere(3);
+            for p in &mut mesh.positions {
+                for x in p.iter_mut() {
+                    *x += 0.03 * (rng.below(1000) as f32 / 1000.0 - 0.5);
+                }
+            }
+            let flat: Vec<f32> = mesh.positions.iter().flatten().copied().collect();
+            mesh.attributes.push(Attribute::from_f32("NORMAL", 3, &flat));
+            let data: Vec<u8> = (0..mesh.vertex_count() * 3).map(|_| rng.next() as u8).collect();
+            mesh.attributes.push(Attribute {
+                name: "COLOR_0".into(),
+                scalar: Scalar::U8,
+                components: 3,
+                normalized: true,
+                data,
+            });
+            let s = stripify(&mesh, &StripOptions::default().algorithm(Algorithm::Single(Default::default()))).unwrap();
+            (!s.added_positions.is_empty()).then_some((mesh, s))
+        })
+        .expect("some jittered icosphere needs splits");
+    let changed = s.changed_mesh(&mesh);
+    changed.check_faces().unwrap();
+    assert_eq!(changed.attributes.len(), 2);
+    for a in &changed.attributes {
+        assert_eq!(a.len(), mesh.vertex_count() + s.added_positions.len());
+        for (k, &[x, y]) in s.added_from.iter().enumerate() {
+            let v = mesh.vertex_count() + k;
+            for c in 0..3 {
+                let mean = (a.get(x as usize, c) + a.get(y as usize, c)) / 2.0;
+                // Floats to rounding; bytes to the nearest.
+                assert!((a.get(v, c) - mean).abs() <= 0.5 + 1e-6, "{} vertex {v}", a.name);
+            }
+        }
+    }
+    let back = io::read_bytes(Path::new("s.ply"), Format::Ply, &s.to_file_bytes(&mesh, Format::Ply).unwrap()).unwrap();
+    assert_eq!(back.attributes, changed.attributes);
+    eprintln!("single on a jittered icosphere: {} Steiner vertices, attributes blended", s.added_positions.len());
+}
