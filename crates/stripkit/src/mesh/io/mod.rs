@@ -6,7 +6,11 @@
 //! (binary) and what is wrong. Counts announced in headers are checked against the
 //! file's size before anything is allocated from them. Vertex ids are the file's:
 //! unreferenced vertices are kept (STL, which has no shared vertices, welds identical
-//! positions in first-seen order).
+//! positions in first-seen order; an OBJ whose corners name `vt` or `vn` welds its
+//! corners into GPU vertices, one per distinct `(v, vt, vn)` in first-seen order, unless
+//! [`ReadOptions::positions_only`]). Vertex attributes (OBJ `vt`/`vn`, every PLY vertex
+//! property) and face groups (OBJ `g`/`o`/`usemtl`) come with the mesh; the OBJ and PLY
+//! writers write them back.
 //!
 //! Every writer replaces its file atomically ([`write_atomic`]): a reader, a crash or
 //! a full disk sees the old file or the complete new one, never a partial file;
