@@ -473,3 +473,70 @@ fn single_carries_attributes_to_its_steiner_vertices() {
     assert_eq!(back.attributes, changed.attributes);
     eprintln!("single on a jittered icosphere: {} Steiner vertices, attributes blended", s.added_positions.len());
 }
+
+/// Random OBJ statements (vertices, UVs, normals, faces of every corner form with
+/// indices in and out of range, negative ones, groups and materials): reading never
+/// panics, refusals are format errors, and what it accepts is a valid mesh that
+/// writes and reads back with the same faces.
+#[test]
+fn random_obj_statements_read_to_valid_meshes_or_clear_errors() {
+    let mut rng = Rng(99);
+    let (mut accepted, mut refused) = (0, 0);
+    for _ in 0..400 {
+        let mut text = String::new();
+        let (mut nv, mut nt, mut nn) = (0i64, 0i64, 0i64);
+        for _ in 0..rng.below(40) + 1 {
+            match rng.below(7) {
+                0 | 1 => {
+                    text += &format!("v {} {} {}\n", rng.below(9), rng.below(9), rng.below(9));
+                    nv += 1;
+                }
+                2 => {
+                    text += &format!("vt {} {}\n", rng.below(9) as f32 / 8.0, rng.below(9) as f32 / 8.0);
+                    nt += 1;
+                }
+                3 => {
+                    text += &format!("vn 0 {} 1\n", rng.below(3));
+                    nn += 1;
+                }
+                4 => text += ["g a\n", "usemtl m\n", "o b\n", "usemtl\n", "mtllib x.mtl\n"][rng.below(5)],
+                _ => {
+                    let form = rng.below(4);
+                    text += "f";
+                    for _ in 0..rng.below(3) + 2 {
+                        let mut pick = |n: i64| {
+                            let i = rng.below(n as usize + 3) as i64 - 1;
+                            if i < 0 && n > 0 {
+                                -(rng.below(n as usize) as i64 + 1)
+                            } else {
+                                i.max(1)
+                            }
+                        };
+                        let (v, t, n) = (pick(nv), pick(nt), pick(nn));
+                        text += &match form {
+                            0 => format!(" {v}"),
+                            1 => format!(" {v}/{t}"),
+                            2 => format!(" {v}//{n}"),
+                            _ => format!(" {v}/{t}/{n}"),
+                        };
+                    }
+                    text += "\n";
+                }
+            }
+        }
+        match io::read_bytes(Path::new("random.obj"), Format::Obj, text.as_bytes()) {
+            Ok(mesh) => {
+                accepted += 1;
+                mesh.check_faces().unwrap_or_else(|e| panic!("{e}\n{text}"));
+                let bytes = io::write_bytes(Format::Obj, &mesh, None, &WriteOptions::default()).unwrap();
+                let back = io::read_bytes(Path::new("back.obj"), Format::Obj, &bytes).unwrap();
+                assert_eq!(back.face_count(), mesh.face_count(), "{text}");
+            }
+            Err(e) => {
+                refused += 1;
+                assert!(matches!(e, Error::Format { .. }), "{e}");
+            }
+        }
+    }
+    assert!(accepted > 50 && refused > 50, "{accepted} accepted, {refused} refused");
+}
