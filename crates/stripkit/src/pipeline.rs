@@ -12,6 +12,11 @@
 //! * the joined form ([`Join`]) is encoded, decoded again and checked once more.
 //!
 //! A failed check is [`Error::Verification`], never a silent result.
+//!
+//! (Over 1,000 lines because the door, its options, its result type [`Strips`] with
+//! its encoders, and the per-group door share private helpers — `joined`,
+//! `strip_range`, the checks — and a split would export them; a fifth is docs and
+//! examples.)
 
 use crate::error::{Error, Result};
 use crate::mesh::io::{self, Format, WriteOptions};
