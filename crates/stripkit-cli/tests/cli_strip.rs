@@ -187,9 +187,9 @@ fn bad_arguments_exit_with_2_and_say_why() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains(needle), "{argv:?}: {err}");
     }
-    let out = stripkit(&["strip", &spot(), "-o", tmp("x.obj").to_str().unwrap()]);
+    let out = stripkit(&["strip", &spot(), "-o", tmp("x.off").to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains(".ply, .json, .gltf or .glb"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains(".ply, .json, .gltf, .glb or .obj"));
 }
 
 #[test]
@@ -292,9 +292,11 @@ fn cache_modes_keep_their_promises_on_spot() {
         assert!(indices <= last, "{bound}: {indices} > {last}");
         last = indices;
     }
-    // A 32-entry cache is tuned for and measured with --cache 32.
+    // A 32-entry cache is tuned for and measured with --cache 32. spot is read with its
+    // UVs: 3,225 GPU vertices (2,930 positions), so at least 0.551 misses per triangle
+    // (0.500 on the bare surface, where this gives 0.593).
     let c32 = run(&["--algo", "cache", "--cache", "32"]);
-    assert!(c32["acmr"].as_f64().unwrap() < 0.62, "{c32}");
+    assert!(c32["acmr"].as_f64().unwrap() < 0.64, "{c32}");
 }
 
 fn spot_str() -> &'static str {

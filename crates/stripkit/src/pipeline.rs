@@ -12,6 +12,11 @@
 //! * the joined form ([`Join`]) is encoded, decoded again and checked once more.
 //!
 //! A failed check is [`Error::Verification`], never a silent result.
+//!
+//! (Over 1,000 lines because the door, its options, its result type [`Strips`] with
+//! its encoders, and the per-group door share private helpers — `joined`,
+//! `strip_range`, the checks — and a split would export them; a fifth is docs and
+//! examples.)
 
 use crate::error::{Error, Result};
 use crate::mesh::io::{self, Format, WriteOptions};
@@ -22,6 +27,7 @@ use crate::stripify::cache::{self, CacheOptions, Diagonals};
 use crate::stripify::greedy::{self, GreedyOptions};
 use crate::stripify::single::{self, SingleOptions, SingleReport};
 use crate::stripify::{quad, quad_single, quad_verify};
+use std::ops::Range;
 use std::time::{Duration, Instant};
 
 /// Faces that must be quads for [`Algorithm::Auto`] to take QSTRIP (and for
@@ -268,10 +274,7 @@ impl StripOptions {
             return bad("the cache size must be at least 1 (a cache of 0 entries misses every vertex)".into());
         }
         if self.cache.size > MAX_CACHE_SIZE {
-            return bad(format!(
-                "the cache size {} is too large (at most {MAX_CACHE_SIZE} entries)",
-                self.cache.size
-            ));
+            return bad(format!("the cache size {} is too large (at most {MAX_CACHE_SIZE} entries)", self.cache.size));
         }
         match &self.algorithm {
             Algorithm::Balanced { max_acmr } if !(max_acmr.is_finite() && *max_acmr > 0.0) => {
@@ -282,27 +285,26 @@ impl StripOptions {
                 g.tunnel_cuts.unwrap_or(0)
             )),
             Algorithm::Greedy(_) if self.split == Split::Qstrip => bad(
-                "greedy strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced".into(),
+                "greedy strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced"
+                    .into(),
             ),
             Algorithm::Single(_) if self.split == Split::Qstrip => bad(
-                "single strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced".into(),
+                "single strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced"
+                    .into(),
             ),
             Algorithm::Single(o) => o.check(),
             Algorithm::Batch(_) if self.split == Split::Qstrip => bad(
-                "batch strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced".into(),
+                "batch strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced"
+                    .into(),
             ),
-            Algorithm::Batch(m)
-                if m.max_triangles == 0 || m.max_vertices < 3 || m.strip_window == 0 =>
-            {
-                bad(format!("a batch model needs at least one triangle, three vertices and a window of one per batch (got {m:?})"))
-            }
+            Algorithm::Batch(m) if m.max_triangles == 0 || m.max_vertices < 3 || m.strip_window == 0 => bad(format!(
+                "a batch model needs at least one triangle, three vertices and a window of one per batch (got {m:?})"
+            )),
             Algorithm::Qstrip(_) | Algorithm::QuadSingle if self.split == Split::Fan => bad(format!(
                 "{} chooses each quad's diagonal itself; split fan applies to greedy, cache and balanced",
                 self.algorithm.name()
             )),
-            Algorithm::Qstrip(q) if q.policies.is_empty() => {
-                bad("qstrip needs at least one walk policy".into())
-            }
+            Algorithm::Qstrip(q) if q.policies.is_empty() => bad("qstrip needs at least one walk policy".into()),
             _ => Ok(()),
         }
     }
@@ -342,6 +344,10 @@ pub struct Strips {
     /// For each added vertex, the two vertices whose midpoint it is (an edge split);
     /// either may itself be an added vertex of a lower number.
     pub added_from: Vec<[u32; 2]>,
+    /// For each face group of the mesh ([`Mesh::group_count`]: one for a mesh without
+    /// groups), the range of [`Strips::strips`] drawing its faces. A strip never draws
+    /// faces of two groups, and the joined forms never join strips of two groups.
+    pub group_ranges: Vec<Range<usize>>,
 }
 
 impl Strips {
@@ -349,17 +355,44 @@ impl Strips {
     /// (the door checked this form too): the strips themselves for
     /// [`Join::Restart`] and [`Join::Separate`], one stitched strip for
     /// [`Join::Degenerate`].
+    ///
+    /// With several face groups, [`Join::Degenerate`] gives one stitched strip per
+    /// group (in group order, empty groups left out), never one across groups.
     pub fn joined(&self) -> StripSet {
-        joined(&self.strips, self.join, self.restart_index)
+        joined(&self.strips, &self.group_ranges, self.join, self.restart_index)
     }
 
-    /// One buffer with [`Strips::restart_index`] between strips.
+    /// One buffer with [`Strips::restart_index`] between strips (every group; a restart
+    /// separates the strips of two groups, but one draw call gives them one material:
+    /// see [`Strips::restart_buffer_of`]).
     pub fn restart_buffer(&self) -> Vec<u32> {
         strip::encode_restart(&self.strips, self.restart_index)
     }
-    /// One strip, strips stitched by degenerate triangles.
+    /// One strip, strips stitched by degenerate triangles. With several face groups
+    /// this stitches across them; draw [`Strips::stitched_of`] each group instead.
     pub fn stitched(&self) -> Vec<u32> {
         strip::encode_stitched(&self.strips)
+    }
+    /// Number of face groups the strips are kept apart by (at least 1).
+    pub fn group_count(&self) -> usize {
+        self.group_ranges.len().max(1)
+    }
+    /// The strips of face group `g` (empty for a group without faces or past the last).
+    pub fn strips_of(&self, g: usize) -> StripSet {
+        let range = self.group_ranges.get(g).cloned().unwrap_or(0..0);
+        strip_range(&self.strips, range)
+    }
+    /// The restart buffer of group `g`'s strips alone: one draw call with its material.
+    pub fn restart_buffer_of(&self, g: usize) -> Vec<u32> {
+        strip::encode_restart(&self.strips_of(g), self.restart_index)
+    }
+    /// Group `g`'s strips stitched into one by degenerate triangles.
+    pub fn stitched_of(&self, g: usize) -> Vec<u32> {
+        strip::encode_stitched(&self.strips_of(g))
+    }
+    /// The group of strip `s` (0 past the last).
+    pub fn group_of_strip(&self, s: usize) -> usize {
+        self.group_ranges.iter().position(|r| r.contains(&s)).unwrap_or(0)
     }
     /// `indices_restart / quads` of METRICS.md, for QSTRIP and quad-single.
     pub fn indices_per_quad(&self) -> Option<f64> {
@@ -370,21 +403,23 @@ impl Strips {
     /// (its own restart), or holds the one stitched strip of [`Join::Degenerate`]; core
     /// glTF has no restart index, so it gets the one stitched strip as a
     /// `TRIANGLE_STRIP` primitive, or one primitive per strip with [`Join::Separate`].
-    /// `None` for formats that cannot hold strips (OBJ, OFF, STL).
+    /// `None` for formats that cannot hold strips (OBJ, OFF, STL; for OBJ,
+    /// [`Strips::to_file_bytes`] writes the triangles in strip order instead).
     pub fn for_format(&self, format: Format) -> Option<StripSet> {
         match (format, self.join) {
-            (Format::Ply, Join::Degenerate) | (Format::Gltf | Format::Glb, Join::Separate) => {
-                Some(self.joined())
-            }
+            (Format::Ply, Join::Degenerate) | (Format::Gltf | Format::Glb, Join::Separate) => Some(self.joined()),
             (Format::Ply, _) => Some(self.strips.clone()),
-            (Format::Gltf | Format::Glb, _) => Some(joined(&self.strips, Join::Degenerate, self.restart_index)),
+            (Format::Gltf | Format::Glb, _) => {
+                Some(joined(&self.strips, &self.group_ranges, Join::Degenerate, self.restart_index))
+            }
             _ => None,
         }
     }
 
     /// The bytes of a `format` file holding `mesh`'s vertices and these strips (see
-    /// [`Strips::for_format`]), read back with the library's own reader and checked
-    /// against [`Strips::triangles`] before they are returned.
+    /// [`Strips::for_format`]; OBJ gets the strips' triangles in strip order, group by
+    /// group), read back with the library's own reader and checked against
+    /// [`Strips::triangles`] before they are returned.
     pub fn to_file_bytes(&self, mesh: &Mesh, format: Format) -> Result<Vec<u8>> {
         self.to_file_bytes_with(mesh, format, &WriteOptions::default())
     }
@@ -398,9 +433,12 @@ impl Strips {
             changed = self.changed_mesh(mesh);
             &changed
         };
+        if format == Format::Obj {
+            return self.obj_bytes(mesh, options);
+        }
         let Some(to_write) = self.for_format(format) else {
             return Err(Error::Invalid(format!(
-                "{format:?} files cannot hold strips; write PLY, glTF or GLB (or JSON)"
+                "{format:?} files cannot hold strips; write PLY, glTF, GLB or OBJ (or JSON)"
             )));
         };
         let bytes = io::write_bytes(format, mesh, Some(&to_write), options)?;
@@ -409,6 +447,44 @@ impl Strips {
         let v = strip::verify_triangles(&self.triangles, &back.triangulate().tris);
         if !v.ok() {
             return Err(fail(&format!("{name}, read back"), &v));
+        }
+        Ok(bytes)
+    }
+
+    /// OBJ has no strips: the triangles the strips draw, in strip order (what a vertex
+    /// cache sees), group by group with their `g`/`usemtl`, over the mesh's vertices and
+    /// attributes; read back and checked (triangles and each one's group) before they
+    /// are returned.
+    fn obj_bytes(&self, mesh: &Mesh, options: &WriteOptions) -> Result<Vec<u8>> {
+        let mut out = Mesh { face_offsets: vec![0], face_indices: Vec::new(), face_groups: Vec::new(), ..mesh.clone() };
+        for g in 0..self.group_count() {
+            for s in self.strips_of(g).iter() {
+                strip::for_each_triangle(s, |t| {
+                    out.push_face(&t);
+                    out.face_groups.push(g as u32);
+                });
+            }
+        }
+        if out.groups.is_empty() {
+            out.face_groups.clear();
+        }
+        let bytes = io::write_bytes(Format::Obj, &out, None, options)?;
+        let name = "the Obj bytes to be written";
+        let back = io::read_bytes(std::path::Path::new(name), Format::Obj, &bytes)?;
+        // Welded on reading (vt or vn written): vertices renumbered by first use.
+        let ids: Vec<u32> = if back.attributes.is_empty() {
+            (0..out.vertex_count() as u32).collect()
+        } else {
+            let mut seen = vec![false; out.vertex_count()];
+            out.face_indices.iter().copied().filter(|&v| !std::mem::replace(&mut seen[v as usize], true)).collect()
+        };
+        let tris: Vec<[u32; 3]> = back.triangulate().tris.iter().map(|t| t.map(|i| ids[i as usize])).collect();
+        let v = strip::verify_triangles(&self.triangles, &tris);
+        let group = |m: &Mesh, f: usize| m.groups.get(m.group_of(f) as usize).cloned().unwrap_or_default();
+        let same_groups =
+            back.face_count() == out.face_count() && (0..out.face_count()).all(|f| group(&back, f) == group(&out, f));
+        if !v.ok() || !same_groups {
+            return Err(fail(&format!("{name}, read back (groups kept: {same_groups})"), &v));
         }
         Ok(bytes)
     }
@@ -433,24 +509,56 @@ impl Strips {
 
     /// The mesh the strips draw: `mesh` itself, or, where the algorithm changed it
     /// ([`Algorithm::Single`]), its positions plus [`Strips::added_positions`] and
-    /// [`Strips::triangles`] as faces.
+    /// [`Strips::triangles`] as faces. Attributes follow: an added vertex gets the
+    /// blend of the two it splits ([`Attribute::push_lerp`] at one half); so do the
+    /// mesh's group (single takes one) and material libraries.
+    ///
+    /// [`Attribute::push_lerp`]: crate::Attribute::push_lerp
     pub fn changed_mesh(&self, mesh: &Mesh) -> Mesh {
         if !self.changes_mesh() {
             return mesh.clone();
         }
         let mut positions = mesh.positions.clone();
         positions.extend_from_slice(&self.added_positions);
-        Mesh::from_triangles(positions, &self.triangles)
+        let mut out = Mesh::from_triangles(positions, &self.triangles);
+        out.attributes = mesh.attributes.clone();
+        for a in &mut out.attributes {
+            for &[x, y] in &self.added_from {
+                a.push_lerp(x as usize, y as usize, 0.5);
+            }
+        }
+        out.groups = mesh.groups.clone();
+        if !out.groups.is_empty() && mesh.face_count() > 0 {
+            out.face_groups = vec![mesh.group_of(0); out.face_count()];
+        }
+        out.material_libraries = mesh.material_libraries.clone();
+        out
     }
 
     /// The strips as JSON: `{"join", "strips": [[..], ..]}` (the joined strips), plus
-    /// `"restart_index"` and `"indices"` (the restart buffer) with [`Join::Restart`].
+    /// `"restart_index"` and `"indices"` (the restart buffer) with [`Join::Restart`], and
+    /// with several face groups `"groups": [[start, end], ..]`, the entries of
+    /// `"strips"` each group draws.
     pub fn to_json(&self) -> serde_json::Map<String, serde_json::Value> {
         let mut obj = serde_json::Map::new();
         obj.insert("join".into(), self.join.name().into());
         let strips: Vec<serde_json::Value> =
             self.joined().iter().map(|s| s.iter().map(|&i| serde_json::Value::from(i)).collect()).collect();
         obj.insert("strips".into(), strips.into());
+        if self.group_ranges.len() > 1 {
+            let mut next = 0;
+            let groups: Vec<serde_json::Value> = self
+                .group_ranges
+                .iter()
+                .map(|r| {
+                    // Join::Degenerate stitches each non-empty group into one strip.
+                    let n = if self.join == Join::Degenerate { usize::from(!r.is_empty()) } else { r.len() };
+                    next += n;
+                    serde_json::json!([next - n, next])
+                })
+                .collect();
+            obj.insert("groups".into(), groups.into());
+        }
         if self.join == Join::Restart {
             obj.insert("restart_index".into(), self.restart_index.into());
             obj.insert("indices".into(), self.restart_buffer().into());
@@ -525,9 +633,25 @@ fn fail(what: &str, v: &strip::Verification) -> Error {
     Error::Verification(format!("{what}: {v}"))
 }
 
-/// The door's body, with the options already checked.
+/// The door's body, with the options already checked: per group where the mesh's
+/// faces fall in several.
 fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     mesh.check_faces()?;
+    if mesh.has_groups() {
+        return run_groups(mesh, options);
+    }
+    let mut strips = run_one(mesh, options)?;
+    if mesh.group_count() > 1 {
+        // Every face in one group (the first face's), the others empty.
+        let g = mesh.group_of(0) as usize;
+        let n = strips.strips.len();
+        strips.group_ranges = (0..mesh.group_count()).map(|k| if k == g { 0..n } else { n..n }).collect();
+    }
+    Ok(strips)
+}
+
+/// The door for one group of faces (the whole mesh), its faces already checked.
+fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     let vertex_count = mesh.vertex_count();
     if options.join == Join::Restart && (options.restart_index as usize) < vertex_count {
         return Err(Error::Invalid(format!(
@@ -598,8 +722,7 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
             if let Err(why) = single::check::cover(&input, &single.work) {
                 return Err(Error::Verification(format!("the changed mesh of single: {why}")));
             }
-            added_positions =
-                single.work.pos[vertex_count..].iter().map(|p| p.map(|x| x as f32)).collect();
+            added_positions = single.work.pos[vertex_count..].iter().map(|p| p.map(|x| x as f32)).collect();
             added_from = single.work.steiner.clone();
             single_report = Some(single.report);
             (single.strips, Split::Fan, None, Some(single.work.tris))
@@ -623,10 +746,14 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     }
     // The joined form is checked here and rebuilt on demand (`Strips::joined`): for
     // two of the three joins it is the strips themselves.
-    let v = strip::verify(&triangles, &joined(&strips, options.join, options.restart_index));
+    let v = strip::verify(
+        &triangles,
+        &joined(&strips, std::slice::from_ref(&(0..strips.len())), options.join, options.restart_index),
+    );
     if !v.ok() {
         return Err(fail(&format!("the strips joined by {}", options.join.name()), &v));
     }
+    let strips_len = strips.len();
     Ok(Strips {
         strips,
         triangles,
@@ -640,23 +767,140 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
         single: single_report,
         added_positions,
         added_from,
+        group_ranges: std::iter::once(0..strips_len).collect(),
     })
 }
 
-/// The strips as `join` joins them, read back from the encoded form.
-fn joined(strips: &StripSet, join: Join, restart: u32) -> StripSet {
+/// The strips as `join` joins them, read back from the encoded form; `groups` are the
+/// ranges of strips that may be stitched together (one per face group).
+fn joined(strips: &StripSet, groups: &[Range<usize>], join: Join, restart: u32) -> StripSet {
     match join {
         Join::Restart => strip::decode_restart(&strip::encode_restart(strips, restart), restart),
         Join::Degenerate => {
-            let one = strip::encode_stitched(strips);
-            if one.is_empty() {
-                StripSet::new()
-            } else {
-                StripSet::from_strips(&[one])
+            let mut out = StripSet::new();
+            for r in groups {
+                let one = strip::encode_stitched(&strip_range(strips, r.clone()));
+                if !one.is_empty() {
+                    out.push(&one);
+                }
             }
+            out
         }
         Join::Separate => StripSet::from_strips(&strip::encode_separate(strips)),
     }
+}
+
+/// The strips `range` of a set (clamped to it).
+fn strip_range(strips: &StripSet, range: Range<usize>) -> StripSet {
+    let end = range.end.min(strips.len());
+    let mut out = StripSet::new();
+    for s in range.start.min(end)..end {
+        out.push(strips.strip(s));
+    }
+    out
+}
+
+/// The door for a mesh whose faces fall in several groups: every group stripped on its
+/// own (its faces over its own vertices, renumbered in increasing order so that ties
+/// break as on the whole mesh), by the algorithm chosen for the whole mesh, and
+/// verified; then the strips, put back on the mesh's vertex ids and concatenated in
+/// group order, are measured and verified again as a whole, and when every group used
+/// the fan, their triangles are checked against the whole mesh's fan.
+fn run_groups(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
+    let vertex_count = mesh.vertex_count();
+    if options.join == Join::Restart && (options.restart_index as usize) < vertex_count {
+        return Err(Error::Invalid(format!(
+            "restart index {} is a vertex id of the mesh ({vertex_count} vertices); choose one of at least {vertex_count}",
+            options.restart_index
+        )));
+    }
+    let algorithm = match &options.algorithm {
+        Algorithm::Auto if is_quad_dominant(mesh) => Algorithm::qstrip(),
+        Algorithm::Auto => Algorithm::greedy(),
+        other => other.clone(),
+    };
+    if let Algorithm::Single(_) = algorithm {
+        return Err(Error::Invalid(format!(
+            "single builds one strip per connected component and may add vertices; it does not take a mesh whose \
+             faces fall in {} groups (materials): use another algorithm, or drop the groups",
+            mesh.group_count()
+        )));
+    }
+    let sub_options = StripOptions { algorithm: algorithm.clone(), ..options.clone() };
+    if options.algorithm == Algorithm::Auto && options.split != Split::Auto {
+        sub_options.check()?;
+    }
+    let groups = mesh.group_count();
+    let mut faces_of: Vec<Vec<u32>> = vec![Vec::new(); groups];
+    for f in 0..mesh.face_count() {
+        faces_of[mesh.group_of(f) as usize].push(f as u32);
+    }
+    let mut new_id = vec![u32::MAX; vertex_count];
+    let mut strips = StripSet::new();
+    let mut triangles = Vec::with_capacity(mesh.triangle_count());
+    let mut group_ranges = Vec::with_capacity(groups);
+    let (mut quads, mut any_quads, mut all_fan) = (0, false, true);
+    let mut stripify_time = Duration::ZERO;
+    for faces in &faces_of {
+        let start = strips.len();
+        if faces.is_empty() {
+            group_ranges.push(start..start);
+            continue;
+        }
+        let mut map: Vec<u32> = faces.iter().flat_map(|&f| mesh.face(f as usize).iter().copied()).collect();
+        map.sort_unstable();
+        map.dedup();
+        for (i, &v) in map.iter().enumerate() {
+            new_id[v as usize] = i as u32;
+        }
+        let mut sub = Mesh { positions: map.iter().map(|&v| mesh.positions[v as usize]).collect(), ..Mesh::new() };
+        for &f in faces {
+            sub.face_indices.extend(mesh.face(f as usize).iter().map(|&v| new_id[v as usize]));
+            sub.face_offsets.push(sub.face_indices.len() as u32);
+        }
+        let part = run_one(&sub, &sub_options)?;
+        for s in part.strips.iter() {
+            let back: Vec<u32> = s.iter().map(|&i| map[i as usize]).collect();
+            strips.push(&back);
+        }
+        triangles.extend(part.triangles.iter().map(|t| t.map(|i| map[i as usize])));
+        group_ranges.push(start..strips.len());
+        if let Some(q) = part.quads {
+            quads += q;
+            any_quads = true;
+        }
+        all_fan &= part.split == Split::Fan;
+        stripify_time += part.stripify_time;
+    }
+    let figures = metrics::figures(&triangles, &strips, options.cache);
+    if !figures.verified {
+        return Err(fail("the strips of every group", &strip::verify(&triangles, &strips)));
+    }
+    if all_fan {
+        let v = strip::verify_triangles(&mesh.triangulate().tris, &triangles);
+        if !v.ok() {
+            return Err(fail("the strips of every group against the whole mesh", &v));
+        }
+    }
+    let v = strip::verify(&triangles, &joined(&strips, &group_ranges, options.join, options.restart_index));
+    if !v.ok() {
+        return Err(fail(&format!("the strips joined by {} per group", options.join.name()), &v));
+    }
+    Ok(Strips {
+        strips,
+        triangles,
+        algorithm,
+        split: if all_fan { Split::Fan } else { Split::Qstrip },
+        quads: any_quads.then_some(quads),
+        figures,
+        join: options.join,
+        restart_index: options.restart_index,
+        stripify_time,
+        single: None,
+        added_positions: Vec::new(),
+        added_from: Vec::new(),
+        group_ranges,
+    })
 }
 
 /// The most indices [`stripify_indices`] returns for `index_count` input indices, for
@@ -716,7 +960,8 @@ pub fn stripify_indices(
     }
     if options.join == Join::Separate {
         return Err(Error::Invalid(
-            "a flat buffer holds restart-separated or stitched strips, not separate ones (join restart or degenerate)".into(),
+            "a flat buffer holds restart-separated or stitched strips, not separate ones (join restart or degenerate)"
+                .into(),
         ));
     }
     if let Algorithm::Single(_) = options.algorithm {

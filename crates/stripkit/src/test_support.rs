@@ -8,8 +8,16 @@ pub(crate) use dirs::models_dir;
 
 /// The research mesh `name` from [`models_dir`]; `None` (after printing why) when the
 /// folder or the file is absent or unreadable, so that a test can skip it.
+/// Read as a surface ([`read_surface`]).
 pub(crate) fn model(name: &str) -> Option<crate::Mesh> {
-    dirs::model_with(name, crate::io::read)
+    dirs::model_with(name, read_surface)
+}
+
+/// A mesh file's positions and faces only (`ReadOptions::positions_only`): the
+/// research meshes' documented facts are about their surfaces, which UV seams would
+/// cut into pieces.
+pub(crate) fn read_surface(path: &std::path::Path) -> crate::Result<crate::Mesh> {
+    crate::io::read_with(path, &crate::io::ReadOptions { positions_only: true, ..Default::default() })
 }
 
 /// A xorshift64 generator for tests: each call returns the next state modulo `m`

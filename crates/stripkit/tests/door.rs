@@ -149,7 +149,11 @@ fn the_joined_form_and_files_hold_the_same_triangles() {
             let back = io::read_bytes(std::path::Path::new("x"), format, &bytes).unwrap();
             assert!(verify_triangles(&s.triangles, &back.triangulate().tris).ok());
         }
-        assert!(s.to_file_bytes(&mesh, io::Format::Obj).is_err());
+        // OBJ holds no strips: their triangles, in strip order.
+        let bytes = s.to_file_bytes(&mesh, io::Format::Obj).unwrap();
+        let back = io::read_bytes(std::path::Path::new("x.obj"), io::Format::Obj, &bytes).unwrap();
+        assert!(verify_triangles(&s.triangles, &back.triangulate().tris).ok());
+        assert!(s.to_file_bytes(&mesh, io::Format::Off).is_err());
     }
     // A restart buffer separates as many strips as there are.
     let s = stripify(&mesh, &StripOptions::default()).unwrap();

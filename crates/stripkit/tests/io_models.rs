@@ -6,7 +6,7 @@ mod support;
 use stripkit::io;
 use support::models_dir;
 
-/// (file, V, F) from the README's tables.
+/// (file, V, F) from the README's tables, read as surfaces (positions only).
 const MODELS: &[(&str, usize, usize)] = &[
     ("bunny.obj", 35947, 69451),
     ("bunny_small.off", 3485, 6966),
@@ -33,9 +33,21 @@ const MODELS: &[(&str, usize, usize)] = &[
 fn every_model_loads_with_its_listed_counts() {
     let Some(dir) = models_dir() else { return };
     for &(name, v, f) in MODELS {
-        let mesh = io::read(&dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let mesh = support::read_surface(&dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!((mesh.vertex_count(), mesh.face_count()), (v, f), "{name}");
         assert!(mesh.positions.iter().flatten().all(|c| c.is_finite()), "{name}");
+    }
+}
+
+/// Read with their attributes, the spot models have one vertex per (position, UV)
+/// pair: the files' 3,225 UVs (2,930 positions).
+#[test]
+fn spot_models_weld_one_vertex_per_uv() {
+    let Some(dir) = models_dir() else { return };
+    for name in ["spot_triangulated.obj", "quads/spot_quadrangulated.obj"] {
+        let mesh = io::read(&dir.join(name)).unwrap();
+        assert_eq!(mesh.vertex_count(), 3225, "{name}");
+        assert_eq!(mesh.attribute("TEXCOORD_0").map(|a| a.len()), Some(3225), "{name}");
     }
 }
 
@@ -43,7 +55,7 @@ fn every_model_loads_with_its_listed_counts() {
 fn quad_models_keep_their_polygons() {
     let Some(dir) = models_dir() else { return };
     for name in ["quads/fandisk_quads.off", "quads/horse_quad.obj", "quads/spot_quadrangulated.obj"] {
-        assert!(io::read(&dir.join(name)).unwrap().is_quad_mesh(), "{name}");
+        assert!(support::read_surface(&dir.join(name)).unwrap().is_quad_mesh(), "{name}");
     }
     let cage = io::read(&dir.join("quads/spot_control_mesh.obj")).unwrap();
     let mut sizes = [0usize; 8];

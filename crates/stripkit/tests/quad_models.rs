@@ -30,7 +30,7 @@ fn research_quad_meshes_verify_and_meet_the_target() {
             eprintln!("skipped: {} not found", path.display());
             continue;
         }
-        let mesh = stripkit::io::read(&path).expect("model loads");
+        let mesh = support::read_surface(&path).expect("model loads");
         let pure = mesh.is_quad_mesh();
         let (s, fig) = strip_and_verify(&mesh);
         eprintln!("{name}: {fig:?} triangles {}", s.figures.triangles);
@@ -97,7 +97,7 @@ fn qstrip_beats_triangulate_then_greedy_on_every_quad_mesh() {
     if let Some(dir) = support::models_dir() {
         for (name, _) in MODELS {
             let path = dir.join("quads").join(name);
-            if let Ok(mesh) = stripkit::io::read(&path) {
+            if let Ok(mesh) = support::read_surface(&path) {
                 meshes.push((name.to_string(), mesh));
             }
         }

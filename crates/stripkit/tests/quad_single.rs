@@ -85,7 +85,7 @@ fn research_closed_quad_meshes() {
         "horse_quad.obj",
         "spot_quadrangulated.obj",
     ] {
-        let Ok(mesh) = stripkit::io::read(&dir.join("quads").join(name)) else {
+        let Ok(mesh) = support::read_surface(&dir.join("quads").join(name)) else {
             continue;
         };
         let (strips, _) = run(name, &mesh);

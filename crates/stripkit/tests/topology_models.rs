@@ -3,7 +3,6 @@
 
 mod support;
 
-use stripkit::io;
 use stripkit::MeshFacts;
 use support::models_dir;
 
@@ -33,7 +32,7 @@ const ROWS: &[Row] = &[
 
 fn check(dir: &std::path::Path, row: &Row) -> MeshFacts {
     let &(file, v, f, bnd, nme, nmv, comp, chi, unref) = row;
-    let mesh = io::read(&dir.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+    let mesh = support::read_surface(&dir.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
     let facts = MeshFacts::of(&mesh).unwrap();
     let got = (facts.vertices, facts.faces, facts.boundary_edges, facts.nonmanifold_edges);
     assert_eq!(got, (v, f, bnd, nme), "{file}: V, F, bnd, nm-e");

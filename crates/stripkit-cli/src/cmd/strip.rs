@@ -221,14 +221,15 @@ pub enum MatchingArg {
     .ply   vertices plus a `tristrips` element (-1 ends a strip); --join degenerate writes one stitched strip\n  \
     .json  {\"strips\": [[...], ...], \"figures\": {...}} (with --join restart also \"indices\" and \"restart_index\")\n  \
     .gltf, .glb  core glTF has no restart index: one TRIANGLE_STRIP primitive holding the stitched strip\n               \
-    (--join separate: one primitive per strip)\n\
+    (--join separate: one primitive per strip)\n  \
+    .obj   no strips in OBJ: the strips' triangles in strip order, per group (g/usemtl), with vt/vn\n\
 Exit status: 0 success, 1 verification failed (nothing written), 2 bad input or argument.")]
 pub struct Args {
     /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz); polygons are
     /// fanned into triangles. `-` reads standard input (with --format). A folder strips
     /// every mesh file in it (not its subfolders) into the folder -o names.
     pub input: PathBuf,
-    /// Output file: .ply, .json, .gltf or .glb (see below); `-` writes standard output
+    /// Output file: .ply, .json, .gltf, .glb or .obj (see below); `-` writes standard output
     /// in --output-format (the report then goes to standard error). For a folder input,
     /// a folder (created if missing) that gets one NAME.EXT per input, EXT from
     /// --output-format (default glb).
@@ -324,9 +325,9 @@ fn output_kind(path: &Path, stdout_format: Option<Format>) -> anyhow::Result<Out
         return Ok(OutKind::Json);
     }
     match Format::from_path(path) {
-        Some((f @ (Format::Ply | Format::Gltf | Format::Glb), _)) => Ok(OutKind::Mesh(f)),
+        Some((f @ (Format::Ply | Format::Gltf | Format::Glb | Format::Obj), _)) => Ok(OutKind::Mesh(f)),
         _ => Err(Error::Invalid(format!(
-            "{}: cannot hold strips; the output must end in .ply, .json, .gltf or .glb",
+            "{}: cannot hold strips; the output must end in .ply, .json, .gltf, .glb or .obj (triangles in strip order)",
             path.display()
         ))
         .into()),

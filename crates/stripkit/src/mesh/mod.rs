@@ -34,6 +34,8 @@ pub struct Mesh {
     pub face_groups: Vec<u32>,
     /// The groups (materials) faces refer to; may be empty when `face_groups` is.
     pub groups: Vec<Group>,
+    /// Material libraries the file names (OBJ `mtllib`), written back as they were.
+    pub material_libraries: Vec<String>,
 }
 
 /// Triangles of a mesh, one `[a, b, c]` per triangle, each remembering its face.
@@ -62,6 +64,7 @@ impl Mesh {
             attributes: Vec::new(),
             face_groups: Vec::new(),
             groups: Vec::new(),
+            material_libraries: Vec::new(),
         }
     }
 
@@ -154,6 +157,7 @@ impl Mesh {
             positions: map.iter().map(|&v| self.positions[v as usize]).collect(),
             attributes: self.attributes.iter().map(|a| a.gather(map)).collect(),
             groups: self.groups.clone(),
+            material_libraries: self.material_libraries.clone(),
             ..Mesh::new()
         }
     }

@@ -251,7 +251,7 @@ fn research_meshes_are_verified_in_both_modes() {
         "fandisk.obj",
         "bunny.obj",
     ] {
-        let mesh = crate::io::read(&dir.join(name)).expect(name);
+        let mesh = crate::test_support::read_surface(&dir.join(name)).expect(name);
         let tris = mesh.triangulate().tris;
         let vc = mesh.vertex_count();
         let graph = crate::topology::DualGraph::from_triangles(&tris, vc);

@@ -64,7 +64,7 @@ fn the_checker_and_the_stripifier_agree() {
     }
     if let Some(dir) = models_dir() {
         for name in MODELS {
-            if let Ok(mesh) = crate::io::read(&dir.join("quads").join(name)) {
+            if let Ok(mesh) = crate::test_support::read_surface(&dir.join("quads").join(name)) {
                 if name.starts_with("spot_quad") {
                     let l1 = subdivide(&mesh);
                     meshes.push(subdivide(&l1));
@@ -231,7 +231,7 @@ fn timing_on_spot_level_4() {
         return;
     };
     let mut mesh =
-        crate::io::read(&dir.join("quads/spot_quadrangulated.obj")).expect("spot loads");
+        crate::test_support::read_surface(&dir.join("quads/spot_quadrangulated.obj")).expect("spot loads");
     for _ in 0..4 {
         mesh = subdivide(&mesh);
     }

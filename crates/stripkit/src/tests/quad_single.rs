@@ -46,7 +46,7 @@ fn one_cycle_on_research_closed_quad_meshes() {
         return;
     };
     for name in ["fandisk_quads.off", "horse_quad.obj", "spot_quadrangulated.obj"] {
-        let Ok(mesh) = crate::io::read(&dir.join("quads").join(name)) else {
+        let Ok(mesh) = crate::test_support::read_surface(&dir.join("quads").join(name)) else {
             continue;
         };
         assert_eq!(run(name, &mesh), (1, 1), "{name}");

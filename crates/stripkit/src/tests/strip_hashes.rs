@@ -80,7 +80,7 @@ fn strip_hashes() {
             .unwrap_or(&path)
             .display()
             .to_string();
-        let mesh = match crate::mesh::io::read(&path) {
+        let mesh = match crate::test_support::read_surface(&path) {
             Ok(m) => m,
             Err(e) => {
                 println!("{name}: unreadable: {e}");

@@ -43,6 +43,14 @@ pub fn drawn_sets(strips: &stripkit::Strips) -> Vec<[u32; 3]> {
 
 /// The research mesh `name` from [`models_dir`]; `None` (after printing why) when the
 /// folder or the file is absent or unreadable, so that a test can skip it.
+/// Read as a surface ([`read_surface`]).
 pub fn model(name: &str) -> Option<stripkit::Mesh> {
-    dirs::model_with(name, stripkit::io::read)
+    dirs::model_with(name, read_surface)
+}
+
+/// A mesh file's positions and faces only (`ReadOptions::positions_only`): the
+/// research meshes' documented facts are about their surfaces, which UV seams would
+/// cut into pieces.
+pub fn read_surface(path: &std::path::Path) -> stripkit::Result<stripkit::Mesh> {
+    stripkit::io::read_with(path, &stripkit::io::ReadOptions { positions_only: true, ..Default::default() })
 }

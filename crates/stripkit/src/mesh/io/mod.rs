@@ -6,7 +6,11 @@
 //! (binary) and what is wrong. Counts announced in headers are checked against the
 //! file's size before anything is allocated from them. Vertex ids are the file's:
 //! unreferenced vertices are kept (STL, which has no shared vertices, welds identical
-//! positions in first-seen order).
+//! positions in first-seen order; an OBJ whose corners name `vt` or `vn` welds its
+//! corners into GPU vertices, one per distinct `(v, vt, vn)` in first-seen order, unless
+//! [`ReadOptions::positions_only`]). Vertex attributes (OBJ `vt`/`vn`, every PLY vertex
+//! property) and face groups (OBJ `g`/`o`/`usemtl`) come with the mesh; the OBJ and PLY
+//! writers write them back.
 //!
 //! Every writer replaces its file atomically ([`write_atomic`]): a reader, a crash or
 //! a full disk sees the old file or the complete new one, never a partial file;
@@ -20,8 +24,8 @@
 //!
 //! | format | read | write |
 //! |---|---|---|
-//! | OBJ | `v`, `f` (all `v/vt/vn` forms, negative indices), polygons kept | `v`, `f` |
-//! | PLY | ASCII, binary LE/BE; `face` lists or `tristrips` | ASCII or binary LE; faces or `tristrips` |
+//! | OBJ | `v`, `vt`, `vn`, `f` (all forms, negative indices; corners welded), `g`/`o`, `usemtl`, `mtllib`; polygons kept | `v`, `vt`, `vn`, `f`, `g`, `usemtl`, `mtllib` |
+//! | PLY | ASCII, binary LE/BE; every scalar vertex property; `face` lists or `tristrips` | ASCII or binary LE; every attribute; faces or `tristrips` |
 //! | OFF | `[ST][C][N][4]OFF`, comments, face colours | `OFF` |
 //! | STL | ASCII and binary, identical positions welded | binary, polygons fanned |
 //! | glTF | `.gltf` (data URIs, external files), `.glb`; modes 4/5/6 | `.gltf` (embedded), `.glb`; TRIANGLES or one TRIANGLE_STRIP per strip |
@@ -128,6 +132,11 @@ pub struct ReadOptions {
     /// limit counts the mesh's content; its vectors grow by doubling, so the memory
     /// they reserve can reach twice that while reading.
     pub max_decoded_bytes: Option<u64>,
+    /// Read positions and faces only (OBJ and PLY): no attributes, no groups, and OBJ
+    /// vertex ids are the file's `v` records even where corners name `vt`/`vn` (no
+    /// welding at seams). For work on the surface alone (topology, research figures on
+    /// models whose UV seams would cut it). Default `false`.
+    pub positions_only: bool,
 }
 
 impl Default for ReadOptions {
@@ -137,6 +146,7 @@ impl Default for ReadOptions {
             max_external_bytes: DEFAULT_MAX_EXTERNAL_BYTES,
             max_decompressed_bytes: DEFAULT_MAX_DECOMPRESSED_BYTES,
             max_decoded_bytes: None,
+            positions_only: false,
         }
     }
 }
@@ -255,8 +265,8 @@ pub fn read_bytes_with(path: &Path, format: Format, data: &[u8], options: &ReadO
         Format::Stl | Format::Glb => data,
     };
     match format {
-        Format::Obj => obj::read(path, data),
-        Format::Ply => ply::read(path, data),
+        Format::Obj => obj::read(path, data, options.positions_only),
+        Format::Ply => ply::read(path, data, options.positions_only),
         Format::Off => off::read(path, data),
         Format::Stl => stl::read(path, data),
         Format::Gltf => gltf::read_gltf(path, data, options),

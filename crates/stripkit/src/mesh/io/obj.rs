@@ -1,12 +1,32 @@
-//! Wavefront OBJ: `v x y z` and `f` with `v`, `v/vt`, `v//vn`, `v/vt/vn` corners,
-//! 1-based or negative (relative) indices; polygons are kept. Every other statement
-//! (`vt`, `vn`, `o`, `g`, `usemtl`, `l`, ...) is ignored.
+//! Wavefront OBJ: `v`, `vt`, `vn`, `f` with `v`, `v/vt`, `v//vn`, `v/vt/vn` corners,
+//! 1-based or negative (relative) indices; polygons are kept. `g` and `o` (the group
+//! name), `usemtl` (the material) and `mtllib` (kept in `Mesh::material_libraries`)
+//! are read; every other statement is ignored.
+//!
+//! Vertices: where no face corner names a `vt` or a `vn`, vertex ids are the file's
+//! `v` records, unreferenced ones kept. Otherwise corners are welded into GPU vertices:
+//! one vertex per distinct `(v, vt, vn)` triple, numbered in order of first appearance
+//! in the faces (so ids are renumbered and unreferenced `v` records dropped), with the
+//! attributes `TEXCOORD_0` (2 `f32`, `v` stored as `1 - v`: glTF's top-left origin)
+//! and `NORMAL` (3 `f32`); a corner without one in a file that has them gets zeros.
+//! A seam (one position with two UVs or two normals) thus gives two vertices.
+//!
+//! Groups: faces after a `g`/`o` or `usemtl` statement belong to the group of that
+//! (name, material) pair, numbered in order of first use; `Group::material` is the
+//! `usemtl` name. A file without either (or only with an empty name) has no groups.
+//!
+//! Write: `mtllib`, `v`, `vt` (from `TEXCOORD_0`, `v` flipped back), `vn` (from
+//! `NORMAL`), and faces in their order with `g`/`usemtl` where the group changes;
+//! corners `i`, `i/i`, `i//i` or `i/i/i` (one index: every vertex carries its own
+//! attributes). A read-back of the text gives the same mesh (texture `v` within one
+//! rounding of the flip).
 
 use super::common::{
     close_face, finite, index_message, is_space, line_at, line_end, parse_f32, parse_i64, show, sniff, Src,
 };
 use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::mesh::{Attribute, Group, Mesh};
+use std::collections::HashMap;
 use std::path::Path;
 
 /// Walks OBJ text line by line and token by token in a single pass, without
@@ -48,21 +68,117 @@ impl<'a> Cursor<'a> {
     }
 }
 
-/// Statements of the OBJ specification other than `v` and `f` (read and ignored).
+/// Statements of the OBJ specification that are read and ignored.
 const OTHER_STATEMENTS: &[&[u8]] = &[
-    b"vt", b"vn", b"vp", b"l", b"p", b"o", b"g", b"s", b"mg", b"usemtl", b"mtllib", b"usemap", b"maplib",
-    b"cstype", b"deg", b"bmat", b"step", b"curv", b"curv2", b"surf", b"parm", b"trim", b"hole", b"scrv",
-    b"sp", b"end", b"con", b"lod", b"shadow_obj", b"trace_obj", b"c_interp", b"d_interp", b"bevel",
-    b"ctech", b"stech", b"call", b"csh",
+    b"vp",
+    b"l",
+    b"p",
+    b"s",
+    b"mg",
+    b"usemap",
+    b"maplib",
+    b"cstype",
+    b"deg",
+    b"bmat",
+    b"step",
+    b"curv",
+    b"curv2",
+    b"surf",
+    b"parm",
+    b"trim",
+    b"hole",
+    b"scrv",
+    b"sp",
+    b"end",
+    b"con",
+    b"lod",
+    b"shadow_obj",
+    b"trace_obj",
+    b"c_interp",
+    b"d_interp",
+    b"bevel",
+    b"ctech",
+    b"stech",
+    b"call",
+    b"csh",
 ];
 
-/// Parses an OBJ file held in memory.
-pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
+/// No texture coordinate or normal at a corner.
+const NONE: u32 = u32::MAX;
+
+/// The group key of an OBJ face: its `g`/`o` name and its `usemtl` material.
+type GroupKey = (String, Option<String>);
+
+/// The rest of the line's tokens joined by single spaces (a name may hold spaces).
+fn rest_of_line(c: &mut Cursor) -> String {
+    let mut out = String::new();
+    while let Some(tok) = c.token() {
+        if !out.is_empty() {
+            out.push(' ');
+        }
+        out.push_str(&String::from_utf8_lossy(tok));
+    }
+    out
+}
+
+/// Reads `n` finite coordinates of a `v`, `vt` or `vn` statement; coordinates past
+/// `required` may be missing (then 0).
+fn coords<const N: usize>(src: Src, c: &mut Cursor, ln: usize, what: &str, required: usize) -> Result<[f32; N]> {
+    let mut p = [0.0f32; N];
+    for (k, slot) in p.iter_mut().enumerate() {
+        let Some(tok) = c.token() else {
+            if k >= required {
+                break;
+            }
+            return Err(src.err(line_at(ln), format!("{what} has {k} coordinates, needs {required}")));
+        };
+        let v = parse_f32(tok).ok_or_else(|| src.err(line_at(ln), format!("malformed number '{}'", show(tok))))?;
+        *slot = finite(v, tok).map_err(|w| src.err(line_at(ln), w))?;
+    }
+    Ok(p)
+}
+
+/// Resolves one index of a face corner (1-based, or negative: relative to the `defined`
+/// records of its kind so far) to 0-based; `what` names the kind in messages.
+fn resolve(src: Src, ln: usize, part: &[u8], tok: &[u8], defined: usize, what: &str) -> Result<u32> {
+    let idx = parse_i64(part).ok_or_else(|| src.err(line_at(ln), format!("malformed {what} index '{}'", show(tok))))?;
+    let zero_based = if idx > 0 {
+        idx - 1
+    } else if idx < 0 {
+        let r = defined as i64 + idx;
+        if r < 0 {
+            return Err(src.err(
+                line_at(ln),
+                format!("relative index {idx} reaches before the first {what} ({defined} defined so far)"),
+            ));
+        }
+        r
+    } else {
+        return Err(src.err(line_at(ln), format!("{what} index 0 (OBJ indices start at 1)")));
+    };
+    if zero_based >= u32::MAX as i64 {
+        return Err(src.err(line_at(ln), format!("{what} index {idx} is beyond any {what} the file can hold")));
+    }
+    Ok(zero_based as u32)
+}
+
+/// Parses an OBJ file held in memory; `positions_only`: no attributes, no groups, the
+/// file's vertex ids (see [`super::ReadOptions::positions_only`]).
+pub(crate) fn read(path: &Path, data: &[u8], positions_only: bool) -> Result<Mesh> {
     let src = Src { path };
     let mut mesh = Mesh::new();
-    // Faces may name vertices defined later in the file, so positive indices are
-    // range-checked once at the end; this is the largest seen (0-based).
-    let mut max_index: u64 = 0;
+    let mut uvs: Vec<[f32; 2]> = Vec::new();
+    let mut normals: Vec<[f32; 3]> = Vec::new();
+    // Per corner, the texture coordinate and normal (NONE where absent); empty until
+    // the first corner that has one, then filled up to it.
+    let mut corner_vt: Vec<u32> = Vec::new();
+    let mut corner_vn: Vec<u32> = Vec::new();
+    // Faces may name records defined later in the file, so positive indices are
+    // range-checked once at the end; these are the largest seen (0-based).
+    let (mut max_index, mut max_vt, mut max_vn) = (0u64, None::<u32>, None::<u32>);
+    let mut key: GroupKey = (String::new(), None);
+    let mut group_ids: HashMap<GroupKey, u32> = HashMap::new();
+    let mut current: Option<u32> = None;
     let mut c = Cursor { data, pos: 0 };
     let mut ln = 0;
     // Whether any comment or known statement was seen: a file without one that gives
@@ -72,62 +188,92 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
         ln += 1;
         match c.token() {
             Some(b"v") => {
-                let mut p = [0.0f32; 3];
-                for (k, slot) in p.iter_mut().enumerate() {
-                    let tok = c.token().ok_or_else(|| {
-                        src.err(line_at(ln), format!("vertex has {k} coordinates, needs 3"))
-                    })?;
-                    let v = parse_f32(tok).ok_or_else(|| {
-                        src.err(line_at(ln), format!("malformed number '{}'", show(tok)))
-                    })?;
-                    *slot = finite(v, tok).map_err(|w| src.err(line_at(ln), w))?;
-                }
+                let p = coords::<3>(src, &mut c, ln, "vertex", 3)?;
                 if mesh.positions.len() >= u32::MAX as usize {
                     return Err(src.err(line_at(ln), "more than 4294967295 vertices"));
                 }
                 mesh.positions.push(p);
             }
+            Some(b"vt" | b"vn") if positions_only => recognised = true,
+            Some(b"vt") => {
+                recognised = true;
+                let t = coords::<2>(src, &mut c, ln, "texture coordinate", 1)?;
+                if uvs.len() >= u32::MAX as usize - 1 {
+                    return Err(src.err(line_at(ln), "more than 4294967294 texture coordinates"));
+                }
+                uvs.push(t);
+            }
+            Some(b"vn") => {
+                recognised = true;
+                let n = coords::<3>(src, &mut c, ln, "normal", 3)?;
+                if normals.len() >= u32::MAX as usize - 1 {
+                    return Err(src.err(line_at(ln), "more than 4294967294 normals"));
+                }
+                normals.push(n);
+            }
             Some(b"f") => {
                 let first = mesh.face_indices.len();
-                let defined = mesh.positions.len() as i64;
                 while let Some(tok) = c.token() {
-                    let vpart = match tok.iter().position(|&b| b == b'/') {
-                        Some(i) => &tok[..i],
-                        None => tok,
-                    };
-                    let idx = parse_i64(vpart).ok_or_else(|| {
-                        src.err(line_at(ln), format!("malformed vertex index '{}'", show(tok)))
-                    })?;
-                    let zero_based = if idx > 0 {
-                        idx - 1
-                    } else if idx < 0 {
-                        let r = defined + idx;
-                        if r < 0 {
-                            return Err(src.err(
-                                line_at(ln),
-                                format!(
-                                    "relative index {idx} reaches before the first vertex ({defined} vertices defined so far)"
-                                ),
-                            ));
-                        }
-                        r
-                    } else {
-                        return Err(src.err(line_at(ln), "vertex index 0 (OBJ indices start at 1)"));
-                    };
-                    if zero_based >= u32::MAX as i64 {
-                        return Err(src.err(
-                            line_at(ln),
-                            format!("vertex index {idx} is beyond any vertex the file can hold"),
-                        ));
+                    let mut parts = tok.splitn(3, |&b| b == b'/');
+                    let vpart = parts.next().unwrap_or_default();
+                    let v = resolve(src, ln, vpart, tok, mesh.positions.len(), "vertex")?;
+                    max_index = max_index.max(v as u64);
+                    let k = mesh.face_indices.len();
+                    if positions_only {
+                        mesh.face_indices.push(v);
+                        continue;
                     }
-                    max_index = max_index.max(zero_based as u64);
-                    mesh.face_indices.push(zero_based as u32);
+                    if let Some(p) = parts.next().filter(|p| !p.is_empty()) {
+                        let t = resolve(src, ln, p, tok, uvs.len(), "texture coordinate")?;
+                        max_vt = max_vt.max(Some(t));
+                        corner_vt.resize(k, NONE);
+                        corner_vt.push(t);
+                    }
+                    if let Some(p) = parts.next().filter(|p| !p.is_empty()) {
+                        let n = resolve(src, ln, p, tok, normals.len(), "normal")?;
+                        max_vn = max_vn.max(Some(n));
+                        corner_vn.resize(k, NONE);
+                        corner_vn.push(n);
+                    }
+                    mesh.face_indices.push(v);
                 }
                 let k = mesh.face_indices.len() - first;
                 if k < 3 {
                     return Err(src.err(line_at(ln), format!("face has {k} vertices, needs at least 3")));
                 }
                 close_face(&mut mesh).map_err(|w| src.err(line_at(ln), w))?;
+                let g = match current {
+                    Some(g) => g,
+                    None => {
+                        let n = group_ids.len() as u32;
+                        let g = *group_ids.entry(key.clone()).or_insert(n);
+                        if g == n {
+                            mesh.groups.push(Group { name: key.0.clone(), material: key.1.clone() });
+                        }
+                        current = Some(g);
+                        g
+                    }
+                };
+                mesh.face_groups.push(g);
+            }
+            Some(b"g" | b"o") => {
+                recognised = true;
+                key.0 = rest_of_line(&mut c);
+                current = None;
+            }
+            Some(b"usemtl") => {
+                recognised = true;
+                key.1 = Some(rest_of_line(&mut c)).filter(|m| !m.is_empty());
+                current = None;
+            }
+            Some(b"mtllib") => {
+                recognised = true;
+                while let Some(tok) = c.token() {
+                    let lib = String::from_utf8_lossy(tok).into_owned();
+                    if !mesh.material_libraries.contains(&lib) {
+                        mesh.material_libraries.push(lib);
+                    }
+                }
             }
             Some(tok) => recognised |= OTHER_STATEMENTS.contains(&tok),
             None => recognised |= c.at_comment(),
@@ -145,7 +291,78 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
         let line = face_line(data, face);
         return Err(src.err(line_at(line), index_message(face as u64, bad as i64 + 1, nv)));
     }
+    for (corners, max, len, what) in
+        [(&corner_vt, max_vt, uvs.len(), "texture coordinate"), (&corner_vn, max_vn, normals.len(), "normal")]
+    {
+        if max.is_some_and(|m| m as usize >= len) {
+            let at = corners.iter().position(|&t| t != NONE && t as usize >= len).unwrap_or(0);
+            let face = mesh.face_offsets.partition_point(|&o| o as usize <= at).saturating_sub(1);
+            let line = face_line(data, face);
+            return Err(src.err(
+                line_at(line),
+                format!("face {face} refers to {what} {} but the file has {len}", corners[at] as u64 + 1),
+            ));
+        }
+    }
+    // One group without a name or material says nothing: leave the mesh ungrouped.
+    if positions_only || (mesh.groups.len() == 1 && mesh.groups[0] == Group::default()) {
+        mesh.groups.clear();
+        mesh.face_groups.clear();
+    }
+    if !corner_vt.is_empty() || !corner_vn.is_empty() {
+        weld(&mut mesh, &uvs, &normals, corner_vt, corner_vn);
+    }
     Ok(mesh)
+}
+
+/// Makes GPU vertices of the corners' `(v, vt, vn)` triples: one vertex per distinct
+/// triple, numbered in order of first appearance (unreferenced `v` records go), with
+/// `TEXCOORD_0` (v flipped to glTF's top-left origin) where any corner has a `vt` and
+/// `NORMAL` where any has a `vn`; a corner without one gets zeros.
+fn weld(mesh: &mut Mesh, uvs: &[[f32; 2]], normals: &[[f32; 3]], mut vt: Vec<u32>, mut vn: Vec<u32>) {
+    let corners = mesh.face_indices.len();
+    let (has_vt, has_vn) = (!vt.is_empty(), !vn.is_empty());
+    if has_vt {
+        vt.resize(corners, NONE);
+    }
+    if has_vn {
+        vn.resize(corners, NONE);
+    }
+    let mut ids: HashMap<(u32, u32, u32), u32> = HashMap::new();
+    let mut positions = Vec::new();
+    let mut uv_out = Vec::new();
+    let mut n_out = Vec::new();
+    for k in 0..corners {
+        let v = mesh.face_indices[k];
+        let t = if has_vt { vt[k] } else { NONE };
+        let n = if has_vn { vn[k] } else { NONE };
+        let next = positions.len() as u32;
+        let id = *ids.entry((v, t, n)).or_insert(next);
+        if id == next {
+            positions.push(mesh.positions[v as usize]);
+            if has_vt {
+                let [u, w] = if t == NONE { [0.0, 0.0] } else { uvs[t as usize] };
+                uv_out.extend_from_slice(&[u, flip_v(w)]);
+            }
+            if has_vn {
+                n_out.extend_from_slice(&if n == NONE { [0.0; 3] } else { normals[n as usize] });
+            }
+        }
+        mesh.face_indices[k] = id;
+    }
+    mesh.positions = positions;
+    if has_vt {
+        mesh.attributes.push(Attribute::from_f32("TEXCOORD_0", 2, &uv_out));
+    }
+    if has_vn {
+        mesh.attributes.push(Attribute::from_f32("NORMAL", 3, &n_out));
+    }
+}
+
+/// `1 - v`, between a file's bottom-left texture origin and glTF's top-left one (its
+/// own inverse up to one rounding of `f32`).
+pub(crate) fn flip_v(v: f32) -> f32 {
+    (1.0 - v as f64) as f32
 }
 
 /// An empty result from a file with content: refused when the content looks like
@@ -246,17 +463,19 @@ pub(crate) fn push_f32(out: &mut Vec<u8>, v: f32) {
     }
 }
 
-/// Encodes a mesh as OBJ text (1-based indices, polygons as they are).
+/// Encodes a mesh as OBJ text (1-based indices, polygons as they are): `mtllib`, `v`,
+/// `vt` and `vn` from `TEXCOORD_0` and `NORMAL`, faces with `g`/`usemtl` where the
+/// group changes.
 pub(crate) fn write(mesh: &Mesh) -> Vec<u8> {
-    let mut out = Vec::with_capacity(mesh.positions.len() * 32 + mesh.face_indices.len() * 8 + 64);
-    out.extend_from_slice(
-        format!(
-            "# written by stripkit: {} vertices, {} faces\n",
-            mesh.positions.len(),
-            mesh.face_count()
-        )
-        .as_bytes(),
-    );
+    let nv = mesh.positions.len();
+    let uv = mesh.attribute("TEXCOORD_0").filter(|a| a.components >= 2 && a.len() == nv);
+    let normal = mesh.attribute("NORMAL").filter(|a| a.components == 3 && a.len() == nv);
+    let per_vertex = 1 + uv.is_some() as usize + normal.is_some() as usize;
+    let mut out = Vec::with_capacity(nv * 32 * per_vertex + mesh.face_indices.len() * 8 * per_vertex + 64);
+    out.extend_from_slice(format!("# written by stripkit: {} vertices, {} faces\n", nv, mesh.face_count()).as_bytes());
+    for lib in &mesh.material_libraries {
+        out.extend_from_slice(format!("mtllib {lib}\n").as_bytes());
+    }
     for p in &mesh.positions {
         out.push(b'v');
         for &c in p {
@@ -265,11 +484,69 @@ pub(crate) fn write(mesh: &Mesh) -> Vec<u8> {
         }
         out.push(b'\n');
     }
-    for f in mesh.faces() {
+    // Components as their value (a normalized integer scaled to its range).
+    let value = |a: &Attribute, v: usize, c: usize| (a.get(v, c) * a.unit()) as f32;
+    if let Some(a) = uv {
+        for v in 0..nv {
+            out.extend_from_slice(b"vt ");
+            push_f32(&mut out, value(a, v, 0));
+            out.push(b' ');
+            push_f32(&mut out, flip_v(value(a, v, 1)));
+            out.push(b'\n');
+        }
+    }
+    if let Some(a) = normal {
+        for v in 0..nv {
+            out.extend_from_slice(b"vn");
+            for c in 0..3 {
+                out.push(b' ');
+                push_f32(&mut out, value(a, v, c));
+            }
+            out.push(b'\n');
+        }
+    }
+    let grouped = !mesh.groups.is_empty();
+    let mut last: Option<u32> = None;
+    for (f, face) in mesh.faces().enumerate() {
+        let g = mesh.group_of(f);
+        if grouped && last != Some(g) {
+            let group = mesh.groups.get(g as usize).cloned().unwrap_or_default();
+            let before = last.and_then(|l| mesh.groups.get(l as usize));
+            out.push(b'g');
+            if !group.name.is_empty() {
+                out.push(b' ');
+                out.extend_from_slice(group.name.as_bytes());
+            }
+            out.push(b'\n');
+            match &group.material {
+                Some(m) => out.extend_from_slice(format!("usemtl {m}\n").as_bytes()),
+                // A bare `usemtl` ends the material of the group before.
+                None if before.is_some_and(|b| b.material.is_some()) => out.extend_from_slice(b"usemtl\n"),
+                None => {}
+            }
+            last = Some(g);
+        }
         out.push(b'f');
-        for &i in f {
+        for &i in face {
             out.push(b' ');
             push_u64(&mut out, i as u64 + 1);
+            match (uv.is_some(), normal.is_some()) {
+                (false, false) => {}
+                (true, false) => {
+                    out.push(b'/');
+                    push_u64(&mut out, i as u64 + 1);
+                }
+                (false, true) => {
+                    out.extend_from_slice(b"//");
+                    push_u64(&mut out, i as u64 + 1);
+                }
+                (true, true) => {
+                    out.push(b'/');
+                    push_u64(&mut out, i as u64 + 1);
+                    out.push(b'/');
+                    push_u64(&mut out, i as u64 + 1);
+                }
+            }
         }
         out.push(b'\n');
     }
@@ -282,7 +559,7 @@ mod tests {
     use crate::error::Error;
 
     fn parse(text: &str) -> Result<Mesh> {
-        read(Path::new("t.obj"), text.as_bytes())
+        read(Path::new("t.obj"), text.as_bytes(), false)
     }
 
     fn format_error(text: &str) -> (String, String) {
@@ -298,13 +575,84 @@ mod tests {
                     f 1 2 3\nf 1/1 3/1 4/1\nf 1//1 2//1 4//1\nf 2/1/1 3/1/1 4/1/1\nf -4 -3 -2 -1\n\
                     o name\ng grp\nusemtl m\ns off\nl 1 2\n";
         let m = parse(text).unwrap();
-        assert_eq!(m.positions.len(), 4);
+        // Corners with a vt or vn are welded by their (v, vt, vn) triple: 13 distinct.
+        assert_eq!(m.positions.len(), 13);
+        let file = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+        let expect: [&[usize]; 5] = [&[0, 1, 2], &[0, 2, 3], &[0, 1, 3], &[1, 2, 3], &[0, 1, 2, 3]];
+        for (f, want) in expect.iter().enumerate() {
+            let got: Vec<[f32; 3]> = m.face(f).iter().map(|&v| m.positions[v as usize]).collect();
+            let want: Vec<[f32; 3]> = want.iter().map(|&v| file[v]).collect();
+            assert_eq!(got, want, "face {f}");
+        }
         assert_eq!(m.face(0), &[0, 1, 2]);
-        assert_eq!(m.face(1), &[0, 2, 3]);
-        assert_eq!(m.face(2), &[0, 1, 3]);
-        assert_eq!(m.face(3), &[1, 2, 3]);
-        assert_eq!(m.face(4), &[0, 1, 2, 3]);
-        assert_eq!(m.positions[2], [1.0, 1.0, 0.0]);
+        assert_eq!(m.face(4), &[0, 1, 2, 12]);
+        let uv = m.attribute("TEXCOORD_0").unwrap();
+        assert_eq!(uv.value(m.face(1)[0] as usize), vec![0.0, 1.0]); // vt 0 0, v flipped
+        assert_eq!(uv.value(0), vec![0.0, 1.0]); // no vt at this corner: zeros
+        assert_eq!(m.attribute("NORMAL").unwrap().value(m.face(2)[1] as usize), vec![0.0, 0.0, 1.0]);
+        assert!(m.groups.is_empty() && m.face_groups.is_empty());
+    }
+
+    #[test]
+    fn groups_and_materials_make_face_groups() {
+        let text = "mtllib a.mtl b.mtl
+v 0 0 0
+v 1 0 0
+v 0 1 0
+f 1 2 3
+g left side
+usemtl red
+f 1 2 3
+\
+                    usemtl blue
+f 1 2 3
+g left side
+usemtl red
+f 3 2 1
+o other
+usemtl
+f 1 2 3
+";
+        let m = parse(text).unwrap();
+        assert_eq!(m.material_libraries, vec!["a.mtl", "b.mtl"]);
+        assert_eq!(m.face_groups, vec![0, 1, 2, 1, 3]);
+        let g = |name: &str, mat: Option<&str>| Group { name: name.into(), material: mat.map(String::from) };
+        assert_eq!(
+            m.groups,
+            vec![g("", None), g("left side", Some("red")), g("left side", Some("blue")), g("other", None)]
+        );
+        let back = parse(std::str::from_utf8(&write(&m)).unwrap()).unwrap();
+        assert_eq!(back, m);
+    }
+
+    #[test]
+    fn bad_texture_and_normal_indices_are_named() {
+        let (at, what) = format_error(
+            "v 0 0 0
+v 1 0 0
+v 0 1 0
+vt 0 0
+\nf 1/1 2/1 3/2
+",
+        );
+        assert_eq!(at, "line 6");
+        assert!(what.contains("texture coordinate 2") && what.contains("has 1"), "{what}");
+        let (_, what) = format_error(
+            "v 0 0 0
+v 1 0 0
+v 0 1 0
+vn 0 0 1
+f 1//1 2//-2 3//1
+",
+        );
+        assert!(what.contains("relative index -2") && what.contains("normal"), "{what}");
+        let (_, what) = format_error(
+            "v 0 0 0
+vt 0
+vn 0 1
+",
+        );
+        assert!(what.contains("normal has 2 coordinates"), "{what}");
     }
 
     #[test]
@@ -347,7 +695,7 @@ mod tests {
     fn written_text_reads_back_exactly() {
         let positions = vec![[0.1, -2.5, 3.0], [1e-7, 1e30, -0.0], [f32::MIN_POSITIVE, 7.0, 12345.678]];
         let mesh = Mesh::from_polygons(positions, &[vec![0, 1, 2], vec![2, 1, 0]]);
-        let back = read(Path::new("t.obj"), &write(&mesh)).unwrap();
+        let back = read(Path::new("t.obj"), &write(&mesh), false).unwrap();
         assert_eq!(back, mesh);
         for (a, b) in back.positions.iter().flatten().zip(mesh.positions.iter().flatten()) {
             assert_eq!(a.to_bits(), b.to_bits());

@@ -1,25 +1,37 @@
 //! Stanford PLY: ASCII, binary little-endian and binary big-endian.
 //!
-//! Read: the `vertex` element's `x`, `y`, `z` (any scalar type; other properties are
-//! skipped), the `face` element's `vertex_indices` / `vertex_index` list (any count and
-//! index types; other face properties skipped), and the `tristrips` element (one or
-//! more int lists in which `-1` ends a strip, decoded by the METRICS.md rule with
-//! degenerate triangles skipped). Other elements are skipped. Before any element is
-//! read, its announced count times its smallest possible record size is checked
-//! against the bytes left.
+//! Read: the `vertex` element's `x`, `y`, `z` (any scalar type) and every other scalar
+//! vertex property as an attribute, stored with its own type: `nx ny nz` make `NORMAL`;
+//! `s t`, `u v` or `texture_u texture_v` (floats) make `TEXCOORD_0` with `v` stored as
+//! `1 - v` (glTF's top-left origin); `red green blue [alpha]` make `COLOR_0`
+//! (normalized when integers); a set only when all its names are there with one type,
+//! else each is read on its own. Any other property is a one-component attribute of
+//! its own name. List properties of vertices are skipped (not kept). The `face`
+//! element's `vertex_indices` / `vertex_index` list (any count and index types; other
+//! face properties skipped), and the `tristrips` element (one or more int lists in
+//! which `-1` ends a strip, decoded by the METRICS.md rule with degenerate triangles
+//! skipped). Other elements are skipped. Before any element is read, its announced
+//! count times its smallest possible record size is checked against the bytes left.
 //!
-//! Write: binary little-endian (default) or ASCII; `float` x y z, faces as
-//! `list uchar int vertex_indices` (`list int int` when a face has more than 255
-//! vertices), or with strips one `tristrips` record whose int list ends every strip
-//! with `-1`.
+//! Write: binary little-endian (default) or ASCII; `float` x y z, then every attribute
+//! with its own type (`NORMAL` as `nx ny nz`, `TEXCOORD_0` as `s t` flipped back,
+//! `COLOR_0` as `red green blue [alpha]`, others by name, `name_0`, `name_1`, ... when
+//! they have several components), so a file read and written back keeps every scalar
+//! vertex property's value bit for bit (texture `v` within one rounding of the flip);
+//! faces as `list uchar int vertex_indices` (`list int int` when a face has more than
+//! 255 vertices), or with strips one `tristrips` record whose int list ends every
+//! strip with `-1`. Face groups are not written (PLY has no materials).
+//!
+//! (Over 1,000 lines because the header, both body readers, the attribute mapping and
+//! the writer share this file's private property types; about 170 lines are tests.)
 
 use super::common::{
     capped, close_face, ends_line, index_message, is_space, line_at, line_end, parse_count, parse_f32, parse_i64,
     push_strip_triangles, show, sniff, tokens, Lines, Src,
 };
-use super::obj::{push_face_lines, push_position_lines, push_u64};
+use super::obj::{push_f32, push_face_lines, push_u64};
 use crate::error::{Error, Result};
-use crate::mesh::Mesh;
+use crate::mesh::{attr, Attribute, Mesh};
 use crate::strip::StripSet;
 use std::path::Path;
 
@@ -61,6 +73,34 @@ impl Scalar {
 
     fn is_float(self) -> bool {
         matches!(self, Scalar::F32 | Scalar::F64)
+    }
+
+    /// The attribute type of the same layout.
+    fn attr(self) -> attr::Scalar {
+        match self {
+            Scalar::I8 => attr::Scalar::I8,
+            Scalar::U8 => attr::Scalar::U8,
+            Scalar::I16 => attr::Scalar::I16,
+            Scalar::U16 => attr::Scalar::U16,
+            Scalar::I32 => attr::Scalar::I32,
+            Scalar::U32 => attr::Scalar::U32,
+            Scalar::F32 => attr::Scalar::F32,
+            Scalar::F64 => attr::Scalar::F64,
+        }
+    }
+}
+
+/// The PLY name of an attribute type.
+fn type_name(s: attr::Scalar) -> &'static str {
+    match s {
+        attr::Scalar::I8 => "char",
+        attr::Scalar::U8 => "uchar",
+        attr::Scalar::I16 => "short",
+        attr::Scalar::U16 => "ushort",
+        attr::Scalar::I32 => "int",
+        attr::Scalar::U32 => "uint",
+        attr::Scalar::F32 => "float",
+        attr::Scalar::F64 => "double",
     }
 }
 
@@ -138,7 +178,10 @@ fn parse_header(src: Src, data: &[u8]) -> Result<Header> {
         if cut && keyword != b"end_header" {
             return Err(src.err(
                 line_at(ln),
-                format!("the header ends before end_header: the file stops inside this line ('{}'; truncated?)", show(line)),
+                format!(
+                    "the header ends before end_header: the file stops inside this line ('{}'; truncated?)",
+                    show(line)
+                ),
             ));
         }
         match keyword {
@@ -200,6 +243,8 @@ trait Body {
     fn int(&mut self, s: Scalar) -> Result<i64, String>;
     /// Skips a value.
     fn skip(&mut self, s: Scalar) -> Result<(), String>;
+    /// Reads a value as it is, into `out` (`s.size()` bytes, little-endian).
+    fn raw(&mut self, s: Scalar, out: &mut [u8]) -> Result<(), String>;
     /// Where the reader is, for messages: "line N" or "byte N".
     fn at(&self) -> String;
     /// Bytes not yet read.
@@ -261,6 +306,30 @@ impl Body for Ascii<'_> {
     }
     fn skip(&mut self, _s: Scalar) -> Result<(), String> {
         self.token().map(|_| ())
+    }
+    fn raw(&mut self, s: Scalar, out: &mut [u8]) -> Result<(), String> {
+        let tok = self.token()?;
+        let bad = || format!("'{}' is not a {} value", show(tok), type_name(s.attr()));
+        match s {
+            Scalar::F32 => out.copy_from_slice(&parse_f32(tok).ok_or_else(bad)?.to_le_bytes()),
+            Scalar::F64 => out.copy_from_slice(&super::common::parse_f64(tok).ok_or_else(bad)?.to_le_bytes()),
+            _ => {
+                let v = parse_i64(tok).ok_or_else(bad)?;
+                let (lo, hi) = match s {
+                    Scalar::I8 => (i8::MIN as i64, i8::MAX as i64),
+                    Scalar::U8 => (0, u8::MAX as i64),
+                    Scalar::I16 => (i16::MIN as i64, i16::MAX as i64),
+                    Scalar::U16 => (0, u16::MAX as i64),
+                    Scalar::I32 => (i32::MIN as i64, i32::MAX as i64),
+                    _ => (0, u32::MAX as i64),
+                };
+                if v < lo || v > hi {
+                    return Err(format!("{v} is out of range for a {} property", type_name(s.attr())));
+                }
+                out.copy_from_slice(&v.to_le_bytes()[..s.size()]);
+            }
+        }
+        Ok(())
     }
     fn at(&self) -> String {
         line_at(self.token_line)
@@ -329,7 +398,11 @@ impl Body for Binary<'_> {
     fn real(&mut self, s: Scalar) -> Result<f32, String> {
         let v = if s == Scalar::F32 {
             let b = self.bytes::<4>()?;
-            if self.big { f32::from_be_bytes(b) } else { f32::from_le_bytes(b) }
+            if self.big {
+                f32::from_be_bytes(b)
+            } else {
+                f32::from_le_bytes(b)
+            }
         } else {
             self.value(s)? as f32
         };
@@ -371,6 +444,19 @@ impl Body for Binary<'_> {
         self.pos = end;
         Ok(())
     }
+    fn raw(&mut self, s: Scalar, out: &mut [u8]) -> Result<(), String> {
+        let n = s.size();
+        let b = self
+            .data
+            .get(self.pos..self.pos + n)
+            .ok_or_else(|| format!("the file ends early (truncated at byte {})", self.data.len()))?;
+        out.copy_from_slice(b);
+        if self.big {
+            out.reverse();
+        }
+        self.pos += n;
+        Ok(())
+    }
     fn at(&self) -> String {
         format!("byte {}", self.pos)
     }
@@ -397,8 +483,9 @@ impl Body for Binary<'_> {
     }
 }
 
-/// Parses a PLY file held in memory.
-pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
+/// Parses a PLY file held in memory; `positions_only`: vertex properties other than
+/// x, y, z skipped.
+pub(crate) fn read(path: &Path, data: &[u8], positions_only: bool) -> Result<Mesh> {
     let src = Src { path };
     let header = parse_header(src, data)?;
     let body = &data[header.body..];
@@ -407,16 +494,16 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
             // Line numbers continue from the header.
             let first = header.lines + 1;
             let mut r = Ascii { data: body, pos: 0, line: first, token_line: first };
-            read_body(src, &header, &mut r)
+            read_body(src, &header, &mut r, positions_only)
         }
         Encoding::LittleEndian | Encoding::BigEndian => {
             let mut r = Binary { data, pos: header.body, big: header.encoding == Encoding::BigEndian };
-            read_body(src, &header, &mut r)
+            read_body(src, &header, &mut r, positions_only)
         }
     }
 }
 
-fn read_body<B: Body>(src: Src, header: &Header, r: &mut B) -> Result<Mesh> {
+fn read_body<B: Body>(src: Src, header: &Header, r: &mut B, positions_only: bool) -> Result<Mesh> {
     let binary = header.encoding != Encoding::Ascii;
     let vertex_count = header.elements.iter().find(|e| e.name == "vertex").map_or(0, |e| e.count);
     if vertex_count > u32::MAX as u64 {
@@ -461,29 +548,57 @@ fn read_body<B: Body>(src: Src, header: &Header, r: &mut B) -> Result<Mesh> {
                 let (Some(x), Some(y), Some(z)) = (slot("x"), slot("y"), slot("z")) else {
                     return Err(src.err("header", "the vertex element lacks an x, y or z property"));
                 };
-                if element.props.iter().any(|p| matches!(p.kind, Kind::List { .. }) && ["x", "y", "z"].contains(&p.name.as_str())) {
+                if element
+                    .props
+                    .iter()
+                    .any(|p| matches!(p.kind, Kind::List { .. }) && ["x", "y", "z"].contains(&p.name.as_str()))
+                {
                     return Err(src.err("header", "vertex x, y, z must be scalar properties"));
                 }
-                mesh.positions.reserve_exact(capped(element.count, r.remaining() + 1, min_record.max(1)));
+                let reserve = capped(element.count, r.remaining() + 1, min_record.max(1));
+                mesh.positions.reserve_exact(reserve);
+                let (mut attributes, slots) = if positions_only {
+                    (Vec::new(), vec![None; element.props.len()])
+                } else {
+                    vertex_attributes(&element.props, [x, y, z], reserve)
+                };
                 for v in 0..element.count {
                     let mut p = [0.0f32; 3];
+                    for a in &mut attributes {
+                        a.data.resize(a.data.len() + a.stride(), 0);
+                    }
                     for (k, prop) in element.props.iter().enumerate() {
-                        let res = match prop.kind {
-                            Kind::Scalar(s) if k == x => r.real(s).map(|c| p[0] = c),
-                            Kind::Scalar(s) if k == y => r.real(s).map(|c| p[1] = c),
-                            Kind::Scalar(s) if k == z => r.real(s).map(|c| p[2] = c),
+                        let res = match (prop.kind, slots[k]) {
+                            (Kind::Scalar(s), _) if k == x => r.real(s).map(|c| p[0] = c),
+                            (Kind::Scalar(s), _) if k == y => r.real(s).map(|c| p[1] = c),
+                            (Kind::Scalar(s), _) if k == z => r.real(s).map(|c| p[2] = c),
+                            (Kind::Scalar(s), Some((a, c))) => {
+                                let at = &mut attributes[a];
+                                let start = v as usize * at.stride() + c * s.size();
+                                r.raw(s, &mut at.data[start..start + s.size()])
+                            }
                             _ => skip_property(r, prop.kind),
                         };
                         res.map_err(|w| src.err(at(r, v), w))?;
                     }
                     mesh.positions.push(p);
                 }
+                for a in &mut attributes {
+                    if a.name == "TEXCOORD_0" {
+                        for v in 0..a.len() {
+                            a.set(v, 1, 1.0 - a.get(v, 1));
+                        }
+                    }
+                }
+                mesh.attributes = attributes;
             }
             "face" => {
                 let list = element
                     .props
                     .iter()
-                    .position(|p| (p.name == "vertex_indices" || p.name == "vertex_index") && matches!(p.kind, Kind::List { .. }))
+                    .position(|p| {
+                        (p.name == "vertex_indices" || p.name == "vertex_index") && matches!(p.kind, Kind::List { .. })
+                    })
                     .ok_or_else(|| src.err("header", "the face element has no 'vertex_indices' list"))?;
                 let reserve = capped(element.count, r.remaining() + 1, min_record.max(1));
                 mesh.face_offsets.reserve(reserve);
@@ -494,7 +609,9 @@ fn read_body<B: Body>(src: Src, header: &Header, r: &mut B) -> Result<Mesh> {
                             Kind::List { count, item } if k == list => {
                                 let n = r.int(count).map_err(|w| src.err(at(r, f), w))?;
                                 if n < 3 {
-                                    return Err(src.err(at(r, f), format!("face {f} has {n} vertices, needs at least 3")));
+                                    return Err(
+                                        src.err(at(r, f), format!("face {f} has {n} vertices, needs at least 3"))
+                                    );
                                 }
                                 r.check_list(n as u64, item).map_err(|w| src.err(at(r, f), w))?;
                                 for _ in 0..n {
@@ -541,7 +658,9 @@ fn read_body<B: Body>(src: Src, header: &Header, r: &mut B) -> Result<Mesh> {
                                     } else if i < 0 || i as u64 >= vertex_count {
                                         return Err(src.err(
                                             at(r, s),
-                                            format!("strip index {i} refers to a vertex but the file has {nv} vertices"),
+                                            format!(
+                                                "strip index {i} refers to a vertex but the file has {nv} vertices"
+                                            ),
                                         ));
                                     } else {
                                         strip.push(i as u32);
@@ -570,15 +689,134 @@ fn read_body<B: Body>(src: Src, header: &Header, r: &mut B) -> Result<Mesh> {
     }
     if let Some((at, what)) = r.extra() {
         let counts: Vec<String> = header.elements.iter().map(|e| format!("{} '{}'", e.count, e.name)).collect();
-        return Err(src.err(
-            at,
-            format!(
-                "data after the last record the header announces ({}): {what}",
-                counts.join(", ")
-            ),
-        ));
+        return Err(
+            src.err(at, format!("data after the last record the header announces ({}): {what}", counts.join(", ")))
+        );
     }
     Ok(mesh)
+}
+
+/// Property names that make one glTF attribute together, tried in this order: the
+/// attribute's name and its components' property names.
+const KNOWN: &[(&str, &[&str])] = &[
+    ("NORMAL", &["nx", "ny", "nz"]),
+    ("TEXCOORD_0", &["s", "t"]),
+    ("TEXCOORD_0", &["u", "v"]),
+    ("TEXCOORD_0", &["texture_u", "texture_v"]),
+    ("COLOR_0", &["red", "green", "blue", "alpha"]),
+    ("COLOR_0", &["red", "green", "blue"]),
+];
+
+/// The attributes of the vertex element's scalar properties other than `x`, `y`, `z`
+/// (`xyz` their slots), empty with room for `reserve` vertices, and for each property
+/// its attribute and component. A set of [`KNOWN`] names of one type makes one
+/// attribute (texture coordinates only as floats; integer colours are normalized);
+/// every other scalar property is an attribute of its own name and type. List
+/// properties get no slot (they are skipped).
+fn vertex_attributes(
+    props: &[Property],
+    xyz: [usize; 3],
+    reserve: usize,
+) -> (Vec<Attribute>, Vec<Option<(usize, usize)>>) {
+    let mut slots: Vec<Option<(usize, usize)>> = vec![None; props.len()];
+    let mut attributes: Vec<Attribute> = Vec::new();
+    let scalar = |k: usize| match props[k].kind {
+        Kind::Scalar(s) if !xyz.contains(&k) => Some(s),
+        _ => None,
+    };
+    let add = |attributes: &mut Vec<Attribute>, name: String, s: Scalar, comps: usize, normalized: bool| {
+        let stride = comps * s.size();
+        attributes.push(Attribute {
+            name,
+            scalar: s.attr(),
+            components: comps as u8,
+            normalized,
+            data: Vec::with_capacity(reserve.saturating_mul(stride)),
+        });
+        attributes.len() - 1
+    };
+    for &(name, names) in KNOWN {
+        if attributes.iter().any(|a| a.name == name) {
+            continue;
+        }
+        let found: Option<Vec<usize>> = names
+            .iter()
+            .map(|n| props.iter().position(|p| p.name == *n).filter(|&k| scalar(k).is_some() && slots[k].is_none()))
+            .collect();
+        let Some(found) = found else { continue };
+        let s = scalar(found[0]).unwrap_or(Scalar::F32);
+        if found.iter().any(|&k| scalar(k) != Some(s)) || (name == "TEXCOORD_0" && !s.is_float()) {
+            continue;
+        }
+        let a = add(&mut attributes, name.to_string(), s, found.len(), name == "COLOR_0" && !s.is_float());
+        for (c, &k) in found.iter().enumerate() {
+            slots[k] = Some((a, c));
+        }
+    }
+    for k in 0..props.len() {
+        if let (Some(s), None) = (scalar(k), slots[k]) {
+            if attributes.iter().any(|a| a.name == props[k].name) {
+                continue; // a repeated name: the first is kept
+            }
+            let a = add(&mut attributes, props[k].name.clone(), s, 1, false);
+            slots[k] = Some((a, 0));
+        }
+    }
+    (attributes, slots)
+}
+
+/// The PLY property names of an attribute's components (the inverse of [`KNOWN`] and
+/// [`vertex_attributes`]): `nx ny nz`, `s t`, `red green blue [alpha]`, the name itself
+/// for one component, else `name_0`, `name_1`, ...; spaces become `_`.
+fn property_names(a: &Attribute) -> Vec<String> {
+    let n = a.components as usize;
+    let known: Option<&[&str]> = match (a.name.as_str(), n) {
+        ("NORMAL", 3) => Some(&["nx", "ny", "nz"]),
+        ("TEXCOORD_0", 2) if a.scalar.is_float() => Some(&["s", "t"]),
+        ("COLOR_0", 3 | 4) => Some(&["red", "green", "blue", "alpha"][..n]),
+        _ => None,
+    };
+    if let Some(names) = known {
+        return names.iter().map(|s| s.to_string()).collect();
+    }
+    let base: String = a.name.chars().map(|c| if c.is_whitespace() { '_' } else { c }).collect();
+    let base = if base.is_empty() { "attribute".to_string() } else { base };
+    if n == 1 {
+        vec![base]
+    } else {
+        (0..n).map(|c| format!("{base}_{c}")).collect()
+    }
+}
+
+/// The attributes as written: `TEXCOORD_0` flipped back to a bottom-left origin.
+fn attributes_to_write(mesh: &Mesh) -> Vec<Attribute> {
+    mesh.attributes
+        .iter()
+        .map(|a| {
+            let mut a = a.clone();
+            if a.name == "TEXCOORD_0" && a.components == 2 && a.scalar.is_float() {
+                for v in 0..a.len() {
+                    a.set(v, 1, 1.0 - a.get(v, 1));
+                }
+            }
+            a
+        })
+        .collect()
+}
+
+/// Appends one attribute value as ASCII PLY text (floats in their shortest exact form).
+fn push_value(out: &mut Vec<u8>, a: &Attribute, v: usize, c: usize) {
+    use std::io::Write;
+    let x = a.get(v, c);
+    match a.scalar {
+        attr::Scalar::F32 => push_f32(out, x as f32),
+        attr::Scalar::F64 => {
+            let _ = write!(out, "{x:?}");
+        }
+        _ => {
+            let _ = write!(out, "{}", x as i64);
+        }
+    }
 }
 
 fn skip_property<B: Body>(r: &mut B, kind: Kind) -> Result<(), String> {
@@ -607,6 +845,12 @@ pub(crate) fn write(mesh: &Mesh, strips: Option<&StripSet>, ascii: bool) -> Resu
         "ply\nformat {format} 1.0\ncomment written by stripkit\nelement vertex {nv}\n\
          property float x\nproperty float y\nproperty float z\n"
     );
+    let attributes = attributes_to_write(mesh);
+    for a in &attributes {
+        for name in property_names(a) {
+            header.push_str(&format!("property {} {name}\n", type_name(a.scalar)));
+        }
+    }
     let strip_list: Option<Vec<i32>> = match strips {
         Some(set) => {
             let total = set.indices.len() + set.len();
@@ -631,7 +875,21 @@ pub(crate) fn write(mesh: &Mesh, strips: Option<&StripSet>, ascii: bool) -> Resu
     header.push_str("end_header\n");
     out.extend_from_slice(header.as_bytes());
     if ascii {
-        push_position_lines(&mut out, &mesh.positions);
+        for (v, p) in mesh.positions.iter().enumerate() {
+            for (k, &c) in p.iter().enumerate() {
+                if k > 0 {
+                    out.push(b' ');
+                }
+                push_f32(&mut out, c);
+            }
+            for a in &attributes {
+                for c in 0..a.components as usize {
+                    out.push(b' ');
+                    push_value(&mut out, a, v, c);
+                }
+            }
+            out.push(b'\n');
+        }
         match &strip_list {
             Some(list) => {
                 push_u64(&mut out, list.len() as u64);
@@ -648,9 +906,12 @@ pub(crate) fn write(mesh: &Mesh, strips: Option<&StripSet>, ascii: bool) -> Resu
             None => push_face_lines(&mut out, mesh),
         }
     } else {
-        for p in &mesh.positions {
+        for (v, p) in mesh.positions.iter().enumerate() {
             for &c in p {
                 out.extend_from_slice(&c.to_le_bytes());
+            }
+            for a in &attributes {
+                out.extend_from_slice(a.bytes(v));
             }
         }
         match &strip_list {
@@ -682,7 +943,7 @@ mod tests {
     use super::*;
 
     fn parse(bytes: &[u8]) -> Result<Mesh> {
-        read(Path::new("t.ply"), bytes)
+        read(Path::new("t.ply"), bytes, false)
     }
 
     fn format_error(bytes: &[u8]) -> (String, String) {
