@@ -23,7 +23,13 @@ fn bunny_and_horse_replay_and_stay_valid() {
             let s = simplify(&mesh, &opts, &mut |_| {}).unwrap();
             assert!(s.triangles_out() <= input.len().div_ceil(100) + 1, "{file}: {}", s.triangles_out());
             let replay = s.sequence.replay(&mesh, s.sequence.len()).unwrap();
-            assert!(replay.to_mesh() == s.mesh, "{file} {placement:?}: replay differs");
+            // The replay rebuilds the surface (positions and faces); the attributes the
+            // simplifier carried (horse.ply's normals) are not part of the sequence.
+            let r = replay.to_mesh();
+            assert!(
+                r.positions == s.mesh.positions && r.face_offsets == s.mesh.face_offsets && r.face_indices == s.mesh.face_indices,
+                "{file} {placement:?}: replay differs"
+            );
             for (t, &id) in s.mesh.triangulate().tris.iter().zip(&s.triangle_ids) {
                 let n = normal(&s.mesh, *t);
                 let n0 = normal(&mesh, input[id as usize]);
