@@ -33,6 +33,8 @@ mod off;
 mod ply;
 mod stl;
 
+pub use gltf::{PrimitiveReport, Scene, SceneOptions, ScenePrimitive, SceneReport};
+
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::strip::StripSet;

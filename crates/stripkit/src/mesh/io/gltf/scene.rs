@@ -1,0 +1,744 @@
+//! glTF scenes in and out: the whole document kept, every triangle primitive
+//! stripped on its own (issue #15, items 2 and 7).
+//!
+//! [`Scene::read`] keeps the JSON document as it was read and the bytes of its buffers,
+//! and decodes every triangle primitive (modes 4, 5 and 6) into a [`Mesh`]: POSITION,
+//! every other vertex attribute with its type and `normalized` flag
+//! ([`crate::Attribute`], glTF semantic names), the triangles, and one [`Group`] named
+//! after the glTF mesh with the primitive's material. [`Scene::strip`] runs the front
+//! door ([`crate::stripify`]) on each of those meshes, so every primitive's strips are
+//! verified; [`Scene::to_bytes`] and [`Scene::write`] write the document back.
+//!
+//! What changes in the written document, and nothing else:
+//! - **Primitives.** Each stripped primitive becomes a `TRIANGLE_STRIP` (mode 5)
+//!   primitive whose `indices` are its strips stitched by degenerate triangles: core
+//!   glTF that every viewer draws. With [`SceneOptions::restart`] (the default) its mesh
+//!   also gets an `EXT_mesh_primitive_restart` primitive group per stripped primitive:
+//!   the group names that one primitive and an index accessor holding the strips
+//!   separated by the restart value (65535 for `UNSIGNED_SHORT`, 4294967295 for
+//!   `UNSIGNED_INT`). Viewers that read the extension draw one restart strip list,
+//!   the others draw the stitched fallback. The extension is listed in
+//!   `extensionsUsed`, never in `extensionsRequired`. Primitives with morph targets get
+//!   no group (the extension forbids them): they keep the stitched strip only.
+//!   The specification's example falls back to one primitive per strip, sharing the
+//!   restart buffer's bytes; a stitched fallback costs a second index list instead,
+//!   but keeps one draw call per primitive for viewers without the extension (bunny
+//!   has 1,189 strips).
+//! - **Vertex data is not rewritten.** The strips use the primitive's own vertex ids,
+//!   so attributes, morph targets, skins and animations keep their accessors and bytes.
+//! - **Accessors and buffer views** keep their numbers; new index accessors and one new
+//!   buffer view holding all new indices are appended. The old index accessors stay,
+//!   unreferenced, so that nothing that names an accessor by number changes (an
+//!   unknown extension may).
+//! - **Buffers** are merged into one: the old buffers one after the other, each at a
+//!   4-byte aligned offset (the buffer views' `buffer` and `byteOffset` rewritten to
+//!   match), then the new indices. In a `.glb` it is the binary chunk; in a `.gltf` a
+//!   base64 `data:` URI, so external `.bin` files are embedded. Images keep their `uri`
+//!   as written: an image file beside the input must sit beside the output too.
+//!
+//! Scenes, nodes and transforms, materials, textures, images, samplers, skins,
+//! animations, cameras, `extras` and unknown extensions are written as read (object
+//! keys come out sorted). Before bytes are returned they are read back: per primitive,
+//! the decoded triangles (the stitched fallback and the restart group) must equal the
+//! input's as oriented triangles, and the positions and every attribute must be the
+//! same bytes, so every corner keeps its values.
+//!
+//! Reading follows [`ReadOptions`] (external buffers only from the asset's folder or
+//! allowed roots, bounded by `byteLength`; every decoded accessor charged to the
+//! decoded-bytes budget before it is allocated). Sparse accessors and accessors without
+//! a buffer view are refused in the primitives' vertex and index data (elsewhere they
+//! pass through untouched), as are the required extensions that change how geometry is
+//! stored (Draco, meshopt compression, quantization).
+
+use super::{array, at, glb_container, open, parse_glb, parse_json, uint, Budget, Buffer, Doc, View};
+use crate::error::{Error, Result};
+use crate::io::{Format, ReadOptions};
+use crate::mesh::io::common::{close_face, push_fan_triangles, push_strip_triangles, Src};
+use crate::mesh::{Attribute, Group, Mesh, Scalar};
+use crate::strip::{self, StripSet};
+use crate::{Algorithm, Figures, Join, StripOptions};
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// The extension that lets a strip primitive hold restart indices.
+pub const RESTART_EXTENSION: &str = "EXT_mesh_primitive_restart";
+
+/// Required extensions after which the vertex or index bytes cannot be read as plain
+/// accessors.
+const GEOMETRY_EXTENSIONS: [&str; 3] =
+    ["KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization"];
+
+/// A glTF document with its buffers and its triangle primitives decoded; see the
+/// [module documentation](self) for what reading and writing keep.
+#[derive(Clone)]
+pub struct Scene {
+    /// Names the file in errors.
+    name: PathBuf,
+    json: Value,
+    buffers: Vec<Buffer>,
+    views: Vec<View>,
+    primitives: Vec<ScenePrimitive>,
+    options: SceneOptions,
+}
+
+impl std::fmt::Debug for Scene {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Scene")
+            .field("name", &self.name)
+            .field("buffers", &self.buffers.len())
+            .field("primitives", &self.primitives)
+            .finish_non_exhaustive()
+    }
+}
+
+/// One triangle primitive of a [`Scene`].
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct ScenePrimitive {
+    /// The primitive's mesh: its index in the document's `meshes`.
+    pub mesh_index: usize,
+    /// Its index in that mesh's `primitives`.
+    pub primitive_index: usize,
+    /// The mode read: 4 (TRIANGLES), 5 (TRIANGLE_STRIP) or 6 (TRIANGLE_FAN).
+    pub mode: u8,
+    /// The number of morph targets (`targets`).
+    pub targets: usize,
+    /// The indices read (the vertex count for a primitive without indices).
+    pub indices_read: usize,
+    /// The geometry: every vertex of the POSITION accessor (vertex ids are the
+    /// primitive's own), every attribute, one face per triangle (strips and fans
+    /// turned into triangles with their winding, degenerate ones skipped), and one
+    /// group named after the glTF mesh (or `mesh N`), with the material's name (or
+    /// `material N`).
+    pub mesh: Mesh,
+    /// The verified strips once [`Scene::strip`] has run.
+    pub strips: Option<StripSet>,
+}
+
+/// How [`Scene::strip`] writes the strips.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct SceneOptions {
+    /// Add an `EXT_mesh_primitive_restart` group (restart indices) beside each
+    /// stitched strip primitive without morph targets. Default `true`; `false` writes
+    /// plain stitched strips, one primitive per input primitive, without the extension.
+    pub restart: bool,
+}
+
+impl Default for SceneOptions {
+    fn default() -> Self {
+        SceneOptions { restart: true }
+    }
+}
+
+impl SceneOptions {
+    /// Plain stitched strips: no `EXT_mesh_primitive_restart`.
+    pub fn stitched() -> Self {
+        SceneOptions { restart: false }
+    }
+}
+
+/// What [`Scene::strip`] did to one primitive.
+#[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
+pub struct PrimitiveReport {
+    /// Index in the document's `meshes`.
+    pub mesh: usize,
+    /// Index in that mesh's `primitives`.
+    pub primitive: usize,
+    /// The mode read (4, 5 or 6).
+    pub mode_read: u8,
+    /// Indices the primitive had (its vertex count when not indexed).
+    pub indices_read: usize,
+    /// Indices of the stitched strip written as the primitive's `indices`.
+    pub indices_stitched: usize,
+    /// Indices of the restart group, where one is written.
+    pub indices_restart: Option<usize>,
+    /// The algorithm that ran.
+    pub algorithm: &'static str,
+    /// The figures of the strips (METRICS.md).
+    pub figures: Figures,
+}
+
+/// What [`Scene::strip`] did to the whole scene.
+#[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
+pub struct SceneReport {
+    /// One entry per stripped primitive, in document order.
+    pub primitives: Vec<PrimitiveReport>,
+    /// Primitives left as they were: points and lines, and triangle primitives that
+    /// draw nothing.
+    pub skipped: usize,
+    /// Triangles stripped, all primitives together.
+    pub triangles: usize,
+    /// Indices read, all stripped primitives together.
+    pub indices_read: usize,
+    /// Stitched indices written, all together.
+    pub indices_stitched: usize,
+    /// Indices a viewer with primitive restart draws: the restart groups' indices,
+    /// plus the stitched ones of primitives without a group.
+    pub indices_drawn_restart: usize,
+    /// Time of the stripifiers alone, all primitives together, in milliseconds.
+    pub stripify_ms: f64,
+    /// Time of the whole call (door, verification and figures), in milliseconds.
+    pub total_ms: f64,
+}
+
+impl Scene {
+    /// Reads a `.gltf` or `.glb` file (optionally `.gz`) with the default
+    /// [`ReadOptions`].
+    pub fn read(path: &Path) -> Result<Scene> {
+        Scene::read_with(path, &ReadOptions::default())
+    }
+
+    /// [`Scene::read`] with options (external buffers, budgets; see [`ReadOptions`]).
+    pub fn read_with(path: &Path, options: &ReadOptions) -> Result<Scene> {
+        let format = scene_format(path)?;
+        let raw = std::fs::read(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
+        let data = if Format::from_path(path).is_some_and(|(_, gz)| gz) {
+            super::super::gunzip(path, &raw, options.max_decompressed_bytes)?
+        } else {
+            raw
+        };
+        Scene::from_bytes(path, format, &data, options)
+    }
+
+    /// Parses a scene held in memory (uncompressed) as `format` (`Gltf` or `Glb`);
+    /// `path` names it in errors and locates external buffers.
+    pub fn from_bytes(path: &Path, format: Format, data: &[u8], options: &ReadOptions) -> Result<Scene> {
+        let src = Src { path };
+        let (json, bin) = match format {
+            Format::Glb => parse_glb(src, data)?,
+            Format::Gltf => (parse_json(src, data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data), 0)?, None),
+            other => return Err(Error::Invalid(format!("a scene is glTF or GLB, not {other:?}"))),
+        };
+        if let Some(ext) = array(src, &json, "extensionsRequired")?
+            .iter()
+            .filter_map(Value::as_str)
+            .find(|e| GEOMETRY_EXTENSIONS.contains(e))
+        {
+            return Err(src.err(
+                "extensionsRequired",
+                format!("the file requires extension {ext}, which stores geometry in a way stripkit does not read"),
+            ));
+        }
+        let (buffers, views, primitives) = {
+            let doc = open(src, &json, bin, options)?;
+            let mut budget = Budget::new(options, doc.buffer_bytes());
+            let mut primitives = Vec::new();
+            for (m, jm) in array(src, &json, "meshes")?.iter().enumerate() {
+                let prims = match jm.get("primitives") {
+                    Some(Value::Array(a)) => a.as_slice(),
+                    _ => return Err(src.err(at("meshes", m), "'primitives' must be an array")),
+                };
+                for (p, prim) in prims.iter().enumerate() {
+                    if let Some(sp) = decode_primitive(&doc, &json, m, p, prim, &mut budget)? {
+                        primitives.push(sp);
+                    }
+                }
+            }
+            (doc.buffers, doc.views, primitives)
+        };
+        Ok(Scene { name: path.to_path_buf(), json, buffers, views, primitives, options: SceneOptions::default() })
+    }
+
+    /// The JSON document as read.
+    pub fn json(&self) -> &Value {
+        &self.json
+    }
+
+    /// The triangle primitives (modes 4, 5 and 6), in document order. Points and lines
+    /// are not listed; they are written back unchanged.
+    pub fn primitives(&self) -> &[ScenePrimitive] {
+        &self.primitives
+    }
+
+    /// Strips every triangle primitive on its own through the front door
+    /// ([`crate::stripify`], which verifies the strips), with `options` (its join and
+    /// restart index are the door's business: the written forms are chosen by
+    /// `scene_options`, see [`SceneOptions`]). [`Algorithm::Single`] is refused: it
+    /// adds vertices, and a scene's vertex data is not rewritten. Errors name the
+    /// primitive. Calling it again strips again.
+    pub fn strip(&mut self, options: &StripOptions, scene_options: &SceneOptions) -> Result<SceneReport> {
+        if matches!(options.algorithm, Algorithm::Single(_)) {
+            return Err(Error::Invalid(
+                "single adds vertices, and a glTF scene's vertex data is written as read; choose another algorithm"
+                    .into(),
+            ));
+        }
+        let start = Instant::now();
+        let options = options.clone().join(Join::Restart).restart_index(u32::MAX);
+        let mut stripifier = crate::Stripifier::new(options)?;
+        let mut report = SceneReport {
+            primitives: Vec::new(),
+            skipped: array_len(&self.json, "meshes", "primitives") - self.primitives.len(),
+            triangles: 0,
+            indices_read: 0,
+            indices_stitched: 0,
+            indices_drawn_restart: 0,
+            stripify_ms: 0.0,
+            total_ms: 0.0,
+        };
+        let mut stripify_time = Duration::ZERO;
+        for sp in &mut self.primitives {
+            sp.strips = None;
+            if sp.mesh.face_count() == 0 {
+                report.skipped += 1;
+                continue;
+            }
+            let name = |e: Error| {
+                let place =
+                    format!("{}: meshes[{}].primitives[{}]", self.name.display(), sp.mesh_index, sp.primitive_index);
+                match e {
+                    Error::Invalid(m) => Error::Invalid(format!("{place}: {m}")),
+                    Error::Verification(m) => Error::Verification(format!("{place}: {m}")),
+                    other => other,
+                }
+            };
+            let strips = stripifier.stripify(&sp.mesh).map_err(name)?;
+            stripify_time += strips.stripify_time;
+            let set = strips.strips;
+            let stitched = strip::stitched_len(&set);
+            let restart = (scene_options.restart && sp.targets == 0)
+                .then(|| set.iter().filter(|s| s.len() >= 3).map(|s| s.len() + 1).sum::<usize>().saturating_sub(1));
+            report.triangles += strips.figures.triangles;
+            report.indices_read += sp.indices_read;
+            report.indices_stitched += stitched;
+            report.indices_drawn_restart += restart.unwrap_or(stitched);
+            report.primitives.push(PrimitiveReport {
+                mesh: sp.mesh_index,
+                primitive: sp.primitive_index,
+                mode_read: sp.mode,
+                indices_read: sp.indices_read,
+                indices_stitched: stitched,
+                indices_restart: restart,
+                algorithm: strips.algorithm.name(),
+                figures: strips.figures,
+            });
+            sp.strips = Some(set);
+        }
+        self.options = scene_options.clone();
+        report.stripify_ms = stripify_time.as_secs_f64() * 1e3;
+        report.total_ms = start.elapsed().as_secs_f64() * 1e3;
+        Ok(report)
+    }
+
+    /// The document as a `.glb` or `.gltf` file (`format`), read back and checked
+    /// (see the [module documentation](self)) before it is returned. Without
+    /// [`Scene::strip`] the primitives are written as read (buffers merged).
+    pub fn to_bytes(&self, format: Format) -> Result<Vec<u8>> {
+        let (mut json, bin) = self.build()?;
+        let bytes = match format {
+            Format::Glb => glb_container(&json, bin)?,
+            Format::Gltf => {
+                if let Some(b) = json.get_mut("buffers").and_then(|b| b.get_mut(0)) {
+                    b["uri"] =
+                        Value::String(format!("data:application/octet-stream;base64,{}", super::base64_encode(&bin)));
+                }
+                serde_json::to_vec(&json).map_err(|e| Error::Invalid(format!("cannot encode glTF JSON: {e}")))?
+            }
+            other => return Err(Error::Invalid(format!("a scene is written as glTF or GLB, not {other:?}"))),
+        };
+        self.check_written(format, &bytes)?;
+        Ok(bytes)
+    }
+
+    /// Writes the scene to `path` (`.gltf` or `.glb`, optionally `.gz`), atomically,
+    /// after the check of [`Scene::to_bytes`].
+    pub fn write(&self, path: &Path) -> Result<()> {
+        let bytes = self.to_bytes(scene_format(path)?)?;
+        crate::io::write_encoded(path, &bytes)
+    }
+
+    /// The JSON and the one binary buffer to write.
+    fn build(&self) -> Result<(Value, Vec<u8>)> {
+        let mut json = self.json.clone();
+        let mut bin = Vec::new();
+        let mut base = Vec::with_capacity(self.buffers.len());
+        for b in &self.buffers {
+            pad4(&mut bin);
+            base.push(bin.len());
+            bin.extend_from_slice(b);
+        }
+        if let Some(Value::Array(views)) = json.get_mut("bufferViews") {
+            for (v, view) in views.iter_mut().zip(&self.views) {
+                let offset = base[view.buffer] + view.offset;
+                v["buffer"] = 0.into();
+                if offset != view.offset {
+                    v["byteOffset"] = offset.into();
+                }
+            }
+        }
+        let stripped: Vec<&ScenePrimitive> = self.primitives.iter().filter(|p| p.strips.is_some()).collect();
+        // (mesh, primitive, restart accessor) of the groups to write.
+        let mut groups: Vec<(usize, usize, usize)> = Vec::new();
+        if !stripped.is_empty() {
+            pad4(&mut bin);
+            let view_start = bin.len();
+            let view = push_array(&mut json, "bufferViews", Value::Null);
+            let mut accessors = std::mem::take(&mut json["accessors"]);
+            if !accessors.is_array() {
+                accessors = json!([]);
+            }
+            let mut add = |bin: &mut Vec<u8>, indices: &[u32], wide: bool| -> usize {
+                pad4(bin);
+                let offset = bin.len() - view_start;
+                for &i in indices {
+                    if wide {
+                        bin.extend_from_slice(&i.to_le_bytes());
+                    } else {
+                        bin.extend_from_slice(&(i as u16).to_le_bytes());
+                    }
+                }
+                let list = accessors.as_array_mut().expect("made an array above");
+                list.push(json!({
+                    "bufferView": view, "byteOffset": offset, "componentType": if wide { 5125 } else { 5123 },
+                    "count": indices.len(), "type": "SCALAR",
+                }));
+                list.len() - 1
+            };
+            for sp in &stripped {
+                let set = sp.strips.as_ref().expect("filtered above");
+                // 65535 is the u16 restart value, never a vertex id.
+                let wide = sp.mesh.vertex_count() >= u16::MAX as usize;
+                let stitched = add(&mut bin, &strip::encode_stitched(set), wide);
+                let prim = &mut json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
+                prim["indices"] = stitched.into();
+                prim["mode"] = 5.into();
+                if self.options.restart && sp.targets == 0 {
+                    let restart = if wide { u32::MAX } else { u16::MAX as u32 };
+                    let list: StripSet =
+                        StripSet::from_strips(&set.iter().filter(|s| s.len() >= 3).collect::<Vec<_>>());
+                    let acc = add(&mut bin, &strip::encode_restart(&list, restart), wide);
+                    groups.push((sp.mesh_index, sp.primitive_index, acc));
+                }
+            }
+            json["accessors"] = accessors;
+            json["bufferViews"][view] =
+                json!({"buffer": 0, "byteOffset": view_start, "byteLength": bin.len() - view_start, "target": 34963});
+            // Old restart groups naming a rewritten primitive would draw stale indices.
+            let mut meshes: Vec<usize> = stripped.iter().map(|p| p.mesh_index).collect();
+            meshes.dedup();
+            for m in meshes {
+                let rewritten: Vec<usize> =
+                    stripped.iter().filter(|p| p.mesh_index == m).map(|p| p.primitive_index).collect();
+                let mesh = &mut json["meshes"][m];
+                let mut kept: Vec<Value> = mesh
+                    .pointer(&format!("/extensions/{RESTART_EXTENSION}/primitiveGroups"))
+                    .and_then(Value::as_array)
+                    .map(|g| {
+                        g.iter()
+                            .filter(|g| {
+                                !g.get("primitives").and_then(Value::as_array).is_some_and(|ps| {
+                                    ps.iter().any(|p| p.as_u64().is_some_and(|p| rewritten.contains(&(p as usize))))
+                                })
+                            })
+                            .cloned()
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                for &(_, p, acc) in groups.iter().filter(|g| g.0 == m) {
+                    kept.push(json!({"primitives": [p], "indices": acc}));
+                }
+                let has_ext = mesh.pointer(&format!("/extensions/{RESTART_EXTENSION}")).is_some();
+                if kept.is_empty() {
+                    if has_ext {
+                        if let Some(Value::Object(ext)) = mesh.get_mut("extensions") {
+                            ext.remove(RESTART_EXTENSION);
+                            if ext.is_empty() {
+                                mesh.as_object_mut().expect("a mesh is an object").remove("extensions");
+                            }
+                        }
+                    }
+                } else {
+                    if !mesh.get("extensions").is_some_and(Value::is_object) {
+                        mesh["extensions"] = json!({});
+                    }
+                    mesh["extensions"][RESTART_EXTENSION] = json!({"primitiveGroups": kept});
+                }
+            }
+        }
+        let used = json
+            .get("meshes")
+            .and_then(Value::as_array)
+            .is_some_and(|ms| ms.iter().any(|m| m.pointer(&format!("/extensions/{RESTART_EXTENSION}")).is_some()));
+        let listed = json
+            .get("extensionsUsed")
+            .and_then(Value::as_array)
+            .is_some_and(|l| l.iter().any(|e| e == RESTART_EXTENSION));
+        if used && !listed {
+            push_array(&mut json, "extensionsUsed", RESTART_EXTENSION.into());
+        } else if !used && listed {
+            if let Some(Value::Array(l)) = json.get_mut("extensionsUsed") {
+                l.retain(|e| e != RESTART_EXTENSION);
+            }
+        }
+        if bin.is_empty() && self.buffers.is_empty() {
+            return Ok((json, bin));
+        }
+        let mut buffer = match self.json.pointer("/buffers/0") {
+            Some(Value::Object(b)) => b.clone(),
+            _ => serde_json::Map::new(),
+        };
+        buffer.remove("uri");
+        pad4(&mut bin);
+        buffer.insert("byteLength".into(), bin.len().into());
+        json["buffers"] = json!([buffer]);
+        Ok((json, bin))
+    }
+
+    /// Reads `bytes` back and compares every primitive with this scene's.
+    fn check_written(&self, format: Format, bytes: &[u8]) -> Result<()> {
+        let name = PathBuf::from(format!("the {format:?} bytes to be written"));
+        let back = Scene::from_bytes(&name, format, bytes, &ReadOptions::default())?;
+        let fail = |sp: &ScenePrimitive, what: String| {
+            Error::Verification(format!(
+                "{}, read back: meshes[{}].primitives[{}]: {what}",
+                name.display(),
+                sp.mesh_index,
+                sp.primitive_index
+            ))
+        };
+        if back.primitives.len() != self.primitives.len() {
+            return Err(Error::Verification(format!(
+                "{}, read back: {} triangle primitives instead of {}",
+                name.display(),
+                back.primitives.len(),
+                self.primitives.len()
+            )));
+        }
+        let doc = back.doc();
+        for (a, b) in self.primitives.iter().zip(&back.primitives) {
+            if (a.mesh_index, a.primitive_index) != (b.mesh_index, b.primitive_index) {
+                return Err(fail(
+                    a,
+                    format!("came back as meshes[{}].primitives[{}]", b.mesh_index, b.primitive_index),
+                ));
+            }
+            if a.mesh.positions != b.mesh.positions {
+                return Err(fail(a, "positions differ".into()));
+            }
+            if a.mesh.attributes != b.mesh.attributes {
+                return Err(fail(a, "vertex attributes differ".into()));
+            }
+            let want = a.mesh.triangulate().tris;
+            let got = b.mesh.triangulate().tris;
+            if a.strips.is_none() {
+                if want != got {
+                    return Err(fail(a, "the triangles of a primitive written as read differ".into()));
+                }
+                continue;
+            }
+            let v = strip::verify_triangles(&want, &got);
+            if !v.ok() {
+                return Err(fail(a, format!("stitched strip: {v}")));
+            }
+            let group = back.json["meshes"][b.mesh_index]
+                .pointer(&format!("/extensions/{RESTART_EXTENSION}/primitiveGroups"))
+                .and_then(Value::as_array)
+                .and_then(|gs| gs.iter().find(|g| g["primitives"] == json!([b.primitive_index])));
+            let expect_group = self.options.restart && a.targets == 0;
+            match (group, expect_group) {
+                (Some(g), true) => {
+                    let acc = g["indices"].as_u64().ok_or_else(|| fail(a, "restart group without indices".into()))?;
+                    let mut list = Vec::new();
+                    doc.read_indices(acc as usize, &mut list, &mut |_| Ok(()))?;
+                    let n = a.mesh.vertex_count();
+                    let restart = if n >= u16::MAX as usize { u32::MAX } else { u16::MAX as u32 };
+                    if list.iter().any(|&i| i != restart && i as usize >= n) {
+                        return Err(fail(a, "restart indices out of range".into()));
+                    }
+                    let decoded = strip::decode(&strip::decode_restart(&list, restart));
+                    let v = strip::verify_triangles(&want, &decoded);
+                    if !v.ok() {
+                        return Err(fail(a, format!("restart group: {v}")));
+                    }
+                }
+                (None, false) => {}
+                (Some(_), false) => return Err(fail(a, "a restart group where none belongs".into())),
+                (None, true) => return Err(fail(a, "its restart group is missing".into())),
+            }
+        }
+        Ok(())
+    }
+
+    /// A reader over the scene's own buffers.
+    fn doc(&self) -> Doc<'_> {
+        Doc {
+            src: Src { path: &self.name },
+            buffers: self.buffers.clone(),
+            views: self.views.clone(),
+            accessors: self.json.get("accessors").and_then(Value::as_array).map_or(&[], Vec::as_slice),
+        }
+    }
+}
+
+/// The scene format a path names.
+fn scene_format(path: &Path) -> Result<Format> {
+    match Format::from_path(path) {
+        Some((f @ (Format::Gltf | Format::Glb), _)) => Ok(f),
+        _ => Err(Error::Invalid(format!("{}: a scene is a .gltf or .glb file", path.display()))),
+    }
+}
+
+/// Pads to a multiple of 4 bytes.
+fn pad4(bin: &mut Vec<u8>) {
+    bin.resize(bin.len().next_multiple_of(4), 0);
+}
+
+/// Appends `value` to the array `key` of `json` (made if absent) and returns its index.
+fn push_array(json: &mut Value, key: &str, value: Value) -> usize {
+    if !json.get(key).is_some_and(Value::is_array) {
+        json[key] = json!([]);
+    }
+    let list = json[key].as_array_mut().expect("made an array above");
+    list.push(value);
+    list.len() - 1
+}
+
+/// The number of `inner` entries of all `outer` entries (primitives of all meshes).
+fn array_len(json: &Value, outer: &str, inner: &str) -> usize {
+    json.get(outer)
+        .and_then(Value::as_array)
+        .map_or(0, |l| l.iter().map(|m| m.get(inner).and_then(Value::as_array).map_or(0, Vec::len)).sum())
+}
+
+/// The scalar type of a glTF component type (already checked to be one of the six).
+fn scalar_of(component: u64) -> Scalar {
+    match component {
+        5120 => Scalar::I8,
+        5121 => Scalar::U8,
+        5122 => Scalar::I16,
+        5123 => Scalar::U16,
+        5125 => Scalar::U32,
+        _ => Scalar::F32,
+    }
+}
+
+/// Decodes primitive `p` of mesh `m`; `None` for points and lines.
+fn decode_primitive(
+    doc: &Doc,
+    json: &Value,
+    m: usize,
+    p: usize,
+    prim: &Value,
+    budget: &mut Budget,
+) -> Result<Option<ScenePrimitive>> {
+    let src = doc.src;
+    let place = || format!("meshes[{m}].primitives[{p}]");
+    let mode = uint(src, prim, "mode", &place)?.unwrap_or(4);
+    if mode > 6 {
+        return Err(src.err(place(), format!("unknown primitive mode {mode}")));
+    }
+    if mode < 4 {
+        return Ok(None);
+    }
+    let Some(Value::Object(attributes)) = prim.get("attributes") else {
+        return Err(src.err(place(), "'attributes' must be an object"));
+    };
+    let pos = attributes
+        .get("POSITION")
+        .ok_or_else(|| src.err(place(), "the primitive has no POSITION attribute"))?
+        .as_u64()
+        .ok_or_else(|| src.err(place(), "POSITION must be an accessor index"))? as usize;
+    let mut mesh = Mesh::new();
+    let mut charge = |count: usize| {
+        budget.charge(src, &place(), 12 * count as u64, || format!("accessors[{pos}]: {count} vertices"))
+    };
+    doc.read_positions(pos, &mut mesh.positions, &mut charge)?;
+    let count = mesh.positions.len();
+    if count > u32::MAX as usize - 1 {
+        return Err(src.err(place(), "more than 4294967294 vertices"));
+    }
+    for (name, acc) in attributes.iter().filter(|(name, _)| *name != "POSITION") {
+        let acc = acc.as_u64().ok_or_else(|| src.err(place(), format!("{name} must be an accessor index")))? as usize;
+        let mut charge =
+            |bytes: usize| budget.charge(src, &place(), bytes as u64, || format!("accessors[{acc}]: attribute {name}"));
+        let (a, data) = doc.read_packed(acc, &mut charge)?;
+        if a.count != count {
+            return Err(src.err(
+                place(),
+                format!("attribute {name} (accessors[{acc}]) has {} values but POSITION has {count}", a.count),
+            ));
+        }
+        let normalized = doc.accessors[acc].get("normalized").and_then(Value::as_bool).unwrap_or(false);
+        mesh.attributes.push(Attribute {
+            name: name.clone(),
+            scalar: scalar_of(a.component),
+            components: a.components as u8,
+            normalized,
+            data,
+        });
+    }
+    let mut indices = Vec::new();
+    let face_bytes = |n: usize| -> u64 {
+        let n = n as u64;
+        if mode == 4 {
+            4 * n + 4 * (n / 3)
+        } else {
+            16 * n.saturating_sub(2)
+        }
+    };
+    match uint(src, prim, "indices", &place)? {
+        Some(acc) => {
+            let mut charge =
+                |n: usize| budget.charge(src, &place(), face_bytes(n), || format!("accessors[{acc}]: {n} indices"));
+            doc.read_indices(acc as usize, &mut indices, &mut charge)?;
+            if let Some((k, &i)) = indices.iter().enumerate().find(|(_, &i)| i as usize >= count) {
+                return Err(src.err(
+                    place(),
+                    format!("index {k} refers to vertex {i} but its POSITION accessor {pos} has {count} vertices"),
+                ));
+            }
+        }
+        None => {
+            budget.charge(src, &place(), face_bytes(count), || {
+                format!("POSITION accessors[{pos}] drawn without indices: {count} vertices")
+            })?;
+            indices.extend(0..count as u32)
+        }
+    }
+    if mode == 4 && indices.len() % 3 != 0 {
+        return Err(src.err(
+            place(),
+            format!(
+                "TRIANGLES needs a multiple of 3 indices but has {} ({} left over)",
+                indices.len(),
+                indices.len() % 3
+            ),
+        ));
+    }
+    let res = match mode {
+        4 => indices.chunks_exact(3).try_for_each(|t| {
+            mesh.face_indices.extend_from_slice(t);
+            close_face(&mut mesh)
+        }),
+        5 => push_strip_triangles(&mut mesh, &indices),
+        _ => push_fan_triangles(&mut mesh, &indices),
+    };
+    res.map_err(|w| src.err(place(), w))?;
+    let mesh_name = json["meshes"][m].get("name").and_then(Value::as_str).map_or(format!("mesh {m}"), String::from);
+    let material = uint(src, prim, "material", &place)?.map(|k| {
+        json.get("materials")
+            .and_then(|ms| ms.get(k as usize))
+            .and_then(|mat| mat.get("name"))
+            .and_then(Value::as_str)
+            .map_or(format!("material {k}"), String::from)
+    });
+    mesh.groups = vec![Group { name: mesh_name, material }];
+    let targets = match prim.get("targets") {
+        None => 0,
+        Some(Value::Array(t)) => t.len(),
+        Some(_) => return Err(src.err(place(), "'targets' must be an array")),
+    };
+    Ok(Some(ScenePrimitive {
+        mesh_index: m,
+        primitive_index: p,
+        mode: mode as u8,
+        targets,
+        indices_read: indices.len(),
+        mesh,
+        strips: None,
+    }))
+}
