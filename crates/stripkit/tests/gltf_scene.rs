@@ -83,7 +83,7 @@ fn asset() -> (Value, Vec<u8>) {
     let mut inter = Vec::new();
     for q in &sphere.positions {
         let l = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt();
-        let uv = [0.5 + q[0].atan2(q[2]) / 6.2831855, 0.5 - q[1].asin() / 3.1415927];
+        let uv = [0.5 + q[0].atan2(q[2]) / std::f32::consts::TAU, 0.5 - q[1].asin() / std::f32::consts::PI];
         for x in [q[0] / l, q[1] / l, q[2] / l, uv[0], uv[1]] {
             inter.extend_from_slice(&x.to_le_bytes());
         }
@@ -426,7 +426,8 @@ fn single_is_refused_for_scenes() {
 #[test]
 fn hostile_references_are_clear_errors() {
     let (json, bin) = asset();
-    let cases: Vec<(&str, Box<dyn Fn(&mut Value)>, &str)> = vec![
+    type Change = Box<dyn Fn(&mut Value)>;
+    let cases: Vec<(&str, Change, &str)> = vec![
         ("accessor past its view", Box::new(|j| j["accessors"][0]["count"] = 1_000_000.into()), "truncated"),
         ("huge count", Box::new(|j| j["accessors"][5]["count"] = u64::MAX.into()), "accessors[5]"),
         ("bufferView index", Box::new(|j| j["accessors"][1]["bufferView"] = 99.into()), "bufferView 99"),
