@@ -34,6 +34,7 @@ use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 
+mod from_mesh;
 mod scene;
 pub use scene::{PrimitiveReport, Scene, SceneOptions, ScenePrimitive, SceneReport};
 
