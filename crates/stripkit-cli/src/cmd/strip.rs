@@ -459,6 +459,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
     let mesh = args.read.read(&args.input)?;
+    // A mesh with attributes or several groups, written as glTF: one primitive per
+    // group with its attributes, each stripped on its own (io::Scene::from_mesh).
+    if matches!(kind, OutKind::Mesh(Format::Gltf | Format::Glb))
+        && (!mesh.attributes.is_empty() || mesh.group_count() > 1)
+        && args.join != Join::Separate
+        && args.strip.algo != Algo::Single
+        && args.restart_index == DEFAULT_RESTART
+        && mesh.face_count() > 0
+    {
+        progress.finish_and_clear();
+        let scene = stripkit::io::Scene::from_mesh(&mesh).map_err(|e| anyhow::anyhow!(e).context(format!("{}", args.input.display())))?;
+        for note in scene.notes() {
+            eprintln!("note: {}: {note}", args.input.display());
+        }
+        return strip_scene(&args, scene);
+    }
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
     let strips = args.strip.stripify(&mesh, &args.input, |o| with_join(&args, o))?;
@@ -518,11 +534,10 @@ struct SceneCliReport<'a> {
 /// groups beside the stitched strips, `--join degenerate` writes the stitched strips
 /// alone.
 fn run_scene(args: &Args) -> anyhow::Result<()> {
-    use stripkit::io::{Scene, SceneOptions};
+    use stripkit::io::Scene;
     let invalid = |m: String| -> anyhow::Result<()> { Err(Error::Invalid(m).into()) };
-    let scene_options = match args.join {
-        Join::Restart => SceneOptions::default(),
-        Join::Degenerate => SceneOptions::stitched(),
+    match args.join {
+        Join::Restart | Join::Degenerate => {}
         Join::Separate => {
             return invalid(
                 "--join separate does not apply to a glTF scene, where each primitive becomes one strip primitive: \
@@ -531,7 +546,7 @@ fn run_scene(args: &Args) -> anyhow::Result<()> {
                     .into(),
             )
         }
-    };
+    }
     if args.restart_index != DEFAULT_RESTART {
         return invalid(
             "--restart-index does not apply to a glTF scene: the restart value is the largest of the index type \
@@ -545,13 +560,22 @@ fn run_scene(args: &Args) -> anyhow::Result<()> {
                 .into(),
         );
     }
-    let progress = indicatif::ProgressBar::new_spinner();
-    progress.enable_steady_tick(std::time::Duration::from_millis(120));
-    progress.set_message(format!("reading {}", args.input.display()));
-    let mut scene = Scene::read_with(&args.input, &args.read.options())?;
+    let scene = Scene::read_with(&args.input, &args.read.options())?;
     if scene.primitives().iter().all(|p| p.mesh.face_count() == 0) {
         return invalid(format!("no faces in {}", args.input.display()));
     }
+    strip_scene(args, scene)
+}
+
+/// Strips a scene's primitives, writes it and reports, for [`run_scene`] and for a
+/// mesh with attributes or groups written as glTF.
+fn strip_scene(args: &Args, mut scene: stripkit::io::Scene) -> anyhow::Result<()> {
+    let scene_options = match args.join {
+        Join::Degenerate => stripkit::io::SceneOptions::stitched(),
+        _ => stripkit::io::SceneOptions::default(),
+    };
+    let progress = indicatif::ProgressBar::new_spinner();
+    progress.enable_steady_tick(std::time::Duration::from_millis(120));
     for p in scene.primitives() {
         args.strip.check_mesh(&p.mesh, &args.input)?;
     }
@@ -583,7 +607,11 @@ fn run_scene(args: &Args) -> anyhow::Result<()> {
         if r.join == Join::Restart {
             writeln!(out, "  indices restart      {:>10}", s.indices_drawn_restart)?;
         }
-        for p in &s.primitives {
+        const SHOWN: usize = 20;
+        if s.primitives.len() > SHOWN {
+            writeln!(out, "  (the first {SHOWN} of {} primitives; --json lists all)", s.primitives.len())?;
+        }
+        for p in s.primitives.iter().take(SHOWN) {
             writeln!(
                 out,
                 "  meshes[{}].primitives[{}]: {} triangles, {} strips, {} -> {} indices{} ({})",
