@@ -469,11 +469,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         && mesh.face_count() > 0
     {
         progress.finish_and_clear();
+        let start = std::time::Instant::now();
         let scene = stripkit::io::Scene::from_mesh(&mesh).map_err(|e| anyhow::anyhow!(e).context(format!("{}", args.input.display())))?;
         for note in scene.notes() {
             eprintln!("note: {}: {note}", args.input.display());
         }
-        return strip_scene(&args, scene);
+        return strip_scene(&args, scene, start.elapsed());
     }
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
@@ -525,6 +526,10 @@ struct SceneCliReport<'a> {
     input: &'a Path,
     output: &'a Path,
     join: Join,
+    /// Reading and decoding the input, in milliseconds.
+    read_ms: f64,
+    /// Encoding, checking (read back) and writing the output, in milliseconds.
+    write_ms: f64,
     #[serde(flatten)]
     scene: &'a stripkit::io::SceneReport,
 }
@@ -560,16 +565,17 @@ fn run_scene(args: &Args) -> anyhow::Result<()> {
                 .into(),
         );
     }
+    let start = std::time::Instant::now();
     let scene = Scene::read_with(&args.input, &args.read.options())?;
     if scene.primitives().iter().all(|p| p.mesh.face_count() == 0) {
         return invalid(format!("no faces in {}", args.input.display()));
     }
-    strip_scene(args, scene)
+    strip_scene(args, scene, start.elapsed())
 }
 
 /// Strips a scene's primitives, writes it and reports, for [`run_scene`] and for a
 /// mesh with attributes or groups written as glTF.
-fn strip_scene(args: &Args, mut scene: stripkit::io::Scene) -> anyhow::Result<()> {
+fn strip_scene(args: &Args, mut scene: stripkit::io::Scene, read_time: std::time::Duration) -> anyhow::Result<()> {
     let scene_options = match args.join {
         Join::Degenerate => stripkit::io::SceneOptions::stitched(),
         _ => stripkit::io::SceneOptions::default(),
@@ -583,9 +589,18 @@ fn strip_scene(args: &Args, mut scene: stripkit::io::Scene) -> anyhow::Result<()
     let options = args.strip.options(None);
     let report = scene.strip(&options, &scene_options).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
     progress.set_message(format!("writing {}", args.output.display()));
+    let start = std::time::Instant::now();
     scene.write(&args.output)?;
+    let write_ms = start.elapsed().as_secs_f64() * 1e3;
     progress.finish_and_clear();
-    let r = SceneCliReport { input: &args.input, output: &args.output, join: args.join, scene: &report };
+    let r = SceneCliReport {
+        input: &args.input,
+        output: &args.output,
+        join: args.join,
+        read_ms: read_time.as_secs_f64() * 1e3,
+        write_ms,
+        scene: &report,
+    };
     super::print_report(args.json, &r, |out, r| {
         let s = r.scene;
         writeln!(
