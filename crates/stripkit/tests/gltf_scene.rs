@@ -577,3 +577,43 @@ fn a_mesh_with_groups_and_attributes_becomes_one_primitive_per_group() {
     scene.write(&qpath).unwrap();
     support::gltf_validator::validate(&[&path, &qpath]);
 }
+
+#[test]
+fn the_old_index_data_is_dropped_when_every_extension_is_known() {
+    let (mut json, bin) = asset();
+    // Without the unknown extension, old index accessors and views may be reused.
+    json.as_object_mut().unwrap().remove("extensionsUsed");
+    json["materials"][0].as_object_mut().unwrap().remove("extensions");
+    let data = glb(&json, &bin);
+    let mut scene = Scene::from_bytes(Path::new("a.glb"), Format::Glb, &data, &ReadOptions::default()).unwrap();
+    let report = scene.strip(&StripOptions::default(), &SceneOptions::default()).unwrap();
+    let dir = out_dir("gltf_scene_collect");
+    let path = dir.join("collected.glb");
+    scene.write(&path).unwrap();
+    let (oj, ob) = unglb(&std::fs::read(&path).unwrap());
+    let n_acc = json["accessors"].as_array().unwrap().len();
+    // The stitched indices take the old index accessors' numbers (3, 4, 9); the two
+    // sphere restart groups are new.
+    assert_eq!(oj["accessors"].as_array().unwrap().len(), n_acc + 2);
+    for (m, p, old) in [(0, 0, 3), (0, 1, 4), (1, 0, 9)] {
+        assert_eq!(oj["meshes"][m]["primitives"][p]["indices"], old);
+        assert_eq!(drawn(&oj, &ob, m, p, None), drawn(&json, &bin, m, p, None));
+    }
+    for (k, a) in json["accessors"].as_array().unwrap().iter().enumerate() {
+        if ![3, 4, 9].contains(&k) {
+            assert_eq!(oj["accessors"][k], *a, "accessors[{k}] kept");
+        }
+    }
+    assert_eq!(oj["bufferViews"].as_array().unwrap().len(), json["bufferViews"].as_array().unwrap().len());
+    // The buffer holds the vertex, skin and animation data and the new indices only.
+    let old_index_bytes = 2 * 3 * 320 + 4 * 3 * 256;
+    let new_index_bytes = 2
+        * (report.indices_stitched
+            + report.primitives[0].indices_restart.unwrap()
+            + report.primitives[1].indices_restart.unwrap());
+    let len = oj["buffers"][0]["byteLength"].as_u64().unwrap() as usize;
+    assert!(len <= bin.len() - old_index_bytes + new_index_bytes + 64, "{len} bytes");
+    assert!(len >= bin.len() - old_index_bytes + new_index_bytes, "{len} bytes");
+    assert_eq!(untouched(&oj), untouched(&json));
+    support::gltf_validator::validate(&[&path]);
+}

@@ -394,19 +394,39 @@ impl Scene {
     /// The JSON and the one binary buffer to write.
     fn build(&self) -> Result<(Value, Vec<u8>)> {
         let mut json = self.json.clone();
+        let garbage = self.garbage();
         let mut bin = Vec::new();
-        let mut base = Vec::with_capacity(self.buffers.len());
-        for b in &self.buffers {
-            pad4(&mut bin);
-            base.push(bin.len());
-            bin.extend_from_slice(b);
-        }
-        if let Some(Value::Array(views)) = json.get_mut("bufferViews") {
-            for (v, view) in views.iter_mut().zip(&self.views) {
-                let offset = base[view.buffer] + view.offset;
-                v["buffer"] = 0.into();
-                if offset != view.offset {
-                    v["byteOffset"] = offset.into();
+        if garbage.collect {
+            // Each live view's bytes, one after the other: the old index data of
+            // stripped primitives, and bytes no view covers, are left out.
+            if let Some(Value::Array(views)) = json.get_mut("bufferViews") {
+                for (k, (v, view)) in views.iter_mut().zip(&self.views).enumerate() {
+                    if garbage.dead_views.contains(&k) {
+                        continue;
+                    }
+                    pad4(&mut bin);
+                    let offset = bin.len();
+                    bin.extend_from_slice(&self.buffers[view.buffer][view.offset..view.offset + view.length]);
+                    v["buffer"] = 0.into();
+                    if offset != view.offset {
+                        v["byteOffset"] = offset.into();
+                    }
+                }
+            }
+        } else {
+            let mut base = Vec::with_capacity(self.buffers.len());
+            for b in &self.buffers {
+                pad4(&mut bin);
+                base.push(bin.len());
+                bin.extend_from_slice(b);
+            }
+            if let Some(Value::Array(views)) = json.get_mut("bufferViews") {
+                for (v, view) in views.iter_mut().zip(&self.views) {
+                    let offset = base[view.buffer] + view.offset;
+                    v["buffer"] = 0.into();
+                    if offset != view.offset {
+                        v["byteOffset"] = offset.into();
+                    }
                 }
             }
         }
@@ -416,12 +436,17 @@ impl Scene {
         if !stripped.is_empty() {
             pad4(&mut bin);
             let view_start = bin.len();
-            let view = push_array(&mut json, "bufferViews", Value::Null);
+            // The new indices go to a dead view's number where there is one.
+            let view = match garbage.dead_views.first() {
+                Some(&v) => v,
+                None => push_array(&mut json, "bufferViews", Value::Null),
+            };
             let mut accessors = std::mem::take(&mut json["accessors"]);
             if !accessors.is_array() {
                 accessors = json!([]);
             }
-            let mut add = |bin: &mut Vec<u8>, indices: &[u32], wide: bool| -> usize {
+            // `slot`: an old index accessor to replace (its name kept), else a new one.
+            let mut add = |bin: &mut Vec<u8>, indices: &[u32], wide: bool, slot: Option<usize>| -> usize {
                 pad4(bin);
                 let offset = bin.len() - view_start;
                 for &i in indices {
@@ -432,17 +457,31 @@ impl Scene {
                     }
                 }
                 let list = accessors.as_array_mut().expect("made an array above");
-                list.push(json!({
+                let mut acc = json!({
                     "bufferView": view, "byteOffset": offset, "componentType": if wide { 5125 } else { 5123 },
                     "count": indices.len(), "type": "SCALAR",
-                }));
-                list.len() - 1
+                });
+                match slot {
+                    Some(k) => {
+                        if let Some(name) = list[k].get("name") {
+                            acc["name"] = name.clone();
+                        }
+                        list[k] = acc;
+                        k
+                    }
+                    None => {
+                        list.push(acc);
+                        list.len() - 1
+                    }
+                }
             };
             for sp in &stripped {
                 let set = sp.strips.as_ref().expect("filtered above");
                 // 65535 is the u16 restart value, never a vertex id.
                 let wide = sp.mesh.vertex_count() >= u16::MAX as usize;
-                let stitched = add(&mut bin, &strip::encode_stitched(set), wide);
+                let old = self.json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index]["indices"].as_u64();
+                let slot = old.map(|a| a as usize).filter(|a| garbage.reused.contains(a));
+                let stitched = add(&mut bin, &strip::encode_stitched(set), wide, slot);
                 let prim = &mut json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
                 prim["indices"] = stitched.into();
                 prim["mode"] = 5.into();
@@ -450,13 +489,18 @@ impl Scene {
                     let restart = if wide { u32::MAX } else { u16::MAX as u32 };
                     let list: StripSet =
                         StripSet::from_strips(&set.iter().filter(|s| s.len() >= 3).collect::<Vec<_>>());
-                    let acc = add(&mut bin, &strip::encode_restart(&list, restart), wide);
+                    let acc = add(&mut bin, &strip::encode_restart(&list, restart), wide, None);
                     groups.push((sp.mesh_index, sp.primitive_index, acc));
                 }
             }
             json["accessors"] = accessors;
-            json["bufferViews"][view] =
+            let new_view =
                 json!({"buffer": 0, "byteOffset": view_start, "byteLength": bin.len() - view_start, "target": 34963});
+            // Other dead views keep their numbers, over the new indices (nothing uses them).
+            for &v in &garbage.dead_views {
+                json["bufferViews"][v] = new_view.clone();
+            }
+            json["bufferViews"][view] = new_view;
             // Old restart groups naming a rewritten primitive would draw stale indices.
             let mut meshes: Vec<usize> = stripped.iter().map(|p| p.mesh_index).collect();
             meshes.dedup();
@@ -526,6 +570,105 @@ impl Scene {
         buffer.insert("byteLength".into(), bin.len().into());
         json["buffers"] = json!([buffer]);
         Ok((json, bin))
+    }
+
+    /// What writing may drop: the index accessors only stripped primitives use
+    /// (replaced in place by their stitched indices) and the buffer views only those
+    /// use (their bytes left out). Nothing is dropped when the document uses an
+    /// extension not known to name accessors only where [`Scene::garbage`] looks, or
+    /// when nothing was stripped.
+    fn garbage(&self) -> Garbage {
+        let none = Garbage { collect: false, reused: Vec::new(), dead_views: Vec::new() };
+        let known = |e: &str| {
+            e.starts_with("KHR_materials_")
+                || matches!(
+                    e,
+                    "KHR_texture_transform"
+                        | "KHR_lights_punctual"
+                        | "KHR_texture_basisu"
+                        | "EXT_texture_webp"
+                        | "EXT_texture_avif"
+                        | "KHR_mesh_quantization"
+                        | "KHR_xmp_json_ld"
+                        | "KHR_animation_pointer"
+                        | RESTART_EXTENSION
+                )
+        };
+        let used = self.json.get("extensionsUsed").and_then(Value::as_array);
+        if used.is_some_and(|l| !l.iter().all(|e| e.as_str().is_some_and(known)))
+            || self.primitives.iter().all(|p| p.strips.is_none())
+        {
+            return none;
+        }
+        let list = |v: &Value, key: &str| v.get(key).and_then(Value::as_array).cloned().unwrap_or_default();
+        let n_acc = list(&self.json, "accessors").len();
+        let mut other = vec![0u32; n_acc];
+        let mut as_index = vec![0u32; n_acc];
+        let count = |counts: &mut Vec<u32>, v: Option<&Value>| {
+            if let Some(a) = v.and_then(Value::as_u64).filter(|&a| (a as usize) < n_acc) {
+                counts[a as usize] += 1;
+            }
+        };
+        for mesh in list(&self.json, "meshes") {
+            for prim in list(&mesh, "primitives") {
+                count(&mut as_index, prim.get("indices"));
+                for a in prim.get("attributes").and_then(Value::as_object).into_iter().flat_map(|o| o.values()) {
+                    count(&mut other, Some(a));
+                }
+                for t in list(&prim, "targets") {
+                    for a in t.as_object().into_iter().flat_map(|o| o.values()) {
+                        count(&mut other, Some(a));
+                    }
+                }
+            }
+            let groups = mesh.pointer(&format!("/extensions/{RESTART_EXTENSION}/primitiveGroups"));
+            for g in groups.and_then(Value::as_array).into_iter().flatten() {
+                count(&mut other, g.get("indices"));
+            }
+        }
+        for skin in list(&self.json, "skins") {
+            count(&mut other, skin.get("inverseBindMatrices"));
+        }
+        for anim in list(&self.json, "animations") {
+            for s in list(&anim, "samplers") {
+                count(&mut other, s.get("input"));
+                count(&mut other, s.get("output"));
+            }
+        }
+        let mut reused: Vec<usize> = self
+            .primitives
+            .iter()
+            .filter(|p| p.strips.is_some())
+            .filter_map(|p| self.json["meshes"][p.mesh_index]["primitives"][p.primitive_index]["indices"].as_u64())
+            .map(|a| a as usize)
+            .filter(|&a| a < n_acc && as_index[a] == 1 && other[a] == 0)
+            .collect();
+        reused.sort_unstable();
+        reused.dedup();
+        let n_views = self.views.len();
+        let mut live = vec![false; n_views];
+        let mut candidate = vec![false; n_views];
+        for (a, acc) in list(&self.json, "accessors").iter().enumerate() {
+            let refs = [
+                acc.get("bufferView"),
+                acc.pointer("/sparse/indices/bufferView"),
+                acc.pointer("/sparse/values/bufferView"),
+            ];
+            for v in refs.into_iter().flatten().filter_map(Value::as_u64).map(|v| v as usize).filter(|&v| v < n_views) {
+                if reused.binary_search(&a).is_ok() {
+                    candidate[v] = true;
+                } else {
+                    live[v] = true;
+                }
+            }
+        }
+        for image in list(&self.json, "images") {
+            if let Some(v) = image.get("bufferView").and_then(Value::as_u64).filter(|&v| (v as usize) < n_views) {
+                live[v as usize] = true;
+            }
+        }
+        let dead_views = (0..n_views).filter(|&v| candidate[v] && !live[v]).collect();
+        Garbage { collect: true, reused, dead_views }
     }
 
     /// Reads `bytes` back and compares every primitive with this scene's.
@@ -613,6 +756,16 @@ impl Scene {
             accessors: self.json.get("accessors").and_then(Value::as_array).map_or(&[], Vec::as_slice),
         }
     }
+}
+
+/// See [`Scene::garbage`].
+struct Garbage {
+    /// Whether views are copied one by one, leaving out the dead ones' bytes.
+    collect: bool,
+    /// Old index accessors (sorted) whose numbers the stitched indices take.
+    reused: Vec<usize>,
+    /// Views (sorted) only reused accessors referred to.
+    dead_views: Vec<usize>,
 }
 
 /// The scene format a path names.
