@@ -448,6 +448,7 @@ fn hostile_references_are_clear_errors() {
             Box::new(|j| j["extensionsRequired"] = json!(["KHR_draco_mesh_compression"])),
             "KHR_draco_mesh_compression",
         ),
+        ("meshopt", Box::new(|j| j["extensionsUsed"] = json!(["EXT_meshopt_compression"])), "EXT_meshopt_compression"),
         (
             "index range",
             Box::new(|j| j["meshes"][0]["primitives"][0]["attributes"] = json!({"POSITION": 5})),
@@ -616,4 +617,48 @@ fn the_old_index_data_is_dropped_when_every_extension_is_known() {
     assert!(len >= bin.len() - old_index_bytes + new_index_bytes, "{len} bytes");
     assert_eq!(untouched(&oj), untouched(&json));
     support::gltf_validator::validate(&[&path]);
+}
+
+#[test]
+fn external_buffers_are_embedded_and_image_uris_kept() {
+    let (mut json, bin) = asset();
+    let dir = out_dir("gltf_scene_external");
+    std::fs::write(dir.join("scene data.bin"), &bin).unwrap();
+    json["buffers"][0]["uri"] = "scene%20data.bin".into();
+    std::fs::write(dir.join("tex.png"), png_bytes()).unwrap();
+    json["images"][0] = json!({"uri": "tex.png"});
+    let input = dir.join("external.gltf");
+    std::fs::write(&input, serde_json::to_vec(&json).unwrap()).unwrap();
+    let mut scene = Scene::read(&input).unwrap();
+    scene.strip(&StripOptions::default(), &SceneOptions::default()).unwrap();
+    let out = dir.join("external.out.gltf");
+    scene.write(&out).unwrap();
+    let oj: Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert_eq!(oj["buffers"].as_array().unwrap().len(), 1);
+    assert!(oj["buffers"][0]["uri"].as_str().unwrap().starts_with("data:application/octet-stream;base64,"));
+    assert_eq!(oj["images"], json["images"], "image uris as written");
+    let back = Scene::read(&out).unwrap();
+    assert_eq!(back.primitives().len(), 3);
+    for (a, b) in scene.primitives().iter().zip(back.primitives()) {
+        assert_eq!(a.mesh.attributes, b.mesh.attributes);
+        assert_eq!(a.mesh.positions, b.mesh.positions);
+    }
+    support::gltf_validator::validate(&[&input, &out]);
+}
+
+/// The bytes of the generated asset's 1 x 1 PNG.
+fn png_bytes() -> Vec<u8> {
+    let table = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = Vec::new();
+    let (mut acc, mut bits) = (0u32, 0);
+    for c in PNG_1X1.bytes().filter(|&c| c != b'=') {
+        acc = (acc << 6) | table.iter().position(|&t| t == c).unwrap() as u32;
+        bits += 6;
+        if bits >= 8 {
+            bits -= 8;
+            out.push((acc >> bits) as u8);
+            acc &= (1 << bits) - 1;
+        }
+    }
+    out
 }

@@ -26,15 +26,21 @@
 //!   has 1,189 strips).
 //! - **Vertex data is not rewritten.** The strips use the primitive's own vertex ids,
 //!   so attributes, morph targets, skins and animations keep their accessors and bytes.
-//! - **Accessors and buffer views** keep their numbers; new index accessors and one new
-//!   buffer view holding all new indices are appended. The old index accessors stay,
-//!   unreferenced, so that nothing that names an accessor by number changes (an
-//!   unknown extension may).
-//! - **Buffers** are merged into one: the old buffers one after the other, each at a
-//!   4-byte aligned offset (the buffer views' `buffer` and `byteOffset` rewritten to
-//!   match), then the new indices. In a `.glb` it is the binary chunk; in a `.gltf` a
-//!   base64 `data:` URI, so external `.bin` files are embedded. Images keep their `uri`
-//!   as written: an image file beside the input must sit beside the output too.
+//! - **Accessors and buffer views** keep their numbers. When every extension the
+//!   document uses is one known to name accessors only in the places read here
+//!   (materials, texture transforms, lights, KTX2/WebP/AVIF textures, quantization,
+//!   animation pointers, XMP; see `Scene::garbage`), an index accessor that only a
+//!   stripped primitive used takes that primitive's stitched indices, a buffer view
+//!   that only such accessors used takes the new indices, and the old index bytes are
+//!   left out of the file. Otherwise (an unknown extension might name an accessor by
+//!   number) everything is kept and the new accessors and one buffer view for all new
+//!   indices are appended; the old index accessors stay, unreferenced.
+//! - **Buffers** are merged into one: the buffer views' bytes one after the other
+//!   (or, with an unknown extension, the old buffers whole), each at a 4-byte aligned
+//!   offset, the views' `buffer` and `byteOffset` rewritten to match, then the new
+//!   indices. In a `.glb` it is the binary chunk; in a `.gltf` a base64 `data:` URI,
+//!   so external `.bin` files are embedded. Images keep their `uri` as written: an
+//!   image file beside the input must sit beside the output too.
 //!
 //! Scenes, nodes and transforms, materials, textures, images, samplers, skins,
 //! animations, cameras, `extras` and unknown extensions are written as read (object
@@ -48,7 +54,8 @@
 //! decoded-bytes budget before it is allocated). Sparse accessors and accessors without
 //! a buffer view are refused in the primitives' vertex and index data (elsewhere they
 //! pass through untouched), as are the required extensions that change how geometry is
-//! stored (Draco, meshopt compression, quantization).
+//! stored (Draco, meshopt compression, quantization) and `EXT_meshopt_compression`
+//! even where optional (its views name buffers of their own, which merging would break).
 
 use super::{array, at, glb_container, open, parse_glb, parse_json, uint, Budget, Buffer, Doc, View};
 use crate::error::{Error, Result};
@@ -225,6 +232,14 @@ impl Scene {
             return Err(src.err(
                 "extensionsRequired",
                 format!("the file requires extension {ext}, which stores geometry in a way stripkit does not read"),
+            ));
+        }
+        // Its buffer views name buffers and offsets of their own, which merging the
+        // buffers would break.
+        if array(src, &json, "extensionsUsed")?.iter().any(|e| e == "EXT_meshopt_compression") {
+            return Err(src.err(
+                "extensionsUsed",
+                "the file uses EXT_meshopt_compression, whose compressed buffer views stripkit does not rewrite",
             ));
         }
         let (buffers, views, primitives) = {
@@ -674,7 +689,9 @@ impl Scene {
     /// Reads `bytes` back and compares every primitive with this scene's.
     fn check_written(&self, format: Format, bytes: &[u8]) -> Result<()> {
         let name = PathBuf::from(format!("the {format:?} bytes to be written"));
-        let back = Scene::from_bytes(&name, format, bytes, &ReadOptions::default())?;
+        // The input was accepted under the caller's budget; the output decodes to the same.
+        let options = ReadOptions { max_decoded_bytes: Some(u64::MAX), ..ReadOptions::default() };
+        let back = Scene::from_bytes(&name, format, bytes, &options)?;
         let fail = |sp: &ScenePrimitive, what: String| {
             Error::Verification(format!(
                 "{}, read back: meshes[{}].primitives[{}]: {what}",
