@@ -448,6 +448,14 @@ fn hostile_references_are_clear_errors() {
             Box::new(|j| j["extensionsRequired"] = json!(["KHR_draco_mesh_compression"])),
             "KHR_draco_mesh_compression",
         ),
+        (
+            "reused accessors",
+            Box::new(|j| {
+                let p = j["meshes"][0]["primitives"][0].clone();
+                j["meshes"][0]["primitives"] = Value::Array(vec![p; 2000]);
+            }),
+            "ReadOptions::max_decoded_bytes",
+        ),
         ("meshopt", Box::new(|j| j["extensionsUsed"] = json!(["EXT_meshopt_compression"])), "EXT_meshopt_compression"),
         (
             "index range",
