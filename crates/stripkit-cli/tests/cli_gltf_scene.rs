@@ -98,7 +98,20 @@ fn strip_keeps_the_scene_and_writes_strips() {
     assert!(p["meshes"][0].get("extensions").is_none());
     assert_eq!(p["meshes"][0]["primitives"][1]["mode"], 5);
 
-    support::gltf_validator::validate(&[&input, &out, &plain]);
+    // Vertices renumbered by default: each half keeps the 9 vertices it uses, in first use.
+    let n = |j: &Value, k: usize| {
+        let a = j["meshes"][0]["primitives"][k]["attributes"]["POSITION"].as_u64().unwrap() as usize;
+        j["accessors"][a]["count"].as_u64().unwrap()
+    };
+    assert_eq!((n(&j, 0), n(&j, 1)), (9, 9));
+    let kept = tmp("gltf-scene", "kept.glb");
+    let run = stripkit(&["strip", input.to_str().unwrap(), "-o", kept.to_str().unwrap(), "--keep-vertex-order"]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let k = glb_json(&kept);
+    assert_eq!((n(&k, 0), n(&k, 1)), (15, 15));
+    assert_eq!(k["accessors"][0], asset()["accessors"][0], "the shared POSITION accessor as read");
+
+    support::gltf_validator::validate(&[&input, &out, &plain, &kept]);
 }
 
 #[test]
@@ -120,6 +133,11 @@ fn flags_that_mean_nothing_for_a_scene_exit_2() {
         assert!(err.contains(says), "{flags:?}: {err}");
         assert!(!out.exists(), "{flags:?} wrote a file");
     }
+    let ply = tmp("gltf-scene-flags", "out.ply");
+    let run = stripkit(&["strip", input.to_str().unwrap(), "-o", ply.to_str().unwrap(), "--keep-vertex-order"]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("--keep-vertex-order applies to glTF outputs"));
+    assert!(!ply.exists());
 }
 
 #[test]

@@ -311,7 +311,7 @@ fn a_scene_comes_back_whole_with_the_same_triangles_at_every_corner() {
     assert_eq!(prims[1].mesh.groups[0].material.as_deref(), Some("blue"));
     assert_eq!(prims[2].mesh.groups[0].name, "torus");
 
-    let report = scene.strip(&StripOptions::default(), &SceneOptions::default()).unwrap();
+    let report = scene.strip(&StripOptions::default(), &SceneOptions::default().reorder(false)).unwrap();
     assert_eq!(report.primitives.len(), 3);
     assert_eq!(report.skipped, 1, "the points primitive");
     assert_eq!(report.triangles, 576);
@@ -378,7 +378,7 @@ fn a_scene_comes_back_whole_with_the_same_triangles_at_every_corner() {
     }
 
     // Plain stitched strips: no extension.
-    scene.strip(&StripOptions::default(), &SceneOptions::stitched()).unwrap();
+    scene.strip(&StripOptions::default(), &SceneOptions::stitched().reorder(false)).unwrap();
     let plain_path = dir.join("plain.gltf");
     scene.write(&plain_path).unwrap();
     let plain: Value = serde_json::from_slice(&std::fs::read(&plain_path).unwrap()).unwrap();
@@ -595,7 +595,7 @@ fn the_old_index_data_is_dropped_when_every_extension_is_known() {
     json["materials"][0].as_object_mut().unwrap().remove("extensions");
     let data = glb(&json, &bin);
     let mut scene = Scene::from_bytes(Path::new("a.glb"), Format::Glb, &data, &ReadOptions::default()).unwrap();
-    let report = scene.strip(&StripOptions::default(), &SceneOptions::default()).unwrap();
+    let report = scene.strip(&StripOptions::default(), &SceneOptions::default().reorder(false)).unwrap();
     let dir = out_dir("gltf_scene_collect");
     let path = dir.join("collected.glb");
     scene.write(&path).unwrap();
@@ -638,7 +638,7 @@ fn external_buffers_are_embedded_and_image_uris_kept() {
     let input = dir.join("external.gltf");
     std::fs::write(&input, serde_json::to_vec(&json).unwrap()).unwrap();
     let mut scene = Scene::read(&input).unwrap();
-    scene.strip(&StripOptions::default(), &SceneOptions::default()).unwrap();
+    scene.strip(&StripOptions::default(), &SceneOptions::default().reorder(false)).unwrap();
     let out = dir.join("external.out.gltf");
     scene.write(&out).unwrap();
     let oj: Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
@@ -669,4 +669,54 @@ fn png_bytes() -> Vec<u8> {
         }
     }
     out
+}
+
+#[test]
+fn vertices_are_renumbered_in_first_use_and_unused_ones_left_out() {
+    let (json, bin) = asset();
+    let data = glb(&json, &bin);
+    let mut scene = Scene::from_bytes(Path::new("a.glb"), Format::Glb, &data, &ReadOptions::default()).unwrap();
+    scene.strip(&StripOptions::default(), &SceneOptions::default()).unwrap();
+    let dir = out_dir("gltf_scene_reorder");
+    let path = dir.join("reordered.glb");
+    scene.write(&path).unwrap();
+    let (oj, ob) = unglb(&std::fs::read(&path).unwrap());
+    for (m, p) in [(0, 0), (0, 1), (1, 0)] {
+        let prim = &oj["meshes"][m]["primitives"][p];
+        // Same triangles with the same values at every corner, decoded here.
+        assert_eq!(drawn(&oj, &ob, m, p, None), drawn(&json, &bin, m, p, None), "meshes[{m}].primitives[{p}]");
+        // Each sphere half uses about half the sphere's 162 vertices; the torus all 128.
+        let n = oj["accessors"][prim["attributes"]["POSITION"].as_u64().unwrap() as usize]["count"].as_u64().unwrap();
+        if m == 0 {
+            assert!(n < 162, "{n} vertices kept of 162");
+        } else {
+            assert_eq!(n, 128);
+        }
+        for a in prim["attributes"].as_object().unwrap().values() {
+            assert_eq!(oj["accessors"][a.as_u64().unwrap() as usize]["count"].as_u64().unwrap(), n);
+        }
+        // First use: vertex k appears before vertex k + 1 in the stitched strip.
+        let list = index_values(&oj, &ob, prim["indices"].as_u64().unwrap() as usize);
+        let mut next = 0;
+        for &v in &list {
+            assert!(v <= next, "vertex {v} used before {next}");
+            if v == next {
+                next += 1;
+            }
+        }
+        assert_eq!(next as u64, n, "every kept vertex is used");
+    }
+    // The morph target was gathered too: its values follow the positions'.
+    let tprim = &oj["meshes"][1]["primitives"][0];
+    let pos = elements(&oj, &ob, tprim["attributes"]["POSITION"].as_u64().unwrap() as usize);
+    let disp = elements(&oj, &ob, tprim["targets"][0]["POSITION"].as_u64().unwrap() as usize);
+    for (p, d) in pos.iter().zip(&disp) {
+        for c in 0..3 {
+            let x = f32::from_le_bytes(p[4 * c..4 * c + 4].try_into().unwrap());
+            let y = f32::from_le_bytes(d[4 * c..4 * c + 4].try_into().unwrap());
+            assert_eq!(y, x * 0.125);
+        }
+    }
+    assert_eq!(untouched(&oj), untouched(&json));
+    support::gltf_validator::validate(&[&path]);
 }

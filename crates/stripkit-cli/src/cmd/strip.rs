@@ -230,6 +230,11 @@ pub struct Args {
     /// Primitive-restart index for `--join restart`; must not be a vertex id of the mesh.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_RESTART)]
     pub restart_index: u32,
+    /// glTF scenes: keep each primitive's vertices in their order (by default they are
+    /// renumbered in first use by the strips, and vertices the strips do not use are
+    /// left out).
+    #[arg(long)]
+    pub keep_vertex_order: bool,
     /// Print one JSON object with every figure on stdout instead of the text summary.
     #[arg(long)]
     pub json: bool,
@@ -445,6 +450,13 @@ fn with_join(args: &Args, options: StripOptions) -> StripOptions {
 /// Runs the command: read -> door -> encode -> write.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let kind = output_kind(&args.output)?;
+    if args.keep_vertex_order && !matches!(kind, OutKind::Mesh(Format::Gltf | Format::Glb)) {
+        return Err(Error::Invalid(format!(
+            "--keep-vertex-order applies to glTF outputs (.gltf, .glb); {} is not one",
+            args.output.display()
+        ))
+        .into());
+    }
     // Fail before the work when the output cannot be written at all.
     super::check_output_folder(&args.output)?;
     let write_options = super::write_options(args.ascii, &args.output)?;
@@ -579,7 +591,8 @@ fn strip_scene(args: &Args, mut scene: stripkit::io::Scene, read_time: std::time
     let scene_options = match args.join {
         Join::Degenerate => stripkit::io::SceneOptions::stitched(),
         _ => stripkit::io::SceneOptions::default(),
-    };
+    }
+    .reorder(!args.keep_vertex_order);
     let progress = indicatif::ProgressBar::new_spinner();
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     for p in scene.primitives() {

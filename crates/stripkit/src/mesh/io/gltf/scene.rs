@@ -24,8 +24,14 @@
 //!   restart buffer's bytes; a stitched fallback costs a second index list instead,
 //!   but keeps one draw call per primitive for viewers without the extension (bunny
 //!   has 1,189 strips).
-//! - **Vertex data is not rewritten.** The strips use the primitive's own vertex ids,
-//!   so attributes, morph targets, skins and animations keep their accessors and bytes.
+//! - **Vertex order.** With [`SceneOptions::reorder`] (the default) each stripped
+//!   primitive's vertices are renumbered in their first use by its strips and those the
+//!   strips do not use are left out (meshoptimizer's `optimizeVertexFetch`): its
+//!   attributes and morph targets get new accessors with the same properties, the
+//!   values gathered in that order and `min` / `max` recomputed (an accessor only that
+//!   primitive used keeps its number). Without it, or where an accessor is sparse,
+//!   the strips use the primitive's own vertex ids and its vertex data is not touched.
+//!   Skins and animations never change.
 //! - **Accessors and buffer views** keep their numbers. When every extension the
 //!   document uses is one known to name accessors only in the places read here
 //!   (materials, texture transforms, lights, KTX2/WebP/AVIF textures, quantization,
@@ -65,6 +71,7 @@ use crate::mesh::{Attribute, Group, Mesh, Scalar};
 use crate::strip::{self, StripSet};
 use crate::{Algorithm, Figures, Join, StripOptions};
 use serde_json::{json, Value};
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -145,6 +152,9 @@ pub struct ScenePrimitive {
     /// The triangles the strips were verified against (the door's reference: the
     /// faces fanned, or quads split along the diagonals the algorithm chose).
     drawn: Vec<[u32; 3]>,
+    /// With [`SceneOptions::reorder`]: the written vertices, new id to old id (first
+    /// use by the strips; vertices they do not use left out).
+    order: Option<Vec<u32>>,
 }
 
 /// How [`Scene::strip`] writes the strips.
@@ -155,18 +165,30 @@ pub struct SceneOptions {
     /// stitched strip primitive without morph targets. Default `true`; `false` writes
     /// plain stitched strips, one primitive per input primitive, without the extension.
     pub restart: bool,
+    /// Renumber each stripped primitive's vertices in their first use by the strips
+    /// and leave out those the strips do not use (meshoptimizer's
+    /// `optimizeVertexFetch`): its attributes and morph targets are written anew,
+    /// gathered in that order (min / max recomputed). Default `true`. A primitive
+    /// whose vertex data cannot be decoded (a sparse accessor) keeps its order.
+    pub reorder: bool,
 }
 
 impl Default for SceneOptions {
     fn default() -> Self {
-        SceneOptions { restart: true }
+        SceneOptions { restart: true, reorder: true }
     }
 }
 
 impl SceneOptions {
     /// Plain stitched strips: no `EXT_mesh_primitive_restart`.
     pub fn stitched() -> Self {
-        SceneOptions { restart: false }
+        SceneOptions { restart: false, ..SceneOptions::default() }
+    }
+
+    /// Sets [`SceneOptions::reorder`].
+    pub fn reorder(mut self, on: bool) -> Self {
+        self.reorder = on;
+        self
     }
 }
 
@@ -355,8 +377,21 @@ impl Scene {
             total_ms: 0.0,
         };
         let mut stripify_time = Duration::ZERO;
-        for sp in &mut self.primitives {
+        // Whether each primitive's vertex accessors can be read back for reordering.
+        let readable: Vec<bool> = {
+            let doc = self.doc();
+            self.primitives
+                .iter()
+                .map(|sp| {
+                    vertex_accessors(&self.json, sp)
+                        .iter()
+                        .all(|(_, _, a)| doc.read_packed(*a, &mut |_| Ok(())).is_ok())
+                })
+                .collect()
+        };
+        for (sp, readable) in self.primitives.iter_mut().zip(readable) {
             sp.strips = None;
+            sp.order = None;
             if sp.mesh.face_count() == 0 {
                 report.skipped += 1;
                 continue;
@@ -390,6 +425,16 @@ impl Scene {
                 algorithm: strips.algorithm.name(),
                 figures: strips.figures,
             });
+            if scene_options.reorder && readable {
+                let mut seen = vec![false; sp.mesh.vertex_count()];
+                let mut order = Vec::new();
+                for v in strip::encode_stitched(&set) {
+                    if !std::mem::replace(&mut seen[v as usize], true) {
+                        order.push(v);
+                    }
+                }
+                sp.order = Some(order);
+            }
             sp.strips = Some(set);
             sp.drawn = strips.triangles;
         }
@@ -469,17 +514,84 @@ impl Scene {
         // (mesh, primitive, restart accessor) of the groups to write.
         let mut groups: Vec<(usize, usize, usize)> = Vec::new();
         if !stripped.is_empty() {
-            pad4(&mut bin);
-            let view_start = bin.len();
-            // The new indices go to a dead view's number where there is one.
-            let view = match garbage.dead_views.first() {
-                Some(&v) => v,
-                None => push_array(&mut json, "bufferViews", Value::Null),
-            };
+            // New views take dead views' numbers first.
+            let mut free_views: std::collections::VecDeque<usize> = garbage.dead_views.iter().copied().collect();
             let mut accessors = std::mem::take(&mut json["accessors"]);
             if !accessors.is_array() {
                 accessors = json!([]);
             }
+            // Reordered primitives: their vertex data gathered in the strips' order.
+            let mut remapped: Vec<Option<StripSet>> = Vec::with_capacity(stripped.len());
+            for sp in &stripped {
+                let Some(order) = &sp.order else {
+                    remapped.push(None);
+                    continue;
+                };
+                let doc = self.doc();
+                for (target, name, a) in vertex_accessors(&self.json, sp) {
+                    let (acc, data) = doc.read_packed(a, &mut |_| Ok(()))?;
+                    let elem = acc.component_size() * acc.components;
+                    let stride = elem.next_multiple_of(4);
+                    pad4(&mut bin);
+                    let start = bin.len();
+                    for &v in order {
+                        bin.extend_from_slice(&data[v as usize * elem..][..elem]);
+                        bin.resize(bin.len() + stride - elem, 0);
+                    }
+                    let mut view =
+                        json!({"buffer": 0, "byteOffset": start, "byteLength": bin.len() - start, "target": 34962});
+                    if stride != elem {
+                        view["byteStride"] = stride.into();
+                    }
+                    let view = match free_views.pop_front() {
+                        Some(v) => {
+                            json["bufferViews"][v] = view;
+                            v
+                        }
+                        None => push_array(&mut json, "bufferViews", view),
+                    };
+                    let list = accessors.as_array_mut().expect("made an array above");
+                    let mut new = list[a].clone();
+                    if let Some(o) = new.as_object_mut() {
+                        o.remove("byteOffset");
+                        o.remove("sparse");
+                    }
+                    new["bufferView"] = view.into();
+                    new["count"] = order.len().into();
+                    if new.get("min").is_some() || new.get("max").is_some() {
+                        let (lo, hi) = bounds(&acc, &data, order);
+                        new["min"] = lo;
+                        new["max"] = hi;
+                    }
+                    let k = if garbage.reused.binary_search(&a).is_ok() {
+                        list[a] = new;
+                        a
+                    } else {
+                        list.push(new);
+                        list.len() - 1
+                    };
+                    let prim = &mut json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
+                    match target {
+                        None => prim["attributes"][name.as_str()] = k.into(),
+                        Some(t) => prim["targets"][t][name.as_str()] = k.into(),
+                    }
+                }
+                let mut new_id = vec![u32::MAX; sp.mesh.vertex_count()];
+                for (k, &v) in order.iter().enumerate() {
+                    new_id[v as usize] = k as u32;
+                }
+                let set = sp.strips.as_ref().expect("filtered above");
+                let strips: Vec<Vec<u32>> =
+                    set.iter().map(|s| s.iter().map(|&v| new_id[v as usize]).collect()).collect();
+                remapped.push(Some(StripSet::from_strips(&strips)));
+            }
+            pad4(&mut bin);
+            let view_start = bin.len();
+            // The new indices go to a dead view's number where there is one.
+            let view = match free_views.pop_front() {
+                Some(v) => v,
+                None => push_array(&mut json, "bufferViews", Value::Null),
+            };
             // `slot`: an old index accessor to replace (its name kept), else a new one.
             let mut add = |bin: &mut Vec<u8>, indices: &[u32], wide: bool, slot: Option<usize>| -> usize {
                 pad4(bin);
@@ -510,10 +622,11 @@ impl Scene {
                     }
                 }
             };
-            for sp in &stripped {
-                let set = sp.strips.as_ref().expect("filtered above");
+            for (sp, remapped) in stripped.iter().zip(&remapped) {
+                let set = remapped.as_ref().or(sp.strips.as_ref()).expect("filtered above");
                 // 65535 is the u16 restart value, never a vertex id.
-                let wide = sp.mesh.vertex_count() >= u16::MAX as usize;
+                let vertices = sp.order.as_ref().map_or(sp.mesh.vertex_count(), Vec::len);
+                let wide = vertices >= u16::MAX as usize;
                 let old = self.json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index]["indices"].as_u64();
                 let slot = old.map(|a| a as usize).filter(|a| garbage.reused.contains(a));
                 let stitched = add(&mut bin, &strip::encode_stitched(set), wide, slot);
@@ -532,7 +645,7 @@ impl Scene {
             let new_view =
                 json!({"buffer": 0, "byteOffset": view_start, "byteLength": bin.len() - view_start, "target": 34963});
             // Other dead views keep their numbers, over the new indices (nothing uses them).
-            for &v in &garbage.dead_views {
+            for &v in &free_views {
                 json["bufferViews"][v] = new_view.clone();
             }
             json["bufferViews"][view] = new_view;
@@ -678,6 +791,13 @@ impl Scene {
             .map(|a| a as usize)
             .filter(|&a| a < n_acc && as_index[a] == 1 && other[a] == 0)
             .collect();
+        for sp in self.primitives.iter().filter(|p| p.order.is_some()) {
+            for (_, _, a) in vertex_accessors(&self.json, sp) {
+                if a < n_acc && other[a] + as_index[a] == 1 {
+                    reused.push(a);
+                }
+            }
+        }
         reused.sort_unstable();
         reused.dedup();
         let n_views = self.views.len();
@@ -736,10 +856,18 @@ impl Scene {
                     format!("came back as meshes[{}].primitives[{}]", b.mesh_index, b.primitive_index),
                 ));
             }
-            if a.mesh.positions != b.mesh.positions {
+            // With reordering, the written vertices are the input's in `order`.
+            let (positions, attributes) = match &a.order {
+                None => (Cow::Borrowed(&a.mesh.positions), Cow::Borrowed(&a.mesh.attributes)),
+                Some(order) => (
+                    Cow::Owned(order.iter().map(|&v| a.mesh.positions[v as usize]).collect::<Vec<_>>()),
+                    Cow::Owned(a.mesh.attributes.iter().map(|x| x.gather(order)).collect::<Vec<_>>()),
+                ),
+            };
+            if *positions != b.mesh.positions {
                 return Err(fail(a, "positions differ".into()));
             }
-            if a.mesh.attributes != b.mesh.attributes {
+            if *attributes != b.mesh.attributes {
                 return Err(fail(a, "vertex attributes differ".into()));
             }
             let got = b.mesh.triangulate().tris;
@@ -750,7 +878,17 @@ impl Scene {
                 }
                 continue;
             }
-            let want = &a.drawn;
+            let want: Cow<[[u32; 3]]> = match &a.order {
+                None => Cow::Borrowed(&a.drawn),
+                Some(order) => {
+                    let mut new_id = vec![u32::MAX; a.mesh.vertex_count()];
+                    for (k, &v) in order.iter().enumerate() {
+                        new_id[v as usize] = k as u32;
+                    }
+                    Cow::Owned(a.drawn.iter().map(|t| t.map(|v| new_id[v as usize])).collect())
+                }
+            };
+            let want = &*want;
             let v = strip::verify_triangles(want, &got);
             if !v.ok() {
                 return Err(fail(a, format!("stitched strip: {v}")));
@@ -765,7 +903,7 @@ impl Scene {
                     let acc = g["indices"].as_u64().ok_or_else(|| fail(a, "restart group without indices".into()))?;
                     let mut list = Vec::new();
                     doc.read_indices(acc as usize, &mut list, &mut |_| Ok(()))?;
-                    let n = a.mesh.vertex_count();
+                    let n = a.order.as_ref().map_or(a.mesh.vertex_count(), Vec::len);
                     let restart = if n >= u16::MAX as usize { u32::MAX } else { u16::MAX as u32 };
                     if list.iter().any(|&i| i != restart && i as usize >= n) {
                         return Err(fail(a, "restart indices out of range".into()));
@@ -803,6 +941,49 @@ struct Garbage {
     reused: Vec<usize>,
     /// Views (sorted) only reused accessors referred to.
     dead_views: Vec<usize>,
+}
+
+/// The vertex accessors of a primitive: (morph target or `None`, attribute name,
+/// accessor), POSITION and every attribute, then every target's.
+fn vertex_accessors(json: &Value, sp: &ScenePrimitive) -> Vec<(Option<usize>, String, usize)> {
+    let prim = &json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
+    let mut out = Vec::new();
+    let mut add = |target: Option<usize>, map: &Value| {
+        for (name, a) in map.as_object().into_iter().flatten() {
+            if let Some(a) = a.as_u64() {
+                out.push((target, name.clone(), a as usize));
+            }
+        }
+    };
+    add(None, &prim["attributes"]);
+    for (t, target) in prim.get("targets").and_then(Value::as_array).into_iter().flatten().enumerate() {
+        add(Some(t), target);
+    }
+    out
+}
+
+/// The per-component min and max (JSON) of the elements `order` of packed accessor data.
+fn bounds(acc: &super::Accessor, data: &[u8], order: &[u32]) -> (Value, Value) {
+    let a = Attribute {
+        name: String::new(),
+        scalar: scalar_of(acc.component),
+        components: acc.components as u8,
+        normalized: false,
+        data: data.to_vec(),
+    };
+    let mut lo = vec![f64::INFINITY; acc.components];
+    let mut hi = vec![f64::NEG_INFINITY; acc.components];
+    for &v in order {
+        for c in 0..acc.components {
+            let x = a.get(v as usize, c);
+            lo[c] = lo[c].min(x);
+            hi[c] = hi[c].max(x);
+        }
+    }
+    let json = |xs: Vec<f64>| -> Value {
+        xs.into_iter().map(|x| if acc.component == 5126 { Value::from(x) } else { Value::from(x as i64) }).collect()
+    };
+    (json(lo), json(hi))
 }
 
 /// The scene format a path names.
@@ -972,5 +1153,6 @@ fn decode_primitive(
         mesh,
         strips: None,
         drawn: Vec::new(),
+        order: None,
     }))
 }
