@@ -35,6 +35,7 @@ use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 
 mod from_mesh;
+mod primitive;
 mod scene;
 pub use scene::{PrimitiveReport, Scene, SceneOptions, ScenePrimitive, SceneReport};
 
