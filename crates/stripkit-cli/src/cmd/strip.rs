@@ -532,6 +532,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (None, OutKind::Mesh(Format::Gltf | Format::Glb)) => VertexOrder::FirstUse,
         (None, _) => VertexOrder::Input,
     };
+    if is_scene(&args.input, &kind) {
+        return run_scene(&args, format_of(&kind), vertex_order);
+    }
     // A spinner on a terminal (indicatif draws nothing when stderr is not one):
     // balanced and --refine take seconds on meshes of a million triangles.
     let progress = match args.batch {
@@ -541,6 +544,23 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
     let mesh = args.read.read(&args.input)?;
+    // A mesh with attributes or several groups, written as glTF: one primitive per
+    // group with its attributes, each stripped on its own (io::Scene::from_mesh).
+    if matches!(kind, OutKind::Mesh(Format::Gltf | Format::Glb))
+        && (!mesh.attributes.is_empty() || mesh.group_count() > 1)
+        && args.join != Join::Separate
+        && args.strip.algo != Algo::Single
+        && args.restart_index == DEFAULT_RESTART
+        && mesh.face_count() > 0
+    {
+        progress.finish_and_clear();
+        let start = std::time::Instant::now();
+        let scene = stripkit::io::Scene::from_mesh(&mesh).map_err(|e| anyhow::anyhow!(e).context(format!("{}", args.input.display())))?;
+        for note in scene.notes() {
+            eprintln!("note: {}: {note}", args.input.display());
+        }
+        return strip_scene(&args, scene, start.elapsed(), format_of(&kind), vertex_order);
+    }
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
     let strips = args.strip.stripify(&mesh, &args.input, |o| with_join(&args, o))?;
@@ -616,6 +636,159 @@ fn unreached_acmr(strips: &stripkit::Strips, vertex_count: usize) -> Option<f64>
 }
 
 /// The library names its settings; the user typed flags: say which.
+/// glTF in and glTF out: the whole scene goes through [`stripkit::io::Scene`].
+fn is_scene(input: &Path, kind: &OutKind) -> bool {
+    let gltf = |f: Option<(Format, bool)>| matches!(f, Some((Format::Gltf | Format::Glb, _)));
+    input.as_os_str() != "-" && gltf(Format::from_path(input)) && matches!(kind, OutKind::Mesh(Format::Gltf | Format::Glb))
+}
+
+/// What `strip` reports for a glTF scene.
+#[derive(Serialize)]
+struct SceneCliReport<'a> {
+    input: &'a Path,
+    output: &'a Path,
+    join: Join,
+    /// Reading and decoding the input, in milliseconds.
+    read_ms: f64,
+    /// Encoding, checking (read back) and writing the output, in milliseconds.
+    write_ms: f64,
+    #[serde(flatten)]
+    scene: &'a stripkit::io::SceneReport,
+}
+
+/// `strip` on a glTF scene: every triangle primitive stripped on its own, everything
+/// else written as read; `--join restart` (default) adds EXT_mesh_primitive_restart
+/// groups beside the stitched strips, `--join degenerate` writes the stitched strips
+/// alone.
+fn run_scene(args: &Args, format: Format, vertex_order: VertexOrder) -> anyhow::Result<()> {
+    use stripkit::io::Scene;
+    let invalid = |m: String| -> anyhow::Result<()> { Err(Error::Invalid(m).into()) };
+    match args.join {
+        Join::Restart | Join::Degenerate => {}
+        Join::Separate => {
+            return invalid(
+                "--join separate does not apply to a glTF scene, where each primitive becomes one strip primitive: \
+                 use --join restart (EXT_mesh_primitive_restart with a stitched fallback, the default) or \
+                 --join degenerate (plain stitched strips)"
+                    .into(),
+            )
+        }
+    }
+    if args.restart_index != DEFAULT_RESTART {
+        return invalid(
+            "--restart-index does not apply to a glTF scene: the restart value is the largest of the index type \
+             (65535 or 4294967295), as EXT_mesh_primitive_restart asks"
+                .into(),
+        );
+    }
+    if args.strip.algo == Algo::Single {
+        return invalid(
+            "--algo single adds vertices, and a glTF scene's vertex data is written as read; choose another algorithm"
+                .into(),
+        );
+    }
+    let start = std::time::Instant::now();
+    let scene = Scene::read_with(&args.input, &args.read.options())?;
+    if scene.primitives().iter().all(|p| p.mesh.face_count() == 0) {
+        return invalid(format!("no faces in {}", args.input.display()));
+    }
+    strip_scene(args, scene, start.elapsed(), format, vertex_order)
+}
+
+/// The mesh format of an output kind (glTF for the scene paths, which only take mesh outputs).
+fn format_of(kind: &OutKind) -> Format {
+    match kind {
+        OutKind::Mesh(f) => *f,
+        OutKind::Json => Format::Glb,
+    }
+}
+
+/// Strips a scene's primitives, writes it and reports, for [`run_scene`] and for a
+/// mesh with attributes or groups written as glTF.
+fn strip_scene(
+    args: &Args,
+    mut scene: stripkit::io::Scene,
+    read_time: std::time::Duration,
+    format: Format,
+    vertex_order: VertexOrder,
+) -> anyhow::Result<()> {
+    let scene_options = match args.join {
+        Join::Degenerate => stripkit::io::SceneOptions::stitched(),
+        _ => stripkit::io::SceneOptions::default(),
+    }
+    .reorder(vertex_order == VertexOrder::FirstUse);
+    let progress = match args.batch {
+        Some(_) => indicatif::ProgressBar::hidden(),
+        None => indicatif::ProgressBar::new_spinner(),
+    };
+    progress.enable_steady_tick(std::time::Duration::from_millis(120));
+    for p in scene.primitives() {
+        args.strip.check_mesh(&p.mesh, &args.input)?;
+    }
+    progress.set_message(format!("stripifying and verifying {} primitives", scene.primitives().len()));
+    let options = args.strip.options(None);
+    let report = scene.strip(&options, &scene_options).map_err(|e| anyhow::anyhow!(flag_names(e)))?;
+    progress.set_message(format!("writing {}", args.output.display()));
+    let start = std::time::Instant::now();
+    let bytes = scene.to_bytes(format)?;
+    super::write_output(&args.output, &bytes)?;
+    let write_ms = start.elapsed().as_secs_f64() * 1e3;
+    progress.finish_and_clear();
+    let r = SceneCliReport {
+        input: &args.input,
+        output: &args.output,
+        join: args.join,
+        read_ms: read_time.as_secs_f64() * 1e3,
+        write_ms,
+        scene: &report,
+    };
+    let sink = match &args.batch {
+        Some(bar) => super::Sink::Batch(bar.clone()),
+        None => super::Sink::for_output(&args.output),
+    };
+    super::print_report_to(&sink, args.json, &r, |out, r| {
+        let s = r.scene;
+        writeln!(
+            out,
+            "{} -> {} (scene: {} triangle primitives stripped, {} left as read; {})",
+            r.input.display(),
+            r.output.display(),
+            s.primitives.len(),
+            s.skipped,
+            if r.join == Join::Restart {
+                "EXT_mesh_primitive_restart with stitched fallback"
+            } else {
+                "stitched strips"
+            }
+        )?;
+        writeln!(out, "verified: {} triangles, 0 lost, 0 added, 0 flipped; written file read back and checked", s.triangles)?;
+        writeln!(out, "  indices read         {:>10}", s.indices_read)?;
+        writeln!(out, "  indices stitched     {:>10}", s.indices_stitched)?;
+        if r.join == Join::Restart {
+            writeln!(out, "  indices restart      {:>10}", s.indices_drawn_restart)?;
+        }
+        const SHOWN: usize = 20;
+        if s.primitives.len() > SHOWN {
+            writeln!(out, "  (the first {SHOWN} of {} primitives; --json lists all)", s.primitives.len())?;
+        }
+        for p in s.primitives.iter().take(SHOWN) {
+            writeln!(
+                out,
+                "  meshes[{}].primitives[{}]: {} triangles, {} strips, {} -> {} indices{} ({})",
+                p.mesh,
+                p.primitive,
+                p.figures.triangles,
+                p.figures.strips,
+                p.indices_read,
+                p.indices_stitched,
+                p.indices_restart.map(|n| format!(" (restart {n})")).unwrap_or_default(),
+                p.algorithm
+            )?;
+        }
+        Ok(())
+    })
+}
+
 pub fn flag_names(e: Error) -> Error {
     match e {
         Error::Invalid(m) => Error::Invalid(

@@ -64,3 +64,7 @@ pub fn stripkit_1gib(args: &[&str]) -> (Output, f64) {
         .expect("runs");
     (out, start.elapsed().as_secs_f64())
 }
+
+#[path = "../../../stripkit/tests/support/gltf_validator.rs"]
+#[allow(dead_code)] // not every test binary writes glTF
+pub mod gltf_validator;

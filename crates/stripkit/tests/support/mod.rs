@@ -4,6 +4,7 @@
 
 mod base64;
 mod dirs;
+pub mod gltf_validator;
 #[allow(unused_imports)] // each test binary uses a different subset
 pub use base64::encode_base64;
 #[allow(unused_imports)] // each test binary uses a different subset

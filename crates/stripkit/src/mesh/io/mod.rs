@@ -29,6 +29,9 @@
 //! | OFF | `[ST][C][N][4]OFF`, comments, face colours | `OFF` |
 //! | STL | ASCII and binary, identical positions welded | binary, polygons fanned |
 //! | glTF | `.gltf` (data URIs, external files), `.glb`; modes 4/5/6 | `.gltf` (embedded), `.glb`; TRIANGLES or one TRIANGLE_STRIP per strip |
+//!
+//! A whole glTF document (scenes, nodes, materials, skins, animations, ...) is read and
+//! written by [`Scene`]: every triangle primitive stripped on its own, the rest kept.
 
 mod common;
 mod gltf;
@@ -36,6 +39,8 @@ mod obj;
 mod off;
 mod ply;
 mod stl;
+
+pub use gltf::{PrimitiveReport, Scene, SceneOptions, ScenePrimitive, SceneReport};
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;

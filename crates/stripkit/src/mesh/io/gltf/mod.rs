@@ -32,7 +32,12 @@ use serde_json::{json, Value};
 use std::collections::{HashMap, HashSet};
 use std::io::Read;
 use std::path::{Component, Path, PathBuf};
-use std::rc::Rc;
+use std::sync::Arc;
+
+mod from_mesh;
+mod primitive;
+mod scene;
+pub use scene::{PrimitiveReport, Scene, SceneOptions, ScenePrimitive, SceneReport};
 
 const GLB_MAGIC: &[u8; 4] = b"glTF";
 const CHUNK_JSON: u32 = 0x4E4F_534A;
@@ -50,6 +55,12 @@ pub(crate) fn read_gltf(path: &Path, data: &[u8], options: &ReadOptions) -> Resu
 /// `options` as in [`read_gltf`].
 pub(crate) fn read_glb(path: &Path, data: &[u8], options: &ReadOptions) -> Result<Mesh> {
     let src = Src { path };
+    let (json, bin) = parse_glb(src, data)?;
+    load(src, &json, bin, options)
+}
+
+/// Splits a `.glb` file into its parsed JSON chunk and its binary chunk, if any.
+fn parse_glb<'d>(src: Src, data: &'d [u8]) -> Result<(Value, Option<&'d [u8]>)> {
     let u32_at = |o: usize| -> Option<u32> { Some(u32::from_le_bytes(data.get(o..o + 4)?.try_into().ok()?)) };
     if data.len() < 12 {
         return Err(src.err("byte 0", format!("{} bytes is too short for a GLB header (12 bytes)", data.len())));
@@ -86,7 +97,7 @@ pub(crate) fn read_glb(path: &Path, data: &[u8], options: &ReadOptions) -> Resul
     }
     let (offset, json) = json.ok_or_else(|| src.err("byte 12", "the GLB file has no JSON chunk"))?;
     let json = parse_json(src, json, offset)?;
-    load(src, &json, bin, options)
+    Ok((json, bin))
 }
 
 fn parse_json(src: Src, bytes: &[u8], offset: usize) -> Result<Value> {
@@ -125,6 +136,7 @@ fn required(src: Src, obj: &Value, key: &str, place: &dyn Fn() -> String) -> Res
     uint(src, obj, key, place)?.ok_or_else(|| src.err(place(), format!("'{key}' is missing")))
 }
 
+#[derive(Clone, Debug)]
 struct View {
     buffer: usize,
     offset: usize,
@@ -151,8 +163,9 @@ impl Accessor {
 
 /// A buffer's bytes: the first `len` bytes of `bytes`, which several buffers share
 /// when they name the same external file.
+#[derive(Clone)]
 struct Buffer {
-    bytes: Rc<[u8]>,
+    bytes: Arc<[u8]>,
     len: usize,
 }
 
@@ -170,18 +183,12 @@ struct Doc<'a> {
     accessors: &'a [Value],
 }
 
-fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Mesh> {
+/// Checks the asset's version and required extensions and loads its buffers and
+/// buffer views (every view checked against its buffer).
+fn open<'a>(src: Src<'a>, json: &'a Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Doc<'a>> {
     let version = json.pointer("/asset/version").and_then(Value::as_str).unwrap_or("");
     if !version.starts_with('2') {
         return Err(src.err("asset.version", format!("glTF version '{version}', only 2.x is supported")));
-    }
-    // Required extensions change how data is stored (compression, quantization):
-    // reading past them would give garbage, so name them instead.
-    if let Some(ext) = array(src, json, "extensionsRequired")?.first() {
-        return Err(src.err(
-            "extensionsRequired",
-            format!("the file requires extension {ext}, which stripkit does not read"),
-        ));
     }
     let buffers = load_buffers(src, json, bin, options)?;
     let mut views = Vec::new();
@@ -203,7 +210,19 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
         }
         views.push(View { buffer, offset, length, stride });
     }
-    let doc = Doc { src, buffers, views, accessors: array(src, json, "accessors")? };
+    Ok(Doc { src, buffers, views, accessors: array(src, json, "accessors")? })
+}
+
+fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Mesh> {
+    // Required extensions change how data is stored (compression, quantization):
+    // reading past them would give garbage, so name them instead.
+    if let Some(ext) = array(src, json, "extensionsRequired")?.first() {
+        return Err(src.err(
+            "extensionsRequired",
+            format!("the file requires extension {ext}, which stripkit does not read"),
+        ));
+    }
+    let doc = open(src, json, bin, options)?;
 
     let mut mesh = Mesh::new();
     // POSITION accessor -> (first vertex id, vertex count).
@@ -212,10 +231,7 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
     // Primitives may reuse accessors, so a small file could describe a huge mesh:
     // every accessor is charged to the budget before it is decoded (see
     // ReadOptions::max_decoded_bytes).
-    let mut distinct = HashSet::new();
-    let buffer_bytes: u64 =
-        doc.buffers.iter().filter(|b| distinct.insert(b.bytes.as_ptr())).map(|b| b.bytes.len() as u64).sum();
-    let mut budget = Budget::new(options, buffer_bytes);
+    let mut budget = Budget::new(options, doc.buffer_bytes());
     for (m, jm) in array(src, json, "meshes")?.iter().enumerate() {
         let prims = match jm.get("primitives") {
             Some(Value::Array(a)) => a.as_slice(),
@@ -363,6 +379,12 @@ impl Budget {
 }
 
 impl Doc<'_> {
+    /// The bytes of the asset's buffers, each distinct file or chunk counted once.
+    fn buffer_bytes(&self) -> u64 {
+        let mut distinct = HashSet::new();
+        self.buffers.iter().filter(|b| distinct.insert(b.bytes.as_ptr())).map(|b| b.bytes.len() as u64).sum()
+    }
+
     /// Validates accessor `i` and returns it with the bytes of its view.
     fn accessor(&self, i: usize) -> Result<(Accessor, &[u8], usize)> {
         let src = self.src;
@@ -451,6 +473,22 @@ impl Doc<'_> {
         Ok(())
     }
 
+    /// The elements of accessor `i` packed tightly (the view's stride removed), with
+    /// the accessor; `charge` is called with their byte count before anything is
+    /// allocated.
+    fn read_packed(&self, i: usize, charge: &mut dyn FnMut(usize) -> Result<()>) -> Result<(Accessor, Vec<u8>)> {
+        let (acc, bytes, stride) = self.accessor(i)?;
+        let elem = acc.component_size() * acc.components;
+        // The accessor's elements lie inside its view (checked): no overflow.
+        charge(acc.count * elem)?;
+        let mut out = Vec::with_capacity(acc.count * elem);
+        for k in 0..acc.count {
+            let o = acc.offset + k * stride;
+            out.extend_from_slice(&bytes[o..o + elem]);
+        }
+        Ok((acc, out))
+    }
+
     /// Appends the indices of accessor `i`, calling `charge` with their count first,
     /// as [`Doc::read_positions`] does.
     fn read_indices(&self, i: usize, out: &mut Vec<u32>, charge: &mut dyn FnMut(usize) -> Result<()>) -> Result<()> {
@@ -482,7 +520,7 @@ impl Doc<'_> {
 /// those bytes.
 fn load_buffers(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Vec<Buffer>> {
     enum Source {
-        Bytes(Rc<[u8]>),
+        Bytes(Arc<[u8]>),
         File(usize),
     }
     struct External {
@@ -501,10 +539,10 @@ fn load_buffers(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOption
         let place = || at("buffers", i);
         let length = required(src, b, "byteLength", &place)?;
         let source = match b.get("uri") {
-            None if i == 0 && bin.is_some() => Source::Bytes(Rc::from(bin.unwrap_or_default())),
+            None if i == 0 && bin.is_some() => Source::Bytes(Arc::from(bin.unwrap_or_default())),
             None => return Err(src.err(place(), "buffer without a 'uri' (only GLB buffer 0 may omit it)")),
             Some(Value::String(uri)) => match uri.strip_prefix("data:") {
-                Some(rest) => Source::Bytes(Rc::from(decode_data_uri(src, rest, &place)?)),
+                Some(rest) => Source::Bytes(Arc::from(decode_data_uri(src, rest, &place)?)),
                 None => {
                     if length > options.max_external_bytes {
                         return Err(src.err(
@@ -558,7 +596,7 @@ fn load_buffers(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOption
     for (i, (source, length)) in sources.into_iter().enumerate() {
         let bytes = match source {
             Source::Bytes(b) => b,
-            Source::File(k) => Rc::clone(&read[k]),
+            Source::File(k) => Arc::clone(&read[k]),
         };
         if (bytes.len() as u64) < length {
             return Err(src.err(
@@ -667,7 +705,7 @@ impl Folders {
 
 /// Reads exactly `len` bytes from the start of the regular file `path` (canonical,
 /// inside an allowed folder), for `buffers[i]` whose URI is `uri`.
-fn read_external(src: Src, path: &Path, len: u64, i: usize, uri: &str) -> Result<Rc<[u8]>> {
+fn read_external(src: Src, path: &Path, len: u64, i: usize, uri: &str) -> Result<Arc<[u8]>> {
     let at = || format!("buffers[{i}].uri");
     let fail = |e: std::io::Error| src.err(at(), format!("cannot read {uri:?}: {e}"));
     let not_regular = || src.err(at(), format!("{uri:?} is not a regular file (a directory, device or pipe is not read)"));
@@ -699,7 +737,7 @@ fn read_external(src: Src, path: &Path, len: u64, i: usize, uri: &str) -> Result
     if (bytes.len() as u64) < len {
         return Err(src.err(at(), format!("byteLength is {len} but {uri:?} holds {} bytes (truncated)", bytes.len())));
     }
-    Ok(Rc::from(bytes))
+    Ok(Arc::from(bytes))
 }
 
 #[cfg(test)]
@@ -866,8 +904,14 @@ pub(crate) fn write_gltf(mesh: &Mesh, strips: Option<&StripSet>) -> Result<Vec<u
 
 /// Encodes a mesh as `.glb`.
 pub(crate) fn write_glb(mesh: &Mesh, strips: Option<&StripSet>) -> Result<Vec<u8>> {
-    let (json, mut bin) = build(mesh, strips)?;
-    let mut text = serde_json::to_vec(&json).map_err(|e| Error::Invalid(format!("cannot encode glTF JSON: {e}")))?;
+    let (json, bin) = build(mesh, strips)?;
+    glb_container(&json, bin)
+}
+
+/// The GLB container of a JSON document and its binary chunk (none when `bin` is
+/// empty), both padded to 4 bytes as the specification asks.
+fn glb_container(json: &Value, mut bin: Vec<u8>) -> Result<Vec<u8>> {
+    let mut text = serde_json::to_vec(json).map_err(|e| Error::Invalid(format!("cannot encode glTF JSON: {e}")))?;
     while text.len() % 4 != 0 {
         text.push(b' ');
     }

@@ -1,0 +1,265 @@
+//! A [`Mesh`] with attributes and groups as a glTF document: one mesh, one node, one
+//! TRIANGLES primitive per group (with its material, named after the group's), every
+//! primitive drawing from the same vertex accessors. [`super::Scene::from_mesh`] reads
+//! it back as a scene, so that each group is stripped on its own.
+//!
+//! Attributes go out under their glTF semantics when their shape fits one (`NORMAL`
+//! VEC3, `TANGENT` VEC4, `TEXCOORD_n` VEC2, `COLOR_n` VEC3/VEC4, `JOINTS_n` VEC4 of
+//! unsigned bytes or shorts, `WEIGHTS_n` VEC4): normalized unsigned bytes and shorts
+//! are kept where glTF allows them, anything else becomes FLOAT. Other attributes
+//! (a PLY `quality`, or a standard name of the wrong shape) become application-specific
+//! attributes, `_` and the name in capitals (`_QUALITY`), in their own type where glTF
+//! has it (FLOAT, BYTE, UNSIGNED_BYTE, SHORT, UNSIGNED_SHORT), as FLOAT otherwise.
+//! Attributes of more than 4 components, or whose glTF name another attribute already
+//! took, are dropped and named in the notes. Every vertex element is padded to 4 bytes
+//! (`byteStride`), as glTF asks of vertex attributes.
+
+use super::glb_container;
+use crate::error::{Error, Result};
+use crate::mesh::{Attribute, Mesh, Scalar};
+use serde_json::{json, Map, Value};
+
+/// The GLB bytes of a mesh, and per primitive the group it holds.
+pub(super) struct MeshDocument {
+    pub glb: Vec<u8>,
+    pub group_of_primitive: Vec<u32>,
+    /// Per primitive its polygon faces (offsets, indices), over its own vertices.
+    pub faces: Vec<(Vec<u32>, Vec<u32>)>,
+    /// Attributes dropped, each with the reason.
+    pub notes: Vec<String>,
+}
+
+/// The glTF name, scalar type, normalized flag and little-endian values of an
+/// attribute, or why it cannot be written.
+fn gltf_form(a: &Attribute) -> std::result::Result<(String, Scalar, bool, Vec<u8>), String> {
+    let comps = a.components as usize;
+    let numbered =
+        |p: &str| a.name.strip_prefix(p).is_some_and(|r| !r.is_empty() && r.bytes().all(|b| b.is_ascii_digit()));
+    let unorm = matches!(a.scalar, Scalar::U8 | Scalar::U16) && a.normalized;
+    let raw = || (a.name.clone(), a.scalar, a.normalized, a.data.clone());
+    let float = |name: String| {
+        let mut data = Vec::with_capacity(a.len() * comps * 4);
+        for v in 0..a.len() {
+            for c in 0..comps {
+                data.extend_from_slice(&(a.get(v, c) as f32).to_le_bytes());
+            }
+        }
+        (name, Scalar::F32, false, data)
+    };
+    Ok(match a.name.as_str() {
+        "NORMAL" if comps == 3 => float(a.name.clone()),
+        "TANGENT" if comps == 4 => float(a.name.clone()),
+        _ if numbered("TEXCOORD_") && comps == 2 => {
+            if unorm {
+                raw()
+            } else {
+                float(a.name.clone())
+            }
+        }
+        _ if numbered("COLOR_") && (comps == 3 || comps == 4) => {
+            if unorm {
+                raw()
+            } else {
+                float(a.name.clone())
+            }
+        }
+        _ if numbered("WEIGHTS_") && comps == 4 => {
+            if unorm {
+                raw()
+            } else {
+                float(a.name.clone())
+            }
+        }
+        _ if numbered("JOINTS_") && comps == 4 && matches!(a.scalar, Scalar::U8 | Scalar::U16) && !a.normalized => {
+            raw()
+        }
+        _ => {
+            if comps > 4 {
+                return Err(format!("attribute {} has {comps} components; glTF takes at most 4", a.name));
+            }
+            let name =
+                if a.name.starts_with('_') { a.name.clone() } else { format!("_{}", a.name.to_ascii_uppercase()) };
+            match a.scalar {
+                Scalar::F32 | Scalar::I8 | Scalar::U8 | Scalar::I16 | Scalar::U16 => {
+                    (name, a.scalar, a.normalized, a.data.clone())
+                }
+                _ => float(name),
+            }
+        }
+    })
+}
+
+fn component_type(s: Scalar) -> u32 {
+    match s {
+        Scalar::I8 => 5120,
+        Scalar::U8 => 5121,
+        Scalar::I16 => 5122,
+        Scalar::U16 => 5123,
+        Scalar::U32 => 5125,
+        _ => 5126,
+    }
+}
+
+fn type_name(components: usize) -> &'static str {
+    ["SCALAR", "VEC2", "VEC3", "VEC4"][components - 1]
+}
+
+/// Appends a vertex buffer view of `count` elements of `elem` bytes each (padded to
+/// 4 bytes) and returns its index.
+fn vertex_view(bin: &mut Vec<u8>, views: &mut Vec<Value>, data: &[u8], elem: usize) -> usize {
+    let start = bin.len();
+    let stride = elem.next_multiple_of(4);
+    for e in data.chunks_exact(elem) {
+        bin.extend_from_slice(e);
+        bin.resize(bin.len() + stride - elem, 0);
+    }
+    let mut v = json!({"buffer": 0, "byteOffset": start, "byteLength": bin.len() - start, "target": 34962});
+    if stride != elem {
+        v["byteStride"] = stride.into();
+    }
+    views.push(v);
+    views.len() - 1
+}
+
+/// The faces of group `g` over the vertices they use (kept in their order), or `None`
+/// when the group has no face.
+fn part(mesh: &Mesh, g: u32) -> Option<Mesh> {
+    let faces: Vec<usize> = (0..mesh.face_count()).filter(|&f| mesh.group_of(f) == g).collect();
+    if faces.is_empty() {
+        return None;
+    }
+    let mut used = vec![false; mesh.vertex_count()];
+    for &f in &faces {
+        for &v in mesh.face(f) {
+            used[v as usize] = true;
+        }
+    }
+    let map: Vec<u32> = (0..mesh.vertex_count() as u32).filter(|&v| used[v as usize]).collect();
+    let mut new_id = vec![0u32; mesh.vertex_count()];
+    for (k, &v) in map.iter().enumerate() {
+        new_id[v as usize] = k as u32;
+    }
+    let mut out = mesh.gather_vertices(&map);
+    out.groups = mesh.groups.get(g as usize).cloned().into_iter().collect();
+    for &f in &faces {
+        let face: Vec<u32> = mesh.face(f).iter().map(|&v| new_id[v as usize]).collect();
+        out.push_face(&face);
+    }
+    Some(out)
+}
+
+/// The vertex accessors of `mesh` (POSITION first), as a primitive's `attributes`.
+fn write_vertices(
+    mesh: &Mesh,
+    bin: &mut Vec<u8>,
+    views: &mut Vec<Value>,
+    accessors: &mut Vec<Value>,
+    notes: &mut Vec<String>,
+) -> Map<String, Value> {
+    let nv = mesh.vertex_count();
+    let pos: Vec<u8> = mesh.positions.iter().flatten().flat_map(|c| c.to_le_bytes()).collect();
+    let view = vertex_view(bin, views, &pos, 12);
+    let (lo, hi) = mesh.bounds().unwrap_or(([0.0; 3], [0.0; 3]));
+    accessors
+        .push(json!({"bufferView": view, "componentType": 5126, "count": nv, "type": "VEC3", "min": lo, "max": hi}));
+    let mut attributes = Map::new();
+    attributes.insert("POSITION".into(), (accessors.len() - 1).into());
+    for a in &mesh.attributes {
+        let (name, scalar, normalized, data) = match gltf_form(a) {
+            Ok(f) => f,
+            Err(why) => {
+                notes.push(format!("{why}: not written"));
+                continue;
+            }
+        };
+        if attributes.contains_key(&name) {
+            notes.push(format!("attribute {} would be written as {name}, which another one took: not written", a.name));
+            continue;
+        }
+        let comps = a.components as usize;
+        let view = vertex_view(bin, views, &data, scalar.size() * comps);
+        let mut acc = json!({"bufferView": view, "componentType": component_type(scalar), "count": nv,
+            "type": type_name(comps)});
+        if normalized {
+            acc["normalized"] = true.into();
+        }
+        accessors.push(acc);
+        attributes.insert(name, (accessors.len() - 1).into());
+    }
+    attributes
+}
+
+/// The document of `mesh`: one TRIANGLES primitive per group that has faces (faces
+/// fanned). A mesh of one group keeps all its vertices and their ids; with several
+/// groups each primitive gets the vertices its faces use, in their order.
+pub(super) fn mesh_document(mesh: &Mesh) -> Result<MeshDocument> {
+    mesh.check_faces()?;
+    let mut bin = Vec::new();
+    let mut views = Vec::new();
+    let mut accessors = Vec::new();
+    let mut notes = Vec::new();
+    let parts: Vec<(u32, std::borrow::Cow<Mesh>)> = if mesh.group_count() <= 1 {
+        vec![(0, std::borrow::Cow::Borrowed(mesh))]
+    } else {
+        (0..mesh.group_count() as u32).filter_map(|g| part(mesh, g).map(|p| (g, std::borrow::Cow::Owned(p)))).collect()
+    };
+    let mut materials: Vec<String> = Vec::new();
+    let mut primitives = Vec::new();
+    let mut group_of_primitive = Vec::new();
+    let mut faces = Vec::new();
+    for (g, part) in &parts {
+        let list: Vec<u32> = part.triangulate().tris.into_iter().flatten().collect();
+        if list.is_empty() {
+            continue;
+        }
+        let attributes = write_vertices(part, &mut bin, &mut views, &mut accessors, &mut notes);
+        let wide = part.vertex_count() >= u16::MAX as usize;
+        bin.resize(bin.len().next_multiple_of(4), 0);
+        let start = bin.len();
+        for &i in &list {
+            if wide {
+                bin.extend_from_slice(&i.to_le_bytes());
+            } else {
+                bin.extend_from_slice(&(i as u16).to_le_bytes());
+            }
+        }
+        views.push(json!({"buffer": 0, "byteOffset": start, "byteLength": bin.len() - start, "target": 34963}));
+        accessors.push(json!({"bufferView": views.len() - 1, "componentType": if wide { 5125 } else { 5123 },
+            "count": list.len(), "type": "SCALAR"}));
+        let mut prim = json!({"attributes": attributes, "indices": accessors.len() - 1, "mode": 4});
+        let group = mesh.groups.get(*g as usize);
+        if let Some(m) = group.and_then(|g| g.material.as_ref()) {
+            let k = materials.iter().position(|x| x == m).unwrap_or_else(|| {
+                materials.push(m.clone());
+                materials.len() - 1
+            });
+            prim["material"] = k.into();
+        }
+        if let Some(group) = group {
+            prim["extras"] = json!({"group": group.name});
+        }
+        primitives.push(prim);
+        group_of_primitive.push(*g);
+        faces.push((part.face_offsets.clone(), part.face_indices.clone()));
+    }
+    notes.sort();
+    notes.dedup();
+    if primitives.is_empty() {
+        return Err(Error::Invalid("the mesh has no faces to write as glTF primitives".into()));
+    }
+    bin.resize(bin.len().next_multiple_of(4), 0);
+    let mut json = json!({
+        "asset": {"version": "2.0", "generator": "stripkit"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": primitives}],
+        "accessors": accessors,
+        "bufferViews": views,
+        "buffers": [{"byteLength": bin.len()}],
+    });
+    if !materials.is_empty() {
+        json["materials"] = materials.iter().map(|m| json!({"name": m})).collect();
+    }
+    Ok(MeshDocument { glb: glb_container(&json, bin)?, group_of_primitive, faces, notes })
+}

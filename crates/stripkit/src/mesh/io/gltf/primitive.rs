@@ -1,0 +1,194 @@
+//! One primitive of a glTF scene: decoding it into a [`Mesh`] (POSITION, every other
+//! attribute with its type, the triangles, the material's group), listing its vertex
+//! accessors, and the bounds of gathered accessor data, for [`super::scene`].
+
+use super::scene::ScenePrimitive;
+use super::{uint, Accessor, Budget, Doc};
+use crate::error::Result;
+use crate::mesh::io::common::{close_face, push_fan_triangles, push_strip_triangles};
+use crate::mesh::{Attribute, Group, Mesh, Scalar};
+use serde_json::Value;
+
+/// The vertex accessors of a primitive: (morph target or `None`, attribute name,
+/// accessor), POSITION and every attribute, then every target's.
+pub(super) fn vertex_accessors(json: &Value, sp: &ScenePrimitive) -> Vec<(Option<usize>, String, usize)> {
+    let prim = &json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
+    let mut out = Vec::new();
+    let mut add = |target: Option<usize>, map: &Value| {
+        for (name, a) in map.as_object().into_iter().flatten() {
+            if let Some(a) = a.as_u64() {
+                out.push((target, name.clone(), a as usize));
+            }
+        }
+    };
+    add(None, &prim["attributes"]);
+    for (t, target) in prim.get("targets").and_then(Value::as_array).into_iter().flatten().enumerate() {
+        add(Some(t), target);
+    }
+    out
+}
+
+/// The per-component min and max (JSON) of the elements `order` of packed accessor data.
+pub(super) fn bounds(acc: &Accessor, data: &[u8], order: &[u32]) -> (Value, Value) {
+    let a = Attribute {
+        name: String::new(),
+        scalar: scalar_of(acc.component),
+        components: acc.components as u8,
+        normalized: false,
+        data: data.to_vec(),
+    };
+    let mut lo = vec![f64::INFINITY; acc.components];
+    let mut hi = vec![f64::NEG_INFINITY; acc.components];
+    for &v in order {
+        for c in 0..acc.components {
+            let x = a.get(v as usize, c);
+            lo[c] = lo[c].min(x);
+            hi[c] = hi[c].max(x);
+        }
+    }
+    let json = |xs: Vec<f64>| -> Value {
+        xs.into_iter().map(|x| if acc.component == 5126 { Value::from(x) } else { Value::from(x as i64) }).collect()
+    };
+    (json(lo), json(hi))
+}
+
+/// The scalar type of a glTF component type (already checked to be one of the six).
+fn scalar_of(component: u64) -> Scalar {
+    match component {
+        5120 => Scalar::I8,
+        5121 => Scalar::U8,
+        5122 => Scalar::I16,
+        5123 => Scalar::U16,
+        5125 => Scalar::U32,
+        _ => Scalar::F32,
+    }
+}
+
+/// Decodes primitive `p` of mesh `m`; `None` for points and lines.
+pub(super) fn decode_primitive(
+    doc: &Doc,
+    json: &Value,
+    m: usize,
+    p: usize,
+    prim: &Value,
+    budget: &mut Budget,
+) -> Result<Option<ScenePrimitive>> {
+    let src = doc.src;
+    let place = || format!("meshes[{m}].primitives[{p}]");
+    let mode = uint(src, prim, "mode", &place)?.unwrap_or(4);
+    if mode > 6 {
+        return Err(src.err(place(), format!("unknown primitive mode {mode}")));
+    }
+    if mode < 4 {
+        return Ok(None);
+    }
+    let Some(Value::Object(attributes)) = prim.get("attributes") else {
+        return Err(src.err(place(), "'attributes' must be an object"));
+    };
+    let pos = attributes
+        .get("POSITION")
+        .ok_or_else(|| src.err(place(), "the primitive has no POSITION attribute"))?
+        .as_u64()
+        .ok_or_else(|| src.err(place(), "POSITION must be an accessor index"))? as usize;
+    let mut mesh = Mesh::new();
+    let mut charge = |count: usize| {
+        budget.charge(src, &place(), 12 * count as u64, || format!("accessors[{pos}]: {count} vertices"))
+    };
+    doc.read_positions(pos, &mut mesh.positions, &mut charge)?;
+    let count = mesh.positions.len();
+    if count > u32::MAX as usize - 1 {
+        return Err(src.err(place(), "more than 4294967294 vertices"));
+    }
+    for (name, acc) in attributes.iter().filter(|(name, _)| *name != "POSITION") {
+        let acc = acc.as_u64().ok_or_else(|| src.err(place(), format!("{name} must be an accessor index")))? as usize;
+        let mut charge =
+            |bytes: usize| budget.charge(src, &place(), bytes as u64, || format!("accessors[{acc}]: attribute {name}"));
+        let (a, data) = doc.read_packed(acc, &mut charge)?;
+        if a.count != count {
+            return Err(src.err(
+                place(),
+                format!("attribute {name} (accessors[{acc}]) has {} values but POSITION has {count}", a.count),
+            ));
+        }
+        let normalized = doc.accessors[acc].get("normalized").and_then(Value::as_bool).unwrap_or(false);
+        mesh.attributes.push(Attribute {
+            name: name.clone(),
+            scalar: scalar_of(a.component),
+            components: a.components as u8,
+            normalized,
+            data,
+        });
+    }
+    let mut indices = Vec::new();
+    let face_bytes = |n: usize| -> u64 {
+        let n = n as u64;
+        if mode == 4 {
+            4 * n + 4 * (n / 3)
+        } else {
+            16 * n.saturating_sub(2)
+        }
+    };
+    match uint(src, prim, "indices", &place)? {
+        Some(acc) => {
+            let mut charge =
+                |n: usize| budget.charge(src, &place(), face_bytes(n), || format!("accessors[{acc}]: {n} indices"));
+            doc.read_indices(acc as usize, &mut indices, &mut charge)?;
+            if let Some((k, &i)) = indices.iter().enumerate().find(|(_, &i)| i as usize >= count) {
+                return Err(src.err(
+                    place(),
+                    format!("index {k} refers to vertex {i} but its POSITION accessor {pos} has {count} vertices"),
+                ));
+            }
+        }
+        None => {
+            budget.charge(src, &place(), face_bytes(count), || {
+                format!("POSITION accessors[{pos}] drawn without indices: {count} vertices")
+            })?;
+            indices.extend(0..count as u32)
+        }
+    }
+    if mode == 4 && indices.len() % 3 != 0 {
+        return Err(src.err(
+            place(),
+            format!(
+                "TRIANGLES needs a multiple of 3 indices but has {} ({} left over)",
+                indices.len(),
+                indices.len() % 3
+            ),
+        ));
+    }
+    let res = match mode {
+        4 => indices.chunks_exact(3).try_for_each(|t| {
+            mesh.face_indices.extend_from_slice(t);
+            close_face(&mut mesh)
+        }),
+        5 => push_strip_triangles(&mut mesh, &indices),
+        _ => push_fan_triangles(&mut mesh, &indices),
+    };
+    res.map_err(|w| src.err(place(), w))?;
+    let mesh_name = json["meshes"][m].get("name").and_then(Value::as_str).map_or(format!("mesh {m}"), String::from);
+    let material = uint(src, prim, "material", &place)?.map(|k| {
+        json.get("materials")
+            .and_then(|ms| ms.get(k as usize))
+            .and_then(|mat| mat.get("name"))
+            .and_then(Value::as_str)
+            .map_or(format!("material {k}"), String::from)
+    });
+    mesh.groups = vec![Group { name: mesh_name, material }];
+    let targets = match prim.get("targets") {
+        None => 0,
+        Some(Value::Array(t)) => t.len(),
+        Some(_) => return Err(src.err(place(), "'targets' must be an array")),
+    };
+    Ok(Some(ScenePrimitive {
+        mesh_index: m,
+        primitive_index: p,
+        mode: mode as u8,
+        targets,
+        indices_read: indices.len(),
+        mesh,
+        strips: None,
+        drawn: Vec::new(),
+        order: None,
+    }))
+}

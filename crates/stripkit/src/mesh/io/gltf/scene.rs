@@ -1,0 +1,975 @@
+//! glTF scenes in and out: the whole document kept, every triangle primitive
+//! stripped on its own (issue #15, items 2 and 7).
+//!
+//! [`Scene::read`] keeps the JSON document as it was read and the bytes of its buffers,
+//! and decodes every triangle primitive (modes 4, 5 and 6) into a [`Mesh`]: POSITION,
+//! every other vertex attribute with its type and `normalized` flag
+//! ([`crate::Attribute`], glTF semantic names), the triangles, and one [`Group`] named
+//! after the glTF mesh with the primitive's material. [`Scene::strip`] runs the front
+//! door ([`crate::stripify`]) on each of those meshes, so every primitive's strips are
+//! verified; [`Scene::to_bytes`] and [`Scene::write`] write the document back.
+//!
+//! What changes in the written document, and nothing else:
+//! - **Primitives.** Each stripped primitive becomes a `TRIANGLE_STRIP` (mode 5)
+//!   primitive whose `indices` are its strips stitched by degenerate triangles: core
+//!   glTF that every viewer draws. With [`SceneOptions::restart`] (the default) its mesh
+//!   also gets an `EXT_mesh_primitive_restart` primitive group per stripped primitive:
+//!   the group names that one primitive and an index accessor holding the strips
+//!   separated by the restart value (65535 for `UNSIGNED_SHORT`, 4294967295 for
+//!   `UNSIGNED_INT`). Viewers that read the extension draw one restart strip list,
+//!   the others draw the stitched fallback. The extension is listed in
+//!   `extensionsUsed`, never in `extensionsRequired`. Primitives with morph targets get
+//!   no group (the extension forbids them): they keep the stitched strip only.
+//!   The specification's example falls back to one primitive per strip, sharing the
+//!   restart buffer's bytes; a stitched fallback costs a second index list instead,
+//!   but keeps one draw call per primitive for viewers without the extension (bunny
+//!   has 1,189 strips).
+//! - **Vertex order.** With [`SceneOptions::reorder`] (the default) each stripped
+//!   primitive's vertices are renumbered in their first use by its strips and those the
+//!   strips do not use are left out (meshoptimizer's `optimizeVertexFetch`): its
+//!   attributes and morph targets get new accessors with the same properties, the
+//!   values gathered in that order and `min` / `max` recomputed (an accessor only that
+//!   primitive used keeps its number). Without it, or where an accessor is sparse,
+//!   the strips use the primitive's own vertex ids and its vertex data is not touched.
+//!   Skins and animations never change.
+//! - **Accessors and buffer views** keep their numbers. When every extension the
+//!   document uses is one known to name accessors only in the places read here
+//!   (materials, texture transforms, lights, KTX2/WebP/AVIF textures, quantization,
+//!   animation pointers, XMP; see `Scene::garbage`), an index accessor that only a
+//!   stripped primitive used takes that primitive's stitched indices, a buffer view
+//!   that only such accessors used takes the new indices, and the old index bytes are
+//!   left out of the file. Otherwise (an unknown extension might name an accessor by
+//!   number) everything is kept and the new accessors and one buffer view for all new
+//!   indices are appended; the old index accessors stay, unreferenced.
+//! - **Buffers** are merged into one: the buffer views' bytes one after the other
+//!   (or, with an unknown extension, the old buffers whole), each at a 4-byte aligned
+//!   offset, the views' `buffer` and `byteOffset` rewritten to match, then the new
+//!   indices. In a `.glb` it is the binary chunk; in a `.gltf` a base64 `data:` URI,
+//!   so external `.bin` files are embedded. Images keep their `uri` as written: an
+//!   image file beside the input must sit beside the output too.
+//!
+//! Scenes, nodes and transforms, materials, textures, images, samplers, skins,
+//! animations, cameras, `extras` and unknown extensions are written as read (object
+//! keys come out sorted). Before bytes are returned they are read back: per primitive,
+//! the decoded triangles (the stitched fallback and the restart group) must equal the
+//! input's as oriented triangles, and the positions and every attribute must be the
+//! same bytes, so every corner keeps its values.
+//!
+//! Reading follows [`ReadOptions`] (external buffers only from the asset's folder or
+//! allowed roots, bounded by `byteLength`; every decoded accessor charged to the
+//! decoded-bytes budget before it is allocated). Sparse accessors and accessors without
+//! a buffer view are refused in the primitives' vertex and index data (elsewhere they
+//! pass through untouched), as are the required extensions that change how geometry is
+//! stored (Draco, meshopt compression, quantization) and `EXT_meshopt_compression`
+//! even where optional (its views name buffers of their own, which merging would break).
+
+use super::primitive::{bounds, decode_primitive, vertex_accessors};
+use super::{array, at, glb_container, open, parse_glb, parse_json, Budget, Buffer, Doc, View};
+use crate::error::{Error, Result};
+use crate::io::{Format, ReadOptions};
+use crate::mesh::io::common::Src;
+use crate::mesh::Mesh;
+use crate::strip::{self, StripSet};
+use crate::{Algorithm, Figures, Join, StripOptions};
+use serde_json::{json, Value};
+use std::borrow::Cow;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// The extension that lets a strip primitive hold restart indices.
+pub const RESTART_EXTENSION: &str = "EXT_mesh_primitive_restart";
+
+/// Required extensions after which the vertex or index bytes cannot be read as plain
+/// accessors.
+const GEOMETRY_EXTENSIONS: [&str; 3] =
+    ["KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization"];
+
+/// A glTF document with its buffers and its triangle primitives decoded; see the
+/// [module documentation](self) for what reading and writing keep.
+///
+/// ```
+/// use stripkit::io::{Format, ReadOptions, Scene, SceneOptions};
+/// use stripkit::{gen, StripOptions};
+/// use std::path::Path;
+///
+/// // A scene (here made from a mesh; Scene::read takes a .gltf or .glb file).
+/// let mut scene = Scene::from_mesh(&gen::icosphere(2))?;
+/// // Every triangle primitive stripped through the door, each verified.
+/// let report = scene.strip(&StripOptions::default(), &SceneOptions::default())?;
+/// assert_eq!(report.triangles, 320);
+/// assert!(report.indices_stitched < 3 * 320);
+/// // Written (read back and checked first): a TRIANGLE_STRIP primitive with an
+/// // EXT_mesh_primitive_restart group.
+/// let glb = scene.to_bytes(Format::Glb)?;
+/// let back = Scene::from_bytes(Path::new("out.glb"), Format::Glb, &glb, &ReadOptions::default())?;
+/// assert_eq!(back.primitives()[0].mode, 5);
+/// assert_eq!(back.primitives()[0].mesh.triangle_count(), 320);
+/// # Ok::<(), stripkit::Error>(())
+/// ```
+#[derive(Clone)]
+pub struct Scene {
+    /// Names the file in errors.
+    name: PathBuf,
+    json: Value,
+    buffers: Vec<Buffer>,
+    views: Vec<View>,
+    primitives: Vec<ScenePrimitive>,
+    options: SceneOptions,
+    notes: Vec<String>,
+}
+
+impl std::fmt::Debug for Scene {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Scene")
+            .field("name", &self.name)
+            .field("buffers", &self.buffers.len())
+            .field("primitives", &self.primitives)
+            .finish_non_exhaustive()
+    }
+}
+
+/// One triangle primitive of a [`Scene`].
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct ScenePrimitive {
+    /// The primitive's mesh: its index in the document's `meshes`.
+    pub mesh_index: usize,
+    /// Its index in that mesh's `primitives`.
+    pub primitive_index: usize,
+    /// The mode read: 4 (TRIANGLES), 5 (TRIANGLE_STRIP) or 6 (TRIANGLE_FAN).
+    pub mode: u8,
+    /// The number of morph targets (`targets`).
+    pub targets: usize,
+    /// The indices read (the vertex count for a primitive without indices).
+    pub indices_read: usize,
+    /// The geometry: every vertex of the POSITION accessor (vertex ids are the
+    /// primitive's own), every attribute, one face per triangle (strips and fans
+    /// turned into triangles with their winding, degenerate ones skipped), and one
+    /// group named after the glTF mesh (or `mesh N`), with the material's name (or
+    /// `material N`).
+    pub mesh: Mesh,
+    /// The verified strips once [`Scene::strip`] has run.
+    pub strips: Option<StripSet>,
+    /// The triangles the strips were verified against (the door's reference: the
+    /// faces fanned, or quads split along the diagonals the algorithm chose).
+    pub(super) drawn: Vec<[u32; 3]>,
+    /// With [`SceneOptions::reorder`]: the written vertices, new id to old id (first
+    /// use by the strips; vertices they do not use left out).
+    pub(super) order: Option<Vec<u32>>,
+}
+
+/// How [`Scene::strip`] writes the strips.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct SceneOptions {
+    /// Add an `EXT_mesh_primitive_restart` group (restart indices) beside each
+    /// stitched strip primitive without morph targets. Default `true`; `false` writes
+    /// plain stitched strips, one primitive per input primitive, without the extension.
+    pub restart: bool,
+    /// Renumber each stripped primitive's vertices in their first use by the strips
+    /// and leave out those the strips do not use (meshoptimizer's
+    /// `optimizeVertexFetch`): its attributes and morph targets are written anew,
+    /// gathered in that order (min / max recomputed). Default `true`. A primitive
+    /// whose vertex data cannot be decoded (a sparse accessor) keeps its order.
+    pub reorder: bool,
+}
+
+impl Default for SceneOptions {
+    fn default() -> Self {
+        SceneOptions { restart: true, reorder: true }
+    }
+}
+
+impl SceneOptions {
+    /// Plain stitched strips: no `EXT_mesh_primitive_restart`.
+    pub fn stitched() -> Self {
+        SceneOptions { restart: false, ..SceneOptions::default() }
+    }
+
+    /// Sets [`SceneOptions::reorder`].
+    pub fn reorder(mut self, on: bool) -> Self {
+        self.reorder = on;
+        self
+    }
+}
+
+/// What [`Scene::strip`] did to one primitive.
+#[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
+pub struct PrimitiveReport {
+    /// Index in the document's `meshes`.
+    pub mesh: usize,
+    /// Index in that mesh's `primitives`.
+    pub primitive: usize,
+    /// The mode read (4, 5 or 6).
+    pub mode_read: u8,
+    /// Indices the primitive had (its vertex count when not indexed).
+    pub indices_read: usize,
+    /// Indices of the stitched strip written as the primitive's `indices`.
+    pub indices_stitched: usize,
+    /// Indices of the restart group, where one is written.
+    pub indices_restart: Option<usize>,
+    /// The algorithm that ran.
+    pub algorithm: &'static str,
+    /// The figures of the strips (METRICS.md).
+    pub figures: Figures,
+}
+
+/// What [`Scene::strip`] did to the whole scene.
+#[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
+pub struct SceneReport {
+    /// One entry per stripped primitive, in document order.
+    pub primitives: Vec<PrimitiveReport>,
+    /// Primitives left as they were: points and lines, and triangle primitives that
+    /// draw nothing.
+    pub skipped: usize,
+    /// Triangles stripped, all primitives together.
+    pub triangles: usize,
+    /// Indices read, all stripped primitives together.
+    pub indices_read: usize,
+    /// Stitched indices written, all together.
+    pub indices_stitched: usize,
+    /// Indices a viewer with primitive restart draws: the restart groups' indices,
+    /// plus the stitched ones of primitives without a group.
+    pub indices_drawn_restart: usize,
+    /// Time of the stripifiers alone, all primitives together, in milliseconds.
+    pub stripify_ms: f64,
+    /// Time of the whole call (door, verification and figures), in milliseconds.
+    pub total_ms: f64,
+}
+
+impl Scene {
+    /// Reads a `.gltf` or `.glb` file (optionally `.gz`) with the default
+    /// [`ReadOptions`].
+    pub fn read(path: &Path) -> Result<Scene> {
+        Scene::read_with(path, &ReadOptions::default())
+    }
+
+    /// [`Scene::read`] with options (external buffers, budgets; see [`ReadOptions`]).
+    pub fn read_with(path: &Path, options: &ReadOptions) -> Result<Scene> {
+        let format = scene_format(path)?;
+        let raw = std::fs::read(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
+        let data = if Format::from_path(path).is_some_and(|(_, gz)| gz) {
+            super::super::gunzip(path, &raw, options.max_decompressed_bytes)?
+        } else {
+            raw
+        };
+        Scene::from_bytes(path, format, &data, options)
+    }
+
+    /// Parses a scene held in memory (uncompressed) as `format` (`Gltf` or `Glb`);
+    /// `path` names it in errors and locates external buffers.
+    pub fn from_bytes(path: &Path, format: Format, data: &[u8], options: &ReadOptions) -> Result<Scene> {
+        let src = Src { path };
+        let (json, bin) = match format {
+            Format::Glb => parse_glb(src, data)?,
+            Format::Gltf => (parse_json(src, data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data), 0)?, None),
+            other => return Err(Error::Invalid(format!("a scene is glTF or GLB, not {other:?}"))),
+        };
+        if let Some(ext) = array(src, &json, "extensionsRequired")?
+            .iter()
+            .filter_map(Value::as_str)
+            .find(|e| GEOMETRY_EXTENSIONS.contains(e))
+        {
+            return Err(src.err(
+                "extensionsRequired",
+                format!("the file requires extension {ext}, which stores geometry in a way stripkit does not read"),
+            ));
+        }
+        // Its buffer views name buffers and offsets of their own, which merging the
+        // buffers would break.
+        if array(src, &json, "extensionsUsed")?.iter().any(|e| e == "EXT_meshopt_compression") {
+            return Err(src.err(
+                "extensionsUsed",
+                "the file uses EXT_meshopt_compression, whose compressed buffer views stripkit does not rewrite",
+            ));
+        }
+        let (buffers, views, primitives) = {
+            let doc = open(src, &json, bin, options)?;
+            let mut budget = Budget::new(options, doc.buffer_bytes());
+            let mut primitives = Vec::new();
+            for (m, jm) in array(src, &json, "meshes")?.iter().enumerate() {
+                let prims = match jm.get("primitives") {
+                    Some(Value::Array(a)) => a.as_slice(),
+                    _ => return Err(src.err(at("meshes", m), "'primitives' must be an array")),
+                };
+                for (p, prim) in prims.iter().enumerate() {
+                    if let Some(sp) = decode_primitive(&doc, &json, m, p, prim, &mut budget)? {
+                        primitives.push(sp);
+                    }
+                }
+            }
+            (doc.buffers, doc.views, primitives)
+        };
+        Ok(Scene {
+            name: path.to_path_buf(),
+            json,
+            buffers,
+            views,
+            primitives,
+            options: SceneOptions::default(),
+            notes: Vec::new(),
+        })
+    }
+
+    /// A scene of one mesh: one node, one glTF mesh, one TRIANGLES primitive per group
+    /// that has faces, with its material (named after the group's), every attribute
+    /// under its glTF semantic or as an application-specific `_NAME` one (see
+    /// [`Scene::notes`] for those that glTF cannot take). A mesh of one group keeps
+    /// its vertex ids; with several groups each primitive holds the vertices its faces
+    /// use. Each primitive's [`ScenePrimitive::mesh`] keeps the group's polygons, so
+    /// that [`Scene::strip`] may split quads as the algorithm chooses.
+    pub fn from_mesh(mesh: &Mesh) -> Result<Scene> {
+        let doc = super::from_mesh::mesh_document(mesh)?;
+        let options = ReadOptions { max_decoded_bytes: Some(u64::MAX), ..ReadOptions::default() };
+        let mut scene = Scene::from_bytes(Path::new("<mesh as glTF>"), Format::Glb, &doc.glb, &options)?;
+        for ((sp, &g), (offsets, indices)) in scene.primitives.iter_mut().zip(&doc.group_of_primitive).zip(doc.faces) {
+            sp.mesh.face_offsets = offsets;
+            sp.mesh.face_indices = indices;
+            if let Some(group) = mesh.groups.get(g as usize) {
+                sp.mesh.groups = vec![group.clone()];
+            }
+        }
+        scene.notes = doc.notes;
+        Ok(scene)
+    }
+
+    /// What could not be kept: attributes [`Scene::from_mesh`] did not write, and why.
+    pub fn notes(&self) -> &[String] {
+        &self.notes
+    }
+
+    /// The JSON document as read.
+    pub fn json(&self) -> &Value {
+        &self.json
+    }
+
+    /// The triangle primitives (modes 4, 5 and 6), in document order. Points and lines
+    /// are not listed; they are written back unchanged.
+    pub fn primitives(&self) -> &[ScenePrimitive] {
+        &self.primitives
+    }
+
+    /// Strips every triangle primitive on its own through the front door
+    /// ([`crate::stripify`], which verifies the strips), with `options` (its join and
+    /// restart index are the door's business: the written forms are chosen by
+    /// `scene_options`, see [`SceneOptions`]). [`Algorithm::Single`] is refused: it
+    /// adds vertices, and a scene's vertex data is not rewritten. Errors name the
+    /// primitive. Calling it again strips again.
+    pub fn strip(&mut self, options: &StripOptions, scene_options: &SceneOptions) -> Result<SceneReport> {
+        if matches!(options.algorithm, Algorithm::Single(_)) {
+            return Err(Error::Invalid(
+                "single adds vertices, and a glTF scene's vertex data is written as read; choose another algorithm"
+                    .into(),
+            ));
+        }
+        let start = Instant::now();
+        let options = options.clone().join(Join::Restart).restart_index(u32::MAX);
+        let mut stripifier = crate::Stripifier::new(options)?;
+        let mut report = SceneReport {
+            primitives: Vec::new(),
+            skipped: array_len(&self.json, "meshes", "primitives") - self.primitives.len(),
+            triangles: 0,
+            indices_read: 0,
+            indices_stitched: 0,
+            indices_drawn_restart: 0,
+            stripify_ms: 0.0,
+            total_ms: 0.0,
+        };
+        let mut stripify_time = Duration::ZERO;
+        // Whether each primitive's vertex accessors can be read back for reordering.
+        let readable: Vec<bool> = {
+            let doc = self.doc();
+            self.primitives
+                .iter()
+                .map(|sp| {
+                    vertex_accessors(&self.json, sp)
+                        .iter()
+                        .all(|(_, _, a)| doc.read_packed(*a, &mut |_| Ok(())).is_ok())
+                })
+                .collect()
+        };
+        for (sp, readable) in self.primitives.iter_mut().zip(readable) {
+            sp.strips = None;
+            sp.order = None;
+            if sp.mesh.face_count() == 0 {
+                report.skipped += 1;
+                continue;
+            }
+            let name = |e: Error| {
+                let place =
+                    format!("{}: meshes[{}].primitives[{}]", self.name.display(), sp.mesh_index, sp.primitive_index);
+                match e {
+                    Error::Invalid(m) => Error::Invalid(format!("{place}: {m}")),
+                    Error::Verification(m) => Error::Verification(format!("{place}: {m}")),
+                    other => other,
+                }
+            };
+            let strips = stripifier.stripify(&sp.mesh).map_err(name)?;
+            stripify_time += strips.stripify_time;
+            let set = strips.strips;
+            let stitched = strip::stitched_len(&set);
+            let restart = (scene_options.restart && sp.targets == 0)
+                .then(|| set.iter().filter(|s| s.len() >= 3).map(|s| s.len() + 1).sum::<usize>().saturating_sub(1));
+            report.triangles += strips.figures.triangles;
+            report.indices_read += sp.indices_read;
+            report.indices_stitched += stitched;
+            report.indices_drawn_restart += restart.unwrap_or(stitched);
+            report.primitives.push(PrimitiveReport {
+                mesh: sp.mesh_index,
+                primitive: sp.primitive_index,
+                mode_read: sp.mode,
+                indices_read: sp.indices_read,
+                indices_stitched: stitched,
+                indices_restart: restart,
+                algorithm: strips.algorithm.name(),
+                figures: strips.figures,
+            });
+            if scene_options.reorder && readable {
+                let mut seen = vec![false; sp.mesh.vertex_count()];
+                let mut order = Vec::new();
+                for v in strip::encode_stitched(&set) {
+                    if !std::mem::replace(&mut seen[v as usize], true) {
+                        order.push(v);
+                    }
+                }
+                sp.order = Some(order);
+            }
+            sp.strips = Some(set);
+            sp.drawn = strips.triangles;
+        }
+        self.options = scene_options.clone();
+        report.stripify_ms = stripify_time.as_secs_f64() * 1e3;
+        report.total_ms = start.elapsed().as_secs_f64() * 1e3;
+        Ok(report)
+    }
+
+    /// The document as a `.glb` or `.gltf` file (`format`), read back and checked
+    /// (see the [module documentation](self)) before it is returned. Without
+    /// [`Scene::strip`] the primitives are written as read (buffers merged).
+    pub fn to_bytes(&self, format: Format) -> Result<Vec<u8>> {
+        let (mut json, bin) = self.build()?;
+        let bytes = match format {
+            Format::Glb => glb_container(&json, bin)?,
+            Format::Gltf => {
+                if let Some(b) = json.get_mut("buffers").and_then(|b| b.get_mut(0)) {
+                    b["uri"] =
+                        Value::String(format!("data:application/octet-stream;base64,{}", super::base64_encode(&bin)));
+                }
+                serde_json::to_vec(&json).map_err(|e| Error::Invalid(format!("cannot encode glTF JSON: {e}")))?
+            }
+            other => return Err(Error::Invalid(format!("a scene is written as glTF or GLB, not {other:?}"))),
+        };
+        self.check_written(format, &bytes)?;
+        Ok(bytes)
+    }
+
+    /// Writes the scene to `path` (`.gltf` or `.glb`, optionally `.gz`), atomically,
+    /// after the check of [`Scene::to_bytes`].
+    pub fn write(&self, path: &Path) -> Result<()> {
+        let bytes = self.to_bytes(scene_format(path)?)?;
+        crate::io::write_encoded(path, &bytes)
+    }
+
+    /// The JSON and the one binary buffer to write.
+    fn build(&self) -> Result<(Value, Vec<u8>)> {
+        let mut json = self.json.clone();
+        let garbage = self.garbage();
+        let mut bin = Vec::new();
+        if garbage.collect {
+            // Each live view's bytes, one after the other: the old index data of
+            // stripped primitives, and bytes no view covers, are left out.
+            if let Some(Value::Array(views)) = json.get_mut("bufferViews") {
+                for (k, (v, view)) in views.iter_mut().zip(&self.views).enumerate() {
+                    if garbage.dead_views.contains(&k) {
+                        continue;
+                    }
+                    pad4(&mut bin);
+                    let offset = bin.len();
+                    bin.extend_from_slice(&self.buffers[view.buffer][view.offset..view.offset + view.length]);
+                    v["buffer"] = 0.into();
+                    if offset != view.offset {
+                        v["byteOffset"] = offset.into();
+                    }
+                }
+            }
+        } else {
+            let mut base = Vec::with_capacity(self.buffers.len());
+            for b in &self.buffers {
+                pad4(&mut bin);
+                base.push(bin.len());
+                bin.extend_from_slice(b);
+            }
+            if let Some(Value::Array(views)) = json.get_mut("bufferViews") {
+                for (v, view) in views.iter_mut().zip(&self.views) {
+                    let offset = base[view.buffer] + view.offset;
+                    v["buffer"] = 0.into();
+                    if offset != view.offset {
+                        v["byteOffset"] = offset.into();
+                    }
+                }
+            }
+        }
+        let stripped: Vec<&ScenePrimitive> = self.primitives.iter().filter(|p| p.strips.is_some()).collect();
+        // (mesh, primitive, restart accessor) of the groups to write.
+        let mut groups: Vec<(usize, usize, usize)> = Vec::new();
+        if !stripped.is_empty() {
+            // New views take dead views' numbers first.
+            let mut free_views: std::collections::VecDeque<usize> = garbage.dead_views.iter().copied().collect();
+            let mut accessors = std::mem::take(&mut json["accessors"]);
+            if !accessors.is_array() {
+                accessors = json!([]);
+            }
+            // Reordered primitives: their vertex data gathered in the strips' order.
+            let mut remapped: Vec<Option<StripSet>> = Vec::with_capacity(stripped.len());
+            for sp in &stripped {
+                let Some(order) = &sp.order else {
+                    remapped.push(None);
+                    continue;
+                };
+                let doc = self.doc();
+                for (target, name, a) in vertex_accessors(&self.json, sp) {
+                    let (acc, data) = doc.read_packed(a, &mut |_| Ok(()))?;
+                    let elem = acc.component_size() * acc.components;
+                    let stride = elem.next_multiple_of(4);
+                    pad4(&mut bin);
+                    let start = bin.len();
+                    for &v in order {
+                        bin.extend_from_slice(&data[v as usize * elem..][..elem]);
+                        bin.resize(bin.len() + stride - elem, 0);
+                    }
+                    let mut view =
+                        json!({"buffer": 0, "byteOffset": start, "byteLength": bin.len() - start, "target": 34962});
+                    if stride != elem {
+                        view["byteStride"] = stride.into();
+                    }
+                    let view = match free_views.pop_front() {
+                        Some(v) => {
+                            json["bufferViews"][v] = view;
+                            v
+                        }
+                        None => push_array(&mut json, "bufferViews", view),
+                    };
+                    let list = accessors.as_array_mut().expect("made an array above");
+                    let mut new = list[a].clone();
+                    if let Some(o) = new.as_object_mut() {
+                        o.remove("byteOffset");
+                        o.remove("sparse");
+                    }
+                    new["bufferView"] = view.into();
+                    new["count"] = order.len().into();
+                    if new.get("min").is_some() || new.get("max").is_some() {
+                        let (lo, hi) = bounds(&acc, &data, order);
+                        new["min"] = lo;
+                        new["max"] = hi;
+                    }
+                    let k = if garbage.reused.binary_search(&a).is_ok() {
+                        list[a] = new;
+                        a
+                    } else {
+                        list.push(new);
+                        list.len() - 1
+                    };
+                    let prim = &mut json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
+                    match target {
+                        None => prim["attributes"][name.as_str()] = k.into(),
+                        Some(t) => prim["targets"][t][name.as_str()] = k.into(),
+                    }
+                }
+                let mut new_id = vec![u32::MAX; sp.mesh.vertex_count()];
+                for (k, &v) in order.iter().enumerate() {
+                    new_id[v as usize] = k as u32;
+                }
+                let set = sp.strips.as_ref().expect("filtered above");
+                let strips: Vec<Vec<u32>> =
+                    set.iter().map(|s| s.iter().map(|&v| new_id[v as usize]).collect()).collect();
+                remapped.push(Some(StripSet::from_strips(&strips)));
+            }
+            pad4(&mut bin);
+            let view_start = bin.len();
+            // The new indices go to a dead view's number where there is one.
+            let view = match free_views.pop_front() {
+                Some(v) => v,
+                None => push_array(&mut json, "bufferViews", Value::Null),
+            };
+            // `slot`: an old index accessor to replace (its name kept), else a new one.
+            let mut add = |bin: &mut Vec<u8>, indices: &[u32], wide: bool, slot: Option<usize>| -> usize {
+                pad4(bin);
+                let offset = bin.len() - view_start;
+                for &i in indices {
+                    if wide {
+                        bin.extend_from_slice(&i.to_le_bytes());
+                    } else {
+                        bin.extend_from_slice(&(i as u16).to_le_bytes());
+                    }
+                }
+                let list = accessors.as_array_mut().expect("made an array above");
+                let mut acc = json!({
+                    "bufferView": view, "byteOffset": offset, "componentType": if wide { 5125 } else { 5123 },
+                    "count": indices.len(), "type": "SCALAR",
+                });
+                match slot {
+                    Some(k) => {
+                        if let Some(name) = list[k].get("name") {
+                            acc["name"] = name.clone();
+                        }
+                        list[k] = acc;
+                        k
+                    }
+                    None => {
+                        list.push(acc);
+                        list.len() - 1
+                    }
+                }
+            };
+            for (sp, remapped) in stripped.iter().zip(&remapped) {
+                let set = remapped.as_ref().or(sp.strips.as_ref()).expect("filtered above");
+                // 65535 is the u16 restart value, never a vertex id.
+                let vertices = sp.order.as_ref().map_or(sp.mesh.vertex_count(), Vec::len);
+                let wide = vertices >= u16::MAX as usize;
+                let old = self.json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index]["indices"].as_u64();
+                let slot = old.map(|a| a as usize).filter(|a| garbage.reused.contains(a));
+                let stitched = add(&mut bin, &strip::encode_stitched(set), wide, slot);
+                let prim = &mut json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
+                prim["indices"] = stitched.into();
+                prim["mode"] = 5.into();
+                if self.options.restart && sp.targets == 0 {
+                    let restart = if wide { u32::MAX } else { u16::MAX as u32 };
+                    let list: StripSet =
+                        StripSet::from_strips(&set.iter().filter(|s| s.len() >= 3).collect::<Vec<_>>());
+                    let acc = add(&mut bin, &strip::encode_restart(&list, restart), wide, None);
+                    groups.push((sp.mesh_index, sp.primitive_index, acc));
+                }
+            }
+            json["accessors"] = accessors;
+            let new_view =
+                json!({"buffer": 0, "byteOffset": view_start, "byteLength": bin.len() - view_start, "target": 34963});
+            // Other dead views keep their numbers, over the new indices (nothing uses them).
+            for &v in &free_views {
+                json["bufferViews"][v] = new_view.clone();
+            }
+            json["bufferViews"][view] = new_view;
+            // Old restart groups naming a rewritten primitive would draw stale indices.
+            let mut meshes: Vec<usize> = stripped.iter().map(|p| p.mesh_index).collect();
+            meshes.dedup();
+            for m in meshes {
+                let rewritten: Vec<usize> =
+                    stripped.iter().filter(|p| p.mesh_index == m).map(|p| p.primitive_index).collect();
+                let mesh = &mut json["meshes"][m];
+                let mut kept: Vec<Value> = mesh
+                    .pointer(&format!("/extensions/{RESTART_EXTENSION}/primitiveGroups"))
+                    .and_then(Value::as_array)
+                    .map(|g| {
+                        g.iter()
+                            .filter(|g| {
+                                !g.get("primitives").and_then(Value::as_array).is_some_and(|ps| {
+                                    ps.iter().any(|p| p.as_u64().is_some_and(|p| rewritten.contains(&(p as usize))))
+                                })
+                            })
+                            .cloned()
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                for &(_, p, acc) in groups.iter().filter(|g| g.0 == m) {
+                    kept.push(json!({"primitives": [p], "indices": acc}));
+                }
+                let has_ext = mesh.pointer(&format!("/extensions/{RESTART_EXTENSION}")).is_some();
+                if kept.is_empty() {
+                    if has_ext {
+                        if let Some(Value::Object(ext)) = mesh.get_mut("extensions") {
+                            ext.remove(RESTART_EXTENSION);
+                            if ext.is_empty() {
+                                mesh.as_object_mut().expect("a mesh is an object").remove("extensions");
+                            }
+                        }
+                    }
+                } else {
+                    if !mesh.get("extensions").is_some_and(Value::is_object) {
+                        mesh["extensions"] = json!({});
+                    }
+                    mesh["extensions"][RESTART_EXTENSION] = json!({"primitiveGroups": kept});
+                }
+            }
+        }
+        let used = json
+            .get("meshes")
+            .and_then(Value::as_array)
+            .is_some_and(|ms| ms.iter().any(|m| m.pointer(&format!("/extensions/{RESTART_EXTENSION}")).is_some()));
+        let listed = json
+            .get("extensionsUsed")
+            .and_then(Value::as_array)
+            .is_some_and(|l| l.iter().any(|e| e == RESTART_EXTENSION));
+        if used && !listed {
+            push_array(&mut json, "extensionsUsed", RESTART_EXTENSION.into());
+        } else if !used && listed {
+            if let Some(Value::Array(l)) = json.get_mut("extensionsUsed") {
+                l.retain(|e| e != RESTART_EXTENSION);
+            }
+        }
+        if bin.is_empty() && self.buffers.is_empty() {
+            return Ok((json, bin));
+        }
+        let mut buffer = match self.json.pointer("/buffers/0") {
+            Some(Value::Object(b)) => b.clone(),
+            _ => serde_json::Map::new(),
+        };
+        buffer.remove("uri");
+        pad4(&mut bin);
+        buffer.insert("byteLength".into(), bin.len().into());
+        json["buffers"] = json!([buffer]);
+        Ok((json, bin))
+    }
+
+    /// What writing may drop: the index accessors only stripped primitives use
+    /// (replaced in place by their stitched indices) and the buffer views only those
+    /// use (their bytes left out). Nothing is dropped when the document uses an
+    /// extension not known to name accessors only where [`Scene::garbage`] looks, or
+    /// when nothing was stripped.
+    fn garbage(&self) -> Garbage {
+        let none = Garbage { collect: false, reused: Vec::new(), dead_views: Vec::new() };
+        let known = |e: &str| {
+            e.starts_with("KHR_materials_")
+                || matches!(
+                    e,
+                    "KHR_texture_transform"
+                        | "KHR_lights_punctual"
+                        | "KHR_texture_basisu"
+                        | "EXT_texture_webp"
+                        | "EXT_texture_avif"
+                        | "KHR_mesh_quantization"
+                        | "KHR_xmp_json_ld"
+                        | "KHR_animation_pointer"
+                        | RESTART_EXTENSION
+                )
+        };
+        let used = self.json.get("extensionsUsed").and_then(Value::as_array);
+        if used.is_some_and(|l| !l.iter().all(|e| e.as_str().is_some_and(known)))
+            || self.primitives.iter().all(|p| p.strips.is_none())
+        {
+            return none;
+        }
+        let list = |v: &Value, key: &str| v.get(key).and_then(Value::as_array).cloned().unwrap_or_default();
+        let n_acc = list(&self.json, "accessors").len();
+        let mut other = vec![0u32; n_acc];
+        let mut as_index = vec![0u32; n_acc];
+        let count = |counts: &mut Vec<u32>, v: Option<&Value>| {
+            if let Some(a) = v.and_then(Value::as_u64).filter(|&a| (a as usize) < n_acc) {
+                counts[a as usize] += 1;
+            }
+        };
+        for mesh in list(&self.json, "meshes") {
+            for prim in list(&mesh, "primitives") {
+                count(&mut as_index, prim.get("indices"));
+                for a in prim.get("attributes").and_then(Value::as_object).into_iter().flat_map(|o| o.values()) {
+                    count(&mut other, Some(a));
+                }
+                for t in list(&prim, "targets") {
+                    for a in t.as_object().into_iter().flat_map(|o| o.values()) {
+                        count(&mut other, Some(a));
+                    }
+                }
+            }
+            let groups = mesh.pointer(&format!("/extensions/{RESTART_EXTENSION}/primitiveGroups"));
+            for g in groups.and_then(Value::as_array).into_iter().flatten() {
+                count(&mut other, g.get("indices"));
+            }
+        }
+        for skin in list(&self.json, "skins") {
+            count(&mut other, skin.get("inverseBindMatrices"));
+        }
+        for anim in list(&self.json, "animations") {
+            for s in list(&anim, "samplers") {
+                count(&mut other, s.get("input"));
+                count(&mut other, s.get("output"));
+            }
+        }
+        let mut reused: Vec<usize> = self
+            .primitives
+            .iter()
+            .filter(|p| p.strips.is_some())
+            .filter_map(|p| self.json["meshes"][p.mesh_index]["primitives"][p.primitive_index]["indices"].as_u64())
+            .map(|a| a as usize)
+            .filter(|&a| a < n_acc && as_index[a] == 1 && other[a] == 0)
+            .collect();
+        for sp in self.primitives.iter().filter(|p| p.order.is_some()) {
+            for (_, _, a) in vertex_accessors(&self.json, sp) {
+                if a < n_acc && other[a] + as_index[a] == 1 {
+                    reused.push(a);
+                }
+            }
+        }
+        reused.sort_unstable();
+        reused.dedup();
+        let n_views = self.views.len();
+        let mut live = vec![false; n_views];
+        let mut candidate = vec![false; n_views];
+        for (a, acc) in list(&self.json, "accessors").iter().enumerate() {
+            let refs = [
+                acc.get("bufferView"),
+                acc.pointer("/sparse/indices/bufferView"),
+                acc.pointer("/sparse/values/bufferView"),
+            ];
+            for v in refs.into_iter().flatten().filter_map(Value::as_u64).map(|v| v as usize).filter(|&v| v < n_views) {
+                if reused.binary_search(&a).is_ok() {
+                    candidate[v] = true;
+                } else {
+                    live[v] = true;
+                }
+            }
+        }
+        for image in list(&self.json, "images") {
+            if let Some(v) = image.get("bufferView").and_then(Value::as_u64).filter(|&v| (v as usize) < n_views) {
+                live[v as usize] = true;
+            }
+        }
+        let dead_views = (0..n_views).filter(|&v| candidate[v] && !live[v]).collect();
+        Garbage { collect: true, reused, dead_views }
+    }
+
+    /// Reads `bytes` back and compares every primitive with this scene's.
+    fn check_written(&self, format: Format, bytes: &[u8]) -> Result<()> {
+        let name = PathBuf::from(format!("the {format:?} bytes to be written"));
+        // The input was accepted under the caller's budget; the output decodes to the same.
+        let options = ReadOptions { max_decoded_bytes: Some(u64::MAX), ..ReadOptions::default() };
+        let back = Scene::from_bytes(&name, format, bytes, &options)?;
+        let fail = |sp: &ScenePrimitive, what: String| {
+            Error::Verification(format!(
+                "{}, read back: meshes[{}].primitives[{}]: {what}",
+                name.display(),
+                sp.mesh_index,
+                sp.primitive_index
+            ))
+        };
+        if back.primitives.len() != self.primitives.len() {
+            return Err(Error::Verification(format!(
+                "{}, read back: {} triangle primitives instead of {}",
+                name.display(),
+                back.primitives.len(),
+                self.primitives.len()
+            )));
+        }
+        let doc = back.doc();
+        for (a, b) in self.primitives.iter().zip(&back.primitives) {
+            if (a.mesh_index, a.primitive_index) != (b.mesh_index, b.primitive_index) {
+                return Err(fail(
+                    a,
+                    format!("came back as meshes[{}].primitives[{}]", b.mesh_index, b.primitive_index),
+                ));
+            }
+            // With reordering, the written vertices are the input's in `order`.
+            let (positions, attributes) = match &a.order {
+                None => (Cow::Borrowed(&a.mesh.positions), Cow::Borrowed(&a.mesh.attributes)),
+                Some(order) => (
+                    Cow::Owned(order.iter().map(|&v| a.mesh.positions[v as usize]).collect::<Vec<_>>()),
+                    Cow::Owned(a.mesh.attributes.iter().map(|x| x.gather(order)).collect::<Vec<_>>()),
+                ),
+            };
+            if *positions != b.mesh.positions {
+                return Err(fail(a, "positions differ".into()));
+            }
+            if *attributes != b.mesh.attributes {
+                return Err(fail(a, "vertex attributes differ".into()));
+            }
+            let got = b.mesh.triangulate().tris;
+            if a.strips.is_none() {
+                let want = a.mesh.triangulate().tris;
+                if want != got {
+                    return Err(fail(a, "the triangles of a primitive written as read differ".into()));
+                }
+                continue;
+            }
+            let want: Cow<[[u32; 3]]> = match &a.order {
+                None => Cow::Borrowed(&a.drawn),
+                Some(order) => {
+                    let mut new_id = vec![u32::MAX; a.mesh.vertex_count()];
+                    for (k, &v) in order.iter().enumerate() {
+                        new_id[v as usize] = k as u32;
+                    }
+                    Cow::Owned(a.drawn.iter().map(|t| t.map(|v| new_id[v as usize])).collect())
+                }
+            };
+            let want = &*want;
+            let v = strip::verify_triangles(want, &got);
+            if !v.ok() {
+                return Err(fail(a, format!("stitched strip: {v}")));
+            }
+            let group = back.json["meshes"][b.mesh_index]
+                .pointer(&format!("/extensions/{RESTART_EXTENSION}/primitiveGroups"))
+                .and_then(Value::as_array)
+                .and_then(|gs| gs.iter().find(|g| g["primitives"] == json!([b.primitive_index])));
+            let expect_group = self.options.restart && a.targets == 0;
+            match (group, expect_group) {
+                (Some(g), true) => {
+                    let acc = g["indices"].as_u64().ok_or_else(|| fail(a, "restart group without indices".into()))?;
+                    let mut list = Vec::new();
+                    doc.read_indices(acc as usize, &mut list, &mut |_| Ok(()))?;
+                    let n = a.order.as_ref().map_or(a.mesh.vertex_count(), Vec::len);
+                    let restart = if n >= u16::MAX as usize { u32::MAX } else { u16::MAX as u32 };
+                    if list.iter().any(|&i| i != restart && i as usize >= n) {
+                        return Err(fail(a, "restart indices out of range".into()));
+                    }
+                    let decoded = strip::decode(&strip::decode_restart(&list, restart));
+                    let v = strip::verify_triangles(want, &decoded);
+                    if !v.ok() {
+                        return Err(fail(a, format!("restart group: {v}")));
+                    }
+                }
+                (None, false) => {}
+                (Some(_), false) => return Err(fail(a, "a restart group where none belongs".into())),
+                (None, true) => return Err(fail(a, "its restart group is missing".into())),
+            }
+        }
+        Ok(())
+    }
+
+    /// A reader over the scene's own buffers.
+    fn doc(&self) -> Doc<'_> {
+        Doc {
+            src: Src { path: &self.name },
+            buffers: self.buffers.clone(),
+            views: self.views.clone(),
+            accessors: self.json.get("accessors").and_then(Value::as_array).map_or(&[], Vec::as_slice),
+        }
+    }
+}
+
+/// See [`Scene::garbage`].
+struct Garbage {
+    /// Whether views are copied one by one, leaving out the dead ones' bytes.
+    collect: bool,
+    /// Old index accessors (sorted) whose numbers the stitched indices take.
+    reused: Vec<usize>,
+    /// Views (sorted) only reused accessors referred to.
+    dead_views: Vec<usize>,
+}
+
+/// The scene format a path names.
+fn scene_format(path: &Path) -> Result<Format> {
+    match Format::from_path(path) {
+        Some((f @ (Format::Gltf | Format::Glb), _)) => Ok(f),
+        _ => Err(Error::Invalid(format!("{}: a scene is a .gltf or .glb file", path.display()))),
+    }
+}
+
+/// Pads to a multiple of 4 bytes.
+fn pad4(bin: &mut Vec<u8>) {
+    bin.resize(bin.len().next_multiple_of(4), 0);
+}
+
+/// Appends `value` to the array `key` of `json` (made if absent) and returns its index.
+fn push_array(json: &mut Value, key: &str, value: Value) -> usize {
+    if !json.get(key).is_some_and(Value::is_array) {
+        json[key] = json!([]);
+    }
+    let list = json[key].as_array_mut().expect("made an array above");
+    list.push(value);
+    list.len() - 1
+}
+
+/// The number of `inner` entries of all `outer` entries (primitives of all meshes).
+fn array_len(json: &Value, outer: &str, inner: &str) -> usize {
+    json.get(outer)
+        .and_then(Value::as_array)
+        .map_or(0, |l| l.iter().map(|m| m.get(inner).and_then(Value::as_array).map_or(0, Vec::len)).sum())
+}
