@@ -648,6 +648,10 @@ struct SceneCliReport<'a> {
     input: &'a Path,
     output: &'a Path,
     join: Join,
+    /// Always true: every primitive was verified, and the written file read back and
+    /// checked (a failure is an error and writes nothing), as in the mesh report.
+    verified: bool,
+    vertex_order: VertexOrder,
     /// Reading and decoding the input, in milliseconds.
     read_ms: f64,
     /// Encoding, checking (read back) and writing the output, in milliseconds.
@@ -738,6 +742,8 @@ fn strip_scene(
         input: &args.input,
         output: &args.output,
         join: args.join,
+        verified: true,
+        vertex_order,
         read_ms: read_time.as_secs_f64() * 1e3,
         write_ms,
         scene: &report,
