@@ -720,3 +720,41 @@ fn vertices_are_renumbered_in_first_use_and_unused_ones_left_out() {
     assert_eq!(untouched(&oj), untouched(&json));
     support::gltf_validator::validate(&[&path]);
 }
+
+#[test]
+fn normals_off_unit_length_are_rescaled_and_zero_ones_renamed() {
+    // A PLY's nx ny nz need not be unit vectors; glTF's NORMAL must be.
+    let mut mesh = gen::icosphere(1);
+    let n = mesh.vertex_count();
+    let normals: Vec<f32> = mesh.positions.iter().flat_map(|p| p.map(|x| 7.0 * x)).collect();
+    mesh.attributes.push(stripkit::Attribute::from_f32("NORMAL", 3, &normals));
+    let scene = Scene::from_mesh(&mesh).unwrap();
+    assert!(
+        scene.notes().iter().any(|s| s.contains(&format!("{n} of {n} NORMAL vectors rescaled"))),
+        "{:?}",
+        scene.notes()
+    );
+    let written = scene.primitives()[0].mesh.attribute("NORMAL").expect("NORMAL written");
+    for v in 0..n {
+        let len = (0..3).map(|c| written.get(v, c).powi(2)).sum::<f64>().sqrt();
+        assert!((len - 1.0).abs() < 1e-6, "vertex {v}: length {len}");
+        for c in 0..3 {
+            assert!((written.get(v, c) - mesh.positions[v][c] as f64).abs() < 1e-6, "vertex {v}: direction kept");
+        }
+    }
+    let bytes = scene.to_bytes(Format::Glb).unwrap();
+    let path = out_dir("unit-normals").join("rescaled.glb");
+    std::fs::write(&path, &bytes).unwrap();
+    // A zero normal cannot be made unit: the values go out unchanged as _NORMAL.
+    let mut zero = normals.clone();
+    zero[..3].fill(0.0);
+    mesh.attributes[0] = stripkit::Attribute::from_f32("NORMAL", 3, &zero);
+    let scene = Scene::from_mesh(&mesh).unwrap();
+    assert!(scene.notes().iter().any(|s| s.contains("written as _NORMAL")), "{:?}", scene.notes());
+    let p = &scene.primitives()[0].mesh;
+    assert!(p.attribute("NORMAL").is_none());
+    assert_eq!(p.attribute("_NORMAL").unwrap().value(1), mesh.attributes[0].value(1));
+    let renamed = out_dir("unit-normals").join("renamed.glb");
+    std::fs::write(&renamed, scene.to_bytes(Format::Glb).unwrap()).unwrap();
+    support::gltf_validator::validate(&[&path, &renamed]);
+}

@@ -29,9 +29,56 @@ pub(super) struct MeshDocument {
     pub notes: Vec<String>,
 }
 
+/// A NORMAL (or TANGENT's xyz) as glTF wants it: unit vectors, as `f32`. Vectors off
+/// unit length (a PLY's `nx ny nz` need not be) are rescaled and counted; a zero or
+/// non-finite one cannot be, so `None`: the attribute then goes out under its own
+/// `_NAME`, unchanged.
+fn unit_vectors(a: &Attribute) -> Option<(Vec<u8>, usize)> {
+    let comps = a.components as usize;
+    let mut data = Vec::with_capacity(a.len() * comps * 4);
+    let mut rescaled = 0;
+    for v in 0..a.len() {
+        let x = [a.get(v, 0), a.get(v, 1), a.get(v, 2)];
+        let len = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+        if !(len.is_finite() && len > 1e-12) {
+            return None;
+        }
+        // The validator's tolerance is 0.0005; rescale only what it would reject.
+        let scale = if (len - 1.0).abs() > 1e-4 {
+            rescaled += 1;
+            1.0 / len
+        } else {
+            1.0
+        };
+        for c in 0..comps {
+            let value = if c < 3 { a.get(v, c) * scale } else { a.get(v, c) };
+            data.extend_from_slice(&(value as f32).to_le_bytes());
+        }
+    }
+    Some((data, rescaled))
+}
+
 /// The glTF name, scalar type, normalized flag and little-endian values of an
-/// attribute, or why it cannot be written.
-fn gltf_form(a: &Attribute) -> std::result::Result<(String, Scalar, bool, Vec<u8>), String> {
+/// attribute, or why it cannot be written; and a note on a repair made on the way.
+fn gltf_form(a: &Attribute) -> std::result::Result<((String, Scalar, bool, Vec<u8>), Option<String>), String> {
+    let comps = a.components as usize;
+    if (a.name == "NORMAL" && comps == 3) || (a.name == "TANGENT" && comps == 4) {
+        if let Some((data, rescaled)) = unit_vectors(a) {
+            let note = (rescaled > 0).then(|| {
+                format!("{rescaled} of {} {} vectors rescaled to unit length, as glTF requires", a.len(), a.name)
+            });
+            return Ok(((a.name.clone(), Scalar::F32, false, data), note));
+        }
+        let note =
+            format!("{} holds a zero or non-finite vector, which glTF does not allow: written as _{}", a.name, a.name);
+        let renamed = Attribute { name: format!("_{}", a.name), ..a.clone() };
+        return gltf_form(&renamed).map(|(form, _)| (form, Some(note)));
+    }
+    gltf_plain_form(a).map(|form| (form, None))
+}
+
+/// [`gltf_form`] for everything but unit vectors.
+fn gltf_plain_form(a: &Attribute) -> std::result::Result<(String, Scalar, bool, Vec<u8>), String> {
     let comps = a.components as usize;
     let numbered =
         |p: &str| a.name.strip_prefix(p).is_some_and(|r| !r.is_empty() && r.bytes().all(|b| b.is_ascii_digit()));
@@ -47,8 +94,6 @@ fn gltf_form(a: &Attribute) -> std::result::Result<(String, Scalar, bool, Vec<u8
         (name, Scalar::F32, false, data)
     };
     Ok(match a.name.as_str() {
-        "NORMAL" if comps == 3 => float(a.name.clone()),
-        "TANGENT" if comps == 4 => float(a.name.clone()),
         _ if numbered("TEXCOORD_") && comps == 2 => {
             if unorm {
                 raw()
@@ -166,7 +211,10 @@ fn write_vertices(
     attributes.insert("POSITION".into(), (accessors.len() - 1).into());
     for a in &mesh.attributes {
         let (name, scalar, normalized, data) = match gltf_form(a) {
-            Ok(f) => f,
+            Ok((f, note)) => {
+                notes.extend(note);
+                f
+            }
             Err(why) => {
                 notes.push(format!("{why}: not written"));
                 continue;
