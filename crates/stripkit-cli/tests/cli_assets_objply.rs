@@ -83,3 +83,14 @@ fn a_two_material_obj_stripped_to_obj_keeps_its_materials() {
     ]));
     assert_eq!(v["strips"], 1);
 }
+
+#[test]
+fn stats_and_match_see_the_surface_not_its_uv_seams() {
+    // spot's UV seams split 2,930 positions into 3,225 GPU vertices; the surface stays
+    // one closed component for stats and for the dual graph of match.
+    let v = json(&stripkit(&["stats", &spot(), "--json"]));
+    assert_eq!((v["vertices"].as_u64(), v["gpu_vertices"].as_u64()), (Some(2930), Some(3225)), "{v}");
+    assert_eq!(v["boundary_edges"], 0, "{v}");
+    let m = json(&stripkit(&["match", "--dual", &spot(), "--json"]));
+    assert_eq!(m["perfect"], true, "{m}");
+}

@@ -65,7 +65,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     );
     let t0 = Instant::now();
     let (graph, source) = if let Some(mesh_path) = &args.dual {
-        let mesh = args.read.read(mesh_path)?;
+        let mesh = args.read.read_surface(mesh_path)?;
         anyhow::ensure!(
             args.seed.is_none() || matches!(args.weights, None | Some(WeightKind::Random)),
             "--seed applies to --weights random"

@@ -87,7 +87,19 @@ impl ReadArgs {
     /// with no faces is refused ("no faces in FILE"): no command has anything to do
     /// with one, and an empty output written with exit status 0 reads as success.
     pub fn read(&self, path: &Path) -> stripkit::Result<stripkit::Mesh> {
-        let mesh = self.read_any(path)?;
+        self.read_checked(path, self.options())
+    }
+
+    /// [`ReadArgs::read`] of the bare surface: positions and faces with the file's
+    /// vertex ids, no attributes and no groups (`ReadOptions::positions_only`), for the
+    /// commands about the surface's shape (`stats`, `match`), where an OBJ's UV seams,
+    /// which split GPU vertices, would cut it into pieces.
+    pub fn read_surface(&self, path: &Path) -> stripkit::Result<stripkit::Mesh> {
+        self.read_checked(path, stripkit::io::ReadOptions { positions_only: true, ..self.options() })
+    }
+
+    fn read_checked(&self, path: &Path, options: stripkit::io::ReadOptions) -> stripkit::Result<stripkit::Mesh> {
+        let mesh = self.read_any(path, options)?;
         if mesh.face_count() == 0 {
             let name = if path.as_os_str() == "-" { "<standard input>".into() } else { path.display().to_string() };
             return Err(stripkit::Error::Invalid(format!("no faces in {name}")));
@@ -96,9 +108,8 @@ impl ReadArgs {
     }
 
     /// [`ReadArgs::read`] without the check for faces.
-    fn read_any(&self, path: &Path) -> stripkit::Result<stripkit::Mesh> {
+    fn read_any(&self, path: &Path, options: stripkit::io::ReadOptions) -> stripkit::Result<stripkit::Mesh> {
         use std::io::Read;
-        let options = self.options();
         if path.as_os_str() != "-" {
             if self.format.is_some() {
                 return Err(stripkit::Error::Invalid(format!(

@@ -18,6 +18,8 @@ use stripkit::MeshFacts;
   degenerate face     a repeated vertex index or zero area
   duplicate face      repeats an earlier face up to rotation and orientation
   consistently oriented  no two-face edge is traversed in the same direction twice
+  gpu vertices        (OBJ with vt/vn) the vertices strips use: corners welded where every
+                      attribute agrees; the facts above are of the surface (the file's v)
 
 Example: stripkit stats ../shared/models/bunny.obj --json")]
 pub struct Args {
@@ -34,8 +36,15 @@ pub struct Args {
 /// Runs the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let start = Instant::now();
-    let mesh = args.read.read(&args.file)?;
+    let mesh = args.read.read_surface(&args.file)?;
     let loaded = Instant::now();
+    // The GPU vertices strips use: an OBJ's corners welded where every attribute agrees
+    // (one more read, only for formats that weld).
+    let gpu_vertices = match stripkit::io::Format::from_path(&args.file) {
+        Some((stripkit::io::Format::Obj, _)) => Some(args.read.read(&args.file)?.vertex_count()),
+        _ => None,
+    }
+    .filter(|&n| n != mesh.vertex_count());
     let facts = MeshFacts::of(&mesh).with_context(|| format!("{}: malformed mesh", args.file.display()))?;
     let done = Instant::now();
     let load_ms = (loaded - start).as_secs_f64() * 1e3;
@@ -46,11 +55,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             obj.insert("file".into(), args.file.display().to_string().into());
             obj.insert("load_ms".into(), serde_json::json!(round3(load_ms)));
             obj.insert("facts_ms".into(), serde_json::json!(round3(facts_ms)));
+            if let Some(n) = gpu_vertices {
+                obj.insert("gpu_vertices".into(), n.into());
+            }
         }
         print_out(&format!("{}\n", serde_json::to_string_pretty(&value)?))
     } else {
+        let gpu = match gpu_vertices {
+            Some(n) => format!("gpu vertices          {n} (split where attributes differ: what strips use)\n"),
+            None => String::new(),
+        };
         print_out(&format!(
-            "{}\n{facts}\ntime                  {load_ms:.1} ms to load, {facts_ms:.1} ms to analyse\n",
+            "{}\n{facts}\n{gpu}time                  {load_ms:.1} ms to load, {facts_ms:.1} ms to analyse\n",
             args.file.display()
         ))
     }
