@@ -650,8 +650,9 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     Ok(strips)
 }
 
-/// The door for one group of faces (the whole mesh), its faces already checked.
-fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
+/// Checks the restart index against the mesh's vertex ids and resolves
+/// `Algorithm::Auto` (QSTRIP on quad-dominant meshes, else greedy).
+fn resolve(mesh: &Mesh, options: &StripOptions) -> Result<Algorithm> {
     let vertex_count = mesh.vertex_count();
     if options.join == Join::Restart && (options.restart_index as usize) < vertex_count {
         return Err(Error::Invalid(format!(
@@ -659,11 +660,17 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
             options.restart_index
         )));
     }
-    let algorithm = match &options.algorithm {
+    Ok(match &options.algorithm {
         Algorithm::Auto if is_quad_dominant(mesh) => Algorithm::qstrip(),
         Algorithm::Auto => Algorithm::greedy(),
         other => other.clone(),
-    };
+    })
+}
+
+/// The door for one group of faces (the whole mesh), its faces already checked.
+fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
+    let vertex_count = mesh.vertex_count();
+    let algorithm = resolve(mesh, options)?;
     if options.algorithm == Algorithm::Auto && options.split != Split::Auto {
         // The split must suit the algorithm auto chose (QSTRIP takes no fan).
         StripOptions { algorithm: algorithm.clone(), ..options.clone() }.check()?;
@@ -808,17 +815,7 @@ fn strip_range(strips: &StripSet, range: Range<usize>) -> StripSet {
 /// the fan, their triangles are checked against the whole mesh's fan.
 fn run_groups(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     let vertex_count = mesh.vertex_count();
-    if options.join == Join::Restart && (options.restart_index as usize) < vertex_count {
-        return Err(Error::Invalid(format!(
-            "restart index {} is a vertex id of the mesh ({vertex_count} vertices); choose one of at least {vertex_count}",
-            options.restart_index
-        )));
-    }
-    let algorithm = match &options.algorithm {
-        Algorithm::Auto if is_quad_dominant(mesh) => Algorithm::qstrip(),
-        Algorithm::Auto => Algorithm::greedy(),
-        other => other.clone(),
-    };
+    let algorithm = resolve(mesh, options)?;
     if let Algorithm::Single(_) = algorithm {
         return Err(Error::Invalid(format!(
             "single builds one strip per connected component and may add vertices; it does not take a mesh whose \

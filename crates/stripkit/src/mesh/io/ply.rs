@@ -31,76 +31,36 @@ use super::common::{
 };
 use super::obj::{push_f32, push_face_lines, push_u64};
 use crate::error::{Error, Result};
-use crate::mesh::{attr, Attribute, Mesh};
+use crate::mesh::{Attribute, Mesh, Scalar};
 use crate::strip::StripSet;
 use std::path::Path;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Scalar {
-    I8,
-    U8,
-    I16,
-    U16,
-    I32,
-    U32,
-    F32,
-    F64,
-}
-
-impl Scalar {
-    fn parse(name: &[u8]) -> Option<Scalar> {
-        Some(match name {
-            b"char" | b"int8" => Scalar::I8,
-            b"uchar" | b"uint8" => Scalar::U8,
-            b"short" | b"int16" => Scalar::I16,
-            b"ushort" | b"uint16" => Scalar::U16,
-            b"int" | b"int32" => Scalar::I32,
-            b"uint" | b"uint32" => Scalar::U32,
-            b"float" | b"float32" => Scalar::F32,
-            b"double" | b"float64" => Scalar::F64,
-            _ => return None,
-        })
-    }
-
-    fn size(self) -> usize {
-        match self {
-            Scalar::I8 | Scalar::U8 => 1,
-            Scalar::I16 | Scalar::U16 => 2,
-            Scalar::I32 | Scalar::U32 | Scalar::F32 => 4,
-            Scalar::F64 => 8,
-        }
-    }
-
-    fn is_float(self) -> bool {
-        matches!(self, Scalar::F32 | Scalar::F64)
-    }
-
-    /// The attribute type of the same layout.
-    fn attr(self) -> attr::Scalar {
-        match self {
-            Scalar::I8 => attr::Scalar::I8,
-            Scalar::U8 => attr::Scalar::U8,
-            Scalar::I16 => attr::Scalar::I16,
-            Scalar::U16 => attr::Scalar::U16,
-            Scalar::I32 => attr::Scalar::I32,
-            Scalar::U32 => attr::Scalar::U32,
-            Scalar::F32 => attr::Scalar::F32,
-            Scalar::F64 => attr::Scalar::F64,
-        }
-    }
+/// The attribute type of a PLY type name (`uchar`, `float32`, ...).
+fn parse_type(name: &[u8]) -> Option<Scalar> {
+    Some(match name {
+        b"char" | b"int8" => Scalar::I8,
+        b"uchar" | b"uint8" => Scalar::U8,
+        b"short" | b"int16" => Scalar::I16,
+        b"ushort" | b"uint16" => Scalar::U16,
+        b"int" | b"int32" => Scalar::I32,
+        b"uint" | b"uint32" => Scalar::U32,
+        b"float" | b"float32" => Scalar::F32,
+        b"double" | b"float64" => Scalar::F64,
+        _ => return None,
+    })
 }
 
 /// The PLY name of an attribute type.
-fn type_name(s: attr::Scalar) -> &'static str {
+fn type_name(s: Scalar) -> &'static str {
     match s {
-        attr::Scalar::I8 => "char",
-        attr::Scalar::U8 => "uchar",
-        attr::Scalar::I16 => "short",
-        attr::Scalar::U16 => "ushort",
-        attr::Scalar::I32 => "int",
-        attr::Scalar::U32 => "uint",
-        attr::Scalar::F32 => "float",
-        attr::Scalar::F64 => "double",
+        Scalar::I8 => "char",
+        Scalar::U8 => "uchar",
+        Scalar::I16 => "short",
+        Scalar::U16 => "ushort",
+        Scalar::I32 => "int",
+        Scalar::U32 => "uint",
+        Scalar::F32 => "float",
+        Scalar::F64 => "double",
     }
 }
 
@@ -213,7 +173,7 @@ fn parse_header(src: Src, data: &[u8]) -> Result<Header> {
                 };
                 let ty = toks.next().unwrap_or_default();
                 let scalar = |t: &[u8]| {
-                    Scalar::parse(t).ok_or_else(|| src.err(line_at(ln), format!("unknown property type '{}'", show(t))))
+                    parse_type(t).ok_or_else(|| src.err(line_at(ln), format!("unknown property type '{}'", show(t))))
                 };
                 let kind = if ty == b"list" {
                     let count = scalar(toks.next().unwrap_or_default())?;
@@ -309,7 +269,7 @@ impl Body for Ascii<'_> {
     }
     fn raw(&mut self, s: Scalar, out: &mut [u8]) -> Result<(), String> {
         let tok = self.token()?;
-        let bad = || format!("'{}' is not a {} value", show(tok), type_name(s.attr()));
+        let bad = || format!("'{}' is not a {} value", show(tok), type_name(s));
         match s {
             Scalar::F32 => out.copy_from_slice(&parse_f32(tok).ok_or_else(bad)?.to_le_bytes()),
             Scalar::F64 => out.copy_from_slice(&super::common::parse_f64(tok).ok_or_else(bad)?.to_le_bytes()),
@@ -324,7 +284,7 @@ impl Body for Ascii<'_> {
                     _ => (0, u32::MAX as i64),
                 };
                 if v < lo || v > hi {
-                    return Err(format!("{v} is out of range for a {} property", type_name(s.attr())));
+                    return Err(format!("{v} is out of range for a {} property", type_name(s)));
                 }
                 out.copy_from_slice(&v.to_le_bytes()[..s.size()]);
             }
@@ -728,7 +688,7 @@ fn vertex_attributes(
         let stride = comps * s.size();
         attributes.push(Attribute {
             name,
-            scalar: s.attr(),
+            scalar: s,
             components: comps as u8,
             normalized,
             data: Vec::with_capacity(reserve.saturating_mul(stride)),
@@ -809,8 +769,8 @@ fn push_value(out: &mut Vec<u8>, a: &Attribute, v: usize, c: usize) {
     use std::io::Write;
     let x = a.get(v, c);
     match a.scalar {
-        attr::Scalar::F32 => push_f32(out, x as f32),
-        attr::Scalar::F64 => {
+        Scalar::F32 => push_f32(out, x as f32),
+        Scalar::F64 => {
             let _ = write!(out, "{x:?}");
         }
         _ => {

@@ -29,6 +29,9 @@ pub(super) struct MeshDocument {
     pub notes: Vec<String>,
 }
 
+/// An attribute as written: its glTF name, scalar type, normalized flag and bytes.
+type Form = (String, Scalar, bool, Vec<u8>);
+
 /// A NORMAL (or TANGENT's xyz) as glTF wants it: unit vectors, as `f32`. Vectors off
 /// unit length (a PLY's `nx ny nz` need not be) are rescaled and counted; a zero or
 /// non-finite one cannot be, so `None`: the attribute then goes out under its own
@@ -60,7 +63,7 @@ fn unit_vectors(a: &Attribute) -> Option<(Vec<u8>, usize)> {
 
 /// The glTF name, scalar type, normalized flag and little-endian values of an
 /// attribute, or why it cannot be written; and a note on a repair made on the way.
-fn gltf_form(a: &Attribute) -> std::result::Result<((String, Scalar, bool, Vec<u8>), Option<String>), String> {
+fn gltf_form(a: &Attribute) -> std::result::Result<(Form, Option<String>), String> {
     let comps = a.components as usize;
     if (a.name == "NORMAL" && comps == 3) || (a.name == "TANGENT" && comps == 4) {
         if let Some((data, rescaled)) = unit_vectors(a) {
@@ -78,7 +81,7 @@ fn gltf_form(a: &Attribute) -> std::result::Result<((String, Scalar, bool, Vec<u
 }
 
 /// [`gltf_form`] for everything but unit vectors.
-fn gltf_plain_form(a: &Attribute) -> std::result::Result<(String, Scalar, bool, Vec<u8>), String> {
+fn gltf_plain_form(a: &Attribute) -> std::result::Result<Form, String> {
     let comps = a.components as usize;
     let numbered =
         |p: &str| a.name.strip_prefix(p).is_some_and(|r| !r.is_empty() && r.bytes().all(|b| b.is_ascii_digit()));

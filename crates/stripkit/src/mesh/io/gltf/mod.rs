@@ -266,33 +266,7 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
             if mode < 4 {
                 continue; // points and lines: their vertices are kept, nothing to draw
             }
-            indices.clear();
-            // A face per 3 indices (TRIANGLES) or up to one per index (strips and fans),
-            // 4 bytes per face index and 4 per face offset.
-            let face_bytes = |n: usize| -> u64 {
-                let n = n as u64;
-                if mode == 4 { 4 * n + 4 * (n / 3) } else { 16 * n.saturating_sub(2) }
-            };
-            match uint(src, prim, "indices", &place)? {
-                Some(acc) => {
-                    let mut charge = |count: usize| {
-                        budget.charge(src, &place(), face_bytes(count), || format!("accessors[{acc}]: {count} indices"))
-                    };
-                    doc.read_indices(acc as usize, &mut indices, &mut charge)?;
-                    if let Some((k, &i)) = indices.iter().enumerate().find(|(_, &i)| i as usize >= count) {
-                        return Err(src.err(
-                            place(),
-                            format!("index {k} refers to vertex {i} but its POSITION accessor {pos} has {count} vertices"),
-                        ));
-                    }
-                }
-                None => {
-                    budget.charge(src, &place(), face_bytes(count), || {
-                        format!("POSITION accessors[{pos}] drawn without indices: {count} vertices")
-                    })?;
-                    indices.extend(0..count as u32)
-                }
-            }
+            read_primitive_indices(src, &doc, prim, &place, &mut budget, mode, (pos, count), &mut indices)?;
             if mode == 4 && indices.len() % 3 != 0 {
                 let source = match uint(src, prim, "indices", &place)? {
                     Some(acc) => format!("index accessor {acc}"),
@@ -326,6 +300,53 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
 
 /// The bytes of mesh decoded so far, against [`ReadOptions::max_decoded_bytes`] (or,
 /// by default, the limit relative to the asset's buffer bytes).
+/// Reads the indices of a triangle primitive of `mode` (0..count without an accessor)
+/// into `indices`, charging `budget` for the faces they will make, and checks them
+/// against the `count` vertices of its POSITION accessor `pos`.
+#[allow(clippy::too_many_arguments)]
+fn read_primitive_indices(
+    src: Src,
+    doc: &Doc,
+    prim: &Value,
+    place: &dyn Fn() -> String,
+    budget: &mut Budget,
+    mode: u64,
+    (pos, count): (usize, usize),
+    indices: &mut Vec<u32>,
+) -> Result<()> {
+    indices.clear();
+    // A face per 3 indices (TRIANGLES) or up to one per index (strips and fans), 4 bytes
+    // per face index and 4 per face offset.
+    let face_bytes = |n: usize| -> u64 {
+        let n = n as u64;
+        if mode == 4 {
+            4 * n + 4 * (n / 3)
+        } else {
+            16 * n.saturating_sub(2)
+        }
+    };
+    match uint(src, prim, "indices", place)? {
+        Some(acc) => {
+            let mut charge =
+                |n: usize| budget.charge(src, &place(), face_bytes(n), || format!("accessors[{acc}]: {n} indices"));
+            doc.read_indices(acc as usize, indices, &mut charge)?;
+            if let Some((k, &i)) = indices.iter().enumerate().find(|(_, &i)| i as usize >= count) {
+                return Err(src.err(
+                    place(),
+                    format!("index {k} refers to vertex {i} but its POSITION accessor {pos} has {count} vertices"),
+                ));
+            }
+        }
+        None => {
+            budget.charge(src, &place(), face_bytes(count), || {
+                format!("POSITION accessors[{pos}] drawn without indices: {count} vertices")
+            })?;
+            indices.extend(0..count as u32)
+        }
+    }
+    Ok(())
+}
+
 struct Budget {
     used: u64,
     limit: u64,

@@ -120,33 +120,7 @@ pub(super) fn decode_primitive(
         });
     }
     let mut indices = Vec::new();
-    let face_bytes = |n: usize| -> u64 {
-        let n = n as u64;
-        if mode == 4 {
-            4 * n + 4 * (n / 3)
-        } else {
-            16 * n.saturating_sub(2)
-        }
-    };
-    match uint(src, prim, "indices", &place)? {
-        Some(acc) => {
-            let mut charge =
-                |n: usize| budget.charge(src, &place(), face_bytes(n), || format!("accessors[{acc}]: {n} indices"));
-            doc.read_indices(acc as usize, &mut indices, &mut charge)?;
-            if let Some((k, &i)) = indices.iter().enumerate().find(|(_, &i)| i as usize >= count) {
-                return Err(src.err(
-                    place(),
-                    format!("index {k} refers to vertex {i} but its POSITION accessor {pos} has {count} vertices"),
-                ));
-            }
-        }
-        None => {
-            budget.charge(src, &place(), face_bytes(count), || {
-                format!("POSITION accessors[{pos}] drawn without indices: {count} vertices")
-            })?;
-            indices.extend(0..count as u32)
-        }
-    }
+    super::read_primitive_indices(src, doc, prim, &place, budget, mode, (pos, count), &mut indices)?;
     if mode == 4 && indices.len() % 3 != 0 {
         return Err(src.err(
             place(),
