@@ -219,7 +219,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("{name}: not found, skipped");
             continue;
         }
-        let mesh = stripkit::io::read(&path).with_context(|| format!("reading {}", path.display()))?;
+        let mesh = crate::read_surface(&path).with_context(|| format!("reading {}", path.display()))?;
         let tris = mesh.triangulate().tris;
         eprintln!("{name}: {} triangles", tris.len());
         let (center, radius) = stripkit::cull::bounding_sphere(&mesh.positions);

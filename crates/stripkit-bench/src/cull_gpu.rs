@@ -241,13 +241,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("{name}: not found, skipped");
             continue;
         }
-        meshes.push((name.to_string(), stripkit::io::read(&p).with_context(|| format!("reading {}", p.display()))?));
+        meshes.push((name.to_string(), crate::read_surface(&p).with_context(|| format!("reading {}", p.display()))?));
     }
     for s in &args.subdivided {
         let (file, levels) = s.rsplit_once(':').context("--subdivided takes FILE:LEVELS")?;
         let levels: u32 = levels.parse().context("--subdivided levels")?;
         let p = find(file);
-        let m = stripkit::io::read(&p).with_context(|| format!("reading {}", p.display()))?;
+        let m = crate::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
         let m = stripkit::gen::subdivide_loop(
             &stripkit::Mesh::from_triangles(m.positions.clone(), &m.triangulate().tris),
             levels,

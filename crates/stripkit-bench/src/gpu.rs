@@ -267,14 +267,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         if args.only.as_ref().is_some_and(|o| !name.contains(o.as_str())) {
             continue;
         }
-        let m = stripkit::io::read(&p).with_context(|| format!("reading {}", p.display()))?;
+        let m = crate::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
         meshes.push((name, m));
     }
     for s in &args.subdivided {
         let (file, levels) = s.rsplit_once(':').context("--subdivided takes FILE:LEVELS")?;
         let levels: u32 = levels.parse().context("--subdivided levels")?;
         let p = args.models.join(file);
-        let m = stripkit::io::read(&p).with_context(|| format!("reading {}", p.display()))?;
+        let m = crate::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
         let m = stripkit::gen::subdivide_loop(&stripkit::Mesh::from_triangles(m.positions.clone(), &m.triangulate().tris), levels)?;
         meshes.push((format!("{file} Loop x{levels}"), m));
     }

@@ -108,7 +108,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             continue;
         };
         let label = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_else(|| name.clone());
-        let mesh = stripkit::io::read(&path).with_context(|| format!("reading {}", path.display()))?;
+        let mesh = crate::read_surface(&path).with_context(|| format!("reading {}", path.display()))?;
         model(&mesh, &label, &args, &mut t)?;
         eprintln!("done: {label}");
     }

@@ -61,6 +61,13 @@ fn models_dir() -> Option<PathBuf> {
     dir.is_dir().then_some(dir)
 }
 
+/// Reads a research mesh as its bare surface (positions and faces, the file's vertex
+/// ids; `ReadOptions::positions_only`): the figures in docs/ are of the shapes, and an
+/// OBJ's UV seams (spot) would otherwise split its vertices and its strips.
+fn read_surface(path: &std::path::Path) -> stripkit::Result<stripkit::Mesh> {
+    stripkit::io::read_with(path, &stripkit::io::ReadOptions { positions_only: true, ..Default::default() })
+}
+
 fn main() -> anyhow::Result<()> {
     match Cli::parse().command {
         Command::Strips(a) => strips::run(a),

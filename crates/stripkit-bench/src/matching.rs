@@ -163,7 +163,7 @@ fn min_med_max(v: &[f64]) -> String {
 fn run_ties(args: &Args, seeds: u64, tmp: &Path) -> anyhow::Result<()> {
     let dir = args.models.clone().or_else(crate::models_dir).context("no models folder (--models)")?;
     let levels = args.dragon_levels.max(0) as u32;
-    let mesh = stripkit::io::read(&dir.join("dragon.obj"))?;
+    let mesh = crate::read_surface(&dir.join("dragon.obj"))?;
     let mesh = stripkit::gen::subdivide_loop(&mesh, levels)?;
     let lemon = if args.no_lemon { None } else { build_lemon(tmp)? };
     println!("dragon.obj Loop x{levels} dual, weights 1|2; seconds of one solve (certificate checked)");
@@ -260,7 +260,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(dir) = &models {
         let bunny = dir.join("bunny.obj");
         if bunny.exists() {
-            let mesh = stripkit::io::read(&bunny)?;
+            let mesh = crate::read_surface(&bunny)?;
             rows.push(Row {
                 name: "bunny.obj dual, random 1..1000".into(),
                 graph: matching::mesh_dual_graph(&mesh, DualWeights::Random { seed: 1 })?,
@@ -268,7 +268,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         let dragon = dir.join("dragon.obj");
         if dragon.exists() && args.dragon_levels >= 0 {
-            let mesh = stripkit::io::read(&dragon)?;
+            let mesh = crate::read_surface(&dragon)?;
             let mesh = stripkit::gen::subdivide_loop(&mesh, args.dragon_levels as u32)?;
             let g = matching::mesh_dual_graph(&mesh, DualWeights::Random { seed: 1 })?;
             // Two-valued weights: 1 or 2.

@@ -60,7 +60,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     writeln!(table, "|---|---|---|---:|---:|---:|---:|---:|---:|")?;
     for file in &args.files {
         let path = dir.join(file);
-        let mesh = stripkit::io::read(&path)?;
+        let mesh = crate::read_surface(&path)?;
         let tris = mesh.triangulate().tris;
         for &ratio in &args.ratios {
             let target = ((tris.len() as f64) * ratio).round() as usize;
@@ -113,7 +113,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     if args.big {
         let first = args.files.first().map(|f| dir.join(f)).unwrap_or_default();
-        let mesh = stripkit::gen::subdivide_loop(&stripkit::io::read(&first)?, 2)?;
+        let mesh = stripkit::gen::subdivide_loop(&crate::read_surface(&first)?, 2)?;
         let n = mesh.triangle_count();
         for placement in [Placement::Endpoint, Placement::Optimal] {
             let opts = Options { target: Target::Ratio(0.01), placement, ..Options::default() };

@@ -58,7 +58,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("{name}: not in {}, skipped", dir.display());
             continue;
         }
-        let base = stripkit::io::read(&path).with_context(|| format!("reading {}", path.display()))?;
+        let base = crate::read_surface(&path).with_context(|| format!("reading {}", path.display()))?;
         for &level in &levels {
             let mesh = if level == 0 {
                 base.clone()

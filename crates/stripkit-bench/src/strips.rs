@@ -172,7 +172,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         {
             continue;
         }
-        let mut mesh = stripkit::io::read(&path)
+        let mut mesh = crate::read_surface(&path)
             .with_context(|| format!("reading {}", path.display()))?;
         let name = if args.loop_levels > 0 {
             mesh = stripkit::gen::subdivide_loop(
