@@ -220,8 +220,11 @@ pub enum MatchingArg {
 #[command(after_help = "Output by extension of OUT:\n  \
     .ply   vertices plus a `tristrips` element (-1 ends a strip); --join degenerate writes one stitched strip\n  \
     .json  {\"strips\": [[...], ...], \"figures\": {...}} (with --join restart also \"indices\" and \"restart_index\")\n  \
-    .gltf, .glb  core glTF has no restart index: one TRIANGLE_STRIP primitive holding the stitched strip\n               \
-    (--join separate: one primitive per strip)\n  \
+    .gltf, .glb  per primitive (per group for a mesh with materials), a TRIANGLE_STRIP primitive holding the\n               \
+    stitched strip every viewer draws, plus the strips with restart indices through EXT_mesh_primitive_restart\n               \
+    (--join degenerate: the stitched strips alone). A glTF input keeps its whole scene: nodes, materials,\n               \
+    skins, animations, morph targets (stitched only) and extensions. A plain mesh with --join separate:\n               \
+    one primitive per strip\n  \
     .obj   no strips in OBJ: the strips' triangles in strip order, per group (g/usemtl), with vt/vn\n\
 Exit status: 0 success, 1 verification failed (nothing written), 2 bad input or argument.")]
 pub struct Args {
@@ -544,10 +547,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
     let mesh = args.read.read(&args.input)?;
-    // A mesh with attributes or several groups, written as glTF: one primitive per
-    // group with its attributes, each stripped on its own (io::Scene::from_mesh).
+    // A mesh written as glTF: one primitive per group with its attributes, each
+    // stripped on its own and written with its restart group (io::Scene::from_mesh).
+    // `single` (which adds vertices), --join separate (a primitive per strip) and a
+    // chosen restart index keep the plain writer.
     if matches!(kind, OutKind::Mesh(Format::Gltf | Format::Glb))
-        && (!mesh.attributes.is_empty() || mesh.group_count() > 1)
         && args.join != Join::Separate
         && args.strip.algo != Algo::Single
         && args.restart_index == DEFAULT_RESTART
@@ -652,6 +656,9 @@ struct SceneCliReport<'a> {
     /// checked (a failure is an error and writes nothing), as in the mesh report.
     verified: bool,
     vertex_order: VertexOrder,
+    /// Vertices written over all stripped primitives (with `first-use`, those the
+    /// strips use).
+    vertices: usize,
     /// Reading and decoding the input, in milliseconds.
     read_ms: f64,
     /// Encoding, checking (read back) and writing the output, in milliseconds.
@@ -738,12 +745,25 @@ fn strip_scene(
     super::write_output(&args.output, &bytes)?;
     let write_ms = start.elapsed().as_secs_f64() * 1e3;
     progress.finish_and_clear();
+    let vertices = scene
+        .primitives()
+        .iter()
+        .map(|p| match vertex_order {
+            VertexOrder::Input => p.mesh.vertex_count(),
+            VertexOrder::FirstUse => {
+                let mut used = vec![false; p.mesh.vertex_count()];
+                p.mesh.face_indices.iter().for_each(|&v| used[v as usize] = true);
+                used.iter().filter(|&&u| u).count()
+            }
+        })
+        .sum();
     let r = SceneCliReport {
         input: &args.input,
         output: &args.output,
         join: args.join,
         verified: true,
         vertex_order,
+        vertices,
         read_ms: read_time.as_secs_f64() * 1e3,
         write_ms,
         scene: &report,
@@ -754,6 +774,19 @@ fn strip_scene(
     };
     super::print_report_to(&sink, args.json, &r, |out, r| {
         let s = r.scene;
+        if args.batch.is_some() {
+            return writeln!(
+                out,
+                "{} -> {}: {} triangles, {} primitives, {} indices stitched, {} with restart, {:.1} ms",
+                r.input.display(),
+                r.output.display(),
+                s.triangles,
+                s.primitives.len(),
+                s.indices_stitched,
+                s.indices_drawn_restart,
+                s.total_ms
+            );
+        }
         writeln!(
             out,
             "{} -> {} (scene: {} triangle primitives stripped, {} left as read; {})",
