@@ -84,8 +84,10 @@ pub const RESTART_EXTENSION: &str = "EXT_mesh_primitive_restart";
 const GEOMETRY_EXTENSIONS: [&str; 3] =
     ["KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization"];
 
-/// A glTF document with its buffers and its triangle primitives decoded; see the
-/// [module documentation](self) for what reading and writing keep.
+/// A glTF document with its buffers and its triangle primitives decoded. Writing keeps
+/// the document; only the stripped primitives' indices, modes and (reordered) vertex
+/// accessors change, `EXT_mesh_primitive_restart` groups are added, and the buffers
+/// are merged into one (the GLB binary chunk, or a `data:` URI in `.gltf`).
 ///
 /// ```
 /// use stripkit::io::{Format, ReadOptions, Scene, SceneOptions};
@@ -446,8 +448,9 @@ impl Scene {
     }
 
     /// The document as a `.glb` or `.gltf` file (`format`), read back and checked
-    /// (see the [module documentation](self)) before it is returned. Without
-    /// [`Scene::strip`] the primitives are written as read (buffers merged).
+    /// (every primitive's triangles, positions and attribute bytes decoded again and
+    /// compared) before it is returned. Without [`Scene::strip`] the primitives are
+    /// written as read (buffers merged).
     pub fn to_bytes(&self, format: Format) -> Result<Vec<u8>> {
         let (mut json, bin) = self.build()?;
         let bytes = match format {

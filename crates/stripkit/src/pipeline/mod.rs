@@ -30,6 +30,9 @@ use crate::stripify::{quad, quad_single, quad_verify};
 use std::ops::Range;
 use std::time::{Duration, Instant};
 
+mod groups;
+use groups::run_groups;
+
 /// Faces that must be quads for [`Algorithm::Auto`] to take QSTRIP (and for
 /// [`Split::Auto`] to try QSTRIP's diagonals): half, where QSTRIP's strips beat
 /// greedy's on the fan on every quad-dominant shared model.
@@ -805,99 +808,6 @@ fn strip_range(strips: &StripSet, range: Range<usize>) -> StripSet {
         out.push(strips.strip(s));
     }
     out
-}
-
-/// The door for a mesh whose faces fall in several groups: every group stripped on its
-/// own (its faces over its own vertices, renumbered in increasing order so that ties
-/// break as on the whole mesh), by the algorithm chosen for the whole mesh, and
-/// verified; then the strips, put back on the mesh's vertex ids and concatenated in
-/// group order, are measured and verified again as a whole, and when every group used
-/// the fan, their triangles are checked against the whole mesh's fan.
-fn run_groups(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
-    let vertex_count = mesh.vertex_count();
-    let algorithm = resolve(mesh, options)?;
-    if let Algorithm::Single(_) = algorithm {
-        return Err(Error::Invalid(format!(
-            "single builds one strip per connected component and may add vertices; it does not take a mesh whose \
-             faces fall in {} groups (materials): use another algorithm, or drop the groups",
-            mesh.group_count()
-        )));
-    }
-    let sub_options = StripOptions { algorithm: algorithm.clone(), ..options.clone() };
-    if options.algorithm == Algorithm::Auto && options.split != Split::Auto {
-        sub_options.check()?;
-    }
-    let groups = mesh.group_count();
-    let mut faces_of: Vec<Vec<u32>> = vec![Vec::new(); groups];
-    for f in 0..mesh.face_count() {
-        faces_of[mesh.group_of(f) as usize].push(f as u32);
-    }
-    let mut new_id = vec![u32::MAX; vertex_count];
-    let mut strips = StripSet::new();
-    let mut triangles = Vec::with_capacity(mesh.triangle_count());
-    let mut group_ranges = Vec::with_capacity(groups);
-    let (mut quads, mut any_quads, mut all_fan) = (0, false, true);
-    let mut stripify_time = Duration::ZERO;
-    for faces in &faces_of {
-        let start = strips.len();
-        if faces.is_empty() {
-            group_ranges.push(start..start);
-            continue;
-        }
-        let mut map: Vec<u32> = faces.iter().flat_map(|&f| mesh.face(f as usize).iter().copied()).collect();
-        map.sort_unstable();
-        map.dedup();
-        for (i, &v) in map.iter().enumerate() {
-            new_id[v as usize] = i as u32;
-        }
-        let mut sub = Mesh { positions: map.iter().map(|&v| mesh.positions[v as usize]).collect(), ..Mesh::new() };
-        for &f in faces {
-            sub.face_indices.extend(mesh.face(f as usize).iter().map(|&v| new_id[v as usize]));
-            sub.face_offsets.push(sub.face_indices.len() as u32);
-        }
-        let part = run_one(&sub, &sub_options)?;
-        for s in part.strips.iter() {
-            let back: Vec<u32> = s.iter().map(|&i| map[i as usize]).collect();
-            strips.push(&back);
-        }
-        triangles.extend(part.triangles.iter().map(|t| t.map(|i| map[i as usize])));
-        group_ranges.push(start..strips.len());
-        if let Some(q) = part.quads {
-            quads += q;
-            any_quads = true;
-        }
-        all_fan &= part.split == Split::Fan;
-        stripify_time += part.stripify_time;
-    }
-    let figures = metrics::figures(&triangles, &strips, options.cache);
-    if !figures.verified {
-        return Err(fail("the strips of every group", &strip::verify(&triangles, &strips)));
-    }
-    if all_fan {
-        let v = strip::verify_triangles(&mesh.triangulate().tris, &triangles);
-        if !v.ok() {
-            return Err(fail("the strips of every group against the whole mesh", &v));
-        }
-    }
-    let v = strip::verify(&triangles, &joined(&strips, &group_ranges, options.join, options.restart_index));
-    if !v.ok() {
-        return Err(fail(&format!("the strips joined by {} per group", options.join.name()), &v));
-    }
-    Ok(Strips {
-        strips,
-        triangles,
-        algorithm,
-        split: if all_fan { Split::Fan } else { Split::Qstrip },
-        quads: any_quads.then_some(quads),
-        figures,
-        join: options.join,
-        restart_index: options.restart_index,
-        stripify_time,
-        single: None,
-        added_positions: Vec::new(),
-        added_from: Vec::new(),
-        group_ranges,
-    })
 }
 
 /// The most indices [`stripify_indices`] returns for `index_count` input indices, for
