@@ -39,9 +39,9 @@ mod primitive;
 mod scene;
 mod write;
 
-pub(crate) use write::{base64_decode, base64_encode, write_glb, write_gltf};
-use write::glb_container;
 pub use scene::{PrimitiveReport, Scene, SceneOptions, ScenePrimitive, SceneReport};
+use write::glb_container;
+pub(crate) use write::{base64_decode, base64_encode, write_glb, write_gltf};
 
 const GLB_MAGIC: &[u8; 4] = b"glTF";
 const CHUNK_JSON: u32 = 0x4E4F_534A;
@@ -78,7 +78,10 @@ fn parse_glb<'d>(src: Src, data: &'d [u8]) -> Result<(Value, Option<&'d [u8]>)> 
     }
     let length = u32_at(8).unwrap_or(0) as usize;
     if length > data.len() {
-        return Err(src.err("byte 8", format!("the header announces {length} bytes but the file has {} (truncated)", data.len())));
+        return Err(src.err(
+            "byte 8",
+            format!("the header announces {length} bytes but the file has {} (truncated)", data.len()),
+        ));
     }
     let data = &data[..length];
     let mut pos = 12;
@@ -90,7 +93,10 @@ fn parse_glb<'d>(src: Src, data: &'d [u8]) -> Result<(Value, Option<&'d [u8]>)> 
         };
         let start = pos + 8;
         let end = start.checked_add(len as usize).filter(|&e| e <= data.len()).ok_or_else(|| {
-            src.err(format!("byte {pos}"), format!("chunk of {len} bytes runs past the end of the file ({} bytes)", data.len()))
+            src.err(
+                format!("byte {pos}"),
+                format!("chunk of {len} bytes runs past the end of the file ({} bytes)", data.len()),
+            )
         })?;
         match kind {
             CHUNK_JSON if json.is_none() => json = Some((start, &data[start..end])),
@@ -132,7 +138,9 @@ fn array<'v>(src: Src, json: &'v Value, key: &str) -> Result<&'v [Value]> {
 fn uint(src: Src, obj: &Value, key: &str, place: &dyn Fn() -> String) -> Result<Option<u64>> {
     match obj.get(key) {
         None => Ok(None),
-        Some(v) => v.as_u64().map(Some).ok_or_else(|| src.err(place(), format!("'{key}' must be a non-negative integer"))),
+        Some(v) => {
+            v.as_u64().map(Some).ok_or_else(|| src.err(place(), format!("'{key}' must be a non-negative integer")))
+        }
     }
 }
 
@@ -207,7 +215,9 @@ fn open<'a>(src: Src<'a>, json: &'a Value, bin: Option<&[u8]>, options: &ReadOpt
             .ok_or_else(|| src.err(place(), format!("refers to buffer {buffer} but the file has {}", buffers.len())))?
             .len();
         if !matches!(offset.checked_add(length), Some(end) if end <= buf_len) {
-            return Err(src.err(place(), format!("bytes {offset}..+{length} lie outside buffer {buffer} ({buf_len} bytes)")));
+            return Err(
+                src.err(place(), format!("bytes {offset}..+{length} lie outside buffer {buffer} ({buf_len} bytes)"))
+            );
         }
         if stride.is_some_and(|s| !(4..=252).contains(&s)) {
             return Err(src.err(place(), "byteStride must lie in 4..=252"));
@@ -221,10 +231,9 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
     // Required extensions change how data is stored (compression, quantization):
     // reading past them would give garbage, so name them instead.
     if let Some(ext) = array(src, json, "extensionsRequired")?.first() {
-        return Err(src.err(
-            "extensionsRequired",
-            format!("the file requires extension {ext}, which stripkit does not read"),
-        ));
+        return Err(
+            src.err("extensionsRequired", format!("the file requires extension {ext}, which stripkit does not read"))
+        );
     }
     let doc = open(src, json, bin, options)?;
 
@@ -256,7 +265,8 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
                 None => {
                     let base = mesh.positions.len();
                     let mut charge = |count: usize| {
-                        budget.charge(src, &place(), 12 * count as u64, || format!("accessors[{pos}]: {count} vertices"))
+                        budget
+                            .charge(src, &place(), 12 * count as u64, || format!("accessors[{pos}]: {count} vertices"))
                     };
                     doc.read_positions(pos, &mut mesh.positions, &mut charge)?;
                     let count = mesh.positions.len() - base;
@@ -271,32 +281,10 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
                 continue; // points and lines: their vertices are kept, nothing to draw
             }
             read_primitive_indices(src, &doc, prim, &place, &mut budget, mode, (pos, count), &mut indices)?;
-            if mode == 4 && indices.len() % 3 != 0 {
-                let source = match uint(src, prim, "indices", &place)? {
-                    Some(acc) => format!("index accessor {acc}"),
-                    None => format!("POSITION accessor {pos} (no indices)"),
-                };
-                return Err(src.err(
-                    place(),
-                    format!(
-                        "TRIANGLES needs a multiple of 3 indices but {source} has {} ({} left over)",
-                        indices.len(),
-                        indices.len() % 3
-                    ),
-                ));
-            }
             for i in indices.iter_mut() {
                 *i += base;
             }
-            let res = match mode {
-                4 => indices.chunks_exact(3).try_for_each(|t| {
-                    mesh.face_indices.extend_from_slice(t);
-                    close_face(&mut mesh)
-                }),
-                5 => push_strip_triangles(&mut mesh, &indices),
-                _ => push_fan_triangles(&mut mesh, &indices),
-            };
-            res.map_err(|w| src.err(place(), w))?;
+            push_primitive_faces(src, &place, &mut mesh, mode, &indices)?;
         }
     }
     Ok(mesh)
@@ -306,7 +294,8 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
 /// by default, the limit relative to the asset's buffer bytes).
 /// Reads the indices of a triangle primitive of `mode` (0..count without an accessor)
 /// into `indices`, charging `budget` for the faces they will make, and checks them
-/// against the `count` vertices of its POSITION accessor `pos`.
+/// against the `count` vertices of its POSITION accessor `pos` (and TRIANGLES for a
+/// whole number of triangles).
 #[allow(clippy::too_many_arguments)]
 fn read_primitive_indices(
     src: Src,
@@ -348,7 +337,41 @@ fn read_primitive_indices(
             indices.extend(0..count as u32)
         }
     }
+    if mode == 4 && indices.len() % 3 != 0 {
+        let source = match uint(src, prim, "indices", place)? {
+            Some(acc) => format!("index accessor {acc}"),
+            None => format!("POSITION accessor {pos} (no indices)"),
+        };
+        return Err(src.err(
+            place(),
+            format!(
+                "TRIANGLES needs a multiple of 3 indices but {source} has {} ({} left over)",
+                indices.len(),
+                indices.len() % 3
+            ),
+        ));
+    }
     Ok(())
+}
+
+/// Appends the faces a primitive of `mode` (4, 5 or 6) draws with `indices`, with the
+/// winding the mode defines (degenerate strip and fan triangles skipped).
+fn push_primitive_faces(
+    src: Src,
+    place: &dyn Fn() -> String,
+    mesh: &mut Mesh,
+    mode: u64,
+    indices: &[u32],
+) -> Result<()> {
+    let res = match mode {
+        4 => indices.chunks_exact(3).try_for_each(|t| {
+            mesh.face_indices.extend_from_slice(t);
+            close_face(mesh)
+        }),
+        5 => push_strip_triangles(mesh, indices),
+        _ => push_fan_triangles(mesh, indices),
+    };
+    res.map_err(|w| src.err(place(), w))
 }
 
 struct Budget {
@@ -362,11 +385,7 @@ impl Budget {
     fn new(options: &ReadOptions, buffer_bytes: u64) -> Budget {
         use super::{DECODED_BYTES_ALLOWANCE, DECODED_BYTES_PER_BUFFER_BYTE};
         match options.max_decoded_bytes {
-            Some(limit) => Budget {
-                used: 0,
-                limit,
-                rule: format!("the limit of {limit} bytes"),
-            },
+            Some(limit) => Budget { used: 0, limit, rule: format!("the limit of {limit} bytes") },
             None => {
                 let limit =
                     buffer_bytes.saturating_mul(DECODED_BYTES_PER_BUFFER_BYTE).saturating_add(DECODED_BYTES_ALLOWANCE);
@@ -422,7 +441,8 @@ impl Doc<'_> {
             return Err(src.err(place(), "sparse accessors are not supported"));
         }
         let view = uint(src, a, "bufferView", &place)?
-            .ok_or_else(|| src.err(place(), "accessors without a bufferView are not supported"))? as usize;
+            .ok_or_else(|| src.err(place(), "accessors without a bufferView are not supported"))?
+            as usize;
         let component = required(src, a, "componentType", &place)?;
         if ![5120, 5121, 5122, 5123, 5125, 5126].contains(&component) {
             return Err(src.err(place(), format!("unknown componentType {component}")));
@@ -442,10 +462,9 @@ impl Doc<'_> {
             component,
             components,
         };
-        let v = self
-            .views
-            .get(view)
-            .ok_or_else(|| src.err(place(), format!("refers to bufferView {view} but the file has {}", self.views.len())))?;
+        let v = self.views.get(view).ok_or_else(|| {
+            src.err(place(), format!("refers to bufferView {view} but the file has {}", self.views.len()))
+        })?;
         let elem = acc.component_size() * components;
         if let Some(s) = v.stride.filter(|&s| s < elem) {
             // Elements would overlap: the file is wrong, not something to guess around.
@@ -472,7 +491,12 @@ impl Doc<'_> {
 
     /// Appends the positions of accessor `i`, calling `charge` with their count
     /// (checked against the accessor's view) before anything is allocated.
-    fn read_positions(&self, i: usize, out: &mut Vec<[f32; 3]>, charge: &mut dyn FnMut(usize) -> Result<()>) -> Result<()> {
+    fn read_positions(
+        &self,
+        i: usize,
+        out: &mut Vec<[f32; 3]>,
+        charge: &mut dyn FnMut(usize) -> Result<()>,
+    ) -> Result<()> {
         let (acc, bytes, stride) = self.accessor(i)?;
         if acc.component != 5126 || acc.components != 3 {
             return Err(self.src.err(at("accessors", i), "POSITION must be a VEC3 of FLOAT (componentType 5126)"));
@@ -486,10 +510,9 @@ impl Doc<'_> {
                 let b = &bytes[o + 4 * c..o + 4 * c + 4];
                 let v = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
                 if !v.is_finite() {
-                    return Err(self.src.err(
-                        format!("accessors[{i}] element {k}"),
-                        format!("coordinate {v} is NaN or infinite"),
-                    ));
+                    return Err(self
+                        .src
+                        .err(format!("accessors[{i}] element {k}"), format!("coordinate {v} is NaN or infinite")));
                 }
                 *slot = v;
             }
@@ -519,10 +542,9 @@ impl Doc<'_> {
     fn read_indices(&self, i: usize, out: &mut Vec<u32>, charge: &mut dyn FnMut(usize) -> Result<()>) -> Result<()> {
         let (acc, bytes, stride) = self.accessor(i)?;
         if acc.components != 1 || ![5121, 5123, 5125].contains(&acc.component) {
-            return Err(self.src.err(
-                at("accessors", i),
-                "indices must be a SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
-            ));
+            return Err(self
+                .src
+                .err(at("accessors", i), "indices must be a SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT"));
         }
         charge(acc.count)?;
         out.reserve(acc.count);
@@ -733,7 +755,8 @@ impl Folders {
 fn read_external(src: Src, path: &Path, len: u64, i: usize, uri: &str) -> Result<Arc<[u8]>> {
     let at = || format!("buffers[{i}].uri");
     let fail = |e: std::io::Error| src.err(at(), format!("cannot read {uri:?}: {e}"));
-    let not_regular = || src.err(at(), format!("{uri:?} is not a regular file (a directory, device or pipe is not read)"));
+    let not_regular =
+        || src.err(at(), format!("{uri:?} is not a regular file (a directory, device or pipe is not read)"));
     let meta = std::fs::metadata(path).map_err(fail)?;
     if !meta.is_file() {
         return Err(not_regular());
@@ -747,7 +770,13 @@ fn read_external(src: Src, path: &Path, len: u64, i: usize, uri: &str) -> Result
     // not wait for a writer (O_NONBLOCK; no effect on regular files).
     #[cfg(all(
         target_os = "linux",
-        any(target_arch = "x86_64", target_arch = "x86", target_arch = "aarch64", target_arch = "arm", target_arch = "riscv64")
+        any(
+            target_arch = "x86_64",
+            target_arch = "x86",
+            target_arch = "aarch64",
+            target_arch = "arm",
+            target_arch = "riscv64"
+        )
     ))]
     {
         use std::os::unix::fs::OpenOptionsExt;

@@ -5,7 +5,6 @@
 use super::scene::ScenePrimitive;
 use super::{uint, Accessor, Budget, Doc};
 use crate::error::Result;
-use crate::mesh::io::common::{close_face, push_fan_triangles, push_strip_triangles};
 use crate::mesh::{Attribute, Group, Mesh, Scalar};
 use serde_json::Value;
 
@@ -121,25 +120,7 @@ pub(super) fn decode_primitive(
     }
     let mut indices = Vec::new();
     super::read_primitive_indices(src, doc, prim, &place, budget, mode, (pos, count), &mut indices)?;
-    if mode == 4 && indices.len() % 3 != 0 {
-        return Err(src.err(
-            place(),
-            format!(
-                "TRIANGLES needs a multiple of 3 indices but has {} ({} left over)",
-                indices.len(),
-                indices.len() % 3
-            ),
-        ));
-    }
-    let res = match mode {
-        4 => indices.chunks_exact(3).try_for_each(|t| {
-            mesh.face_indices.extend_from_slice(t);
-            close_face(&mut mesh)
-        }),
-        5 => push_strip_triangles(&mut mesh, &indices),
-        _ => push_fan_triangles(&mut mesh, &indices),
-    };
-    res.map_err(|w| src.err(place(), w))?;
+    super::push_primitive_faces(src, &place, &mut mesh, mode, &indices)?;
     let mesh_name = json["meshes"][m].get("name").and_then(Value::as_str).map_or(format!("mesh {m}"), String::from);
     let material = uint(src, prim, "material", &place)?.map(|k| {
         json.get("materials")

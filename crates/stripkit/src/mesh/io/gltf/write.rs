@@ -140,7 +140,8 @@ fn build(mesh: &Mesh, strips: Option<&StripSet>) -> Result<(Value, Vec<u8>)> {
 pub(crate) fn write_gltf(mesh: &Mesh, strips: Option<&StripSet>) -> Result<Vec<u8>> {
     let (mut json, bin) = build(mesh, strips)?;
     if !bin.is_empty() {
-        json["buffers"][0]["uri"] = Value::String(format!("data:application/octet-stream;base64,{}", base64_encode(&bin)));
+        json["buffers"][0]["uri"] =
+            Value::String(format!("data:application/octet-stream;base64,{}", base64_encode(&bin)));
     }
     serde_json::to_vec(&json).map_err(|e| Error::Invalid(format!("cannot encode glTF JSON: {e}")))
 }
@@ -177,4 +178,3 @@ pub(super) fn glb_container(json: &Value, mut bin: Vec<u8>) -> Result<Vec<u8>> {
     }
     Ok(out)
 }
-
