@@ -53,22 +53,11 @@ fn first_use_ids(mesh: &Mesh, stream: &[u32]) -> Vec<u32> {
 /// `mesh` and `strips` with vertex `v` renamed `new_id[v]` (a permutation of the ids
 /// that are not `u32::MAX`, which every face and strip index is).
 fn renumbered(mesh: &Mesh, strips: &StripSet, new_id: &[u32]) -> (Mesh, StripSet) {
-    let kept = new_id.iter().filter(|&&id| id != u32::MAX).count();
-    let mut order = vec![0u32; kept];
-    for (v, &id) in new_id.iter().enumerate() {
-        if id != u32::MAX {
-            order[id as usize] = v as u32;
-        }
-    }
-    let mut out = mesh.gather_vertices(&order);
-    out.face_offsets = mesh.face_offsets.clone();
-    out.face_indices = mesh.face_indices.iter().map(|&v| new_id[v as usize]).collect();
-    out.face_groups = mesh.face_groups.clone();
     let set = StripSet {
         indices: strips.indices.iter().map(|&v| new_id[v as usize]).collect(),
         offsets: strips.offsets.clone(),
     };
-    (out, set)
+    (mesh.renumbered(new_id), set)
 }
 
 impl Strips {

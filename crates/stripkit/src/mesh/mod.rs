@@ -180,18 +180,53 @@ impl Mesh {
         for &v in &self.face_indices {
             new_id[v as usize] = 0;
         }
-        let mut map = Vec::new();
-        for (v, id) in new_id.iter_mut().enumerate() {
-            if *id == 0 {
-                *id = map.len() as u32;
-                map.push(v as u32);
+        let mut next = 0;
+        for id in new_id.iter_mut().filter(|id| **id == 0) {
+            *id = next;
+            next += 1;
+        }
+        (self.renumbered(&new_id), new_id)
+    }
+
+    /// The mesh with vertex `v` renamed `new_id[v]`: the ids other than `u32::MAX` are
+    /// `0..k` in some order, and the vertices marked `u32::MAX` are dropped (no face may
+    /// use one). Faces, groups and attributes follow.
+    pub fn renumbered(&self, new_id: &[u32]) -> Mesh {
+        let mut order = vec![0u32; new_id.iter().filter(|&&id| id != u32::MAX).count()];
+        for (v, &id) in new_id.iter().enumerate() {
+            if id != u32::MAX {
+                order[id as usize] = v as u32;
             }
         }
-        let mut out = self.gather_vertices(&map);
+        let mut out = self.gather_vertices(&order);
         out.face_offsets = self.face_offsets.clone();
         out.face_indices = self.face_indices.iter().map(|&v| new_id[v as usize]).collect();
         out.face_groups = self.face_groups.clone();
-        (out, new_id)
+        out
+    }
+
+    /// The faces `faces` over the vertices they use, kept in increasing id order
+    /// (positions and attributes; no groups), and for each vertex of the result its id
+    /// in this mesh.
+    pub fn submesh(&self, faces: &[u32]) -> (Mesh, Vec<u32>) {
+        let mut used = vec![false; self.vertex_count()];
+        for &f in faces {
+            self.face(f as usize).iter().for_each(|&v| used[v as usize] = true);
+        }
+        let mut new_id = vec![u32::MAX; self.vertex_count()];
+        let mut map = Vec::new();
+        for (v, _) in used.iter().enumerate().filter(|(_, &u)| u) {
+            new_id[v] = map.len() as u32;
+            map.push(v as u32);
+        }
+        let mut out = self.gather_vertices(&map);
+        out.groups.clear();
+        out.face_indices.reserve(faces.len() * 3);
+        for &f in faces {
+            out.face_indices.extend(self.face(f as usize).iter().map(|&v| new_id[v as usize]));
+            out.face_offsets.push(out.face_indices.len() as u32);
+        }
+        (out, map)
     }
 
     /// Number of vertex records (referenced or not).
@@ -275,6 +310,23 @@ mod tests {
         assert_eq!(t.tris[2], [1, 4, 2]);
         assert_eq!(t.face_of, vec![0, 1, 1, 2, 2, 2]);
         assert!(!mesh.is_triangle_mesh());
+    }
+
+    #[test]
+    fn a_submesh_keeps_its_faces_over_the_vertices_they_use() {
+        let positions: Vec<[f32; 3]> = (0..6).map(|i| [i as f32, 0.0, 0.0]).collect();
+        let mut mesh = Mesh::from_polygons(positions, &[vec![0, 1, 2], vec![5, 3, 4, 1]]);
+        mesh.attributes.push(Attribute::from_f32("w", 1, &[10.0, 11.0, 12.0, 13.0, 14.0, 15.0]));
+        let (sub, map) = mesh.submesh(&[1]);
+        assert_eq!(map, vec![1, 3, 4, 5]);
+        assert_eq!(sub.face(0), &[3, 1, 2, 0]);
+        assert_eq!(sub.attribute("w").unwrap().value(3), vec![15.0]);
+        sub.check_faces().unwrap();
+        // renumbered with a permutation: vertex v becomes 3 - v.
+        let flipped = sub.renumbered(&[3, 2, 1, 0]);
+        assert_eq!(flipped.face(0), &[0, 2, 1, 3]);
+        assert_eq!(flipped.positions[0], [5.0, 0.0, 0.0]);
+        assert_eq!(flipped.attribute("w").unwrap().value(0), vec![15.0]);
     }
 
     #[test]

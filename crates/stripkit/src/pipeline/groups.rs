@@ -10,7 +10,6 @@ use super::*;
 /// group order, are measured and verified again as a whole, and when every group used
 /// the fan, their triangles are checked against the whole mesh's fan.
 pub(super) fn run_groups(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
-    let vertex_count = mesh.vertex_count();
     let algorithm = resolve(mesh, options)?;
     if let Algorithm::Single(_) = algorithm {
         return Err(Error::Invalid(format!(
@@ -28,7 +27,6 @@ pub(super) fn run_groups(mesh: &Mesh, options: &StripOptions) -> Result<Strips> 
     for f in 0..mesh.face_count() {
         faces_of[mesh.group_of(f) as usize].push(f as u32);
     }
-    let mut new_id = vec![u32::MAX; vertex_count];
     let mut strips = StripSet::new();
     let mut triangles = Vec::with_capacity(mesh.triangle_count());
     let mut group_ranges = Vec::with_capacity(groups);
@@ -40,17 +38,9 @@ pub(super) fn run_groups(mesh: &Mesh, options: &StripOptions) -> Result<Strips> 
             group_ranges.push(start..start);
             continue;
         }
-        let mut map: Vec<u32> = faces.iter().flat_map(|&f| mesh.face(f as usize).iter().copied()).collect();
-        map.sort_unstable();
-        map.dedup();
-        for (i, &v) in map.iter().enumerate() {
-            new_id[v as usize] = i as u32;
-        }
-        let mut sub = Mesh { positions: map.iter().map(|&v| mesh.positions[v as usize]).collect(), ..Mesh::new() };
-        for &f in faces {
-            sub.face_indices.extend(mesh.face(f as usize).iter().map(|&v| new_id[v as usize]));
-            sub.face_offsets.push(sub.face_indices.len() as u32);
-        }
+        // The group's own vertices, in increasing id order so that ties break as on the
+        // whole mesh.
+        let (sub, map) = mesh.submesh(faces);
         let part = run_one(&sub, &sub_options)?;
         for s in part.strips.iter() {
             let back: Vec<u32> = s.iter().map(|&i| map[i as usize]).collect();

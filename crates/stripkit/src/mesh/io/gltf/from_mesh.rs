@@ -172,27 +172,12 @@ fn vertex_view(bin: &mut Vec<u8>, views: &mut Vec<Value>, data: &[u8], elem: usi
 /// The faces of group `g` over the vertices they use (kept in their order), or `None`
 /// when the group has no face.
 fn part(mesh: &Mesh, g: u32) -> Option<Mesh> {
-    let faces: Vec<usize> = (0..mesh.face_count()).filter(|&f| mesh.group_of(f) == g).collect();
+    let faces: Vec<u32> = (0..mesh.face_count() as u32).filter(|&f| mesh.group_of(f as usize) == g).collect();
     if faces.is_empty() {
         return None;
     }
-    let mut used = vec![false; mesh.vertex_count()];
-    for &f in &faces {
-        for &v in mesh.face(f) {
-            used[v as usize] = true;
-        }
-    }
-    let map: Vec<u32> = (0..mesh.vertex_count() as u32).filter(|&v| used[v as usize]).collect();
-    let mut new_id = vec![0u32; mesh.vertex_count()];
-    for (k, &v) in map.iter().enumerate() {
-        new_id[v as usize] = k as u32;
-    }
-    let mut out = mesh.gather_vertices(&map);
+    let (mut out, _) = mesh.submesh(&faces);
     out.groups = mesh.groups.get(g as usize).cloned().into_iter().collect();
-    for &f in &faces {
-        let face: Vec<u32> = mesh.face(f).iter().map(|&v| new_id[v as usize]).collect();
-        out.push_face(&face);
-    }
     Some(out)
 }
 
