@@ -180,10 +180,8 @@ impl Mesh {
         for &v in &self.face_indices {
             new_id[v as usize] = 0;
         }
-        let mut next = 0;
-        for id in new_id.iter_mut().filter(|id| **id == 0) {
-            *id = next;
-            next += 1;
+        for (next, id) in new_id.iter_mut().filter(|id| **id == 0).enumerate() {
+            *id = next as u32;
         }
         (self.renumbered(&new_id), new_id)
     }
