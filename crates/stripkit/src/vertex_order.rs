@@ -38,14 +38,23 @@ pub fn first_use_order(mesh: &Mesh, strips: &StripSet) -> Result<(Mesh, StripSet
 /// For every vertex of `mesh`, its rank of first use in `stream` then in the faces
 /// (`u32::MAX` where neither uses it).
 fn first_use_ids(mesh: &Mesh, stream: &[u32]) -> Vec<u32> {
-    let mut new_id = vec![u32::MAX; mesh.vertex_count()];
-    let mut next = 0;
-    for &v in stream.iter().chain(&mesh.face_indices) {
-        let id = &mut new_id[v as usize];
-        if *id == u32::MAX {
-            *id = next;
-            next += 1;
-        }
+    let order = first_use(stream.iter().chain(&mesh.face_indices).copied(), mesh.vertex_count());
+    ids_of(&order, mesh.vertex_count())
+}
+
+/// The vertices `indices` uses (each below `vertex_count`), in the order of their
+/// first use.
+pub(crate) fn first_use(indices: impl IntoIterator<Item = u32>, vertex_count: usize) -> Vec<u32> {
+    let mut seen = vec![false; vertex_count];
+    indices.into_iter().filter(|&v| !std::mem::replace(&mut seen[v as usize], true)).collect()
+}
+
+/// The inverse of `order` (old ids listed by new id): for each of `vertex_count` old
+/// vertices its new id, `u32::MAX` where `order` leaves it out.
+pub(crate) fn ids_of(order: &[u32], vertex_count: usize) -> Vec<u32> {
+    let mut new_id = vec![u32::MAX; vertex_count];
+    for (k, &v) in order.iter().enumerate() {
+        new_id[v as usize] = k as u32;
     }
     new_id
 }

@@ -429,14 +429,7 @@ impl Scene {
                 figures: strips.figures,
             });
             if scene_options.reorder && readable {
-                let mut seen = vec![false; sp.mesh.vertex_count()];
-                let mut order = Vec::new();
-                for v in strip::encode_stitched(&set) {
-                    if !std::mem::replace(&mut seen[v as usize], true) {
-                        order.push(v);
-                    }
-                }
-                sp.order = Some(order);
+                sp.order = Some(crate::vertex_order::first_use(strip::encode_stitched(&set), sp.mesh.vertex_count()));
             }
             sp.strips = Some(set);
             sp.drawn = strips.triangles;
@@ -580,10 +573,7 @@ impl Scene {
                         Some(t) => prim["targets"][t][name.as_str()] = k.into(),
                     }
                 }
-                let mut new_id = vec![u32::MAX; sp.mesh.vertex_count()];
-                for (k, &v) in order.iter().enumerate() {
-                    new_id[v as usize] = k as u32;
-                }
+                let new_id = crate::vertex_order::ids_of(order, sp.mesh.vertex_count());
                 let set = sp.strips.as_ref().expect("filtered above");
                 let strips: Vec<Vec<u32>> =
                     set.iter().map(|s| s.iter().map(|&v| new_id[v as usize]).collect()).collect();
@@ -885,10 +875,7 @@ impl Scene {
             let want: Cow<[[u32; 3]]> = match &a.order {
                 None => Cow::Borrowed(&a.drawn),
                 Some(order) => {
-                    let mut new_id = vec![u32::MAX; a.mesh.vertex_count()];
-                    for (k, &v) in order.iter().enumerate() {
-                        new_id[v as usize] = k as u32;
-                    }
+                    let new_id = crate::vertex_order::ids_of(order, a.mesh.vertex_count());
                     Cow::Owned(a.drawn.iter().map(|t| t.map(|v| new_id[v as usize])).collect())
                 }
             };
