@@ -656,9 +656,6 @@ struct SceneCliReport<'a> {
     /// checked (a failure is an error and writes nothing), as in the mesh report.
     verified: bool,
     vertex_order: VertexOrder,
-    /// Vertices written over all stripped primitives (with `first-use`, those the
-    /// strips use).
-    vertices: usize,
     /// Reading and decoding the input, in milliseconds.
     read_ms: f64,
     /// Encoding, checking (read back) and writing the output, in milliseconds.
@@ -745,25 +742,12 @@ fn strip_scene(
     super::write_output(&args.output, &bytes)?;
     let write_ms = start.elapsed().as_secs_f64() * 1e3;
     progress.finish_and_clear();
-    let vertices = scene
-        .primitives()
-        .iter()
-        .map(|p| match vertex_order {
-            VertexOrder::Input => p.mesh.vertex_count(),
-            VertexOrder::FirstUse => {
-                let mut used = vec![false; p.mesh.vertex_count()];
-                p.mesh.face_indices.iter().for_each(|&v| used[v as usize] = true);
-                used.iter().filter(|&&u| u).count()
-            }
-        })
-        .sum();
     let r = SceneCliReport {
         input: &args.input,
         output: &args.output,
         join: args.join,
         verified: true,
         vertex_order,
-        vertices,
         read_ms: read_time.as_secs_f64() * 1e3,
         write_ms,
         scene: &report,

@@ -235,6 +235,9 @@ pub struct SceneReport {
     /// Indices a viewer with primitive restart draws: the restart groups' indices,
     /// plus the stitched ones of primitives without a group.
     pub indices_drawn_restart: usize,
+    /// Vertices the stripped primitives write, all together (with
+    /// [`SceneOptions::reorder`], those their strips use).
+    pub vertices: usize,
     /// Time of the stripifiers alone, all primitives together, in milliseconds.
     pub stripify_ms: f64,
     /// Time of the whole call (door, verification and figures), in milliseconds.
@@ -376,6 +379,7 @@ impl Scene {
             indices_read: 0,
             indices_stitched: 0,
             indices_drawn_restart: 0,
+            vertices: 0,
             stripify_ms: 0.0,
             total_ms: 0.0,
         };
@@ -432,6 +436,7 @@ impl Scene {
                 sp.order = Some(crate::vertex_order::first_use(strip::encode_stitched(&set), sp.mesh.vertex_count()));
             }
             sp.strips = Some(set);
+            report.vertices += sp.order.as_ref().map_or(sp.mesh.vertex_count(), Vec::len);
             sp.drawn = strips.triangles;
         }
         self.options = scene_options.clone();
