@@ -212,15 +212,14 @@ fn upload(r: &mut Renderer, mesh: &stripkit::Mesh, w: &Weights) -> anyhow::Resul
     let s = stripkit::stripify(mesh, &opts)?;
     let positions = s.with_added_vertices(&mesh.positions);
     let tree = SegmentTree::build(&s.strips, &positions);
-    let tris: Vec<[u32; 3]> = s.triangles.clone();
-    let normals = stripkit_render::vertex_normals(&positions, tris.as_flattened());
+    let normals = stripkit_render::vertex_normals(&positions, s.triangles.as_flattened());
     let geometry =
         r.upload(&Vertices { positions: &positions, morph_target: None, normals: Some(&normals), colors: None })?;
     let indices = r.upload_indices(&s.strips.indices, Topology::Strip, IndexWidth::U32)?;
     let whole = (0..s.strips.len())
         .map(|k| (s.strips.offsets[k] as usize, (s.strips.offsets[k + 1] - s.strips.offsets[k]) as usize))
         .collect();
-    Ok(Uploaded { geometry, indices, tree, whole, triangles: tris.len() })
+    Ok(Uploaded { geometry, indices, tree, whole, triangles: s.triangles.len() })
 }
 
 /// Runs the comparison.
