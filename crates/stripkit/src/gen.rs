@@ -259,7 +259,7 @@ pub fn cube_grid(n: u32) -> Mesh {
 /// repeated vertex, and when the result would not fit `u32` indices.
 pub fn subdivide_loop(mesh: &Mesh, levels: u32) -> Result<Mesh> {
     validate(mesh)?;
-    crate::simplify::attributes::check(mesh)?;
+    mesh.check_attributes()?;
     if let Some((f, face)) = mesh.faces().enumerate().find(|(_, face)| face.len() != 3) {
         return Err(Error::Invalid(format!(
             "Loop subdivision needs a triangle mesh, but face {f} has {} vertices (use catmull-clark)",
@@ -463,7 +463,7 @@ fn split_triangles_in_four(mesh: &Mesh, map: &EdgeMap, positions: Vec<[f32; 3]>)
 /// would not fit `u32` indices.
 pub fn subdivide_catmull_clark(mesh: &Mesh, levels: u32) -> Result<Mesh> {
     validate(mesh)?;
-    crate::simplify::attributes::check(mesh)?;
+    mesh.check_attributes()?;
     check_no_repeated_index(mesh)?;
     let mut current = mesh.clone();
     for _ in 0..levels {

@@ -127,7 +127,13 @@ impl Mesh {
                 return Err(Error::Invalid(format!("face {f} refers to vertex {v} but the mesh has {n} vertices")));
             }
         }
-        attr::check(&self.attributes, &self.face_groups, &self.groups, n, self.face_count())
+        self.check_attributes()
+    }
+
+    /// The attribute and group half of [`Mesh::check_faces`]: every attribute one whole
+    /// value per vertex, face groups empty or one per face, each naming a group.
+    pub(crate) fn check_attributes(&self) -> crate::Result<()> {
+        attr::check(&self.attributes, &self.face_groups, &self.groups, self.vertex_count(), self.face_count())
     }
 
     /// The attribute of this name, if the mesh has one.

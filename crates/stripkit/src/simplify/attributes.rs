@@ -5,7 +5,6 @@
 //! triangle takes values from the other side.
 
 use super::quadric::{dot, sub, V3};
-use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::Attribute;
 use std::collections::HashMap;
@@ -86,33 +85,4 @@ pub(crate) fn unit_directions(a: &mut Attribute, vertices: std::ops::Range<usize
             a.set(v, 3, w / unit);
         }
     }
-}
-
-/// Refuses attributes and face groups that do not match the mesh (an attribute
-/// without a whole value per vertex, a face group per face or none, group ids in
-/// range), before anything indexes them.
-pub(crate) fn check(mesh: &Mesh) -> Result<()> {
-    let n = mesh.vertex_count();
-    for a in &mesh.attributes {
-        if a.stride() == 0 || a.data.len() != n.saturating_mul(a.stride()) {
-            return Err(Error::Invalid(format!(
-                "attribute {} holds {} bytes, not {} values of {} bytes (one per vertex)",
-                a.name,
-                a.data.len(),
-                n,
-                a.stride()
-            )));
-        }
-    }
-    if !mesh.face_groups.is_empty() && mesh.face_groups.len() != mesh.face_count() {
-        return Err(Error::Invalid(format!(
-            "{} face groups for {} faces (one per face, or none)",
-            mesh.face_groups.len(),
-            mesh.face_count()
-        )));
-    }
-    if let Some(&g) = mesh.face_groups.iter().find(|&&g| g as usize >= mesh.group_count()) {
-        return Err(Error::Invalid(format!("face group {g} is not one of the mesh's {} groups", mesh.group_count())));
-    }
-    Ok(())
 }

@@ -168,6 +168,6 @@ pub fn simplify(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64)) -
     if mesh.positions.iter().flatten().any(|x| !x.is_finite()) {
         return Err(Error::Invalid("a vertex position is not a finite number".into()));
     }
-    attributes::check(mesh)?;
+    mesh.check_attributes()?;
     collapse::run(mesh, options, progress)
 }
