@@ -21,9 +21,6 @@
 //! faces as `list uchar int vertex_indices` (`list int int` when a face has more than
 //! 255 vertices), or with strips one `tristrips` record whose int list ends every
 //! strip with `-1`. Face groups are not written (PLY has no materials).
-//!
-//! (Over 1,000 lines because the header, both body readers, the attribute mapping and
-//! the writer share this file's private property types; about 170 lines are tests.)
 
 use super::common::{
     capped, close_face, ends_line, index_message, is_space, line_at, line_end, parse_count, parse_f32, parse_i64,
