@@ -31,7 +31,8 @@
 //! | glTF | `.gltf` (data URIs, external files), `.glb`; modes 4/5/6 | `.gltf` (embedded), `.glb`; TRIANGLES or one TRIANGLE_STRIP per strip |
 //!
 //! A whole glTF document (scenes, nodes, materials, skins, animations, ...) is read and
-//! written by [`Scene`]: every triangle primitive stripped on its own, the rest kept.
+//! written by [`Scene`]: its triangle primitives decoded, the rest kept. Stripping
+//! them is [`crate::scene`]'s business, above the door; this module only converts.
 
 mod common;
 mod gltf;
@@ -40,7 +41,7 @@ mod off;
 mod ply;
 mod stl;
 
-pub use gltf::{PrimitiveReport, Scene, SceneOptions, ScenePrimitive, SceneReport};
+pub use gltf::{Scene, ScenePrimitive};
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
@@ -340,6 +341,35 @@ pub fn encode_file(path: &Path, mesh: &Mesh, strips: Option<&StripSet>, options:
 /// ends in `.gz`. The file is replaced atomically ([`write_atomic`]).
 pub fn write_encoded(path: &Path, bytes: &[u8]) -> Result<()> {
     write_atomic(path, &compress_for(path, bytes)?)
+}
+
+/// The bytes `encode` makes, once `check` has read them back and found them to be
+/// what was meant (its error, typically [`Error::Verification`], otherwise): the
+/// first half of [`write_checked`], for outputs that go somewhere other than a file.
+pub(crate) fn encode_checked(
+    encode: impl FnOnce() -> Result<Vec<u8>>,
+    check: impl FnOnce(&[u8]) -> Result<()>,
+) -> Result<Vec<u8>> {
+    let bytes = encode()?;
+    check(&bytes)?;
+    Ok(bytes)
+}
+
+/// The one write path of checked outputs (strips in a mesh file, a glTF scene, the
+/// `.sets` and `.lodseq` files of `lod`): `encode` makes the bytes, `check` reads them
+/// back and compares them with what was meant, and only then are they written to
+/// `path` atomically ([`write_atomic`]: a temporary file beside it, synced, renamed),
+/// gzip-compressed when the name is a mesh format's ending in `.gz`. Nothing is
+/// written when either step fails. Returns the length of the encoded bytes (before
+/// any compression).
+pub(crate) fn write_checked(
+    path: &Path,
+    encode: impl FnOnce() -> Result<Vec<u8>>,
+    check: impl FnOnce(&[u8]) -> Result<()>,
+) -> Result<usize> {
+    let bytes = encode_checked(encode, check)?;
+    write_encoded(path, &bytes)?;
+    Ok(bytes.len())
 }
 
 /// `bytes` gzip-compressed when `path`'s name ends in `.gz`, unchanged otherwise.
