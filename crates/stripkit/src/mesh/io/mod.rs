@@ -206,14 +206,28 @@ fn io_error(path: &Path, source: std::io::Error) -> Error {
 }
 
 /// Reads a mesh, choosing the format by the file's extension, with the default
-/// [`ReadOptions`] (external glTF buffers only from the asset's own folder).
-pub fn read(path: &Path) -> Result<Mesh> {
+/// [`ReadOptions`] (external glTF buffers only from the asset's own folder). `path` is
+/// anything that names a file: `&str`, `String`, `&Path`, `PathBuf`.
+///
+/// ```
+/// # let dir = std::env::temp_dir().join(format!("stripkit-doc-read-{}", std::process::id()));
+/// # std::fs::create_dir_all(&dir).unwrap();
+/// # let name = dir.join("triangle.obj").display().to_string();
+/// # std::fs::write(&name, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+/// let path: String = name; // a String, as a command line or a config gives it
+/// let mesh = stripkit::io::read(&path)?;
+/// assert_eq!(mesh.face_count(), 1);
+/// # std::fs::remove_dir_all(&dir).unwrap();
+/// # Ok::<(), stripkit::Error>(())
+/// ```
+pub fn read(path: impl AsRef<Path>) -> Result<Mesh> {
     read_with(path, &ReadOptions::default())
 }
 
 /// [`read`] with options (see [`ReadOptions`] for the rules on external glTF buffers
 /// and the cap on gzip decompression).
-pub fn read_with(path: &Path, options: &ReadOptions) -> Result<Mesh> {
+pub fn read_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Mesh> {
+    let path = path.as_ref();
     let (format, gz) = Format::from_path(path).ok_or_else(|| unknown(path))?;
     let raw = std::fs::read(path).map_err(|e| io_error(path, e))?;
     let data = if gz {
@@ -310,7 +324,7 @@ fn gunzip(path: &Path, raw: &[u8], cap: u64) -> Result<Vec<u8>> {
 /// hold strips (PLY `tristrips`, glTF `TRIANGLE_STRIP`) write them instead of faces;
 /// OBJ, OFF and STL always write the mesh's faces. PLY is binary little-endian; see
 /// [`write_with`] for ASCII.
-pub fn write(path: &Path, mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> {
+pub fn write(path: impl AsRef<Path>, mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> {
     write_with(path, mesh, strips, &WriteOptions::default())
 }
 
@@ -319,11 +333,12 @@ pub fn write(path: &Path, mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> 
 /// accept the file). A name ending in `.gz` is gzip-compressed. The file is replaced
 /// atomically ([`write_atomic`]).
 pub fn write_with(
-    path: &Path,
+    path: impl AsRef<Path>,
     mesh: &Mesh,
     strips: Option<&StripSet>,
     options: &WriteOptions,
 ) -> Result<()> {
+    let path = path.as_ref();
     write_atomic(path, &encode_file(path, mesh, strips, options)?)
 }
 

@@ -136,12 +136,13 @@ impl std::fmt::Debug for Scene {
 impl Scene {
     /// Reads a `.gltf` or `.glb` file (optionally `.gz`) with the default
     /// [`ReadOptions`].
-    pub fn read(path: &Path) -> Result<Scene> {
+    pub fn read(path: impl AsRef<Path>) -> Result<Scene> {
         Scene::read_with(path, &ReadOptions::default())
     }
 
     /// [`Scene::read`] with options (external buffers, budgets; see [`ReadOptions`]).
-    pub fn read_with(path: &Path, options: &ReadOptions) -> Result<Scene> {
+    pub fn read_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Scene> {
+        let path = path.as_ref();
         let format = scene_format(path)?;
         let raw = std::fs::read(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
         let data = if Format::from_path(path).is_some_and(|(_, gz)| gz) {
@@ -290,7 +291,8 @@ impl Scene {
 
     /// Writes the scene to `path` (`.gltf` or `.glb`, optionally `.gz`), atomically,
     /// after the check of [`Scene::to_bytes`].
-    pub fn write(&self, path: &Path) -> Result<()> {
+    pub fn write(&self, path: impl AsRef<Path>) -> Result<()> {
+        let path = path.as_ref();
         let format = scene_format(path)?;
         write_checked(path, || self.encode(format), |bytes| self.check_written(format, bytes)).map(drop)
     }
