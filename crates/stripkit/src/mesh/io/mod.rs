@@ -63,11 +63,25 @@ pub fn supported_write_extensions() -> &'static str {
     SUPPORTED_EXTENSIONS
 }
 
-/// Options for [`write_with`].
+/// Options for [`write_with`] and [`write_bytes`]. Default: binary little-endian PLY.
+///
+/// ```
+/// let ascii = stripkit::io::WriteOptions::default().ply_ascii(true);
+/// assert!(ascii.ply_ascii);
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct WriteOptions {
-    /// Write PLY as ASCII text instead of binary little-endian (the default).
+    /// Write PLY as ASCII text instead of binary little-endian. Default `false`.
     pub ply_ascii: bool,
+}
+
+impl WriteOptions {
+    /// Sets [`WriteOptions::ply_ascii`].
+    pub fn ply_ascii(mut self, on: bool) -> Self {
+        self.ply_ascii = on;
+        self
+    }
 }
 
 /// The default of [`ReadOptions::max_external_bytes`]: 1 GiB.
@@ -101,7 +115,16 @@ pub const DECODED_BYTES_ALLOWANCE: u64 = 1 << 20;
 /// files outside those folders. Directories, devices and pipes are refused without
 /// being opened for reading; at most the buffer's declared `byteLength` is read, and a
 /// file shorter than that is refused. A file named by several buffers is read once.
+///
+/// Defaults: no extra roots, 1 GiB of external buffers, 4 GiB decompressed, the
+/// decoded mesh bounded by the input's buffers, attributes and groups read.
+///
+/// ```
+/// let options = stripkit::io::ReadOptions::default().max_decompressed_bytes(1 << 20).positions_only(true);
+/// assert_eq!(options.max_decompressed_bytes, 1 << 20);
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct ReadOptions {
     /// Folders besides the asset's own from which external glTF buffers may be read
     /// (reached through relative URIs such as `../shared/scene.bin`). Each is resolved
@@ -154,6 +177,34 @@ impl Default for ReadOptions {
             max_decoded_bytes: None,
             positions_only: false,
         }
+    }
+}
+
+impl ReadOptions {
+    /// Sets [`ReadOptions::allowed_roots`].
+    pub fn allowed_roots(mut self, roots: Vec<PathBuf>) -> Self {
+        self.allowed_roots = roots;
+        self
+    }
+    /// Sets [`ReadOptions::max_external_bytes`].
+    pub fn max_external_bytes(mut self, bytes: u64) -> Self {
+        self.max_external_bytes = bytes;
+        self
+    }
+    /// Sets [`ReadOptions::max_decompressed_bytes`].
+    pub fn max_decompressed_bytes(mut self, bytes: u64) -> Self {
+        self.max_decompressed_bytes = bytes;
+        self
+    }
+    /// Sets [`ReadOptions::max_decoded_bytes`] (`None`: bounded by the input).
+    pub fn max_decoded_bytes(mut self, bytes: Option<u64>) -> Self {
+        self.max_decoded_bytes = bytes;
+        self
+    }
+    /// Sets [`ReadOptions::positions_only`].
+    pub fn positions_only(mut self, on: bool) -> Self {
+        self.positions_only = on;
+        self
     }
 }
 

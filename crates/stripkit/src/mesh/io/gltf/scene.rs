@@ -217,7 +217,7 @@ impl Scene {
     /// that [`Scene::strip`] may split quads as the algorithm chooses.
     pub fn from_mesh(mesh: &Mesh) -> Result<Scene> {
         let doc = super::from_mesh::mesh_document(mesh)?;
-        let options = ReadOptions { max_decoded_bytes: Some(u64::MAX), ..ReadOptions::default() };
+        let options = ReadOptions::default().max_decoded_bytes(Some(u64::MAX));
         let mut scene = Scene::from_bytes(Path::new("<mesh as glTF>"), Format::Glb, &doc.glb, &options)?;
         for ((sp, &g), (offsets, indices)) in scene.primitives.iter_mut().zip(&doc.group_of_primitive).zip(doc.faces) {
             sp.mesh.face_offsets = offsets;
@@ -669,7 +669,7 @@ impl Scene {
     fn check_written(&self, format: Format, bytes: &[u8]) -> Result<()> {
         let name = PathBuf::from(format!("the {format:?} bytes to be written"));
         // The input was accepted under the caller's budget; the output decodes to the same.
-        let options = ReadOptions { max_decoded_bytes: Some(u64::MAX), ..ReadOptions::default() };
+        let options = ReadOptions::default().max_decoded_bytes(Some(u64::MAX));
         let back = Scene::from_bytes(&name, format, bytes, &options)?;
         let fail = |sp: &ScenePrimitive, what: String| {
             Error::Verification(format!(
