@@ -44,7 +44,7 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "endpoint")]
     pub placement: PlacementArg,
     /// Weight of the boundary penalty planes (0 lets borders move freely).
-    #[arg(long, default_value_t = 100.0)]
+    #[arg(long, default_value_t = Options::default().boundary_weight)]
     pub boundary_weight: f64,
     /// Also contract vertex pairs closer than this distance that share no edge
     /// (QSlim's pair contraction; may join pieces). Off by default. A finite
@@ -189,5 +189,29 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
                 ms
             )
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: Args,
+    }
+
+    #[test]
+    fn defaults_are_the_librarys() {
+        let args = Cli::parse_from(["simplify", "in.obj", "--ratio", "0.5", "-o", "out.obj"]).args;
+        let library = Options::default();
+        assert_eq!(args.boundary_weight, library.boundary_weight);
+        assert_eq!(args.pair_distance, library.pair_distance);
+        assert!(matches!(
+            (args.placement, library.placement),
+            (PlacementArg::Endpoint, Placement::Endpoint) | (PlacementArg::Optimal, Placement::Optimal)
+        ));
     }
 }
