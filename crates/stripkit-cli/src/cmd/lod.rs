@@ -9,7 +9,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stripkit::io::{self, Format};
-use stripkit::lod::{self, BuildOptions, Extracted, LevelSpec, LodSeq, Model, SeqOptions, Sets, Spacing};
+use stripkit::lod::{self, BuildOptions, Extracted, LevelSpec, LodSeq, Model, SeqOptions, Spacing};
 use stripkit::simplify::Placement;
 use stripkit::{Error, Mesh, StripSet};
 
@@ -225,13 +225,8 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
             Some(lod::check_levels(&built.sets, &built.mesh, &built.sequence, stride, 100)?)
         }
     };
-    let bytes = built.sets.to_bytes();
-    // The file read back must be the model that was checked.
-    let back = Sets::from_bytes(&args.output, &bytes)?;
-    if back != built.sets {
-        return Err(Error::Verification("the .sets bytes do not read back to the model".into()).into());
-    }
-    io::write_atomic(&args.output, &bytes)?;
+    // Written once the bytes read back to the model that was checked.
+    let bytes = built.sets.write(&args.output)?;
     let out = BuildOut {
         input: args.file.display().to_string(),
         output: args.output.display().to_string(),
@@ -240,7 +235,7 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
             Placement::Endpoint => "endpoint",
             Placement::Optimal => "optimal",
         },
-        bytes: bytes.len(),
+        bytes,
         check,
     };
     super::print_report(args.common.json, &out, |w, o| {
@@ -320,20 +315,16 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
         }
     }
     let check_ms = t.elapsed().as_secs_f64() * 1e3;
-    let bytes = built.seq.to_bytes();
-    if LodSeq::from_bytes(&args.output, &bytes)? != built.seq {
-        return Err(Error::Verification("the .lodseq bytes do not read back to the model".into()).into());
-    }
-    io::write_atomic(&args.output, &bytes)?;
+    let bytes = built.seq.write(&args.output)?;
     // Each model is stored as its length (a varint) and its bytes.
     let varint_len = |n: usize| (usize::BITS - n.max(1).leading_zeros()).div_ceil(7) as usize;
     let lod_bytes: usize = built.seq.models().iter().map(|m| m.to_bytes().len()).map(|n| n + varint_len(n)).sum();
-    let position_bytes = bytes.len() - lod_bytes;
+    let position_bytes = bytes - lod_bytes;
     let out = BuildSeqOut {
         input: args.folder.display().to_string(),
         output: args.output.display().to_string(),
         report: built.report,
-        bytes: bytes.len(),
+        bytes,
         position_bytes,
         lod_bytes,
         levels_checked,

@@ -543,19 +543,16 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
     let mesh = args.read.read(&args.input)?;
-    // A mesh written as glTF: one primitive per group with its attributes, each
-    // stripped on its own and written with its restart group (io::Scene::from_mesh).
-    // `single` (which adds vertices), --join separate (a primitive per strip) and a
-    // chosen restart index keep the plain writer.
-    if matches!(kind, OutKind::Mesh(Format::Gltf | Format::Glb))
-        && args.join != Join::Separate
-        && args.strip.algo != Algo::Single
-        && args.restart_index == DEFAULT_RESTART
-        && mesh.face_count() > 0
-    {
+    // A mesh written as glTF: the library chooses its writer (a scene of one
+    // primitive per group, or the plain writer; stripkit::scene::for_gltf_output).
+    let start = std::time::Instant::now();
+    let scene = match kind {
+        OutKind::Mesh(Format::Gltf | Format::Glb) => stripkit::scene::for_gltf_output(&mesh, &with_join(&args, args.strip.options(None)))
+            .map_err(|e| anyhow::anyhow!(e).context(format!("{}", args.input.display())))?,
+        _ => None,
+    };
+    if let Some(scene) = scene {
         progress.finish_and_clear();
-        let start = std::time::Instant::now();
-        let scene = stripkit::io::Scene::from_mesh(&mesh).map_err(|e| anyhow::anyhow!(e).context(format!("{}", args.input.display())))?;
         for note in scene.notes() {
             eprintln!("note: {}: {note}", args.input.display());
         }
@@ -657,7 +654,7 @@ struct SceneCliReport<'a> {
     /// Encoding, checking (read back) and writing the output, in milliseconds.
     write_ms: f64,
     #[serde(flatten)]
-    scene: &'a stripkit::io::SceneReport,
+    scene: &'a stripkit::scene::SceneReport,
 }
 
 /// `strip` on a glTF scene: every triangle primitive stripped on its own, everything
@@ -723,8 +720,8 @@ fn strip_scene(
     batch: Option<&indicatif::ProgressBar>,
 ) -> anyhow::Result<()> {
     let scene_options = match args.join {
-        Join::Degenerate => stripkit::io::SceneOptions::stitched(),
-        _ => stripkit::io::SceneOptions::default(),
+        Join::Degenerate => stripkit::scene::SceneOptions::stitched(),
+        _ => stripkit::scene::SceneOptions::default(),
     }
     .reorder(vertex_order == VertexOrder::FirstUse);
     let progress = match batch {
