@@ -236,7 +236,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let o = CullOptions::default();
             rows.push(tree_row(&format!("single strip, {w} weights, segment tree"), &tree, &counter, o, &eyes, args.repeat)?);
             if args.gap > 0 {
-                let o = CullOptions { max_gap: args.gap, ..o };
+                let o = o.max_gap(args.gap);
                 let m = format!("single strip, {w} weights, segment tree, gaps <= {} joined", args.gap);
                 rows.push(tree_row(&m, &tree, &counter, o, &eyes, args.repeat)?);
             }
@@ -255,7 +255,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         if let Some((tree, counter)) = &cull_tree {
             for k in 0..=8 {
                 let gap = if k == 0 { 0 } else { 1u32 << (2 * k) };
-                let o = CullOptions { max_gap: gap, ..CullOptions::default() };
+                let o = CullOptions::default().max_gap(gap);
                 let m = format!("single strip, cull weights, gaps <= {gap} joined (first gap of 4^k with <= 1/10 of the meshlet draws)");
                 let row = tree_row(&m, tree, counter, o, &eyes, 1)?;
                 if row.draws <= meshlets.draws / 10.0 || k == 8 {
