@@ -28,12 +28,13 @@
 //! ```
 
 mod camera;
+pub mod chart;
 mod egl;
 mod image;
 mod normals;
 mod shaders;
 
-pub use camera::{helix_path, Camera, HELIX_VIEWS};
+pub use camera::Camera;
 pub use image::Image;
 pub use normals::vertex_normals;
 

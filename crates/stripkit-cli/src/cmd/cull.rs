@@ -4,7 +4,6 @@
 
 use anyhow::Context;
 use serde::Serialize;
-use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 use stripkit::cull::{helix_eyes, CullOptions, Culled, FacingCounter, Frustum, RenderFront, SegmentTree, HELIX_VIEWS};
@@ -174,14 +173,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     let fov = args.fov.unwrap_or(60.0);
     anyhow::ensure!(fov > 0.0 && fov < 179.0, "--fov {fov} is out of range: more than 0 and less than 179 degrees");
-    let base = CullOptions { min_triangles: args.min_triangles, max_gap: args.max_gap, frustum: None };
+    let base = CullOptions::default().min_triangles(args.min_triangles).max_gap(args.max_gap);
     let near_far = (0.01 * radius.max(1e-6), 100.0 * radius.max(1e-6));
-    let cull_at = |eye: [f32; 3]| CullOptions {
-        frustum: args
-            .frustum
-            .then(|| Frustum::perspective(eye, center, [0.0, 1.0, 0.0], fov, 1.0, near_far.0, near_far.1))
-            .flatten(),
-        ..base
+    let cull_at = |eye: [f32; 3]| {
+        base.frustum(
+            args.frustum
+                .then(|| Frustum::perspective(eye, center, [0.0, 1.0, 0.0], fov, 1.0, near_far.0, near_far.1))
+                .flatten(),
+        )
     };
     let counter = FacingCounter::new(&strips.strips, &positions);
 
@@ -288,69 +287,22 @@ fn file_name(p: &std::path::Path) -> String {
     p.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default()
 }
 
-/// The strip bar: the index buffer as a horizontal band, drawn ranges dark, culled
-/// parts light, strip ends marked.
+/// The strip bar of one view: the index buffer as a horizontal band, drawn ranges dark,
+/// culled parts light, strip ends marked.
 pub fn bar_svg(strips: &stripkit::StripSet, culled: &Culled, title: &str) -> String {
-    let (w, h, top) = (1200.0f64, 48.0f64, 28.0f64);
-    let len = strips.indices.len().max(1) as f64;
-    let x = |i: u32| i as f64 / len * w;
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}">
-<rect width="100%" height="100%" fill="white"/>
-<text x="0" y="18" font-family="sans-serif" font-size="14">{} - {} segments drawn, {} triangles drawn, {} culled</text>
-<rect x="0" y="{top}" width="{w}" height="{h}" fill="#d8d8d8"/>
-"##,
-        w,
-        top + h + 4.0,
-        w,
-        top + h + 4.0,
-        xml_escape(title),
+    let heading = format!(
+        "{title} - {} segments drawn, {} triangles drawn, {} culled",
         culled.ranges.len(),
         culled.drawn_triangles,
         culled.culled_triangles
     );
-    for r in &culled.ranges {
-        let _ = writeln!(
-            s,
-            r##"<rect x="{:.3}" y="{top}" width="{:.3}" height="{h}" fill="#202020"/>"##,
-            x(r.start),
-            (x(r.end) - x(r.start)).max(0.3)
-        );
-    }
-    for &o in &strips.offsets[1..strips.offsets.len().saturating_sub(1)] {
-        let _ = writeln!(s, r##"<line x1="{0:.3}" x2="{0:.3}" y1="{1}" y2="{2}" stroke="#d02020" stroke-width="1"/>"##, x(o), top - 3.0, top + h + 3.0);
-    }
-    s.push_str("</svg>\n");
-    s
-}
-
-fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    let strip_starts = &strips.offsets[1..strips.offsets.len().saturating_sub(1)];
+    stripkit_render::chart::strip_bar(strips.indices.len(), &culled.ranges, strip_starts, &heading)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The library's eye points are the render crate's helix cameras.
-    #[test]
-    fn helix_eyes_match_the_render_crate() {
-        for (c, r, n) in [([0.0f32; 3], 1.0f32, HELIX_VIEWS), ([1.0, -2.0, 3.5], 0.25, 17), ([5.0, 5.0, 5.0], 40.0, 2)] {
-            let eyes = helix_eyes(c, r, n);
-            let cams = stripkit_render::helix_path(c, r, n);
-            assert_eq!(eyes.len(), cams.len());
-            for (e, cam) in eyes.iter().zip(&cams) {
-                assert_eq!(cam.target, c);
-                assert_eq!(cam.fov_y_degrees, 60.0);
-                for k in 0..3 {
-                    assert!((e[k] - cam.eye[k]).abs() <= 1e-5 * r.max(1.0) * 8.0, "{e:?} vs {:?}", cam.eye);
-                }
-            }
-        }
-        assert_eq!(HELIX_VIEWS, stripkit_render::HELIX_VIEWS);
-    }
 
     #[test]
     fn bar_marks_drawn_ranges() {
