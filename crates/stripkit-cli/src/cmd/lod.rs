@@ -9,7 +9,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stripkit::io::{self, Format};
-use stripkit::lod::{self, BuildOptions, Extracted, LevelSpec, LodSeq, Model, SeqOptions, Sets, Spacing};
+use stripkit::lod::{self, timing, BuildOptions, Extracted, LevelSpec, LodSeq, Model, SeqOptions, Sets};
 use stripkit::simplify::Placement;
 use stripkit::{Error, Mesh, StripSet};
 
@@ -212,7 +212,7 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
         PlacementArg::Endpoint => Placement::Endpoint,
         PlacementArg::Optimal => Placement::Optimal,
     };
-    let options = BuildOptions { strip: args.common.strip.options(Some(&mesh)), placement };
+    let options = BuildOptions::default().strip(args.common.strip.options(Some(&mesh))).placement(placement);
     let bar = super::progress_bar(mesh.triangle_count() > 200_000, "simplify");
     let built = lod::build(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the model of {}", args.file.display()))?;
@@ -298,14 +298,13 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
         return Err(stripkit::Error::Invalid(format!("no faces in {}", args.folder.display())).into());
     }
     args.common.strip.check_mesh(&frames.mesh, &args.folder)?;
-    let options = SeqOptions {
-        strip: args.common.strip.options(Some(&frames.mesh)),
-        max_sequences: args.max_sequences,
-        tolerance: args.tolerance,
-        samples: args.samples,
-        candidates: args.candidates,
-        position_bits: args.position_bits,
-    };
+    let options = SeqOptions::default()
+        .strip(args.common.strip.options(Some(&frames.mesh)))
+        .max_sequences(args.max_sequences)
+        .tolerance(args.tolerance)
+        .samples(args.samples)
+        .candidates(args.candidates)
+        .position_bits(args.position_bits);
     let bar = super::progress_bar(true, "simplify and measure");
     let built = lod::build_seq(&frames, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the level-of-detail strips of {}", args.folder.display()))?;
@@ -325,9 +324,7 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
         return Err(Error::Verification("the .lodseq bytes do not read back to the model".into()).into());
     }
     io::write_atomic(&args.output, &bytes)?;
-    // Each model is stored as its length (a varint) and its bytes.
-    let varint_len = |n: usize| (usize::BITS - n.max(1).leading_zeros()).div_ceil(7) as usize;
-    let lod_bytes: usize = built.seq.models().iter().map(|m| m.to_bytes().len()).map(|n| n + varint_len(n)).sum();
+    let lod_bytes = built.seq.model_bytes();
     let position_bytes = bytes.len() - lod_bytes;
     let out = BuildSeqOut {
         input: args.folder.display().to_string(),
@@ -512,20 +509,12 @@ fn is_json(path: &Path) -> bool {
 }
 
 #[derive(Serialize)]
-struct BenchRow {
-    percent: f64,
-    spacing: Spacing,
-    levels: usize,
-    us_per_level: f64,
-}
-
-#[derive(Serialize)]
 struct BenchOut {
     input: String,
     levels: u32,
     triangles: u32,
     strips: usize,
-    rows: Vec<BenchRow>,
+    rows: Vec<timing::RecoveryRow>,
     /// One change from the coarsest level to the finest (every strip re-walked).
     coarsest_to_finest_us: f64,
     /// A cursor made at the finest level (every strip walked from scratch).
@@ -538,35 +527,15 @@ fn bench(args: BenchArgs) -> anyhow::Result<()> {
         Model::Seq(seq) => return bench_seq(&args, &seq),
         Model::Sets(sets) => sets,
     };
-    let mut rows = Vec::new();
-    for percent in [1.0, 3.0, 6.0, 10.0, 15.0, 20.0] {
-        for spacing in [Spacing::Linear, Spacing::Exponential] {
-            let (levels, us) = lod::bench_levels(&sets, percent, spacing, args.rounds, args.compact);
-            rows.push(BenchRow { percent, spacing, levels, us_per_level: us });
-        }
-    }
-    // The worst single change: coarsest to finest, the median of the rounds.
-    let mut cursor = sets.cursor(sets.levels());
-    let mut worst = Vec::new();
-    let mut scratch = Vec::new();
-    for _ in 0..args.rounds.max(1) {
-        cursor.set_level(sets.levels());
-        let t = Instant::now();
-        cursor.set_level(0);
-        worst.push(t.elapsed().as_secs_f64() * 1e6);
-        let t = Instant::now();
-        let c = sets.cursor(0);
-        scratch.push(t.elapsed().as_secs_f64() * 1e6);
-        drop(c);
-    }
+    let t = timing::sets(&sets, args.rounds, args.compact);
     let out = BenchOut {
         input: args.file.display().to_string(),
         levels: sets.levels(),
         triangles: sets.triangles_at(0),
         strips: sets.strip_count(),
-        rows,
-        coarsest_to_finest_us: median(&mut worst),
-        from_scratch_us: median(&mut scratch),
+        rows: t.rows,
+        coarsest_to_finest_us: t.coarsest_to_finest_us,
+        from_scratch_us: t.from_scratch_us,
         compact: args.compact,
     };
     super::print_report(args.json, &out, |w, o| {
@@ -596,144 +565,27 @@ fn bench(args: BenchArgs) -> anyhow::Result<()> {
 }
 
 #[derive(Serialize)]
-struct SeqTiming {
-    /// What changes: "frame" (every frame of the animation in turn at a fixed
-    /// level), "level" (1% of the levels per step, or one level up and back, at a
-    /// fixed frame), "play" (the animation plays and the level changes every 24
-    /// frames).
-    test: &'static str,
-    /// The fixed ratio of triangles ("frame"), or the frame ("level").
-    at: String,
-    changes: usize,
-    mean_us: f64,
-    max_us: f64,
-    /// Mean strips re-uploaded per change.
-    strips_changed: f64,
-}
-
-#[derive(Serialize)]
 struct BenchSeqOut {
     input: String,
     frames: usize,
     models: usize,
     triangles: u32,
     strips: usize,
-    rows: Vec<SeqTiming>,
+    rows: Vec<timing::SeqRow>,
     /// A cursor made from scratch (every strip walked) at frame 0, full level.
     from_scratch_us: f64,
 }
 
-/// Times `cursor.set` over `steps`, `rounds` times: mean and max microseconds and
-/// mean strips changed per timed step. A step whose flag is false only positions
-/// the cursor (untimed).
-fn time_changes(cursor: &mut lod::SeqCursor<'_>, steps: &[(usize, LevelSpec, bool)], rounds: usize) -> (f64, f64, f64) {
-    let (mut total, mut max, mut changed, mut n) = (0.0f64, 0.0f64, 0usize, 0usize);
-    for _ in 0..rounds.max(1) {
-        for &(f, spec, timed) in steps {
-            let t = Instant::now();
-            let c = cursor.set(f, spec).len();
-            let us = t.elapsed().as_secs_f64() * 1e6;
-            if timed {
-                total += us;
-                max = max.max(us);
-                changed += c;
-                n += 1;
-            }
-        }
-    }
-    let n = n.max(1) as f64;
-    (total / n, max, changed as f64 / n)
-}
-
 fn bench_seq(args: &BenchArgs, seq: &LodSeq) -> anyhow::Result<()> {
-    let frames = seq.frame_count();
-    let mut rows = Vec::new();
-    // Frame changes at a fixed level: the animation played at each ratio.
-    for ratio in [1.0, 0.5, 0.1, 0.02] {
-        let spec = LevelSpec::Ratio(ratio);
-        let mut cursor = seq.cursor(0, spec);
-        let steps: Vec<(usize, LevelSpec, bool)> = (0..frames).map(|f| ((f + 1) % frames, spec, true)).collect();
-        time_changes(&mut cursor, &steps, 1); // every model's cursor made once
-        let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
-        rows.push(SeqTiming {
-            test: "frame",
-            at: format!("{}%", ratio * 100.0),
-            changes: steps.len(),
-            mean_us: mean,
-            max_us: max,
-            strips_changed: changed,
-        });
-    }
-    // Level changes at a fixed frame: 1% of the levels per step, down and back.
-    for f in [0, frames / 2] {
-        let levels = seq.models()[seq.model_of(f)].levels();
-        let step = (levels / 100).max(1);
-        let mut steps: Vec<(usize, LevelSpec, bool)> =
-            (0..=levels).step_by(step as usize).map(|l| (f, LevelSpec::Level(l), true)).collect();
-        let back: Vec<_> = steps.iter().rev().skip(1).copied().collect();
-        steps.extend(back);
-        let mut cursor = seq.cursor(f, LevelSpec::Level(0));
-        let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
-        rows.push(SeqTiming {
-            test: "level",
-            at: format!("frame {f}, 1% steps"),
-            changes: steps.len(),
-            mean_us: mean,
-            max_us: max,
-            strips_changed: changed,
-        });
-    }
-    // One level up and back at 100 points of the range, at frame 0.
-    let levels = seq.models()[seq.model_of(0)].levels();
-    // Placed at each point untimed, then one level down and back up, timed.
-    let steps: Vec<(usize, LevelSpec, bool)> = (0..levels)
-        .step_by((levels as usize / 100).max(1))
-        .flat_map(|l| {
-            [(0, LevelSpec::Level(l), false), (0, LevelSpec::Level(l + 1), true), (0, LevelSpec::Level(l), true)]
-        })
-        .collect();
-    let mut cursor = seq.cursor(0, LevelSpec::Level(0));
-    let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
-    rows.push(SeqTiming {
-        test: "level",
-        at: "frame 0, one level".into(),
-        changes: 2 * steps.len() / 3,
-        mean_us: mean,
-        max_us: max,
-        strips_changed: changed,
-    });
-    // The paper's Fig. 5b: the animation plays, the level moves every 24 frames
-    // (100% -> 2% -> 100% in ten steps each way).
-    let ratios: Vec<f64> =
-        (0..=10).map(|i| 1.0 - 0.098 * i as f64).chain((0..10).rev().map(|i| 1.0 - 0.098 * i as f64)).collect();
-    let steps: Vec<(usize, LevelSpec, bool)> =
-        (0..ratios.len() * 24).map(|i| (i % frames, LevelSpec::Ratio(ratios[i / 24]), true)).collect();
-    let mut cursor = seq.cursor(0, LevelSpec::Ratio(1.0));
-    time_changes(&mut cursor, &steps, 1);
-    let (mean, max, changed) = time_changes(&mut cursor, &steps, args.rounds);
-    rows.push(SeqTiming {
-        test: "play",
-        at: "level every 24 frames".into(),
-        changes: steps.len(),
-        mean_us: mean,
-        max_us: max,
-        strips_changed: changed,
-    });
-    let mut scratch = Vec::new();
-    for _ in 0..args.rounds.max(1) {
-        let t = Instant::now();
-        let c = seq.cursor(0, LevelSpec::Level(0));
-        scratch.push(t.elapsed().as_secs_f64() * 1e6);
-        drop(c);
-    }
+    let t = timing::seq(seq, args.rounds);
     let out = BenchSeqOut {
         input: args.file.display().to_string(),
-        frames,
+        frames: seq.frame_count(),
         models: seq.models().len(),
         triangles: seq.models()[0].triangles_at(0),
         strips: seq.models()[0].strip_count(),
-        rows,
-        from_scratch_us: median(&mut scratch),
+        rows: t.rows,
+        from_scratch_us: t.from_scratch_us,
     };
     super::print_report(args.json, &out, |w, o| {
         writeln!(
@@ -755,9 +607,4 @@ fn bench_seq(args: &BenchArgs, seq: &LodSeq) -> anyhow::Result<()> {
         }
         writeln!(w, "a cursor from scratch (every strip walked): {:.1} us", o.from_scratch_us)
     })
-}
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(0.0)
 }

@@ -100,10 +100,19 @@ pub fn read_frames(folder: &Path, options: &ReadOptions) -> Result<Frames> {
     Ok(Frames { names, mesh, positions, reference })
 }
 
-/// Options of [`build_seq`].
+/// Options of [`build_seq`]: the defaults below unless changed with the builder
+/// methods.
+///
+/// ```
+/// use stripkit::lod::SeqOptions;
+/// let options = SeqOptions::default().samples(800).position_bits(Some(12));
+/// assert_eq!((options.samples, options.max_sequences, options.position_bits), (800, 16, Some(12)));
+/// ```
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct SeqOptions {
     /// The stripifier of the shared level-0 strips (one that adds no vertices).
+    /// Default [`StripOptions::default`].
     pub strip: StripOptions,
     /// Most sequences to choose (each is one [`Sets`] model), besides the reference
     /// pose's, which is kept too when a frame falls back to it. Default 16.
@@ -135,6 +144,44 @@ impl Default for SeqOptions {
             candidates: 24,
             position_bits: None,
         }
+    }
+}
+
+impl SeqOptions {
+    /// Sets [`SeqOptions::strip`].
+    pub fn strip(mut self, strip: StripOptions) -> Self {
+        self.strip = strip;
+        self
+    }
+
+    /// Sets [`SeqOptions::max_sequences`].
+    pub fn max_sequences(mut self, sequences: usize) -> Self {
+        self.max_sequences = sequences;
+        self
+    }
+
+    /// Sets [`SeqOptions::tolerance`].
+    pub fn tolerance(mut self, factor: f64) -> Self {
+        self.tolerance = factor;
+        self
+    }
+
+    /// Sets [`SeqOptions::samples`].
+    pub fn samples(mut self, samples: usize) -> Self {
+        self.samples = samples;
+        self
+    }
+
+    /// Sets [`SeqOptions::candidates`].
+    pub fn candidates(mut self, candidates: usize) -> Self {
+        self.candidates = candidates;
+        self
+    }
+
+    /// Sets [`SeqOptions::position_bits`].
+    pub fn position_bits(mut self, bits: Option<u32>) -> Self {
+        self.position_bits = bits;
+        self
     }
 }
 
@@ -316,7 +363,7 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
     let f_count = frames.positions.len();
     // Every frame's own sequence, and the reference pose's (or frame 0's).
     let t = Instant::now();
-    let full = Options { target: Target::Triangles(0), placement: Placement::Endpoint, ..Options::default() };
+    let full = Options::default().target(Target::Triangles(0)).placement(Placement::Endpoint);
     let mut own = Vec::with_capacity(f_count);
     for (i, p) in frames.positions.iter().enumerate() {
         own.push(simplify(&frame_mesh(p), &full, &mut |_| {})?.sequence);
