@@ -2,16 +2,19 @@
 //! mesh and proves every level against a replay of the collapses, `extract` writes
 //! one level, `bench` runs the paper's recovery tests.
 
+mod bench;
+mod extract;
+
 use anyhow::Context;
 use clap::{Subcommand, ValueEnum};
 use serde::Serialize;
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
-use stripkit::io::{self, Format};
-use stripkit::lod::{self, timing, BuildOptions, Extracted, LevelSpec, LodSeq, Model, SeqOptions, Sets};
+use stripkit::io;
+use stripkit::lod::{self, BuildOptions, LodSeq, SeqOptions, Sets};
 use stripkit::simplify::Placement;
-use stripkit::{Error, Mesh, StripSet};
+use stripkit::{Error, Mesh};
 
 /// Arguments of `stripkit lod`.
 #[derive(clap::Args)]
@@ -43,11 +46,11 @@ enum What {
     /// Write the strips of one level of a `.sets` model or of one frame of a
     /// `.lodseq` (`--frame`) (PLY `tristrips`, glTF
     /// `TRIANGLE_STRIP` stitched, OBJ/OFF/STL as triangles, `.json` as strips).
-    Extract(ExtractArgs),
+    Extract(extract::ExtractArgs),
     /// The paper's recovery tests on a `.sets` model: 1, 3, 6, 10, 15 and 20% of the
     /// levels, spaced linearly and exponentially, from the finest level to the
     /// coarsest and back; mean time per level recovered.
-    Bench(BenchArgs),
+    Bench(bench::BenchArgs),
 }
 
 /// Where a collapse puts the surviving vertex.
@@ -131,55 +134,9 @@ struct CommonArgs {
     #[arg(long)]
     json: bool,
     #[command(flatten)]
-    strip: super::strip::StripArgs,
+    strip: crate::cmd::strip::StripArgs,
     #[command(flatten)]
-    read: super::ReadArgs,
-}
-
-#[derive(clap::Args)]
-#[command(group(clap::ArgGroup::new("which").required(true).args(["level", "triangles", "ratio"])))]
-struct ExtractArgs {
-    /// The model (`.sets`).
-    file: PathBuf,
-    /// Level (collapses applied; 0 is the input); past the coarsest is the coarsest.
-    #[arg(long)]
-    level: Option<u32>,
-    /// The first level with at most this many triangles.
-    #[arg(long)]
-    triangles: Option<u64>,
-    /// The first level with at most ceil(RATIO x input triangles): where `stripkit
-    /// simplify --ratio RATIO` stops. 0 to 1.
-    #[arg(long)]
-    ratio: Option<f64>,
-    /// Animations (.lodseq): the frame, 0 to frames - 1. A fraction morphs the
-    /// positions linearly between the two key frames around it; the level follows
-    /// the nearest key frame.
-    #[arg(long)]
-    frame: Option<f64>,
-    /// Output file; the extension picks the format.
-    #[arg(short, long)]
-    output: PathBuf,
-    /// Print one JSON object on stdout.
-    #[arg(long)]
-    json: bool,
-    /// Write PLY as ASCII text instead of binary (PLY outputs only).
-    #[arg(long)]
-    ascii: bool,
-}
-
-#[derive(clap::Args)]
-struct BenchArgs {
-    /// The model (`.sets`).
-    file: PathBuf,
-    /// Passes over each test's levels (the mean is over all of them).
-    #[arg(long, default_value_t = 5)]
-    rounds: usize,
-    /// Also build the tight restart buffer after each level change.
-    #[arg(long)]
-    compact: bool,
-    /// Print one JSON object on stdout.
-    #[arg(long)]
-    json: bool,
+    read: crate::cmd::ReadArgs,
 }
 
 /// Runs the command.
@@ -187,8 +144,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     match args.what {
         What::Build(a) => build(a),
         What::BuildSeq(a) => build_seq(a),
-        What::Extract(a) => extract(a),
-        What::Bench(a) => bench(a),
+        What::Extract(a) => extract::extract(a),
+        What::Bench(a) => bench::bench(a),
     }
 }
 
@@ -205,7 +162,7 @@ struct BuildOut {
 
 fn build(args: BuildArgs) -> anyhow::Result<()> {
     args.common.strip.check()?;
-    super::check_output_folder(&args.output)?;
+    crate::cmd::check_output_folder(&args.output)?;
     let mesh = args.common.read.read(&args.file)?;
     args.common.strip.check_mesh(&mesh, &args.file)?;
     let placement = match args.placement {
@@ -213,7 +170,7 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
         PlacementArg::Optimal => Placement::Optimal,
     };
     let options = BuildOptions::default().strip(args.common.strip.options(Some(&mesh))).placement(placement);
-    let bar = super::progress_bar(mesh.triangle_count() > 200_000, "simplify");
+    let bar = crate::cmd::progress_bar(mesh.triangle_count() > 200_000, "simplify");
     let built = lod::build(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the model of {}", args.file.display()))?;
     bar.finish_and_clear();
@@ -243,7 +200,7 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
         bytes: bytes.len(),
         check,
     };
-    super::print_report(args.common.json, &out, |w, o| {
+    crate::cmd::print_report(args.common.json, &out, |w, o| {
         let r = &o.report;
         writeln!(
             w,
@@ -288,7 +245,7 @@ struct BuildSeqOut {
 
 fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
     args.common.strip.check()?;
-    super::check_output_folder(&args.output)?;
+    crate::cmd::check_output_folder(&args.output)?;
     anyhow::ensure!(args.max_sequences >= 1, "--max-sequences must be at least 1");
     anyhow::ensure!(args.tolerance >= 1.0, "--tolerance {} must be 1 or more", args.tolerance);
     anyhow::ensure!(args.samples >= 1, "--samples must be at least 1");
@@ -305,7 +262,7 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
         .samples(args.samples)
         .candidates(args.candidates)
         .position_bits(args.position_bits);
-    let bar = super::progress_bar(true, "simplify and measure");
+    let bar = crate::cmd::progress_bar(true, "simplify and measure");
     let built = lod::build_seq(&frames, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the level-of-detail strips of {}", args.folder.display()))?;
     bar.finish_and_clear();
@@ -336,7 +293,7 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
         levels_checked,
         check_ms,
     };
-    super::print_report(args.common.json, &out, |w, o| {
+    crate::cmd::print_report(args.common.json, &out, |w, o| {
         let r = &o.report;
         let f = r.frames as f64 * 1024.0;
         writeln!(
@@ -374,237 +331,5 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
             "checked: {} levels against the replay, {:.0} ms; times: simplify {:.0} ms, distances {:.0} ms, models {:.0} ms -> {}",
             o.levels_checked, o.check_ms, r.simplify_ms, r.distance_ms, r.model_ms, o.output
         )
-    })
-}
-
-#[derive(Serialize)]
-struct ExtractOut {
-    input: String,
-    output: String,
-    frame: Option<f64>,
-    level: u32,
-    levels: u32,
-    triangles: u32,
-    strips: usize,
-    indices: usize,
-    indices_per_triangle: f64,
-    verified: bool,
-    us: f64,
-}
-
-fn extract(args: ExtractArgs) -> anyhow::Result<()> {
-    let format = match Format::from_path(&args.output) {
-        Some((f, _)) => Some(f),
-        None if is_json(&args.output) => None,
-        None => {
-            return Err(Error::Invalid(format!(
-                "cannot tell the format of {} from its extension (use {} or .json)",
-                args.output.display(),
-                io::supported_write_extensions()
-            ))
-            .into())
-        }
-    };
-    if let Some(r) = args.ratio {
-        anyhow::ensure!((0.0..=1.0).contains(&r), "--ratio {r} is out of range: 0 to 1");
-    }
-    let write_options = super::write_options(args.ascii, &args.output, super::path_format(&args.output))?;
-    super::check_output_folder(&args.output)?;
-    let model = read_model(&args.file)?;
-    let spec = match (args.level, args.triangles, args.ratio) {
-        (Some(l), _, _) => LevelSpec::Level(l),
-        (_, Some(t), _) => LevelSpec::Triangles(t),
-        (_, _, Some(r)) => LevelSpec::Ratio(r),
-        _ => anyhow::bail!("give one of --level, --triangles, --ratio"),
-    };
-    // A .lodseq (by its header) needs --frame; a .sets refuses it.
-    let start = Instant::now();
-    let Extracted { positions, strips, level, levels, triangles: expected, frame } =
-        model.extract(spec, args.frame).with_context(|| format!("{} (--frame)", args.file.display()))?;
-    let us = start.elapsed().as_secs_f64() * 1e6;
-    let frame = frame.map(|(t, _)| t);
-    let triangles = stripkit::decode(&strips);
-    if triangles.len() != expected as usize {
-        return Err(Error::Verification(format!(
-            "level {level}: the strips draw {} triangles, the model says {expected}",
-            triangles.len()
-        ))
-        .into());
-    }
-    let bytes = match format {
-        None => {
-            let obj = serde_json::json!({
-                "level": level,
-                "frame": frame,
-                "restart_index": u32::MAX,
-                "strips": strips.iter().collect::<Vec<_>>(),
-            });
-            serde_json::to_vec(&obj)?
-        }
-        Some(format) => encode_level(positions, &strips, &triangles, format, &args.output, &write_options)?,
-    };
-    io::write_encoded(&args.output, &bytes)?;
-    let indices = strips.index_count();
-    let out = ExtractOut {
-        input: args.file.display().to_string(),
-        output: args.output.display().to_string(),
-        frame,
-        level,
-        levels,
-        triangles: triangles.len() as u32,
-        strips: strips.len(),
-        indices,
-        indices_per_triangle: (strips.restart_len()) as f64 / triangles.len().max(1) as f64,
-        verified: true,
-        us,
-    };
-    super::print_report(args.json, &out, |w, o| {
-        writeln!(
-            w,
-            "{}: level {} of {}: {} triangles in {} strips, {} indices ({:.3} per triangle with restarts), verified -> {}",
-            o.input, o.level, o.levels, o.triangles, o.strips, o.indices, o.indices_per_triangle, o.output
-        )
-    })
-}
-
-/// The file bytes of one level, read back and compared with the strips' triangles.
-fn encode_level(
-    positions: Vec<[f32; 3]>,
-    strips: &StripSet,
-    triangles: &[[u32; 3]],
-    format: Format,
-    path: &Path,
-    options: &io::WriteOptions,
-) -> anyhow::Result<Vec<u8>> {
-    let mesh = Mesh::from_triangles(positions, triangles);
-    let to_write = match format {
-        Format::Ply => Some(strips.clone()),
-        Format::Gltf | Format::Glb => Some(StripSet::from_strips(&[stripkit::encode_stitched(strips)])),
-        _ => None,
-    };
-    let bytes = io::write_bytes(format, &mesh, to_write.as_ref(), options)?;
-    let name = format!("the {format:?} bytes of {}", path.display());
-    let back = io::read_bytes(Path::new(&name), format, &bytes)?;
-    let v = stripkit::verify_triangles(triangles, &back.triangulate().tris);
-    if !v.ok() {
-        return Err(Error::Verification(format!("{name}, read back: {v}")).into());
-    }
-    Ok(bytes)
-}
-
-/// A `.sets` or `.lodseq` file; anything else is a format error naming it.
-fn read_model(path: &Path) -> anyhow::Result<Model> {
-    Model::read(path)?.ok_or_else(|| {
-        Error::Format {
-            path: path.to_path_buf(),
-            at: "byte 0".into(),
-            what: "not a stripkit .sets or .lodseq file (bad magic)".into(),
-        }
-        .into()
-    })
-}
-
-fn is_json(path: &Path) -> bool {
-    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"))
-}
-
-#[derive(Serialize)]
-struct BenchOut {
-    input: String,
-    levels: u32,
-    triangles: u32,
-    strips: usize,
-    rows: Vec<timing::RecoveryRow>,
-    /// One change from the coarsest level to the finest (every strip re-walked).
-    coarsest_to_finest_us: f64,
-    /// A cursor made at the finest level (every strip walked from scratch).
-    from_scratch_us: f64,
-    compact: bool,
-}
-
-fn bench(args: BenchArgs) -> anyhow::Result<()> {
-    let sets = match read_model(&args.file)? {
-        Model::Seq(seq) => return bench_seq(&args, &seq),
-        Model::Sets(sets) => sets,
-    };
-    let t = timing::sets(&sets, args.rounds, args.compact);
-    let out = BenchOut {
-        input: args.file.display().to_string(),
-        levels: sets.levels(),
-        triangles: sets.triangles_at(0),
-        strips: sets.strip_count(),
-        rows: t.rows,
-        coarsest_to_finest_us: t.coarsest_to_finest_us,
-        from_scratch_us: t.from_scratch_us,
-        compact: args.compact,
-    };
-    super::print_report(args.json, &out, |w, o| {
-        writeln!(
-            w,
-            "{}: {} levels, {} triangles, {} strips; mean microseconds per level recovered{}",
-            o.input,
-            o.levels,
-            o.triangles,
-            o.strips,
-            if o.compact { " (with the tight buffer)" } else { "" }
-        )?;
-        writeln!(w, "{:>6} {:>10} {:>8} {:>10} {:>8}", "levels", "linear", "count", "exponential", "count")?;
-        for pair in o.rows.chunks(2) {
-            writeln!(
-                w,
-                "{:>5}% {:>10.1} {:>8} {:>10.1} {:>8}",
-                pair[0].percent, pair[0].us_per_level, pair[0].levels, pair[1].us_per_level, pair[1].levels
-            )?;
-        }
-        writeln!(
-            w,
-            "coarsest -> finest in one change: {:.1} us; a cursor from scratch at the finest: {:.1} us",
-            o.coarsest_to_finest_us, o.from_scratch_us
-        )
-    })
-}
-
-#[derive(Serialize)]
-struct BenchSeqOut {
-    input: String,
-    frames: usize,
-    models: usize,
-    triangles: u32,
-    strips: usize,
-    rows: Vec<timing::SeqRow>,
-    /// A cursor made from scratch (every strip walked) at frame 0, full level.
-    from_scratch_us: f64,
-}
-
-fn bench_seq(args: &BenchArgs, seq: &LodSeq) -> anyhow::Result<()> {
-    let t = timing::seq(seq, args.rounds);
-    let out = BenchSeqOut {
-        input: args.file.display().to_string(),
-        frames: seq.frame_count(),
-        models: seq.models().len(),
-        triangles: seq.models()[0].triangles_at(0),
-        strips: seq.models()[0].strip_count(),
-        rows: t.rows,
-        from_scratch_us: t.from_scratch_us,
-    };
-    super::print_report(args.json, &out, |w, o| {
-        writeln!(
-            w,
-            "{}: {} frames, {} models, {} triangles, {} strips; microseconds per change (extraction only, CPU)",
-            o.input, o.frames, o.models, o.triangles, o.strips
-        )?;
-        writeln!(
-            w,
-            "{:>6} {:>22} {:>8} {:>10} {:>10} {:>14}",
-            "test", "at", "changes", "mean", "max", "strips changed"
-        )?;
-        for r in &o.rows {
-            writeln!(
-                w,
-                "{:>6} {:>22} {:>8} {:>10.1} {:>10.1} {:>14.1}",
-                r.test, r.at, r.changes, r.mean_us, r.max_us, r.strips_changed
-            )?;
-        }
-        writeln!(w, "a cursor from scratch (every strip walked): {:.1} us", o.from_scratch_us)
     })
 }
