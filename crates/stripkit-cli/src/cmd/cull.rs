@@ -6,7 +6,8 @@ use anyhow::Context;
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
-use stripkit::cull::{helix_eyes, CullOptions, Culled, FacingCounter, Frustum, RenderFront, SegmentTree, HELIX_VIEWS};
+use stripkit::cull::survey::{self, PathMean, ViewFigures};
+use stripkit::cull::{helix_eyes, CullOptions, Culled, FacingCounter, Frustum, SegmentTree, HELIX_VIEWS};
 use stripkit::{Algorithm, SingleOptions, StripOptions, Weights};
 
 /// Arguments of `stripkit cull`.
@@ -93,23 +94,6 @@ pub enum PathKind {
     Spiral,
 }
 
-/// One view's figures.
-#[derive(Serialize, Clone, Copy, Default)]
-pub struct View {
-    pub segments: usize,
-    pub drawn: usize,
-    pub back_culled: usize,
-    pub back_drawn: usize,
-    pub front_missed: usize,
-    /// Triangles skipped as outside the frustum (--frustum).
-    pub outside: usize,
-    pub visited_root: usize,
-    pub visited_front: usize,
-    pub reused_front: usize,
-    pub us_root: f64,
-    pub us_front: f64,
-}
-
 /// The report.
 #[derive(Serialize)]
 pub struct Report {
@@ -125,27 +109,9 @@ pub struct Report {
     /// Frustum culling on, and the camera's vertical field of view.
     pub frustum: bool,
     pub fov: f32,
-    pub mean: Averages,
+    pub mean: PathMean,
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub per_view: Vec<View>,
-}
-
-/// Figures averaged over the views.
-#[derive(Serialize, Default)]
-pub struct Averages {
-    pub segments: f64,
-    pub drawn: f64,
-    pub back: f64,
-    pub back_culled: f64,
-    pub back_drawn: f64,
-    pub front_missed: f64,
-    pub outside: f64,
-    pub visited_root: f64,
-    pub visited_front: f64,
-    pub reused_front: f64,
-    pub us_root: f64,
-    pub us_front: f64,
-    pub us_front_max: f64,
+    pub per_view: Vec<ViewFigures>,
 }
 
 /// Runs the command.
@@ -183,67 +149,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         )
     };
     let counter = FacingCounter::new(&strips.strips, &positions);
-
-    let mut views = vec![View::default(); eyes.len()];
-    let mut out = Culled::default();
-    let mut backs = 0usize;
-    for (v, &eye) in eyes.iter().enumerate() {
+    let views = survey::survey(&tree, &counter, &eyes, &cull_at, args.repeat)?;
+    if let Some(bar) = &args.bar {
+        let (v, eye) = (args.view, eyes[args.view]);
+        let mut out = Culled::default();
         tree.cull(eye, &cull_at(eye), &mut out);
-        let c = counter.count(eye, &out.ranges);
-        backs += c.back;
-        views[v] = View {
-            segments: out.ranges.len(),
-            drawn: out.drawn_triangles,
-            back_culled: c.back_culled(),
-            back_drawn: c.back_drawn,
-            front_missed: c.front - c.front_drawn,
-            outside: out.outside_triangles,
-            visited_root: out.visited,
-            us_root: f64::MAX,
-            us_front: f64::MAX,
-            ..View::default()
-        };
-        if let Some(bar) = args.bar.as_ref().filter(|_| v == args.view) {
-            let svg = bar_svg(&strips.strips, &out, &format!("{} ({weights} weights), view {v}", file_name(&args.file)));
-            stripkit::io::write_atomic(bar, svg.as_bytes())?;
-        }
+        let svg = bar_svg(&strips.strips, &out, &format!("{} ({weights} weights), view {v}", file_name(&args.file)));
+        stripkit::io::write_atomic(bar, svg.as_bytes())?;
     }
-    let mut check = Culled::default();
-    for _ in 0..args.repeat.max(1) {
-        for (v, &eye) in eyes.iter().enumerate() {
-            let cull = cull_at(eye);
-            let t = Instant::now();
-            tree.cull(eye, &cull, &mut out);
-            views[v].us_root = views[v].us_root.min(t.elapsed().as_secs_f64() * 1e6);
-        }
-        let mut front = RenderFront::new(&tree);
-        for (v, &eye) in eyes.iter().enumerate() {
-            let cull = cull_at(eye);
-            let t = Instant::now();
-            front.cull(&tree, eye, &cull, &mut check);
-            views[v].us_front = views[v].us_front.min(t.elapsed().as_secs_f64() * 1e6);
-            views[v].visited_front = check.visited;
-            views[v].reused_front = check.reused;
-            anyhow::ensure!(check.ranges.len() == views[v].segments, "view {v}: the render front disagrees with the root traversal");
-        }
-    }
-    let n = views.len() as f64;
-    let mean = |f: fn(&View) -> f64| views.iter().map(f).sum::<f64>() / n;
-    let averages = Averages {
-        segments: mean(|v| v.segments as f64),
-        drawn: mean(|v| v.drawn as f64),
-        back: backs as f64 / n,
-        back_culled: mean(|v| v.back_culled as f64),
-        back_drawn: mean(|v| v.back_drawn as f64),
-        front_missed: mean(|v| v.front_missed as f64),
-        outside: mean(|v| v.outside as f64),
-        visited_root: mean(|v| v.visited_root as f64),
-        visited_front: mean(|v| v.visited_front as f64),
-        reused_front: mean(|v| v.reused_front as f64),
-        us_root: mean(|v| v.us_root),
-        us_front: mean(|v| v.us_front),
-        us_front_max: views.iter().map(|v| v.us_front).fold(0.0, f64::max),
-    };
     let report = Report {
         file: args.file.display().to_string(),
         weights: weights.to_string(),
@@ -256,7 +169,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         views: views.len(),
         frustum: args.frustum,
         fov,
-        mean: averages,
+        mean: survey::mean(&views),
         per_view: if args.json { views } else { Vec::new() },
     };
     // Outside the frustum, front-facing triangles are culled on purpose (the library's

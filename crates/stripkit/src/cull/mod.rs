@@ -17,7 +17,8 @@
 //!   [`SegmentTree::cull`].
 //! * [`helix_eyes`]: the eye points of the helix camera path the figures use;
 //!   [`FacingCounter`] counts, by brute force, the triangles a view's ranges draw
-//!   facing the eye and facing away.
+//!   facing the eye and facing away; [`survey`] culls along a path view by view and
+//!   times it (a bench API).
 //!
 //! **Parity.** A leaf of the tree is a *pair* of strip triangles, `2k` and `2k + 1`
 //! counted from the start of their strip (pairs made only of swaps are dropped), so
@@ -52,6 +53,7 @@ mod bounds;
 mod count;
 mod frustum;
 mod path;
+pub mod survey;
 mod traverse;
 mod tree;
 
