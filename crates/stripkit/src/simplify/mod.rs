@@ -1,5 +1,5 @@
 //! Quadric-error-metric edge collapse (Garland and Heckbert 1997) that records its
-//! collapse sequence, the input of multiresolution strip models (not built yet).
+//! collapse sequence, the input of the multiresolution strip models of [`crate::lod`].
 //!
 //! * Per-vertex quadrics from area-weighted face planes; boundary edges add penalty
 //!   planes perpendicular to their face, so borders keep their shape, and so do
