@@ -19,7 +19,7 @@ use super::cursor::Cursor;
 use super::sets::{LevelSpec, Sets};
 use crate::distance::{Distance, Surface};
 use crate::error::{Error, Result};
-use crate::io::{self, Format, ReadOptions};
+use crate::mesh::io::{self, Format, ReadOptions};
 use crate::mesh::Mesh;
 use crate::pipeline::{stripify, StripOptions};
 use crate::simplify::{simplify, CollapseSequence, Options, Placement, Target};
