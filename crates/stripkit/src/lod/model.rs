@@ -9,6 +9,7 @@ use crate::error::{Error, Result};
 use crate::mesh::io::{self, Format, WriteOptions};
 use crate::mesh::Mesh;
 use crate::strip::{decode, encode_stitched, verify_triangles, StripSet};
+use std::collections::HashMap;
 use std::io::Read;
 use std::path::Path;
 
@@ -138,7 +139,8 @@ impl Extracted {
     /// and STL as the strips' triangles. Through the library's one checked write
     /// path: the bytes are read back with the library's own reader and must hold
     /// exactly the strips' triangles ([`Extracted::checked_triangles`]), each with
-    /// its winding, before the file is replaced atomically; nothing is written
+    /// its winding (STL, which keeps no indices, by its corners' positions), before
+    /// the file is replaced atomically; nothing is written
     /// otherwise ([`Error::Verification`]). [`Error::UnknownFormat`] for an
     /// extension that names no mesh format.
     pub fn write_file(&self, path: impl AsRef<Path>, options: &WriteOptions) -> Result<()> {
@@ -160,7 +162,16 @@ impl Extracted {
             |bytes| {
                 let name = format!("the {format:?} bytes of {}", path.display());
                 let back = io::read_bytes(Path::new(&name), format, bytes)?;
-                let v = verify_triangles(&triangles, &back.triangulate().tris);
+                let back_triangles = back.triangulate().tris;
+                let v = if format == Format::Stl {
+                    // STL keeps no indices: its reader welds equal positions, so the
+                    // triangles are compared by their corners' positions.
+                    let mut ids = HashMap::new();
+                    let expected = by_position(&triangles, &self.positions, &mut ids);
+                    verify_triangles(&expected, &by_position(&back_triangles, &back.positions, &mut ids))
+                } else {
+                    verify_triangles(&triangles, &back_triangles)
+                };
                 if !v.ok() {
                     return Err(Error::Verification(format!("{name}, read back: {v}")));
                 }
@@ -182,4 +193,20 @@ impl Extracted {
             "strips": self.strips.iter().collect::<Vec<_>>(),
         }))
     }
+}
+
+/// `triangles` over `positions` renamed by position: every corner gets the id of its
+/// position's bits in `ids` (`-0.0` as `0.0`, as the STL reader welds), a new one
+/// when first met.
+fn by_position(triangles: &[[u32; 3]], positions: &[[f32; 3]], ids: &mut HashMap<[u32; 3], u32>) -> Vec<[u32; 3]> {
+    triangles
+        .iter()
+        .map(|t| {
+            t.map(|v| {
+                let key = positions[v as usize].map(|c| (c + 0.0).to_bits());
+                let next = ids.len() as u32;
+                *ids.entry(key).or_insert(next)
+            })
+        })
+        .collect()
 }
