@@ -595,7 +595,6 @@ impl super::seq::LodSeq {
     pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<super::seq::LodSeq> {
         let fmt = |at: usize, what: String| Error::Format { path: path.to_path_buf(), at: format!("byte {at}"), what };
         let mut r = Reader::open(bytes, LODSEQ_MAGIC, 20, ".lodseq", &fmt)?;
-        let body = r.bytes;
         let (frames, vertices, models, bits) = (r.u32()?, r.u32()?, r.u32()?, r.u32()?);
         if frames == 0 || models == 0 {
             return Err(fmt(12, "a sequence needs at least one frame and one model".into()));
@@ -603,118 +602,147 @@ impl super::seq::LodSeq {
         if bits != 0 && !(8..=20).contains(&bits) {
             return Err(fmt(24, format!("{bits} bits per coordinate (0 for exact positions, else 8 to 20)")));
         }
-        r.need(frames as usize * 2, "the frame names")?;
-        let mut names = Vec::with_capacity(frames as usize);
-        let mut frame_model = Vec::with_capacity(frames as usize);
-        for _ in 0..frames {
-            let len = r.varint("a frame name's length")?;
-            if len > MAX_NAME {
-                return Err(fmt(r.at, format!("a frame name of {len} bytes (at most {MAX_NAME})")));
-            }
-            r.need(len as usize, "a frame name")?;
-            let name = String::from_utf8_lossy(&r.bytes[r.at..r.at + len as usize]).into_owned();
-            r.at += len as usize;
-            names.push(name);
-            frame_model.push(r.index(models, "a frame's model")?);
-        }
-        let total = (frames as usize).saturating_mul(vertices as usize);
-        let mut positions = Vec::with_capacity(frames as usize);
-        let mut quantization = None;
-        if bits == 0 {
-            r.need(total.saturating_mul(12), "the frames' positions")?;
-            for f in 0..frames as usize {
-                let mut p = Vec::with_capacity(vertices as usize);
-                for _ in 0..vertices {
-                    let v = [r.f32()?, r.f32()?, r.f32()?];
-                    if !v.iter().all(|c| c.is_finite()) {
-                        return Err(fmt(r.at - 12, format!("frame {f}: a NaN or infinite coordinate")));
-                    }
-                    p.push(v);
-                }
-                positions.push(p);
-            }
+        let (names, frame_model) = read_frame_names(&mut r, frames, models)?;
+        let (positions, quantization) = if bits == 0 {
+            (read_frame_positions(&mut r, frames, vertices)?, None)
         } else {
-            let mut grid = [0f32; 6];
-            for x in &mut grid {
-                *x = r.f32()?;
-            }
-            let q =
-                super::seq::Quantization { bits, lo: [grid[0], grid[1], grid[2]], step: [grid[3], grid[4], grid[5]] };
-            if !grid.iter().all(|x| x.is_finite()) || q.step.iter().any(|&s| s <= 0.0) {
-                return Err(fmt(r.at, "the position grid is not finite and positive".into()));
-            }
-            let len = r.varint("the positions' length")?;
-            r.need(len as usize, "the positions")?;
-            let packed = &r.bytes[r.at..r.at + len as usize];
-            r.at += len as usize;
-            // At most 64 bytes of positions per byte stored (real animations take 3
-            // to 6): a small file cannot claim a huge mesh.
-            if total.saturating_mul(12) > packed.len().saturating_mul(64) + (1 << 20) {
-                return Err(fmt(r.at, format!("{frames} frames of {vertices} vertices cannot come from {len} bytes")));
-            }
-            let mut raw = Vec::new();
-            use std::io::Read;
-            flate2::read::DeflateDecoder::new(packed)
-                .take(total.saturating_mul(15) as u64)
-                .read_to_end(&mut raw)
-                .map_err(|e| fmt(r.at, format!("the positions do not inflate: {e}")))?;
-            let mut v = Reader { bytes: &raw, at: 0, fmt: &fmt };
-            let top = (1i64 << bits) - 1;
-            let mut prev: Vec<[u32; 3]> = Vec::new();
-            for f in 0..frames as usize {
-                let mut cur: Vec<[u32; 3]> = Vec::with_capacity((vertices as usize).min(raw.len() / 3 + 1));
-                for i in 0..vertices as usize {
-                    let mut g = [0u32; 3];
-                    for (d, gd) in g.iter_mut().enumerate() {
-                        let base = match (f, i) {
-                            (0, 0) => 0,
-                            (0, _) => cur[i - 1][d],
-                            _ => prev[i][d],
-                        } as i64;
-                        let x = base + unzigzag(v.varint("a position")?);
-                        if !(0..=top).contains(&x) {
-                            return Err(fmt(r.at, format!("frame {f}: a position off its {bits}-bit grid")));
-                        }
-                        *gd = x as u32;
-                    }
-                    cur.push(g);
-                }
-                positions.push(cur.iter().map(|g| [0, 1, 2].map(|d| q.value(g[d], d))).collect());
-                prev = cur;
-            }
-            if v.at != raw.len() {
-                return Err(fmt(r.at, "bytes follow the last position".into()));
-            }
-            quantization = Some(q);
+            let (positions, q) = read_quantized_positions(&mut r, frames, vertices, bits)?;
+            (positions, Some(q))
+        };
+        let models = read_models(path, &mut r, models, vertices)?;
+        let body = r.bytes.len();
+        if r.at != body {
+            return Err(fmt(r.at, format!("{} bytes follow the last model", body - r.at)));
         }
-        r.need(models as usize, "the models")?;
-        let mut sets: Vec<Sets> = Vec::with_capacity(models as usize);
-        for m in 0..models {
-            let len = r.varint("a model's length")?;
-            r.need(len as usize, "a model")?;
-            let at = r.at;
-            let model = Sets::from_bytes(path, &r.bytes[at..at + len as usize]).map_err(|e| match e {
-                Error::Format { at: inner, what, .. } => fmt(at, format!("model {m}, {inner}: {what}")),
-                e => e,
-            })?;
-            r.at += len as usize;
-            if model.input_vertices != vertices || !model.positions.is_empty() || model.placement != Placement::Endpoint
-            {
-                return Err(fmt(
-                    at,
-                    format!("model {m} is not a positionless endpoint model over {vertices} vertices"),
-                ));
-            }
-            if sets.first().is_some_and(|first| first.strip_slots != model.strip_slots) {
-                return Err(fmt(at, format!("model {m} lays its strips out unlike model 0")));
-            }
-            sets.push(model);
-        }
-        if r.at != body.len() {
-            return Err(fmt(r.at, format!("{} bytes follow the last model", body.len() - r.at)));
-        }
-        Ok(super::seq::LodSeq { names, positions, frame_model, models: sets, quantization })
+        Ok(super::seq::LodSeq { names, positions, frame_model, models, quantization })
     }
+}
+
+/// The frames' names (at most [`MAX_NAME`] bytes each) and models (below `models`).
+fn read_frame_names(r: &mut Reader, frames: u32, models: u32) -> Result<(Vec<String>, Vec<u32>)> {
+    r.need(frames as usize * 2, "the frame names")?;
+    let mut names = Vec::with_capacity(frames as usize);
+    let mut frame_model = Vec::with_capacity(frames as usize);
+    for _ in 0..frames {
+        let len = r.varint("a frame name's length")?;
+        if len > MAX_NAME {
+            return Err(r.fail(r.at, format!("a frame name of {len} bytes (at most {MAX_NAME})")));
+        }
+        r.need(len as usize, "a frame name")?;
+        let name = String::from_utf8_lossy(&r.bytes[r.at..r.at + len as usize]).into_owned();
+        r.at += len as usize;
+        names.push(name);
+        frame_model.push(r.index(models, "a frame's model")?);
+    }
+    Ok((names, frame_model))
+}
+
+/// Every frame's exact positions, all finite.
+fn read_frame_positions(r: &mut Reader, frames: u32, vertices: u32) -> Result<Vec<Vec<[f32; 3]>>> {
+    let total = (frames as usize).saturating_mul(vertices as usize);
+    r.need(total.saturating_mul(12), "the frames' positions")?;
+    let mut positions = Vec::with_capacity(frames as usize);
+    for f in 0..frames as usize {
+        let mut p = Vec::with_capacity(vertices as usize);
+        for _ in 0..vertices {
+            let v = [r.f32()?, r.f32()?, r.f32()?];
+            if !v.iter().all(|c| c.is_finite()) {
+                return Err(r.fail(r.at - 12, format!("frame {f}: a NaN or infinite coordinate")));
+            }
+            p.push(v);
+        }
+        positions.push(p);
+    }
+    Ok(positions)
+}
+
+/// Every frame's positions on a `bits`-bit grid: the grid, then the deflated zigzag
+/// varint differences [`super::seq::LodSeq::to_bytes`] writes, each inside the grid.
+fn read_quantized_positions(
+    r: &mut Reader,
+    frames: u32,
+    vertices: u32,
+    bits: u32,
+) -> Result<(Vec<Vec<[f32; 3]>>, super::seq::Quantization)> {
+    let total = (frames as usize).saturating_mul(vertices as usize);
+    let mut grid = [0f32; 6];
+    for x in &mut grid {
+        *x = r.f32()?;
+    }
+    let q = super::seq::Quantization { bits, lo: [grid[0], grid[1], grid[2]], step: [grid[3], grid[4], grid[5]] };
+    if !grid.iter().all(|x| x.is_finite()) || q.step.iter().any(|&s| s <= 0.0) {
+        return Err(r.fail(r.at, "the position grid is not finite and positive".into()));
+    }
+    let len = r.varint("the positions' length")?;
+    r.need(len as usize, "the positions")?;
+    let packed = &r.bytes[r.at..r.at + len as usize];
+    r.at += len as usize;
+    // At most 64 bytes of positions per byte stored (real animations take 3 to 6): a
+    // small file cannot claim a huge mesh.
+    if total.saturating_mul(12) > packed.len().saturating_mul(64) + (1 << 20) {
+        return Err(r.fail(r.at, format!("{frames} frames of {vertices} vertices cannot come from {len} bytes")));
+    }
+    let mut raw = Vec::new();
+    use std::io::Read;
+    flate2::read::DeflateDecoder::new(packed)
+        .take(total.saturating_mul(15) as u64)
+        .read_to_end(&mut raw)
+        .map_err(|e| r.fail(r.at, format!("the positions do not inflate: {e}")))?;
+    let mut v = Reader { bytes: &raw, at: 0, fmt: r.fmt };
+    let top = (1i64 << bits) - 1;
+    let mut positions = Vec::with_capacity(frames as usize);
+    let mut prev: Vec<[u32; 3]> = Vec::new();
+    for f in 0..frames as usize {
+        let mut cur: Vec<[u32; 3]> = Vec::with_capacity((vertices as usize).min(raw.len() / 3 + 1));
+        for i in 0..vertices as usize {
+            let mut g = [0u32; 3];
+            for (d, gd) in g.iter_mut().enumerate() {
+                let base = match (f, i) {
+                    (0, 0) => 0,
+                    (0, _) => cur[i - 1][d],
+                    _ => prev[i][d],
+                } as i64;
+                let x = base + unzigzag(v.varint("a position")?);
+                if !(0..=top).contains(&x) {
+                    return Err(r.fail(r.at, format!("frame {f}: a position off its {bits}-bit grid")));
+                }
+                *gd = x as u32;
+            }
+            cur.push(g);
+        }
+        positions.push(cur.iter().map(|g| [0, 1, 2].map(|d| q.value(g[d], d))).collect());
+        prev = cur;
+    }
+    if v.at != raw.len() {
+        return Err(r.fail(r.at, "bytes follow the last position".into()));
+    }
+    Ok((positions, q))
+}
+
+/// The models, each a length-prefixed `.sets` checked as [`Sets::from_bytes`] checks
+/// it (its errors placed at the model's offset), positionless endpoint models over
+/// `vertices` vertices with the strip layout of the first.
+fn read_models(path: &Path, r: &mut Reader, models: u32, vertices: u32) -> Result<Vec<Sets>> {
+    r.need(models as usize, "the models")?;
+    let mut sets: Vec<Sets> = Vec::with_capacity(models as usize);
+    for m in 0..models {
+        let len = r.varint("a model's length")?;
+        r.need(len as usize, "a model")?;
+        let at = r.at;
+        let model = Sets::from_bytes(path, &r.bytes[at..at + len as usize]).map_err(|e| match e {
+            Error::Format { at: inner, what, .. } => r.fail(at, format!("model {m}, {inner}: {what}")),
+            e => e,
+        })?;
+        r.at += len as usize;
+        if model.input_vertices != vertices || !model.positions.is_empty() || model.placement != Placement::Endpoint {
+            return Err(r.fail(at, format!("model {m} is not a positionless endpoint model over {vertices} vertices")));
+        }
+        if sets.first().is_some_and(|first| first.strip_slots != model.strip_slots) {
+            return Err(r.fail(at, format!("model {m} lays its strips out unlike model 0")));
+        }
+        sets.push(model);
+    }
+    Ok(sets)
 }
 
 /// The read-back check of a `.EXT` file: the model decoded from its bytes is `model`.
