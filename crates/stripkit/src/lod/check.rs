@@ -25,6 +25,12 @@ pub struct LevelCheck {
     pub ms: f64,
 }
 
+/// The stride of a check of `levels` levels: every level (`None`), or about
+/// `max_levels` spread over the range (at least every level).
+pub(super) fn stride(levels: u32, max_levels: Option<usize>) -> usize {
+    max_levels.map_or(1, |m| (levels as usize).checked_div(m).unwrap_or(levels as usize).max(1))
+}
+
 /// Checks `sets` against `sequence` applied to `mesh` (the triangle mesh it was
 /// simplified from, [`crate::lod::Built::mesh`]): at every `stride`-th level (1 for
 /// all) and the coarsest, the strips a [`crate::lod::Cursor`] recovers, moving up

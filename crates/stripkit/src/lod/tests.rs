@@ -133,3 +133,13 @@ fn check_levels_finds_a_flipped_face() {
         other => panic!("{other:?}"),
     }
 }
+
+/// `Built::check` covers every level, or about as many as asked plus the coarsest.
+#[test]
+fn built_check_covers_the_levels_asked() {
+    let built = build(&crate::gen::icosphere(2), &BuildOptions::default(), &mut |_| {}).unwrap();
+    let levels = built.sets.levels() as usize;
+    assert_eq!(built.check(None).unwrap().levels_checked, levels + 1);
+    let sampled = built.check(Some(10)).unwrap().levels_checked;
+    assert!((10..=12).contains(&sampled), "{sampled} of {levels}");
+}
