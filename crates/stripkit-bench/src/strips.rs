@@ -1,6 +1,6 @@
 //! The `strips` comparison: stripkit's stripifiers next to meshoptimizer on every mesh
 //! of a folder, every figure computed by stripkit's own decoder and metrics
-//! (METRICS.md), every row verified, times as medians.
+//! (docs/metrics.md), every row verified, times as medians.
 //!
 //! Every stripkit row goes through the library's front door, as a user's call would.
 //! Adding a row: one more entry in [`modes`] (or [`quad_modes`]).
@@ -281,7 +281,7 @@ fn render(rows: &[Row], runs: usize) -> String {
     let mut s = String::new();
     s.push_str("# Triangle strips: stripkit next to meshoptimizer\n\n");
     s.push_str(&format!(
-        "Every figure by stripkit's decoder and metrics (METRICS.md). meshoptimizer's strips use restart \
+        "Every figure by stripkit's decoder and metrics (docs/metrics.md). meshoptimizer's strips use restart \
          index 0xFFFFFFFF and are split with stripkit's decoder. `ms`: median of {runs} runs of the stripify \
          call alone, single thread; `reorder ms`: meshoptimizer's vertex-cache reordering before it. \
          `ok`: decoded triangles equal the input's (nothing lost, nothing added, no winding flipped). \

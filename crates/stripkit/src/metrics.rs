@@ -1,5 +1,5 @@
-//! Figures of METRICS.md: strip counts, index counts per join, swaps, vertex-cache
-//! miss ratios (FIFO as METRICS.md defines it, LRU as an option), and the verdict of
+//! Figures of docs/metrics.md: strip counts, index counts per join, swaps, vertex-cache
+//! miss ratios (FIFO as docs/metrics.md defines it, LRU as an option), and the verdict of
 //! [`crate::strip::verify`].
 //!
 //! ```
@@ -18,7 +18,7 @@ use crate::strip::{self, StripSet};
 #[serde(rename_all = "lowercase")]
 pub enum CacheKind {
     /// First in, first out: a hit does not reorder, a miss evicts the oldest entry
-    /// (the model of METRICS.md and of most post-transform caches).
+    /// (the model of docs/metrics.md and of most post-transform caches).
     #[default]
     Fifo,
     /// Least recently used: a hit moves the vertex to the front.
@@ -109,7 +109,7 @@ pub fn cache_misses(
     misses
 }
 
-/// The FIFO vertex cache of METRICS.md, simulated: a hit does not reorder, a miss
+/// The FIFO vertex cache of docs/metrics.md, simulated: a hit does not reorder, a miss
 /// pushes the vertex and evicts the oldest entry. The one simulation behind
 /// [`cache_misses`], the cache-aware stripifier (which also asks what a few more
 /// pushes would leave cached) and its refinement (which replays stretches of the
@@ -273,7 +273,7 @@ pub fn swaps(strips: &StripSet) -> usize {
     n
 }
 
-/// Every figure of METRICS.md for one strip set.
+/// Every figure of docs/metrics.md for one strip set.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Figures {
     /// T: non-degenerate input triangles.

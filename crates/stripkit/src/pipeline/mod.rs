@@ -3,7 +3,7 @@
 //! [`unstripify`] do the same for plain index buffers.
 //!
 //! Every result has passed an independent check before it is returned:
-//! * triangle level: the strips decode (METRICS.md rule) to exactly the mesh's fan
+//! * triangle level: the strips decode (the reading rule of docs/metrics.md) to exactly the mesh's fan
 //!   triangles, as multisets of oriented triangles (nothing lost, added or flipped);
 //! * quad level, where the algorithm split quads along diagonals of its choosing
 //!   (QSTRIP, quad-single, cache or balanced on QSTRIP's split): every quad is covered
@@ -329,7 +329,7 @@ pub struct Strips {
     pub split: Split,
     /// QSTRIP and quad-single: quads stripped as quads.
     pub quads: Option<usize>,
-    /// Every figure of METRICS.md, measured against [`Strips::triangles`].
+    /// Every figure of docs/metrics.md, measured against [`Strips::triangles`].
     pub figures: Figures,
     /// The join used.
     pub join: Join,
@@ -397,7 +397,7 @@ impl Strips {
     pub fn group_of_strip(&self, s: usize) -> usize {
         self.group_ranges.iter().position(|r| r.contains(&s)).unwrap_or(0)
     }
-    /// `indices_restart / quads` of METRICS.md, for QSTRIP and quad-single.
+    /// `indices_restart / quads` of docs/metrics.md, for QSTRIP and quad-single.
     pub fn indices_per_quad(&self) -> Option<f64> {
         self.quads.filter(|&q| q > 0).map(|q| self.figures.indices_restart as f64 / q as f64)
     }
@@ -907,7 +907,7 @@ pub fn stripify_indices(
     Ok(out)
 }
 
-/// The triangle list a strip buffer draws (METRICS.md rule), three indices per
+/// The triangle list a strip buffer draws (the reading rule of docs/metrics.md), three indices per
 /// triangle, in order; `restart_index` separates strips, degenerate triangles are
 /// dropped. For a stitched strip pass any index it does not use (e.g. `u32::MAX`).
 /// O(n).
