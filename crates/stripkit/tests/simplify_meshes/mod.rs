@@ -76,13 +76,8 @@ pub fn bumpy_sphere(levels: u32) -> Mesh {
 
 /// Renumbers vertices, reorders triangles and rotates their corners (a fixed seed).
 pub fn shuffled(mesh: &Mesh, seed: u64) -> Mesh {
-    let mut s = seed.wrapping_mul(0x9E3779B97F4A7C15) | 1;
-    let mut rnd = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        s
-    };
+    let mut rng = stripkit_testkit::XorShift64(seed.wrapping_mul(0x9E3779B97F4A7C15) | 1);
+    let mut rnd = move || rng.next();
     let n = mesh.positions.len();
     let mut perm: Vec<u32> = (0..n as u32).collect();
     for i in (1..n).rev() {
