@@ -2,6 +2,7 @@
 //! run; writes markdown tables. One module per comparison.
 
 mod batch;
+mod buffers;
 mod cull;
 mod cull_gpu;
 mod batch_strips;

@@ -4,7 +4,7 @@
 //! a window in indices. Findings in docs/experiments/gpu-batch-strips.md.
 #[cfg(test)]
 mod tests {
-    use crate::batch::invocations;
+    use crate::buffers::invocations;
     use stripkit::BatchModel;
     use stripkit_render::Topology;
 
