@@ -159,7 +159,7 @@ fn meshlet_row(tris: &[[u32; 3]], positions: &[[f32; 3]], eyes: &[[f32; 3]], rep
         for t in m.triangles.chunks_exact(3) {
             let [a, b, c] = [0, 1, 2].map(|k| positions[m.vertices[t[k] as usize] as usize].map(|x| x as f64));
             let (u, w) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
-            let n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+            let n = stripkit_render::cross(u, w);
             p.push((n, n[0] * a[0] + n[1] * a[1] + n[2] * a[2]));
         }
         planes.push(p);

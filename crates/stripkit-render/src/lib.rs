@@ -35,7 +35,7 @@ mod shaders;
 
 pub use camera::{helix_path, Camera, HELIX_VIEWS};
 pub use image::Image;
-pub use normals::vertex_normals;
+pub use normals::{cross, vertex_normals};
 
 use glow::HasContext;
 use std::time::{Duration, Instant};

@@ -1,4 +1,15 @@
-//! Vertex normals for smooth shading, from an indexed triangle list.
+//! Vertex normals for smooth shading, from an indexed triangle list, and the cross
+//! product the workspace's geometry outside the library uses (the CLI's framing and
+//! wireframe, the bench's culling), in f32 or f64.
+
+use std::ops::{Mul, Sub};
+
+/// The cross product `a x b`, computed in `T` (f32 or f64) in the usual component
+/// order, so that every caller gets the same bits for the same inputs.
+#[inline]
+pub fn cross<T: Copy + Mul<Output = T> + Sub<Output = T>>(a: [T; 3], b: [T; 3]) -> [T; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
 
 /// Area-weighted vertex normals of the triangles (for smooth shading); unit length,
 /// +Z for a vertex on no triangle or on triangles of no area.
@@ -8,7 +19,7 @@ pub fn vertex_normals(positions: &[[f32; 3]], corners: &[u32]) -> Vec<[f32; 3]> 
         let p = |i: usize| positions[t[i] as usize].map(f64::from);
         let (a, b, c) = (p(0), p(1), p(2));
         let (u, v) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
-        let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+        let n = cross(u, v);
         for &i in t {
             for d in 0..3 {
                 acc[i as usize][d] += n[d];

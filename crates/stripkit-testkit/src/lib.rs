@@ -1,6 +1,7 @@
 //! The shared kit of the workspace's tests (a dev-dependency of every crate; never
 //! published): seeded random generators, where the research meshes and the bundled
-//! assets are (with the reason printed when a test skips), and small fixtures.
+//! assets are (with the reason printed when a test skips), f64 vector helpers for
+//! geometric checks, and small fixtures.
 //!
 //! It does not depend on `stripkit`, so that the library's own `#[cfg(test)]` code can
 //! use it without a second copy of the library's types; readers are passed in
@@ -9,6 +10,7 @@
 
 mod base64;
 mod dirs;
+pub mod geom;
 pub mod gltf_validator;
 mod rng;
 

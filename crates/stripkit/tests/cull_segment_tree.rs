@@ -13,6 +13,7 @@ use stripkit::cull::{
 };
 use stripkit::{gen, stripify, Algorithm, Mesh, SingleOptions, StripOptions, Strips, Weights};
 
+use stripkit_testkit::geom::{cross, dot, sub};
 use stripkit_testkit::XorShift64 as Rng;
 
 fn jitter(mesh: &Mesh, amount: f32, seed: u64) -> Mesh {
@@ -48,15 +49,6 @@ fn single(mesh: &Mesh, weights: Weights) -> Strips {
     strip_with(mesh, Algorithm::Single(SingleOptions::new(weights)))
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
 fn p64(p: [f32; 3]) -> [f64; 3] {
     p.map(|x| x as f64)
 }

@@ -99,9 +99,7 @@ pub fn shuffled(mesh: &Mesh, seed: u64) -> Mesh {
 
 pub fn normal(m: &Mesh, t: [u32; 3]) -> [f64; 3] {
     let p = t.map(|v| m.positions[v as usize].map(|x| x as f64));
-    let e1 = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
-    let e2 = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
-    [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+    stripkit_testkit::geom::tri_normal(p[0], p[1], p[2])
 }
 
 pub fn area(m: &Mesh) -> f64 {

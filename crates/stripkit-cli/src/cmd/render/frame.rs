@@ -1,7 +1,7 @@
 //! The camera of `stripkit render`: looking along a direction, framed tightly around
 //! the points drawn (not their bounding sphere), so that the model fills the picture.
 
-use stripkit_render::Camera;
+use stripkit_render::{cross, Camera};
 
 type V = [f64; 3];
 
@@ -10,9 +10,6 @@ fn sub(a: V, b: V) -> V {
 }
 fn dot(a: V, b: V) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V, b: V) -> V {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 fn unit(a: V) -> Option<V> {
     let l = dot(a, a).sqrt();

@@ -136,7 +136,7 @@ pub fn explode(strips: &StripSet, positions: &[[f32; 3]], paint: Paint) -> Explo
 pub fn faces(eye: [f32; 3], [a, b, c]: [[f32; 3]; 3]) -> bool {
     let sub = |p: [f32; 3], q: [f32; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
     let (u, v, w) = (sub(b, a), sub(c, a), sub(eye, a));
-    let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+    let n = stripkit_render::cross(u, v);
     n[0] * w[0] + n[1] * w[1] + n[2] * w[2] > 0.0
 }
 

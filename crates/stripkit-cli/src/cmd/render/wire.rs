@@ -5,6 +5,7 @@
 //! that the depth test keeps it in front of its own faces and hides it behind others.
 
 use std::collections::HashSet;
+use stripkit_render::cross;
 
 type V = [f32; 3];
 
@@ -13,9 +14,6 @@ fn sub(a: V, b: V) -> V {
 }
 fn len(a: V) -> f32 {
     (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
-}
-fn cross(a: V, b: V) -> V {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 fn add_scaled(a: V, d: V, s: f32) -> V {
     [a[0] + d[0] * s, a[1] + d[1] * s, a[2] + d[2] * s]
