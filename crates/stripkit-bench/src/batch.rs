@@ -31,7 +31,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     for m in j["meshes"].as_array().context("meshes")? {
         let name = m["name"].as_str().context("name")?;
         let path = args.models.join(name);
-        let Ok(mesh) = crate::read_surface(&path) else {
+        let Ok(mesh) = crate::common::read_surface(&path) else {
             eprintln!("skipping {name}: not in {}", args.models.display());
             continue;
         };

@@ -62,7 +62,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     println!("| mesh | triangles | row | shaded / tri | vs list | indices / tri |\n|---|---:|---|---:|---:|---:|");
     for name in &args.meshes {
         let path = args.models.join(name);
-        let mesh = crate::read_surface(&path).with_context(|| path.display().to_string())?;
+        let mesh = crate::common::read_surface(&path).with_context(|| path.display().to_string())?;
         let tris = mesh.triangulate().tris;
         let t = tris.len() as f64;
         let list: Vec<u32> = tris.iter().flatten().copied().collect();

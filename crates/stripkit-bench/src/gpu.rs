@@ -47,9 +47,8 @@ pub struct Args {
     /// Only the main configuration (64x64, light shader, u32, both vertex orders).
     #[arg(long)]
     pub quick: bool,
-    /// Write the markdown tables here too.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub table: crate::common::TableOut,
     /// Write every figure as JSON here.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -190,14 +189,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         if args.only.as_ref().is_some_and(|o| !name.contains(o.as_str())) {
             continue;
         }
-        let m = crate::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
+        let m = crate::common::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
         meshes.push((name, m));
     }
     for s in &args.subdivided {
         let (file, levels) = s.rsplit_once(':').context("--subdivided takes FILE:LEVELS")?;
         let levels: u32 = levels.parse().context("--subdivided levels")?;
         let p = args.models.join(file);
-        let m = crate::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
+        let m = crate::common::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
         let m = stripkit::gen::subdivide_loop(&stripkit::Mesh::from_triangles(m.positions.clone(), &m.triangulate().tris), levels)?;
         meshes.push((format!("{file} Loop x{levels}"), m));
     }
@@ -292,7 +291,7 @@ fn report(
     probes: &[Probe],
 ) -> anyhow::Result<String> {
     let md = markdown(gpu, configs, results, probes, args.draws, args.repeats);
-    if let Some(out) = &args.out {
+    if let Some(out) = &args.table.out {
         std::fs::write(out, &md).with_context(|| out.display().to_string())?;
     }
     if let Some(path) = &args.json {

@@ -16,9 +16,8 @@ pub struct Args {
     /// Folder of meshes; its `quads/` subfolder is read too (quads are fanned).
     #[arg(default_value = "../shared/models")]
     pub dir: PathBuf,
-    /// Also write the markdown table to this file.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub table: crate::common::TableOut,
     /// Timed runs per row; the table shows the median.
     #[arg(long, default_value_t = 5)]
     pub runs: usize,
@@ -172,7 +171,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         {
             continue;
         }
-        let mut mesh = crate::read_surface(&path)
+        let mut mesh = crate::common::read_surface(&path)
             .with_context(|| format!("reading {}", path.display()))?;
         let name = if args.loop_levels > 0 {
             mesh = stripkit::gen::subdivide_loop(
@@ -226,7 +225,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let table = render(&rows, runs);
     print!("{table}");
-    if let Some(out) = &args.out {
+    if let Some(out) = &args.table.out {
         stripkit::io::write_atomic(out, table.as_bytes()).with_context(|| format!("writing {}", out.display()))?;
     }
     if let Some(svg) = &args.svg {
