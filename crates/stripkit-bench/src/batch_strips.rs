@@ -1,7 +1,7 @@
 //! The `batch-strips` comparison: modelled vertex-shader invocations
 //! ([`stripkit::BatchModel::NVIDIA_H100`]) and indices per triangle of stripkit's
 //! strip modes next to meshoptimizer's vertex-cache list, on the shared meshes. No
-//! GPU needed: the model stands in for one (0.82% mean error on the H100).
+//! GPU needed: the model stands in for one (its fit: docs/experiments/gpu-draw-times.md).
 
 use anyhow::Context;
 use std::path::PathBuf;

@@ -4,18 +4,11 @@
 use std::path::PathBuf;
 
 /// The research meshes: the folder named by `STRIPKIT_MODELS`, else `../shared/models`
-/// beside the checkout (as the tests find it); `None` when it is absent.
+/// beside the checkout (the tests' lookup, `stripkit_testkit::models_path`); `None`
+/// when it is absent.
 pub fn models_dir() -> Option<PathBuf> {
-    let dir = models_path();
+    let dir = stripkit_testkit::models_path();
     dir.is_dir().then_some(dir)
-}
-
-/// `STRIPKIT_MODELS`, else `../shared/models` beside the checkout.
-fn models_path() -> PathBuf {
-    match std::env::var_os("STRIPKIT_MODELS") {
-        Some(d) => PathBuf::from(d),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/models"),
-    }
 }
 
 /// Reads a research mesh as its bare surface (positions and faces, the file's vertex

@@ -68,7 +68,7 @@ mod tests {
             let name = m["name"].as_str().unwrap();
             let Some(dir) = crate::common::models_dir() else { return };
             let mesh = crate::common::read_surface(&dir.join(name)).unwrap();
-            let bufs = crate::gpu::buffers(&mesh, true).unwrap();
+            let bufs = crate::buffers::buffers(&mesh, true).unwrap();
             for row in m["rows"].as_array().unwrap() {
                 let label = row["label"].as_str().unwrap_or_default();
                 let Some(inv) = row["invocations"].as_f64() else { continue };
