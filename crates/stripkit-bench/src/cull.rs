@@ -157,7 +157,7 @@ fn meshlet_row(tris: &[[u32; 3]], positions: &[[f32; 3]], eyes: &[[f32; 3]], rep
         for t in m.triangles.chunks_exact(3) {
             let [a, b, c] = [0, 1, 2].map(|k| positions[m.vertices[t[k] as usize] as usize].map(|x| x as f64));
             let (u, w) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
-            let n = stripkit_render::cross(u, w);
+            let n = glam::DVec3::from(u).cross(glam::DVec3::from(w)).to_array();
             p.push((n, n[0] * a[0] + n[1] * a[1] + n[2] * a[2]));
         }
         planes.push(p);

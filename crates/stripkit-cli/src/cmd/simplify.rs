@@ -44,7 +44,7 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "endpoint")]
     pub placement: PlacementArg,
     /// Weight of the boundary penalty planes (0 lets borders move freely).
-    #[arg(long, default_value_t = 100.0)]
+    #[arg(long, default_value_t = Options::default().boundary_weight)]
     pub boundary_weight: f64,
     /// Also contract vertex pairs closer than this distance that share no edge
     /// (QSlim's pair contraction; may join pieces). Off by default. A finite
@@ -81,16 +81,11 @@ pub struct Args {
     pub json: bool,
     #[command(flatten)]
     pub read: super::ReadArgs,
-    /// Set by a folder run: report above this progress bar.
-    #[arg(skip)]
-    pub batch: Option<indicatif::ProgressBar>,
 }
 
-/// Runs the command.
-pub fn run(args: Args) -> anyhow::Result<()> {
-    if args.file.is_dir() {
-        return super::batch::simplify_folder(args);
-    }
+/// Runs the command on one input file. `batch`: the progress bar of a folder run
+/// (`main` runs each file of a folder input through here), above which the report goes.
+pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result<()> {
     let target = match (args.ratio, args.triangles, args.error) {
         (Some(r), _, _) => Target::Ratio(r),
         (_, Some(t), _) => Target::Triangles(t),
@@ -127,7 +122,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         pair_distance: args.pair_distance,
         max_collapses: None,
     };
-    let bar = super::progress_bar(mesh.triangle_count() > 200_000 && args.batch.is_none(), "simplify");
+    let bar = super::progress_bar(mesh.triangle_count() > 200_000 && batch.is_none(), "simplify");
     let start = Instant::now();
     let result = simplify(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("simplifying {}", args.file.display()))?;
@@ -160,7 +155,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         // Already compressed for a .gz name.
         None => stripkit::io::write_atomic(&args.output, &mesh_bytes)?,
     }
-    let sink = match &args.batch {
+    let sink = match batch {
         Some(bar) => super::Sink::Batch(bar.clone()),
         None => super::Sink::for_output(&args.output),
     };
@@ -194,5 +189,29 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 ms
             )
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: Args,
+    }
+
+    #[test]
+    fn defaults_are_the_librarys() {
+        let args = Cli::parse_from(["simplify", "in.obj", "--ratio", "0.5", "-o", "out.obj"]).args;
+        let library = Options::default();
+        assert_eq!(args.boundary_weight, library.boundary_weight);
+        assert_eq!(args.pair_distance, library.pair_distance);
+        assert!(matches!(
+            (args.placement, library.placement),
+            (PlacementArg::Endpoint, Placement::Endpoint) | (PlacementArg::Optimal, Placement::Optimal)
+        ));
     }
 }

@@ -266,9 +266,6 @@ pub struct Args {
     pub json: bool,
     #[command(flatten)]
     pub read: super::ReadArgs,
-    /// Set by a folder run: report one line per file above this progress bar.
-    #[arg(skip)]
-    pub batch: Option<indicatif::ProgressBar>,
 }
 
 /// The JSON object printed by `--json` (and embedded in `.json` outputs).
@@ -494,16 +491,15 @@ fn with_join(args: &Args, options: StripOptions) -> StripOptions {
     options.join(args.join.into()).restart_index(args.restart_index)
 }
 
-/// Runs the command: read -> door -> encode -> write; a folder input runs every file.
-pub fn run(args: Args) -> anyhow::Result<()> {
-    if args.input.is_dir() {
-        return super::batch::strip_folder(args);
-    }
+/// Runs the command on one input file: read -> door -> encode -> write. `batch`: the
+/// progress bar of a folder run (`main` runs each file of a folder input through
+/// here), above which the report is one line.
+pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result<()> {
     let stdout_format = if super::is_dash(&args.output) {
         Some(super::output_format(&args.output, args.output_format, Some((&args.input, &args.read)))?)
     } else {
         anyhow::ensure!(
-            args.output_format.is_none() || args.batch.is_some(),
+            args.output_format.is_none() || batch.is_some(),
             "--output-format applies to standard output (-o -) and folder outputs; \
              {} names its format by its extension",
             args.output.display()
@@ -536,11 +532,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (None, _) => VertexOrder::Input,
     };
     if is_scene(&args.input, &kind) {
-        return run_scene(&args, format_of(&kind), vertex_order);
+        return run_scene(&args, format_of(&kind), vertex_order, batch);
     }
     // A spinner on a terminal (indicatif draws nothing when stderr is not one):
     // balanced and --refine take seconds on meshes of a million triangles.
-    let progress = match args.batch {
+    let progress = match batch {
         Some(_) => indicatif::ProgressBar::hidden(),
         None => indicatif::ProgressBar::new_spinner(),
     };
@@ -563,7 +559,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         for note in scene.notes() {
             eprintln!("note: {}: {note}", args.input.display());
         }
-        return strip_scene(&args, scene, start.elapsed(), format_of(&kind), vertex_order);
+        return strip_scene(&args, scene, start.elapsed(), format_of(&kind), vertex_order, batch);
     }
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
@@ -613,11 +609,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     super::write_output(&args.output, &bytes)?;
     progress.finish_and_clear();
 
-    let sink = match &args.batch {
+    let sink = match batch {
         Some(bar) => super::Sink::Batch(bar.clone()),
         None => super::Sink::for_output(&args.output),
     };
-    super::print_report_to(&sink, args.json, &report, |out, r| match args.batch {
+    super::print_report_to(&sink, args.json, &report, |out, r| match batch {
         Some(_) => print_line(out, r),
         None => print_summary(out, r),
     })
@@ -668,7 +664,12 @@ struct SceneCliReport<'a> {
 /// else written as read; `--join restart` (default) adds EXT_mesh_primitive_restart
 /// groups beside the stitched strips, `--join degenerate` writes the stitched strips
 /// alone.
-fn run_scene(args: &Args, format: Format, vertex_order: VertexOrder) -> anyhow::Result<()> {
+fn run_scene(
+    args: &Args,
+    format: Format,
+    vertex_order: VertexOrder,
+    batch: Option<&indicatif::ProgressBar>,
+) -> anyhow::Result<()> {
     use stripkit::io::Scene;
     let invalid = |m: String| -> anyhow::Result<()> { Err(Error::Invalid(m).into()) };
     match args.join {
@@ -700,7 +701,7 @@ fn run_scene(args: &Args, format: Format, vertex_order: VertexOrder) -> anyhow::
     if scene.primitives().iter().all(|p| p.mesh.face_count() == 0) {
         return invalid(format!("no faces in {}", args.input.display()));
     }
-    strip_scene(args, scene, start.elapsed(), format, vertex_order)
+    strip_scene(args, scene, start.elapsed(), format, vertex_order, batch)
 }
 
 /// The mesh format of an output kind (glTF for the scene paths, which only take mesh outputs).
@@ -719,13 +720,14 @@ fn strip_scene(
     read_time: std::time::Duration,
     format: Format,
     vertex_order: VertexOrder,
+    batch: Option<&indicatif::ProgressBar>,
 ) -> anyhow::Result<()> {
     let scene_options = match args.join {
         Join::Degenerate => stripkit::io::SceneOptions::stitched(),
         _ => stripkit::io::SceneOptions::default(),
     }
     .reorder(vertex_order == VertexOrder::FirstUse);
-    let progress = match args.batch {
+    let progress = match batch {
         Some(_) => indicatif::ProgressBar::hidden(),
         None => indicatif::ProgressBar::new_spinner(),
     };
@@ -752,13 +754,13 @@ fn strip_scene(
         write_ms,
         scene: &report,
     };
-    let sink = match &args.batch {
+    let sink = match batch {
         Some(bar) => super::Sink::Batch(bar.clone()),
         None => super::Sink::for_output(&args.output),
     };
     super::print_report_to(&sink, args.json, &r, |out, r| {
         let s = r.scene;
-        if args.batch.is_some() {
+        if batch.is_some() {
             return writeln!(
                 out,
                 "{} -> {}: {} triangles, {} primitives, {} indices stitched, {} with restart, {:.1} ms",
