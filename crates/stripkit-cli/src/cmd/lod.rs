@@ -212,7 +212,7 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
         PlacementArg::Endpoint => Placement::Endpoint,
         PlacementArg::Optimal => Placement::Optimal,
     };
-    let options = BuildOptions { strip: args.common.strip.options(Some(&mesh)), placement };
+    let options = BuildOptions { strip: args.common.strip.options()?, placement };
     let bar = super::progress_bar(mesh.triangle_count() > 200_000, "simplify");
     let built = lod::build(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the model of {}", args.file.display()))?;
@@ -299,7 +299,7 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
     }
     args.common.strip.check_mesh(&frames.mesh, &args.folder)?;
     let options = SeqOptions {
-        strip: args.common.strip.options(Some(&frames.mesh)),
+        strip: args.common.strip.options()?,
         max_sequences: args.max_sequences,
         tolerance: args.tolerance,
         samples: args.samples,

@@ -17,7 +17,7 @@ use std::time::Instant;
 use stripkit::Error;
 use stripkit_render::{DrawParams, IndexWidth, Renderer, Shading, Topology, Vertices};
 
-use super::strip::{HeuristicArg, StripArgs};
+use super::strip::{heuristic_of, StripArgs};
 use paint::Paint;
 
 /// What the colours show.
@@ -208,7 +208,7 @@ struct Report<'a> {
     output: &'a Path,
     algo: &'static str,
     #[serde(skip_serializing_if = "Option::is_none")]
-    heuristic: Option<HeuristicArg>,
+    heuristic: Option<&'static str>,
     color: ColorArg,
     shading: ShadingArg,
     width: u32,
@@ -477,7 +477,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         input: &args.input,
         output: &args.output,
         algo: door.as_ref().map_or("lod", |s| s.algorithm.name()),
-        heuristic: door.as_ref().and_then(|s| args.strip.heuristic_used(&s.algorithm)),
+        heuristic: door.as_ref().and_then(|s| heuristic_of(&s.algorithm)),
         color: args.color,
         shading: args.shading,
         width: w,
