@@ -385,9 +385,8 @@ pub struct BatchModel {
 }
 
 impl BatchModel {
-    /// The model fitted to an NVIDIA H100 (driver 580.159.04): batches of 30
-    /// triangles and 32 shaded vertices, strips reusing the last 15 shaded vertices
-    /// (0.82% mean error over 176 index buffers of the shared models;
+    /// The model fitted to an NVIDIA H100: batches of 30 triangles and 32 shaded
+    /// vertices, strips reusing the last 15 shaded vertices (the fit and its error:
     /// docs/experiments/gpu/h100-model-fit.md).
     pub const NVIDIA_H100: BatchModel = BatchModel {
         max_triangles: 30,
@@ -399,12 +398,8 @@ impl BatchModel {
 
     /// What the `batch` stripifier plans for by default ([`crate::Algorithm::batch`]):
     /// [`BatchModel::NVIDIA_H100`] with a reuse window of 14, 10 for the first two
-    /// indices of a strip. The fit is wrong for the batch stripifier's many short
-    /// strips: on an H200 (same driver) its strips of bunny shaded 0.953 vertices per
-    /// triangle when planned for the fitted window of 15 (0.833 modelled), 0.928 for
-    /// 13, 0.929 for 16 and 11 after a restart (a variant that fit one run's
-    /// counts best), and 0.918 for these settings, the fewest of the five on
-    /// all seven shared models (docs/experiments/gpu-batch-strips.md).
+    /// indices of a strip, which shaded the fewest vertices on a real GPU of the
+    /// windows tried (docs/experiments/gpu-batch-strips.md).
     pub const NVIDIA_H100_PLANNING: BatchModel = BatchModel {
         strip_window: 14,
         restart_window: 10,
