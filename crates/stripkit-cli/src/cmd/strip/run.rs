@@ -185,16 +185,13 @@ fn is_scene(input: &Path, kind: &OutKind) -> bool {
 fn run_scene(args: &Args, options: &StripOptions, format: Format, vertex_order: VertexOrder) -> anyhow::Result<()> {
     use stripkit::io::Scene;
     let invalid = |m: String| -> anyhow::Result<()> { Err(Error::Invalid(m).into()) };
-    match options.join {
-        Join::Separate => {
-            return invalid(
-                "--join separate does not apply to a glTF scene, where each primitive becomes one strip primitive: \
-                 use --join restart (EXT_mesh_primitive_restart with a stitched fallback, the default) or \
-                 --join degenerate (plain stitched strips)"
-                    .into(),
-            )
-        }
-        _ => {}
+    if options.join == Join::Separate {
+        return invalid(
+            "--join separate does not apply to a glTF scene, where each primitive becomes one strip primitive: \
+             use --join restart (EXT_mesh_primitive_restart with a stitched fallback, the default) or \
+             --join degenerate (plain stitched strips)"
+                .into(),
+        );
     }
     if options.restart_index != StripOptions::default().restart_index {
         return invalid(
