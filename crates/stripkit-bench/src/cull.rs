@@ -17,7 +17,7 @@ use anyhow::Context;
 use std::ops::Range;
 use std::path::PathBuf;
 use std::time::Instant;
-use stripkit::cull::{helix_eyes, Bounds, CullOptions, Culled, Facing, FacingCounter, RenderFront, SegmentTree, HELIX_VIEWS};
+use stripkit::cull::{helix_eyes, survey, Bounds, CullOptions, Facing, FacingCounter, SegmentTree, HELIX_VIEWS};
 use stripkit::{Algorithm, SingleOptions, StripOptions, StripSet, Weights};
 
 /// Arguments of the `cull` comparison.
@@ -63,33 +63,19 @@ fn tree_row(
     eyes: &[[f32; 3]],
     repeat: usize,
 ) -> anyhow::Result<Row> {
-    let mut row = Row { method: method.into(), units: tree.len(), ..Row::default() };
-    let (mut out, mut check) = (Culled::default(), Culled::default());
-    let (mut best_root, mut best_front) = (vec![f64::MAX; eyes.len()], vec![f64::MAX; eyes.len()]);
-    for _ in 0..repeat.max(1) {
-        for (v, &eye) in eyes.iter().enumerate() {
-            let t = Instant::now();
-            tree.cull(eye, &o, &mut out);
-            best_root[v] = best_root[v].min(t.elapsed().as_secs_f64() * 1e6);
-        }
-        let mut front = RenderFront::new(tree);
-        for (v, &eye) in eyes.iter().enumerate() {
-            let t = Instant::now();
-            front.cull(tree, eye, &o, &mut check);
-            best_front[v] = best_front[v].min(t.elapsed().as_secs_f64() * 1e6);
-        }
-    }
-    let mut front = RenderFront::new(tree);
-    for &eye in eyes {
-        tree.cull(eye, &o, &mut out);
-        front.cull(tree, eye, &o, &mut check);
-        anyhow::ensure!(out.ranges == check.ranges, "{method}: the render front disagrees with the root traversal");
-        add(&mut row, &counter.count(eye, &out.ranges), out.ranges.len(), out.drawn_triangles);
-    }
-    finish(&mut row, eyes.len());
-    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
-    row.us = format!("{:.1} / {:.1}", mean(&best_root), mean(&best_front));
-    Ok(row)
+    let views = survey::survey(tree, counter, eyes, |_| o, repeat).with_context(|| method.to_string())?;
+    let m = survey::mean(&views);
+    Ok(Row {
+        method: method.into(),
+        units: tree.len(),
+        draws: m.segments,
+        drawn: m.drawn,
+        back: m.back,
+        back_culled: m.back_culled,
+        back_drawn: m.back_drawn,
+        front_missed: m.front_missed,
+        us: format!("{:.1} / {:.1}", m.us_root, m.us_front),
+    })
 }
 
 fn add(row: &mut Row, c: &stripkit::cull::FacingCounts, draws: usize, drawn: usize) {
@@ -236,7 +222,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let o = CullOptions::default();
             rows.push(tree_row(&format!("single strip, {w} weights, segment tree"), &tree, &counter, o, &eyes, args.repeat)?);
             if args.gap > 0 {
-                let o = CullOptions { max_gap: args.gap, ..o };
+                let o = o.max_gap(args.gap);
                 let m = format!("single strip, {w} weights, segment tree, gaps <= {} joined", args.gap);
                 rows.push(tree_row(&m, &tree, &counter, o, &eyes, args.repeat)?);
             }
@@ -255,7 +241,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         if let Some((tree, counter)) = &cull_tree {
             for k in 0..=8 {
                 let gap = if k == 0 { 0 } else { 1u32 << (2 * k) };
-                let o = CullOptions { max_gap: gap, ..CullOptions::default() };
+                let o = CullOptions::default().max_gap(gap);
                 let m = format!("single strip, cull weights, gaps <= {gap} joined (first gap of 4^k with <= 1/10 of the meshlet draws)");
                 let row = tree_row(&m, tree, counter, o, &eyes, 1)?;
                 if row.draws <= meshlets.draws / 10.0 || k == 8 {

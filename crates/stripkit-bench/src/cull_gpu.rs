@@ -35,7 +35,7 @@ use std::time::Instant;
 use stripkit::cull::{bounding_sphere, helix_eyes, CullOptions, Culled, RenderFront, SegmentTree, HELIX_VIEWS};
 use stripkit::{Algorithm, SingleOptions, StripOptions, Weights};
 use stripkit_render::{
-    helix_path, DrawParams, Geometry, IndexBuffer, IndexWidth, Renderer, Shading, Topology, Vertices,
+    Camera, DrawParams, Geometry, IndexBuffer, IndexWidth, Renderer, Shading, Topology, Vertices,
     HEAVY_VERTEX_SHADER,
 };
 
@@ -143,7 +143,7 @@ fn run_path(
     params.cull_back = true;
     let options = match mode {
         Mode::Whole => CullOptions::default(),
-        Mode::Tree { max_gap, min_triangles } => CullOptions { max_gap, min_triangles, ..CullOptions::default() },
+        Mode::Tree { max_gap, min_triangles } => CullOptions::default().max_gap(max_gap).min_triangles(min_triangles),
     };
     let mut front = RenderFront::new(&u.tree);
     let mut culled = Culled::default();
@@ -267,7 +267,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     for (name, mesh) in &meshes {
         let (center, radius) = bounding_sphere(&mesh.positions);
         let eyes = helix_eyes(center, radius, HELIX_VIEWS);
-        let cameras = helix_path(center, radius, HELIX_VIEWS);
+        let cameras: Vec<Camera> = eyes.iter().map(|&e| Camera::around(e, center, radius)).collect();
         for w in [Weights::Cull, Weights::Cache, Weights::Uniform] {
             let t0 = Instant::now();
             r.resize(1920, 1080)?;

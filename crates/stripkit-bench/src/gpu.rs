@@ -20,9 +20,10 @@ use anyhow::Context;
 use std::path::PathBuf;
 use std::time::Instant;
 use stripkit::{Algorithm, CacheKind, StripOptions};
+use stripkit::cull::{helix_eyes, HELIX_VIEWS};
 use stripkit_render::{
-    helix_path, DrawParams, Geometry, IndexBuffer, IndexWidth, Renderer, Shading, Topology, Vertices,
-    HEAVY_VERTEX_SHADER, HELIX_VIEWS,
+    Camera, DrawParams, Geometry, IndexBuffer, IndexWidth, Renderer, Shading, Topology, Vertices,
+    HEAVY_VERTEX_SHADER,
 };
 
 /// Arguments of the `gpu` comparison.
@@ -290,7 +291,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let (lo, hi) = mesh.bounds().context("empty mesh")?;
         let center = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0, (lo[2] + hi[2]) / 2.0];
         let radius = glam::Vec3::from(hi).distance(glam::Vec3::from(lo)) / 2.0;
-        let path = helix_path(center, radius, HELIX_VIEWS);
+        let path: Vec<Camera> = helix_eyes(center, radius, HELIX_VIEWS).into_iter().map(|e| Camera::around(e, center, radius)).collect();
         let big = tris.len() > 500_000;
         let draws = if big { (args.draws / 10).max(1) } else { args.draws };
         eprintln!("{name}: {} triangles, {} vertices, {} rows", tris.len(), n, bufs.len());

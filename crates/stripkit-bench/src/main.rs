@@ -65,7 +65,7 @@ fn models_dir() -> Option<PathBuf> {
 /// ids; `ReadOptions::positions_only`): the figures in docs/ are of the shapes, and an
 /// OBJ's UV seams (spot) would otherwise split its vertices and its strips.
 fn read_surface(path: &std::path::Path) -> stripkit::Result<stripkit::Mesh> {
-    stripkit::io::read_with(path, &stripkit::io::ReadOptions { positions_only: true, ..Default::default() })
+    stripkit::io::read_with(path, &stripkit::io::ReadOptions::default().positions_only(true))
 }
 
 fn main() -> anyhow::Result<()> {

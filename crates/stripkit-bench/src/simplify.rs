@@ -85,7 +85,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 median(mo_ms)
             )?;
             for placement in [Placement::Endpoint, Placement::Optimal] {
-                let opts = Options { target: Target::Triangles(count), placement, ..Options::default() };
+                let opts = Options::default().target(Target::Triangles(count)).placement(placement);
                 let mut times = Vec::new();
                 let mut result = None;
                 for _ in 0..args.runs.max(1) {
@@ -116,7 +116,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let mesh = stripkit::gen::subdivide_loop(&crate::read_surface(&first)?, 2)?;
         let n = mesh.triangle_count();
         for placement in [Placement::Endpoint, Placement::Optimal] {
-            let opts = Options { target: Target::Ratio(0.01), placement, ..Options::default() };
+            let opts = Options::default().target(Target::Ratio(0.01)).placement(placement);
             let mut times = Vec::new();
             let mut out = 0;
             for _ in 0..args.runs.max(1) {

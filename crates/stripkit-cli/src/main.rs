@@ -49,9 +49,11 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Stats(a) => cmd::stats::run(a),
         Command::Gen(a) => cmd::gen::run(a),
-        Command::Strip(a) => cmd::strip::run(a),
+        Command::Strip(a) if a.input.is_dir() => strip_folder(a),
+        Command::Strip(a) => cmd::strip::run(a, None),
         Command::Match(a) => cmd::matching::run(a),
-        Command::Simplify(a) => cmd::simplify::run(a),
+        Command::Simplify(a) if a.file.is_dir() => simplify_folder(a),
+        Command::Simplify(a) => cmd::simplify::run(a, None),
         Command::Distance(a) => cmd::distance::run(a),
         Command::Render(a) => cmd::render::run(a),
         Command::Cull(a) => cmd::cull::run(a),
@@ -71,4 +73,53 @@ fn main() -> ExitCode {
             cmd::exit_code(&err)
         }
     }
+}
+
+/// `stripkit strip DIR -o OUTDIR`: every flag checked once, before any file is read,
+/// then each file stripped into `OUTDIR/NAME.EXT` (EXT of `--output-format`, default glb).
+fn strip_folder(args: cmd::strip::Args) -> anyhow::Result<()> {
+    use stripkit::io::Format;
+    let format = args.output_format.unwrap_or(Format::Glb);
+    anyhow::ensure!(
+        matches!(format, Format::Ply | Format::Gltf | Format::Glb),
+        "--output-format {} cannot hold strips; use ply, gltf or glb",
+        cmd::batch::extension(format)
+    );
+    cmd::batch::check_folders(&args.input, &args.output, &args.read)?;
+    cmd::write_options(args.ascii, &args.output, Some(format))?;
+    args.strip.validate(|o| o)?;
+    cmd::batch::run_folder("strip", &args.input, &args.output, |_| format, |file, output, bar| {
+        let one = cmd::strip::Args {
+            input: file.to_path_buf(),
+            output: output.to_path_buf(),
+            output_format: Some(format),
+            ..args.clone()
+        };
+        cmd::strip::run(one, Some(bar))
+    })
+}
+
+/// `stripkit simplify DIR -o OUTDIR`: each file simplified into `OUTDIR/NAME.EXT`, in
+/// its own format or `--output-format`.
+fn simplify_folder(args: cmd::simplify::Args) -> anyhow::Result<()> {
+    use stripkit::io::Format;
+    cmd::batch::check_folders(&args.file, &args.output, &args.read)?;
+    anyhow::ensure!(args.sequence.is_none(), "--sequence names one file; a folder run cannot write one per input");
+    anyhow::ensure!(
+        !args.ascii || args.output_format.is_none_or(|f| f == Format::Ply),
+        "--ascii applies to PLY outputs; --output-format is not PLY"
+    );
+    let chosen = args.output_format;
+    let format_of = |file: &std::path::Path| chosen.or_else(|| cmd::path_format(file)).unwrap_or(Format::Ply);
+    cmd::batch::run_folder("simplify", &args.file, &args.output, format_of, |file, output, bar| {
+        let one = cmd::simplify::Args {
+            file: file.to_path_buf(),
+            output: output.to_path_buf(),
+            output_format: None,
+            // --ascii on a folder of mixed formats applies to its PLY files.
+            ascii: args.ascii && format_of(file) == Format::Ply,
+            ..args.clone()
+        };
+        cmd::simplify::run(one, Some(bar))
+    })
 }

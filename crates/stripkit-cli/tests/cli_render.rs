@@ -9,7 +9,7 @@ use std::path::Path;
 use std::process::{Command, Output};
 use support::{json, stripkit, tmp, write_mesh};
 
-/// The colours `--color cull` uses (src/cmd/render/paint.rs).
+/// The colours `--color cull` uses (`stripkit_render::paint`).
 const FRONT: [u8; 3] = [58, 110, 190];
 const BACK: [u8; 3] = [246, 214, 200];
 const WHITE: [u8; 3] = [255, 255, 255];

@@ -6,6 +6,11 @@
 //! - ranges of one strip buffer, one draw call each (the segment tree's multi-draw);
 //! - morphs between two position buffers in the vertex shader, for deforming LoD.
 //!
+//! Pictures of strips need a little geometry, all over plain slices of positions and
+//! indices: [`Framing`] places a camera tightly around the points drawn, [`paint`]
+//! colours triangles by strip, by order or by facing, and [`wire`] turns edges into
+//! thin bands of triangles for a wireframe.
+//!
 //! It reads pixels back ([`Image`], PNG through the `png` crate), times draws, and counts
 //! vertex-shader invocations where the context has storage buffers (GLES 3.1), which
 //! measures how a GPU reuses shaded vertices.
@@ -28,12 +33,17 @@
 //! ```
 
 mod camera;
+pub mod chart;
 mod egl;
+mod frame;
 mod image;
 mod normals;
+pub mod paint;
 mod shaders;
+pub mod wire;
 
-pub use camera::{helix_path, Camera, HELIX_VIEWS};
+pub use camera::Camera;
+pub use frame::{FrameError, Framing};
 pub use image::Image;
 pub use normals::vertex_normals;
 

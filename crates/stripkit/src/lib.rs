@@ -9,8 +9,8 @@
 //! **file -> [`Mesh`] -> [`stripify`] -> [`Strips`] -> buffers / files**:
 //!
 //! * [`io::read`] turns a file (OBJ, PLY, OFF, STL, glTF) into a [`Mesh`] of polygons;
-//!   [`gen`] makes procedural ones. [`io::Scene`] keeps a whole glTF document and
-//!   strips each of its triangle primitives on its own.
+//!   [`gen`] makes procedural ones. [`io::Scene`] keeps a whole glTF document;
+//!   [`scene`] strips each of its triangle primitives on its own.
 //! * [`stripify`] (the front door) chooses a stripifier ([`Algorithm::Auto`]: QSTRIP on
 //!   quad-dominant meshes, greedy otherwise) or runs the one [`StripOptions`] names,
 //!   verifies what it made with [`verify`] (or at quad level where the algorithm chose
@@ -87,6 +87,7 @@ pub mod distance;
 pub mod gen;
 pub mod matching;
 pub mod lod;
+pub mod scene;
 pub mod simplify;
 
 #[cfg(test)]

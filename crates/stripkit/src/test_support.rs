@@ -17,7 +17,7 @@ pub(crate) fn model(name: &str) -> Option<crate::Mesh> {
 /// research meshes' documented facts are about their surfaces, which UV seams would
 /// cut into pieces.
 pub(crate) fn read_surface(path: &std::path::Path) -> crate::Result<crate::Mesh> {
-    crate::io::read_with(path, &crate::io::ReadOptions { positions_only: true, ..Default::default() })
+    crate::io::read_with(path, &crate::io::ReadOptions::default().positions_only(true))
 }
 
 /// A xorshift64 generator for tests: each call returns the next state modulo `m`

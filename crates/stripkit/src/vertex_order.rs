@@ -1,9 +1,16 @@
 //! Vertex order for fetching: vertices renumbered in the order the strips first use
 //! them, unreferenced ones dropped (what meshoptimizer's `optimizeVertexFetch` does
 //! for index buffers). A GPU then reads the vertex buffer nearly front to back.
+//!
+//! Above the door: it renumbers [`Strips`]. The id lists themselves
+//! (`first_use`, `ids_of`) live in `mesh::order`, where the glTF writer uses them too.
 
-use crate::io::Format;
-use crate::{Error, Mesh, Result, StripSet, Strips};
+use crate::error::{Error, Result};
+use crate::mesh::io::Format;
+use crate::mesh::order::{first_use, ids_of};
+use crate::mesh::Mesh;
+use crate::pipeline::Strips;
+use crate::strip::StripSet;
 
 /// Renumbers `mesh`'s vertices in the order `strips` first use them. Vertices that
 /// only faces use (a degenerate triangle no strip draws) follow in face order; vertices
@@ -40,23 +47,6 @@ pub fn first_use_order(mesh: &Mesh, strips: &StripSet) -> Result<(Mesh, StripSet
 fn first_use_ids(mesh: &Mesh, stream: &[u32]) -> Vec<u32> {
     let order = first_use(stream.iter().chain(&mesh.face_indices).copied(), mesh.vertex_count());
     ids_of(&order, mesh.vertex_count())
-}
-
-/// The vertices `indices` uses (each below `vertex_count`), in the order of their
-/// first use.
-pub(crate) fn first_use(indices: impl IntoIterator<Item = u32>, vertex_count: usize) -> Vec<u32> {
-    let mut seen = vec![false; vertex_count];
-    indices.into_iter().filter(|&v| !std::mem::replace(&mut seen[v as usize], true)).collect()
-}
-
-/// The inverse of `order` (old ids listed by new id): for each of `vertex_count` old
-/// vertices its new id, `u32::MAX` where `order` leaves it out.
-pub(crate) fn ids_of(order: &[u32], vertex_count: usize) -> Vec<u32> {
-    let mut new_id = vec![u32::MAX; vertex_count];
-    for (k, &v) in order.iter().enumerate() {
-        new_id[v as usize] = k as u32;
-    }
-    new_id
 }
 
 /// `mesh` and `strips` with vertex `v` renamed `new_id[v]` (a permutation of the ids
@@ -102,7 +92,9 @@ impl Strips {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{gen, stripify, Attribute, StripOptions};
+    use crate::gen;
+    use crate::mesh::Attribute;
+    use crate::pipeline::{stripify, StripOptions};
 
     #[test]
     fn strips_read_the_vertex_buffer_front_to_back() {
@@ -116,17 +108,17 @@ mod tests {
         let uv: Vec<f32> = (0..=n).flat_map(|v| [v as f32, 0.5]).collect();
         mesh.attributes.push(Attribute::from_f32("TEXCOORD_0", 2, &uv));
         let strips = stripify(&mesh, &StripOptions::default()).unwrap();
-        let (ordered, s) = strips.in_first_use_order(&mesh, crate::io::Format::Glb);
+        let (ordered, s) = strips.in_first_use_order(&mesh, Format::Glb);
         assert_eq!(ordered.vertex_count(), n as usize);
         // Each index of the written stream is at most one more than the largest before it.
         let mut next = 0;
-        for &v in &s.for_format(crate::io::Format::Glb).unwrap().indices {
+        for &v in &s.for_format(Format::Glb).unwrap().indices {
             assert!(v <= next, "{v} before {next}");
             next = next.max(v + 1);
         }
         assert_eq!(next, n);
         // Every new vertex has the position and UV of the old one it came from.
-        let new_id = first_use_ids(&mesh, &strips.for_format(crate::io::Format::Glb).unwrap().indices);
+        let new_id = first_use_ids(&mesh, &strips.for_format(Format::Glb).unwrap().indices);
         assert_eq!(new_id[0], u32::MAX);
         let old_uv = mesh.attribute("TEXCOORD_0").unwrap();
         let new_uv = ordered.attribute("TEXCOORD_0").unwrap();
@@ -137,8 +129,8 @@ mod tests {
         // The same triangles, renamed, and the file bytes pass the read-back check.
         let renamed: Vec<[u32; 3]> = strips.triangles.iter().map(|t| t.map(|v| new_id[v as usize])).collect();
         assert_eq!(s.triangles, renamed);
-        assert!(crate::verify_triangles(&ordered.triangulate().tris, &crate::decode(&s.strips)).ok());
-        s.to_file_bytes(&ordered, crate::io::Format::Glb).unwrap();
+        assert!(crate::strip::verify_triangles(&ordered.triangulate().tris, &crate::strip::decode(&s.strips)).ok());
+        s.to_file_bytes(&ordered, Format::Glb).unwrap();
         // The free function orders by the strips themselves.
         let (_, set, ids) = first_use_order(&mesh, &strips.strips).unwrap();
         assert_eq!(set.indices[0], 0);

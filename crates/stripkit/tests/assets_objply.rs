@@ -335,7 +335,7 @@ fn ply_round_trips_keep_every_property_bit_for_bit() {
         );
         assert_eq!(mesh.attribute("id").unwrap().get(3, 0), 3.0 - 1e6);
         for ascii in [false, true] {
-            let out = io::write_bytes(Format::Ply, &mesh, None, &WriteOptions { ply_ascii: ascii }).unwrap();
+            let out = io::write_bytes(Format::Ply, &mesh, None, &WriteOptions::default().ply_ascii(ascii)).unwrap();
             let back = io::read_bytes(Path::new("back.ply"), Format::Ply, &out).unwrap();
             assert_eq!(back.positions, mesh.positions);
             assert_eq!(back.face_indices, mesh.face_indices);

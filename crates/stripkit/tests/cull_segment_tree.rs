@@ -9,7 +9,7 @@ mod support;
 use std::collections::HashMap;
 use stripkit::cull::{
     bounding_sphere, helix_eyes, CullOptions, Culled, Facing, FacingCounter, Frustum, RenderFront, SegmentTree, Side,
-    HELIX_VIEWS, NONE,
+    HELIX_VIEWS,
 };
 use stripkit::{gen, stripify, Algorithm, Mesh, SingleOptions, StripOptions, Strips, Weights};
 
@@ -145,7 +145,7 @@ fn check_tree(name: &str, strips: &Strips, pos: &[[f32; 3]], tree: &SegmentTree)
             assert_eq!((a.start, b.end, a.triangles + b.triangles), (n.start, n.end, n.triangles), "{name}");
             assert_eq!((a.strip, b.strip), (n.strip, n.strip));
         }
-        if n.parent == NONE {
+        if n.is_root() {
             assert!(tree.roots.contains(&(i as u32)));
         }
         // The average normal.
@@ -306,9 +306,9 @@ fn greedy_strips_and_small_leaves_keep_the_front_equal() {
         let s = strip_with(&mesh, Algorithm::greedy());
         check_strips(&format!("{name} greedy"), &s, &mesh, CullOptions::default());
         let s = single(&mesh, Weights::Cull);
-        check_strips(&format!("{name} min 8"), &s, &mesh, CullOptions { min_triangles: 8, max_gap: 0, frustum: None });
-        check_strips(&format!("{name} gap 6"), &s, &mesh, CullOptions { min_triangles: 0, max_gap: 6, frustum: None });
-        check_strips(&format!("{name} min 4 gap 30"), &s, &mesh, CullOptions { min_triangles: 4, max_gap: 30, frustum: None });
+        check_strips(&format!("{name} min 8"), &s, &mesh, CullOptions::default().min_triangles(8));
+        check_strips(&format!("{name} gap 6"), &s, &mesh, CullOptions::default().max_gap(6));
+        check_strips(&format!("{name} min 4 gap 30"), &s, &mesh, CullOptions::default().min_triangles(4).max_gap(30));
     }
 }
 
@@ -424,13 +424,13 @@ fn frustum_culling_skips_only_what_lies_outside() {
             // The helix's own camera (60 degrees) holds the whole model: no change.
             let wide = Frustum::perspective(eye, center, [0.0, 1.0, 0.0], 60.0, 1.0, 0.01, 100.0 * radius).unwrap();
             tree.cull(eye, &CullOptions::default(), &mut plain);
-            tree.cull(eye, &CullOptions { frustum: Some(wide), ..CullOptions::default() }, &mut a);
+            tree.cull(eye, &CullOptions::default().frustum(Some(wide)), &mut a);
             assert_eq!(a.ranges, plain.ranges, "{name}: view {v}");
             assert_eq!(a.outside_triangles, 0);
             // A 12-degree camera aimed off-centre.
             let target = [center[0] + 0.3 * radius, center[1], center[2]];
             let narrow = Frustum::perspective(eye, target, [0.0, 1.0, 0.0], 12.0, 1.5, 0.01, 100.0 * radius).unwrap();
-            let options = CullOptions { frustum: Some(narrow), ..CullOptions::default() };
+            let options = CullOptions::default().frustum(Some(narrow));
             tree.cull(eye, &options, &mut a);
             front.cull(&tree, eye, &options, &mut b);
             assert_eq!(a.ranges, b.ranges, "{name}: view {v}: the front equals the root traversal");

@@ -83,16 +83,16 @@ fn the_limit_can_be_lowered_and_raised() {
     // allowance; the same file against an explicit limit, at and one byte below it.
     let bytes = reused_positions(50, 100);
     assert_eq!(read("small.glb", &bytes, &ReadOptions::default()).unwrap().vertex_count(), 5000);
-    let exact = ReadOptions { max_decoded_bytes: Some(60_000), ..ReadOptions::default() };
+    let exact = ReadOptions::default().max_decoded_bytes(Some(60_000));
     assert_eq!(read("small.glb", &bytes, &exact).unwrap().vertex_count(), 5000);
-    let short = ReadOptions { max_decoded_bytes: Some(59_999), ..ReadOptions::default() };
+    let short = ReadOptions::default().max_decoded_bytes(Some(59_999));
     let (at, what) = refused("small.glb", &bytes, &short);
     assert_eq!(at, "meshes[0].primitives[49]");
     assert!(what.contains("more than the limit of 59999 bytes;"), "{what}");
     // Raising it lets a file through that the input-relative default refuses.
     let bytes = reused_positions(40, 100_000);
     refused("forty.glb", &bytes, &ReadOptions::default());
-    let raised = ReadOptions { max_decoded_bytes: Some(48_000_000), ..ReadOptions::default() };
+    let raised = ReadOptions::default().max_decoded_bytes(Some(48_000_000));
     assert_eq!(read("forty.glb", &bytes, &raised).unwrap().vertex_count(), 4_000_000);
 }
 

@@ -219,7 +219,7 @@ fn dev_zero_is_refused_quickly_even_inside_an_allowed_root() {
     // Inside an allowed root: refused as not a regular file, without reading.
     let up = "../".repeat(std::fs::canonicalize(&dir).unwrap().components().count());
     let uri = format!("{up}dev/zero");
-    let options = ReadOptions { allowed_roots: vec![PathBuf::from("/dev")], ..ReadOptions::default() };
+    let options = ReadOptions::default().allowed_roots(vec![PathBuf::from("/dev")]);
     match read_in(&dir, "zero.gltf", &gltf(&[&uri], 1 << 20), &options) {
         Err(e) => assert!(e.to_string().contains("not a regular file"), "{e}"),
         Ok(_) => panic!("/dev/zero was read"),
@@ -243,14 +243,14 @@ fn a_byte_length_beyond_the_limit_is_refused_before_reading() {
         Err(e) => assert!(e.to_string().contains("exceeds the limit of 1073741824 bytes"), "{e}"),
         Ok(_) => panic!("accepted"),
     }
-    let small = ReadOptions { max_external_bytes: 38, ..ReadOptions::default() };
+    let small = ReadOptions::default().max_external_bytes(38);
     match read_in(&dir, "small.gltf", &gltf(&["t.bin"], 39), &small) {
         Err(e) => assert!(e.to_string().contains("exceeds the limit of 38 bytes"), "{e}"),
         Ok(_) => panic!("accepted"),
     }
     // Two distinct files together over the budget.
     std::fs::write(dir.join("u.bin"), triangle_bytes()).unwrap();
-    let pair = ReadOptions { max_external_bytes: 60, ..ReadOptions::default() };
+    let pair = ReadOptions::default().max_external_bytes(60);
     match read_in(&dir, "pair.gltf", &gltf(&["t.bin", "u.bin"], 39), &pair) {
         Err(e) => assert!(e.to_string().contains("78 bytes in all, more than the limit of 60"), "{e}"),
         Ok(_) => panic!("accepted"),
@@ -270,7 +270,7 @@ fn one_sibling_listed_many_times_is_read_once() {
     assert_triangle(&mesh);
     // The same file under different spellings is still one file.
     let uris = ["big.bin", "./big.bin", "big%2Ebin", "x/../big.bin"];
-    let tight = ReadOptions { max_external_bytes: 8 << 20, ..ReadOptions::default() };
+    let tight = ReadOptions::default().max_external_bytes(8 << 20);
     assert_triangle(&read_in(&dir, "spellings.gltf", &gltf(&uris, 8 << 20), &tight).unwrap());
 }
 
@@ -285,7 +285,7 @@ fn an_allowed_root_lets_a_relative_uri_leave_the_folder() {
     std::fs::write(base.join("other.bin"), triangle_bytes()).unwrap();
     let text = gltf(&["../shared/t.bin"], 39);
     assert!(read_in(&dir, "shared.gltf", &text, &ReadOptions::default()).is_err());
-    let options = ReadOptions { allowed_roots: vec![shared.clone()], ..ReadOptions::default() };
+    let options = ReadOptions::default().allowed_roots(vec![shared.clone()]);
     assert_triangle(&read_in(&dir, "shared.gltf", &text, &options).unwrap());
     // The root does not open its parent, nor absolute paths into itself.
     match read_in(&dir, "other.gltf", &gltf(&["../other.bin"], 39), &options) {

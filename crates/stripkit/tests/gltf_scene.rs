@@ -1,4 +1,4 @@
-//! glTF scenes through `stripkit::io::Scene`: a generated asset with two meshes, three
+//! glTF scenes through `stripkit::scene::Scene` (the document of `io`, stripped above the door): a generated asset with two meshes, three
 //! triangle primitives and a point primitive, two materials (one textured, one with an
 //! unknown extension), interleaved NORMAL + TEXCOORD_0, a skin, an animation, a morph
 //! target, two scenes, a node moved by [3, 0, 0] and extras comes back with the same
@@ -11,7 +11,8 @@ mod support;
 
 use serde_json::{json, Value};
 use std::path::Path;
-use stripkit::io::{Format, ReadOptions, Scene, SceneOptions};
+use stripkit::io::{Format, ReadOptions};
+use stripkit::scene::{Scene, SceneOptions};
 use stripkit::{gen, StripOptions};
 
 /// Buffer, views and accessors of an asset under construction.

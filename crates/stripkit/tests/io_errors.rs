@@ -230,7 +230,7 @@ fn corrupted_files_never_panic() {
         (Format::Off, io::write_bytes(Format::Off, &mesh, None, &Default::default()).unwrap()),
         (Format::Ply, io::write_bytes(Format::Ply, &mesh, None, &Default::default()).unwrap()),
         (Format::Ply, io::write_bytes(Format::Ply, &mesh, Some(&strips), &Default::default()).unwrap()),
-        (Format::Ply, io::write_bytes(Format::Ply, &mesh, None, &io::WriteOptions { ply_ascii: true }).unwrap()),
+        (Format::Ply, io::write_bytes(Format::Ply, &mesh, None, &io::WriteOptions::default().ply_ascii(true)).unwrap()),
         (Format::Stl, io::write_bytes(Format::Stl, &mesh, None, &Default::default()).unwrap()),
         (Format::Gltf, io::write_bytes(Format::Gltf, &mesh, Some(&strips), &Default::default()).unwrap()),
         (Format::Glb, io::write_bytes(Format::Glb, &mesh, None, &Default::default()).unwrap()),

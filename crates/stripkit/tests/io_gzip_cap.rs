@@ -24,7 +24,7 @@ fn decompression_stops_at_the_cap_and_says_so() {
     // 1 MiB of zeros compresses to about 1 KB (PLY may be binary: no early refusal).
     let path = gz_file("zeros.ply.gz", &vec![0u8; 1 << 20]);
     assert!(std::fs::metadata(&path).unwrap().len() < 10_000);
-    let options = ReadOptions { max_decompressed_bytes: 4096, ..ReadOptions::default() };
+    let options = ReadOptions::default().max_decompressed_bytes(4096);
     let e = io::read_with(&path, &options).unwrap_err();
     assert!(matches!(e, Error::Format { .. }), "{e:?}");
     let text = e.to_string();
@@ -36,10 +36,10 @@ fn decompression_stops_at_the_cap_and_says_so() {
 fn a_file_at_the_cap_is_read() {
     let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     let path = gz_file("tri.obj.gz", obj);
-    let exact = ReadOptions { max_decompressed_bytes: obj.len() as u64, ..ReadOptions::default() };
+    let exact = ReadOptions::default().max_decompressed_bytes(obj.len() as u64);
     let m = io::read_with(&path, &exact).unwrap();
     assert_eq!((m.vertex_count(), m.face_count()), (3, 1));
-    let short = ReadOptions { max_decompressed_bytes: obj.len() as u64 - 1, ..ReadOptions::default() };
+    let short = ReadOptions::default().max_decompressed_bytes(obj.len() as u64 - 1);
     let e = io::read_with(&path, &short).unwrap_err().to_string();
     assert!(e.contains(&format!("decompresses to more than {} bytes", obj.len() - 1)), "{e}");
     // `read` uses the default cap, 4 GiB.
@@ -54,7 +54,7 @@ fn a_compressed_text_format_of_zeros_is_refused_at_its_first_bytes() {
     // 5 GB of zeros took 5.3 GB): the refusal names the NUL byte, not the cap,
     // although the content is 1,000 times the cap.
     let zeros = vec![0u8; 8 << 20];
-    let small_cap = ReadOptions { max_decompressed_bytes: 8192, ..ReadOptions::default() };
+    let small_cap = ReadOptions::default().max_decompressed_bytes(8192);
     for name in ["zeros.obj.gz", "zeros.off.gz", "zeros.gltf.gz"] {
         let path = gz_file(name, &zeros);
         let text = io::read_with(&path, &small_cap).unwrap_err().to_string();

@@ -33,7 +33,7 @@ proptest! {
     fn polygon_formats_round_trip_bit_for_bit(mesh in mesh_strategy()) {
         let path = std::path::Path::new("prop");
         for (format, ascii) in [(Format::Obj, false), (Format::Off, false), (Format::Ply, false), (Format::Ply, true)] {
-            let bytes = write_bytes(format, &mesh, None, &WriteOptions { ply_ascii: ascii }).unwrap();
+            let bytes = write_bytes(format, &mesh, None, &WriteOptions::default().ply_ascii(ascii)).unwrap();
             let back = read_bytes(path, format, &bytes).unwrap();
             prop_assert_eq!(bits(&back), bits(&mesh), "{:?} ascii={}", format, ascii);
             prop_assert_eq!(&back.face_offsets, &mesh.face_offsets);
@@ -58,7 +58,7 @@ proptest! {
         let set = StripSet::from_strips(&strips);
         let path = std::path::Path::new("prop");
         for (format, ascii) in [(Format::Ply, false), (Format::Ply, true), (Format::Gltf, false), (Format::Glb, false)] {
-            let bytes = write_bytes(format, &mesh, Some(&set), &WriteOptions { ply_ascii: ascii }).unwrap();
+            let bytes = write_bytes(format, &mesh, Some(&set), &WriteOptions::default().ply_ascii(ascii)).unwrap();
             let back = read_bytes(path, format, &bytes).unwrap();
             prop_assert_eq!(bits(&back), bits(&mesh));
             let tris: Vec<[u32; 3]> = back.faces().map(|f| [f[0], f[1], f[2]]).collect();

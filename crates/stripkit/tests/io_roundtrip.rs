@@ -92,7 +92,7 @@ fn obj_off_and_ply_keep_polygons_exactly() {
         ("POLY_UPPER.OBJ", false),
     ] {
         let path = tmp(name);
-        io::write_with(&path, &mesh, None, &WriteOptions { ply_ascii: ascii }).unwrap();
+        io::write_with(&path, &mesh, None, &WriteOptions::default().ply_ascii(ascii)).unwrap();
         let back = io::read(&path).unwrap();
         assert_eq!(back, mesh, "{name}");
         assert_same_positions(&back, &mesh);
@@ -109,7 +109,7 @@ fn ply_tristrips_round_trip_as_their_decoded_triangles() {
     let strips = StripSet::from_strips(&[vec![0, 1, 5, 6, 2, 7], vec![3, 3, 4, 8, 9], vec![10, 11], vec![], vec![12, 13, 17]]);
     for (name, ascii) in [("strips_bin.ply", false), ("strips_ascii.ply", true)] {
         let path = tmp(name);
-        io::write_with(&path, &mesh, Some(&strips), &WriteOptions { ply_ascii: ascii }).unwrap();
+        io::write_with(&path, &mesh, Some(&strips), &WriteOptions::default().ply_ascii(ascii)).unwrap();
         let back = io::read(&path).unwrap();
         assert_same_positions(&back, &mesh);
         assert_eq!(triangle_faces(&back), decode(&strips), "{name}");

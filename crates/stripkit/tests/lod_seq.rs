@@ -36,7 +36,7 @@ fn animation(name: &str, frames: usize) -> PathBuf {
 }
 
 fn options() -> SeqOptions {
-    SeqOptions { samples: 800, ..SeqOptions::default() }
+    SeqOptions::default().samples(800)
 }
 
 #[test]
@@ -69,7 +69,7 @@ fn every_model_draws_its_replay_at_every_level() {
 fn the_cursor_follows_frames_and_levels() {
     let dir = animation("cursor", 5);
     let frames = lod::read_frames(&dir, &Default::default()).unwrap();
-    let b = lod::build_seq(&frames, &SeqOptions { tolerance: 1.0, ..options() }, &mut |_| {}).unwrap();
+    let b = lod::build_seq(&frames, &options().tolerance(1.0), &mut |_| {}).unwrap();
     let seq = &b.seq;
     assert!(seq.models().len() >= 2, "frames with different sequences: {:?}", b.report.sequences);
     let mut cursor = seq.cursor(0, LevelSpec::Level(0));
@@ -148,7 +148,7 @@ fn lodseq_files_round_trip_and_refuse_damage() {
     let dir = animation("file", 4);
     let frames = lod::read_frames(&dir, &Default::default()).unwrap();
     for bits in [None, Some(12)] {
-        let b = lod::build_seq(&frames, &SeqOptions { position_bits: bits, ..options() }, &mut |_| {}).unwrap();
+        let b = lod::build_seq(&frames, &options().position_bits(bits), &mut |_| {}).unwrap();
         let bytes = b.seq.to_bytes();
         let path = Path::new("anim.lodseq");
         assert_eq!(LodSeq::from_bytes(path, &bytes).unwrap(), b.seq);
@@ -188,7 +188,7 @@ fn quantized_positions_round_trip_exactly() {
     let frames = lod::read_frames(&dir, &Default::default()).unwrap();
     let exact = lod::build_seq(&frames, &options(), &mut |_| {}).unwrap();
     for bits in [8, 12, 16, 20] {
-        let b = lod::build_seq(&frames, &SeqOptions { position_bits: Some(bits), ..options() }, &mut |_| {}).unwrap();
+        let b = lod::build_seq(&frames, &options().position_bits(Some(bits)), &mut |_| {}).unwrap();
         let bytes = b.seq.to_bytes();
         let back = LodSeq::from_bytes(Path::new("q.lodseq"), &bytes).unwrap();
         assert_eq!(back, b.seq, "{bits} bits: the file holds exactly the quantized positions");
@@ -203,7 +203,7 @@ fn quantized_positions_round_trip_exactly() {
         }
         assert!(bytes.len() < exact.seq.to_bytes().len(), "{bits} bits: smaller than exact positions");
     }
-    let e = lod::build_seq(&frames, &SeqOptions { position_bits: Some(4), ..options() }, &mut |_| {});
+    let e = lod::build_seq(&frames, &options().position_bits(Some(4)), &mut |_| {});
     assert!(e.is_err());
 }
 
@@ -216,7 +216,7 @@ fn research_sequence_cat() {
     }
     let frames = lod::read_frames(&dir, &Default::default()).unwrap();
     assert_eq!(frames.positions.len(), 9);
-    let b = lod::build_seq(&frames, &SeqOptions { samples: 1000, ..SeqOptions::default() }, &mut |_| {}).unwrap();
+    let b = lod::build_seq(&frames, &SeqOptions::default().samples(1000), &mut |_| {}).unwrap();
     let mesh = Mesh::from_triangles(frames.positions[0].clone(), &b.triangles);
     for (sets, sequence) in b.seq.models().iter().zip(&b.sequences) {
         lod::check_levels(sets, &mesh, sequence, 1, 5).unwrap();

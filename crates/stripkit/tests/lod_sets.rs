@@ -12,7 +12,7 @@ use stripkit::simplify::{simplify, Options, Placement, Target};
 use stripkit::{gen, Algorithm, Mesh, SingleOptions, StripOptions};
 
 fn built(mesh: &Mesh, algorithm: Algorithm, placement: Placement) -> Built {
-    let options = BuildOptions { strip: StripOptions::default().algorithm(algorithm), placement };
+    let options = BuildOptions::default().strip(StripOptions::default().algorithm(algorithm)).placement(placement);
     lod::build(mesh, &options, &mut |_| {}).expect("builds")
 }
 
@@ -112,7 +112,7 @@ fn ratio_levels_stop_where_simplify_stops() {
     let mesh = shuffled(&bumpy_sphere(3), 2);
     let b = built(&mesh, Algorithm::greedy(), Placement::Endpoint);
     for ratio in [0.5, 0.1, 0.013] {
-        let s = simplify(&mesh, &Options { target: Target::Ratio(ratio), ..Options::default() }, &mut |_| {}).unwrap();
+        let s = simplify(&mesh, &Options::default().target(Target::Ratio(ratio)), &mut |_| {}).unwrap();
         let level = b.sets.level_for_ratio(ratio);
         assert_eq!(level as usize, s.sequence.len(), "ratio {ratio}");
         assert_eq!(b.sets.triangles_at(level) as usize, s.triangles_out());

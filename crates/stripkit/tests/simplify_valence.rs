@@ -15,7 +15,7 @@ use stripkit::Mesh;
 use valence_meshes::{edge_fan, polygon, star};
 
 fn run(mesh: &Mesh, placement: Placement, ratio: f64) -> Simplified {
-    let opts = Options { target: Target::Ratio(ratio), placement, ..Options::default() };
+    let opts = Options::default().target(Target::Ratio(ratio)).placement(placement);
     simplify(mesh, &opts, &mut |_| {}).expect("simplify")
 }
 
@@ -119,7 +119,7 @@ fn polygon_of_50k_corners_halves_as_a_fan_from_its_first_corner() {
 #[test]
 fn pair_contraction_around_a_hub_reaches_its_target() {
     let mesh = star(10_000);
-    let opts = Options { target: Target::Ratio(0.1), pair_distance: Some(1e-3), ..Options::default() };
+    let opts = Options::default().target(Target::Ratio(0.1)).pair_distance(Some(1e-3));
     let s = simplify(&mesh, &opts, &mut |_| {}).expect("simplify");
     check(&mesh, &s, 0.1, &[0]);
 }

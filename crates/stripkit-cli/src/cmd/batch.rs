@@ -1,7 +1,11 @@
 //! Folder runs: `stripkit strip DIR -o OUTDIR` strips every mesh file in `DIR` into
 //! `OUTDIR` (`simplify` likewise simplifies them), one line (or one JSON object with
-//! `--json`) per file, under a progress bar. A file that fails is reported on standard error and the others still run; the
-//! exit status is then that of the worst failure (1 for a failed verification, else 2).
+//! `--json`) per file, under a progress bar. A file that fails is reported on standard
+//! error and the others still run; the exit status is then that of the worst failure
+//! (1 for a failed verification, else 2).
+//!
+//! The runner knows no command: `main` sees that the input is a folder and hands
+//! [`run_folder`] the command's per-file function, which takes the bar as a parameter.
 
 use std::path::{Path, PathBuf};
 use stripkit::io::Format;
@@ -31,7 +35,7 @@ pub fn output_name(file: &Path, out: &Path, ext: &str) -> PathBuf {
 }
 
 /// The extension of `format`'s files.
-fn extension(format: Format) -> &'static str {
+pub fn extension(format: Format) -> &'static str {
     match format {
         Format::Obj => "obj",
         Format::Ply => "ply",
@@ -42,59 +46,9 @@ fn extension(format: Format) -> &'static str {
     }
 }
 
-/// `stripkit strip DIR -o OUTDIR`.
-pub fn strip_folder(args: super::strip::Args) -> anyhow::Result<()> {
-    let format = args.output_format.unwrap_or(Format::Glb);
-    anyhow::ensure!(
-        matches!(format, Format::Ply | Format::Gltf | Format::Glb),
-        "--output-format {} cannot hold strips; use ply, gltf or glb",
-        extension(format)
-    );
-    check_folders(&args.input, &args.output, &args.read)?;
-    super::write_options(args.ascii, &args.output, Some(format))?;
-    // Every flag is checked once, before any file is read.
-    args.strip.validate(|o| o)?;
-    run_folder(
-        "strip",
-        &args.input,
-        &args.output,
-        |_| format,
-        |file, output, bar| {
-            let mut one = args.clone();
-            one.input = file.to_path_buf();
-            one.output = output.to_path_buf();
-            one.output_format = Some(format);
-            one.batch = Some(bar.clone());
-            super::strip::run(one)
-        },
-    )
-}
-
-/// `stripkit simplify DIR -o OUTDIR`: each file in its own format, or `--output-format`.
-pub fn simplify_folder(args: super::simplify::Args) -> anyhow::Result<()> {
-    check_folders(&args.file, &args.output, &args.read)?;
-    anyhow::ensure!(args.sequence.is_none(), "--sequence names one file; a folder run cannot write one per input");
-    anyhow::ensure!(
-        !args.ascii || args.output_format.is_none_or(|f| f == Format::Ply),
-        "--ascii applies to PLY outputs; --output-format is not PLY"
-    );
-    let chosen = args.output_format;
-    let format_of = |file: &Path| chosen.or_else(|| super::path_format(file)).unwrap_or(Format::Ply);
-    run_folder("simplify", &args.file, &args.output, format_of, |file, output, bar| {
-        let mut one = args.clone();
-        one.file = file.to_path_buf();
-        one.output = output.to_path_buf();
-        one.output_format = None;
-        // --ascii on a folder of mixed formats applies to its PLY files.
-        one.ascii = args.ascii && format_of(file) == Format::Ply;
-        one.batch = Some(bar.clone());
-        super::simplify::run(one)
-    })
-}
-
 /// The checks of a folder run: no `--format`, no standard output, no file as the
 /// output folder.
-fn check_folders(input: &Path, output: &Path, read: &super::ReadArgs) -> anyhow::Result<()> {
+pub fn check_folders(input: &Path, output: &Path, read: &super::ReadArgs) -> anyhow::Result<()> {
     anyhow::ensure!(read.format.is_none(), "--format applies to standard input (-), not to a folder");
     anyhow::ensure!(!super::is_dash(output), "a folder input writes a folder: -o names it, not standard output");
     anyhow::ensure!(
@@ -110,7 +64,7 @@ fn check_folders(input: &Path, output: &Path, read: &super::ReadArgs) -> anyhow:
 /// `output/NAME.EXT` (EXT of `format_of(file)`), under a progress bar. A failure is
 /// reported and the others still run; then the run fails naming every failed file,
 /// with exit status 1 if one failed verification, else 2.
-fn run_folder(
+pub fn run_folder(
     what: &str,
     input: &Path,
     output: &Path,

@@ -36,7 +36,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let start = Instant::now();
     let d = stripkit::distance::distance(&a, &b, args.samples)?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
-    let rel = |x: f64| if d.diagonal > 0.0 { x / d.diagonal } else { 0.0 };
+    let rel = |x: f64| d.relative(x);
     if args.json {
         let side = |s: &stripkit::distance::OneSided| serde_json::json!({"max": s.max, "rms": s.rms, "mean": s.mean});
         let out = serde_json::json!({

@@ -12,11 +12,11 @@ use stripkit::{gen, Mesh};
 #[command(after_help = "The output format follows the extension of -o (.obj, .ply, .off, .stl, .gltf, .glb, +.gz).
 
 A one-million-triangle mesh is one command away:
-  stripkit gen subdivide ../shared/models/bunny.obj --scheme loop --levels 2 -o bunny_1m.ply
+  stripkit gen subdivide bunny.obj --scheme loop --levels 2 -o bunny_1m.ply
   stripkit gen icosphere 8 -o sphere_1m.ply        (1,310,720 triangles)
   stripkit gen grid 708 708 -o grid_1m.obj         (1,002,528 triangles)
 Quad meshes: stripkit gen torus --quads --major 200 --minor 100 -o torus.obj,
-  stripkit gen subdivide ../shared/models/quads/spot_quadrangulated.obj --scheme catmull-clark --levels 2 -o spot_47k_quads.obj")]
+  stripkit gen subdivide spot_quadrangulated.obj --scheme catmull-clark --levels 2 -o spot_47k_quads.obj")]
 pub struct Args {
     #[command(subcommand)]
     what: What,

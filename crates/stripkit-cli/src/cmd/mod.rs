@@ -88,7 +88,7 @@ impl ReadArgs {
     /// commands about the surface's shape (`stats`, `match`), where an OBJ's UV seams,
     /// which split GPU vertices, would cut it into pieces.
     pub fn read_surface(&self, path: &Path) -> stripkit::Result<stripkit::Mesh> {
-        self.read_checked(path, stripkit::io::ReadOptions { positions_only: true, ..self.options() })
+        self.read_checked(path, self.options().positions_only(true))
     }
 
     fn read_checked(&self, path: &Path, options: stripkit::io::ReadOptions) -> stripkit::Result<stripkit::Mesh> {
@@ -153,7 +153,7 @@ pub fn write_options(
             output.display()
         )));
     }
-    Ok(stripkit::io::WriteOptions { ply_ascii: ascii })
+    Ok(stripkit::io::WriteOptions::default().ply_ascii(ascii))
 }
 
 /// The format a file's extension names (through `.gz`), if any.

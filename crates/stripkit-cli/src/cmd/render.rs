@@ -4,21 +4,21 @@
 //! The strips come from the same door and the same flags as `stripkit strip`; they are
 //! exploded into a triangle list in strip order ([`paint::explode`]) so that each
 //! triangle can carry its strip's colour, its place in the strip order, or its facing.
+//! The geometry (framing, colours, wireframe bands) is `stripkit-render`'s.
 
-mod frame;
-mod paint;
-mod wire;
+mod input;
+mod report;
+mod values;
 
 use clap::ValueEnum;
 use serde::Serialize;
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 use stripkit::Error;
-use stripkit_render::{DrawParams, IndexWidth, Renderer, Shading, Topology, Vertices};
+use stripkit_render::paint::{self, Paint};
+use stripkit_render::{wire, DrawParams, FrameError, Framing, IndexWidth, Renderer, Shading, Topology, Vertices};
 
 use super::strip::{heuristic_of, StripArgs};
-use paint::Paint;
 
 /// What the colours show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize)]
@@ -32,9 +32,9 @@ pub enum ColorArg {
     /// or the course of a single strip.
     Order,
     /// Triangles facing the eye of `--cull-view` (default `--view`) in blue, those turned
-    /// away from it, which back-face culling skips, in a light pink. Per triangle for
-    /// now: the segment tree of issue #18 will refine this to the ranges of the strip
-    /// buffer that are drawn and culled.
+    /// away from it, which back-face culling skips, in a light pink. Per triangle;
+    /// `stripkit cull` measures the ranges of the strip buffer that the segment tree
+    /// (issue #18) draws and culls.
     Cull,
     /// Plain grey.
     None,
@@ -74,28 +74,28 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "strips")]
     pub color: ColorArg,
     /// Direction from the model's centre towards the eye, X,Y,Z (any length).
-    #[arg(long, value_name = "X,Y,Z", default_value = "0.3,0.4,1", value_parser = parse_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_name = "X,Y,Z", default_value = "0.3,0.4,1", value_parser = values::parse_vec3, allow_hyphen_values = true)]
     pub view: [f32; 3],
     /// `--color cull`: judge facing from an eye in this direction instead of `--view`
     /// (at the same distance), to see from the side what an eye there would cull.
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_name = "X,Y,Z", value_parser = values::parse_vec3, allow_hyphen_values = true)]
     pub cull_view: Option<[f32; 3]>,
     /// The direction that points up in the picture, X,Y,Z (not parallel to `--view`).
-    #[arg(long, value_name = "X,Y,Z", default_value = "0,1,0", value_parser = parse_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_name = "X,Y,Z", default_value = "0,1,0", value_parser = values::parse_vec3, allow_hyphen_values = true)]
     pub up: [f32; 3],
     /// Vertical field of view in degrees, 1 to 120. The camera stands as far back as the
     /// model needs to fill the picture.
-    #[arg(long, value_name = "DEGREES", default_value_t = 30.0, value_parser = parse_fov)]
+    #[arg(long, value_name = "DEGREES", default_value_t = 30.0, value_parser = values::parse_fov)]
     pub fov: f32,
     /// Magnify the middle of the picture this many times, 1 to 100 (the camera stays
     /// where it frames the whole model): a detail, to follow single strips on a large mesh.
-    #[arg(long, value_name = "F", default_value_t = 1.0, value_parser = parse_zoom)]
+    #[arg(long, value_name = "F", default_value_t = 1.0, value_parser = values::parse_zoom)]
     pub zoom: f32,
     /// Picture size in pixels, WIDTHxHEIGHT, each 16 to 4096.
-    #[arg(long, value_name = "WxH", default_value = "800x800", value_parser = parse_wh)]
+    #[arg(long, value_name = "WxH", default_value = "800x800", value_parser = values::parse_wh)]
     pub size: (u32, u32),
     /// Background colour: `#rrggbb`, `rrggbb` or `R,G,B` (0 to 255 each).
-    #[arg(long, value_name = "COLOR", default_value = "#ffffff", value_parser = parse_rgb)]
+    #[arg(long, value_name = "COLOR", default_value = "#ffffff", value_parser = values::parse_rgb)]
     pub background: [u8; 3],
     /// Lighting: `flat` (each triangle by its own normal), `smooth` (vertex normals) or
     /// `unlit` (exact colours).
@@ -113,7 +113,7 @@ pub struct Args {
     #[arg(long, value_name = "OTHER")]
     pub morph: Option<PathBuf>,
     /// `--morph`: 0 draws MESH, 1 draws OTHER, in between the linear blend. Default 0.5.
-    #[arg(long, value_name = "T", requires = "morph", value_parser = parse_unit)]
+    #[arg(long, value_name = "T", requires = "morph", value_parser = values::parse_unit)]
     pub t: Option<f32>,
     /// A `.sets` or `.lodseq` input (`stripkit lod`): draw its own strips at this level
     /// (collapses applied; default 0, the input).
@@ -121,7 +121,7 @@ pub struct Args {
     pub level: Option<u32>,
     /// A `.sets` or `.lodseq` input: draw the first level with at most
     /// ceil(R x triangles) triangles.
-    #[arg(long, value_name = "R", value_parser = parse_unit)]
+    #[arg(long, value_name = "R", value_parser = values::parse_unit)]
     pub ratio: Option<f32>,
     /// A `.lodseq` input: the frame (a fraction morphs between key frames; the level
     /// follows the nearest one). Default 0.
@@ -132,121 +132,6 @@ pub struct Args {
     pub json: bool,
     #[command(flatten)]
     pub read: super::ReadArgs,
-}
-
-fn parse_vec3(text: &str) -> Result<[f32; 3], String> {
-    let parts: Vec<_> = text.split(',').map(|s| s.trim().parse::<f32>()).collect();
-    match parts.as_slice() {
-        [Ok(x), Ok(y), Ok(z)] if x.is_finite() && y.is_finite() && z.is_finite() => Ok([*x, *y, *z]),
-        _ => Err(format!("`{text}` is not a direction: three finite numbers X,Y,Z, e.g. 0.3,0.4,1")),
-    }
-}
-
-fn parse_fov(text: &str) -> Result<f32, String> {
-    match text.trim().parse::<f32>() {
-        Ok(f) if (1.0..=120.0).contains(&f) => Ok(f),
-        _ => Err(format!("`{text}` is not a field of view: degrees from 1 to 120")),
-    }
-}
-
-fn parse_zoom(text: &str) -> Result<f32, String> {
-    match text.trim().parse::<f32>() {
-        Ok(z) if (1.0..=100.0).contains(&z) => Ok(z),
-        _ => Err(format!("`{text}` is not a zoom: a factor from 1 to 100")),
-    }
-}
-
-fn parse_unit(text: &str) -> Result<f32, String> {
-    match text.trim().parse::<f32>() {
-        Ok(t) if (0.0..=1.0).contains(&t) => Ok(t),
-        _ => Err(format!("`{text}` is not a morph weight: a number from 0 to 1")),
-    }
-}
-
-/// Largest picture side.
-const MAX_SIDE: u32 = 4096;
-
-fn parse_wh(text: &str) -> Result<(u32, u32), String> {
-    let bad = || format!("`{text}` is not a picture size: WIDTHxHEIGHT, each 16 to {MAX_SIDE}, e.g. 800x800");
-    let (w, h) = text
-        .trim()
-        .to_ascii_lowercase()
-        .split_once('x')
-        .map(|(w, h)| (w.trim().parse(), h.trim().parse()))
-        .ok_or_else(bad)?;
-    match (w, h) {
-        (Ok(w), Ok(h)) if (16..=MAX_SIDE).contains(&w) && (16..=MAX_SIDE).contains(&h) => Ok((w, h)),
-        _ => Err(bad()),
-    }
-}
-
-fn parse_rgb(text: &str) -> Result<[u8; 3], String> {
-    let bad = || format!("`{text}` is not a colour: #rrggbb, rrggbb or R,G,B (0 to 255 each)");
-    let t = text.trim();
-    if t.contains(',') {
-        let parts: Vec<_> = t.split(',').map(|s| s.trim().parse::<u8>()).collect();
-        return match parts.as_slice() {
-            [Ok(r), Ok(g), Ok(b)] => Ok([*r, *g, *b]),
-            _ => Err(bad()),
-        };
-    }
-    let hex = t.strip_prefix('#').unwrap_or(t);
-    if hex.len() != 6 || !hex.is_ascii() {
-        return Err(bad());
-    }
-    let byte = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).map_err(|_| bad());
-    Ok([byte(0)?, byte(2)?, byte(4)?])
-}
-
-/// The JSON object printed by `--json`.
-#[derive(Serialize)]
-struct Report<'a> {
-    input: &'a Path,
-    /// A `.sets` / `.lodseq` input: the level (and frame) drawn.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    lod: Option<String>,
-    output: &'a Path,
-    algo: &'static str,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    heuristic: Option<&'static str>,
-    color: ColorArg,
-    shading: ShadingArg,
-    width: u32,
-    height: u32,
-    strips: usize,
-    /// Triangles drawn (the strips' triangles without swaps and degenerate ones).
-    triangles: usize,
-    /// `--color cull`: triangles facing the eye.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    front: Option<usize>,
-    /// Pixels other than the background.
-    pixels: usize,
-    /// `--wireframe`: edges drawn.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    edges: Option<usize>,
-    /// Milliseconds of the stripify call alone.
-    stripify_ms: f64,
-    /// Milliseconds to start the renderer (EGL display, context, shaders).
-    start_ms: f64,
-    /// Milliseconds to upload the triangles, draw them and read the pixels back.
-    draw_ms: f64,
-    /// Milliseconds to encode the PNG and write it.
-    write_ms: f64,
-    /// The renderer, as OpenGL names it (e.g. llvmpipe).
-    renderer: String,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    morph: Option<&'a Path>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    t: Option<f32>,
-}
-
-/// Positions of the vertices some face uses (unreferenced vertices stay out of the frame).
-fn used_positions(mesh: &stripkit::Mesh) -> Vec<[f32; 3]> {
-    let mut used = vec![false; mesh.vertex_count()];
-    for &v in &mesh.face_indices {
-        used[v as usize] = true;
-    }
-    mesh.positions.iter().zip(&used).filter(|(_, &u)| u).map(|(p, _)| *p).collect()
 }
 
 /// Arguments that can be refused before any file is read.
@@ -262,64 +147,10 @@ fn check(args: &Args) -> anyhow::Result<()> {
     args.strip.validate(|o| o)
 }
 
-/// A level (and frame) of a `.sets` / `.lodseq` input: the positions its strips
-/// index, its strips, and a description.
-type Level = (Vec<[f32; 3]>, stripkit::StripSet, String);
-
-/// The strips of a `.sets` or `.lodseq` input at `--level` / `--ratio` (and
-/// `--frame`, default 0 for an animation); `None` for a mesh (or standard input).
-fn read_lod(args: &Args) -> anyhow::Result<Option<Level>> {
-    use anyhow::Context;
-    use stripkit::lod::{LevelSpec, Model};
-    let model = if args.input.as_os_str() == "-" { None } else { Model::read(&args.input)? };
-    let Some(model) = model else {
-        if args.level.is_some() || args.ratio.is_some() || args.frame.is_some() {
-            return Err(Error::Invalid("--level, --ratio and --frame apply to .sets and .lodseq inputs".into()).into());
-        }
-        return Ok(None);
-    };
-    if args.morph.is_some() {
-        return Err(Error::Invalid("--morph applies to meshes; a .lodseq morphs with --frame".into()).into());
-    }
-    let spec = match (args.level, args.ratio) {
-        (_, Some(r)) => LevelSpec::Ratio(r as f64),
-        (l, None) => LevelSpec::Level(l.unwrap_or(0)),
-    };
-    let frame = match model {
-        Model::Seq(_) => Some(args.frame.unwrap_or(0.0)),
-        Model::Sets(_) => args.frame,
-    };
-    let x = model.extract(spec, frame).with_context(|| format!("{} (--frame)", args.input.display()))?;
-    let level = format!("level {} of {}, {} triangles", x.level, x.levels, x.triangles);
-    let what = match x.frame {
-        Some((t, key)) => format!("frame {t} (key frame {key}), {level}"),
-        None => level,
-    };
-    Ok(Some((x.positions, x.strips, what)))
-}
-
-/// The mesh, and the `--morph` mesh when given (same vertex count).
-fn read_meshes(args: &Args) -> anyhow::Result<(stripkit::Mesh, Option<stripkit::Mesh>)> {
-    let mesh = args.read.read(&args.input)?;
-    let Some(path) = &args.morph else { return Ok((mesh, None)) };
-    let other = args.read.read(path)?;
-    if other.vertex_count() != mesh.vertex_count() {
-        return Err(Error::Invalid(format!(
-            "--morph {}: {} vertices, but {} has {}; a morph needs the same vertices",
-            path.display(),
-            other.vertex_count(),
-            args.input.display(),
-            mesh.vertex_count()
-        ))
-        .into());
-    }
-    Ok((mesh, Some(other)))
-}
-
 /// What is drawn: the exploded triangles over the mesh's positions (and the morph
 /// target's), seen by the framed camera.
 struct Scene<'a> {
-    framing: frame::Framing,
+    framing: Framing,
     exploded: paint::Exploded,
     positions: &'a [[f32; 3]],
     target: Option<&'a [[f32; 3]]>,
@@ -358,18 +189,11 @@ fn draw(
         ShadingArg::Smooth => Shading::Smooth,
         ShadingArg::Unlit => Shading::Unlit,
     };
-    // A light from the eye, a little above and to the left.
-    let (up, right) = (scene.framing.up, scene.framing.right);
-    let dir: [f32; 3] = std::array::from_fn(|d| camera.eye[d] - camera.target[d]);
-    let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt().max(1e-20);
-    params.light = std::array::from_fn(|d| dir[d] / len + 0.5 * up[d] - 0.35 * right[d]);
+    params.light = scene.framing.light();
     renderer.draw(&geometry, &indices, &params);
     let mut edges = None;
     if args.wireframe {
-        let fov = (camera.fov_y_degrees as f64).to_radians();
-        let pixel = (2.0 * (fov * 0.5).tan() / h as f64) as f32;
-        let width = (w.min(h) as f32 / 640.0).max(1.0);
-        let band = wire::bands(scene.drawn, &exploded.corners, camera.eye, pixel, width, 1.5);
+        let band = wire::wireframe(scene.drawn, &exploded.corners, camera, args.size);
         edges = Some(band.len() / 6);
         let colors = vec![paint::WIRE; band.len()];
         let lines = renderer.upload(&Vertices {
@@ -397,24 +221,29 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let progress = indicatif::ProgressBar::new_spinner();
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
-    let lod = read_lod(&args)?;
+    let lod = input::read_lod(&args)?;
     let (mesh, target) = match &lod {
         Some((positions, strips, _)) => {
             (stripkit::Mesh::from_triangles(positions.clone(), &stripkit::decode(strips)), None)
         }
-        None => read_meshes(&args)?,
+        None => input::read_meshes(&args)?,
     };
     let t = if target.is_some() { args.t.unwrap_or(0.5) } else { 0.0 };
 
     // The camera frames every vertex a face uses, of both meshes when morphing, so
     // that the pictures of one pair at several t line up.
     let (w, h) = args.size;
-    let mut points = used_positions(&mesh);
+    let mut points = input::used_positions(&mesh);
     if let Some(other) = &target {
-        points.extend(used_positions(other));
+        points.extend(input::used_positions(other));
     }
-    let framing =
-        frame::frame(&points, args.view, args.up, args.fov, args.zoom, w as f32 / h as f32).map_err(Error::Invalid)?;
+    let framing = Framing::fit(&points, args.view, args.up, args.fov, args.zoom, w as f32 / h as f32).map_err(|e| {
+        Error::Invalid(match e {
+            FrameError::ZeroView => "--view must not be 0,0,0".into(),
+            FrameError::BadUp => "--up must not be 0,0,0 nor parallel to --view".into(),
+            FrameError::NothingToFrame => e.to_string(),
+        })
+    })?;
     drop(points);
 
     // Fail before the stripifier's work where nothing can draw.
@@ -455,7 +284,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         },
         ColorArg::None => Paint::None,
     };
-    let exploded = paint::explode(&strip_set, drawn, paint);
+    let exploded = paint::explode(&input::strip_triangles(&strip_set), drawn, paint);
     if exploded.triangles() == 0 {
         return Err(
             Error::Invalid(format!("no faces in {} (every triangle is degenerate)", args.input.display())).into()
@@ -473,7 +302,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     progress.finish_and_clear();
 
     let exploded = &scene.exploded;
-    let report = Report {
+    let report = report::Report {
         input: &args.input,
         output: &args.output,
         algo: door.as_ref().map_or("lod", |s| s.algorithm.name()),
@@ -496,65 +325,5 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         morph: args.morph.as_deref(),
         t: target.is_some().then_some(t),
     };
-    super::print_report(args.json, &report, |out, r| print_summary(out, r))
-}
-
-fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
-    let name = |v: &dyn std::fmt::Debug| format!("{v:?}").to_lowercase();
-    writeln!(
-        out,
-        "{} -> {} ({}, color {}, {} shading, {}x{}{})",
-        r.input.display(),
-        r.output.display(),
-        r.algo,
-        name(&r.color),
-        name(&r.shading),
-        r.width,
-        r.height,
-        r.t.map(|t| format!(", morph t = {t}")).unwrap_or_default()
-    )?;
-    if let Some(l) = &r.lod {
-        writeln!(out, "  lod            {l}")?;
-    }
-    writeln!(out, "  strips         {:>10}", r.strips)?;
-    writeln!(out, "  triangles      {:>10}", r.triangles)?;
-    if let Some(e) = r.edges {
-        writeln!(out, "  edges          {:>10}", e)?;
-    }
-    if let Some(f) = r.front {
-        writeln!(out, "  facing the eye {:>10} ({} culled)", f, r.triangles - f)?;
-    }
-    let share = 100.0 * r.pixels as f64 / (r.width as f64 * r.height as f64);
-    writeln!(out, "  pixels drawn   {:>10} ({share:.1}%)", r.pixels)?;
-    writeln!(out, "  stripify ms    {:>10.2}", r.stripify_ms)?;
-    writeln!(out, "  start ms       {:>10.2} ({})", r.start_ms, r.renderer)?;
-    writeln!(out, "  draw ms        {:>10.2}", r.draw_ms)?;
-    writeln!(out, "  write ms       {:>10.2}", r.write_ms)?;
-    Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn arguments_parse_and_refuse() {
-        assert_eq!(parse_vec3("0.3, 0.4,1"), Ok([0.3, 0.4, 1.0]));
-        assert_eq!(parse_vec3("-1,0,-2"), Ok([-1.0, 0.0, -2.0]));
-        assert!(parse_vec3("1,2").is_err() && parse_vec3("1,2,x").is_err() && parse_vec3("1,2,inf").is_err());
-        assert_eq!(parse_wh("800x600"), Ok((800, 600)));
-        assert_eq!(parse_wh("16X4096"), Ok((16, 4096)));
-        for bad in ["0x10", "800", "15x800", "4097x10", "axb", "800x-1", ""] {
-            assert!(parse_wh(bad).is_err(), "{bad}");
-        }
-        assert_eq!(parse_rgb("#ff8000"), Ok([255, 128, 0]));
-        assert_eq!(parse_rgb("0a0B0c"), Ok([10, 11, 12]));
-        assert_eq!(parse_rgb("1, 2,255"), Ok([1, 2, 255]));
-        for bad in ["#fff", "256,0,0", "gg0000", "1,2", "é1234"] {
-            assert!(parse_rgb(bad).is_err(), "{bad}");
-        }
-        assert!(parse_zoom("0.5").is_err() && parse_zoom("101").is_err() && parse_zoom("2.5") == Ok(2.5));
-        assert!(parse_fov("0.5").is_err() && parse_fov("121").is_err() && parse_fov("45").is_ok());
-        assert!(parse_unit("1.5").is_err() && parse_unit("-0.1").is_err() && parse_unit("0.25") == Ok(0.25));
-    }
+    super::print_report(args.json, &report, |out, r| report::print_summary(out, r))
 }

@@ -33,7 +33,7 @@ pub struct Args {
     #[arg(long, value_parser = super::named::<Placement>(Placement::NAMES))]
     pub placement: Option<Placement>,
     /// Weight of the boundary penalty planes (0 lets borders move freely).
-    #[arg(long, default_value_t = 100.0)]
+    #[arg(long, default_value_t = Options::default().boundary_weight)]
     pub boundary_weight: f64,
     /// Also contract vertex pairs closer than this distance that share no edge
     /// (QSlim's pair contraction; may join pieces). Off by default. A finite
@@ -70,23 +70,18 @@ pub struct Args {
     pub json: bool,
     #[command(flatten)]
     pub read: super::ReadArgs,
-    /// Set by a folder run: report above this progress bar.
-    #[arg(skip)]
-    pub batch: Option<indicatif::ProgressBar>,
 }
 
-/// Runs the command.
-pub fn run(args: Args) -> anyhow::Result<()> {
-    if args.file.is_dir() {
-        return super::batch::simplify_folder(args);
-    }
+/// Runs the command on one input file. `batch`: the progress bar of a folder run
+/// (`main` runs each file of a folder input through here), above which the report goes.
+pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result<()> {
     let target = match (args.ratio, args.triangles, args.error) {
         (Some(r), _, _) => Target::Ratio(r),
         (_, Some(t), _) => Target::Triangles(t),
         (_, _, Some(e)) => Target::Error(e),
         _ => anyhow::bail!("give one of --ratio, --triangles, --error"),
     };
-    let placement = args.placement.unwrap_or_default();
+    let placement = args.placement.unwrap_or(Options::default().placement);
     if let Some(seq) = &args.sequence {
         if stripkit::io::same_destination(&args.output, seq) {
             return Err(stripkit::Error::Invalid(format!(
@@ -106,14 +101,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let write_options = super::write_options(args.ascii, &args.output, Some(format))?;
     super::check_output_folder(&args.output)?;
     let mesh = args.read.read(&args.file)?;
-    let options = Options {
-        target,
-        placement,
-        boundary_weight: args.boundary_weight,
-        pair_distance: args.pair_distance,
-        max_collapses: None,
-    };
-    let bar = super::progress_bar(mesh.triangle_count() > 200_000 && args.batch.is_none(), "simplify");
+    let options = Options::default()
+        .target(target)
+        .placement(placement)
+        .boundary_weight(args.boundary_weight)
+        .pair_distance(args.pair_distance);
+    let bar = super::progress_bar(mesh.triangle_count() > 200_000 && batch.is_none(), "simplify");
     let start = Instant::now();
     let result = simplify(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("simplifying {}", args.file.display()))?;
@@ -146,7 +139,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         // Already compressed for a .gz name.
         None => stripkit::io::write_atomic(&args.output, &mesh_bytes)?,
     }
-    let sink = match &args.batch {
+    let sink = match batch {
         Some(bar) => super::Sink::Batch(bar.clone()),
         None => super::Sink::for_output(&args.output),
     };
@@ -180,5 +173,27 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 ms
             )
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: Args,
+    }
+
+    #[test]
+    fn defaults_are_the_librarys() {
+        let args = Cli::parse_from(["simplify", "in.obj", "--ratio", "0.5", "-o", "out.obj"]).args;
+        let library = Options::default();
+        assert_eq!(args.boundary_weight, library.boundary_weight);
+        assert_eq!(args.pair_distance, library.pair_distance);
+        // Unset: the library's own placement is used.
+        assert_eq!(args.placement, None);
     }
 }

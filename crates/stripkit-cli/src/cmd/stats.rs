@@ -7,7 +7,7 @@ use stripkit::MeshFacts;
 
 /// Arguments of `stripkit stats`.
 #[derive(clap::Args)]
-#[command(after_help = "Definitions (as in ../shared/models/README.md):
+#[command(after_help = "Definitions:
   boundary edge       an edge with exactly one incident face
   boundary loop       a closed walk along boundary edges (pinch vertices split per fan)
   non-manifold edge   an edge with three or more incident faces
@@ -21,7 +21,7 @@ use stripkit::MeshFacts;
   gpu vertices        (OBJ with vt/vn) the vertices strips use: corners welded where every
                       attribute agrees; the facts above are of the surface (the file's v)
 
-Example: stripkit stats ../shared/models/bunny.obj --json")]
+Example: stripkit stats bunny.obj --json")]
 pub struct Args {
     /// The mesh file (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz).
     pub file: PathBuf,

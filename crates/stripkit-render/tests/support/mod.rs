@@ -30,7 +30,7 @@ pub fn renderer() -> Renderer {
 /// The research mesh `name` from [`models_dir`]; `None` (after printing why) when the
 /// folder or the file is absent or unreadable, so that a test can skip it.
 pub fn model(name: &str) -> Option<stripkit::Mesh> {
-    dirs::model_with(name, stripkit::io::read)
+    dirs::model_with(name, |path| stripkit::io::read(path))
 }
 
 /// A camera on `mesh`'s bounding box looking from `direction`.

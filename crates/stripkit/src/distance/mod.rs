@@ -27,12 +27,24 @@ pub struct Distance {
     pub hausdorff: f64,
     /// RMS distance over the samples of both directions.
     pub rms: f64,
-    /// Bounding-box diagonal of the first mesh (divide by it for relative figures).
+    /// Bounding-box diagonal of the first mesh ([`Distance::relative`] divides by it).
     pub diagonal: f64,
     /// Samples of A against B.
     pub a_to_b: OneSided,
     /// Samples of B against A.
     pub b_to_a: OneSided,
+}
+
+impl Distance {
+    /// `x` (one of these distances) as a fraction of the first mesh's bounding-box
+    /// diagonal; 0 where the diagonal is 0 (a mesh of one point).
+    pub fn relative(&self, x: f64) -> f64 {
+        if self.diagonal > 0.0 {
+            x / self.diagonal
+        } else {
+            0.0
+        }
+    }
 }
 
 /// Samples used when none are asked for.

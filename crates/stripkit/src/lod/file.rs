@@ -3,6 +3,7 @@
 
 use super::sets::{Sets, Version, END};
 use crate::error::{Error, Result};
+use crate::mesh::io::write_checked;
 use crate::simplify::Placement;
 use std::path::Path;
 
@@ -90,9 +91,11 @@ impl Sets {
         out
     }
 
-    /// Writes the `.sets` file atomically ([`crate::io::write_atomic`]).
-    pub fn write(&self, path: &Path) -> Result<()> {
-        crate::io::write_atomic(path, &self.to_bytes())
+    /// Writes the `.sets` file atomically, once its bytes read back
+    /// ([`Sets::from_bytes`]) to this model (an [`Error::Verification`] otherwise).
+    /// Returns the file's size in bytes.
+    pub fn write(&self, path: &Path) -> Result<usize> {
+        write_checked(path, || Ok(self.to_bytes()), |bytes| read_back(self, Sets::from_bytes(path, bytes)?, "sets"))
     }
 
     /// Reads a `.sets` file ([`Sets::from_bytes`]).
@@ -470,9 +473,27 @@ impl super::seq::LodSeq {
         out
     }
 
-    /// Writes the `.lodseq` file atomically.
-    pub fn write(&self, path: &Path) -> Result<()> {
-        crate::io::write_atomic(path, &self.to_bytes())
+    /// Bytes of the models in [`LodSeq::to_bytes`](super::seq::LodSeq::to_bytes), each a
+    /// positionless `.sets` with its length prefix: the level-of-detail data (the rest
+    /// of the file is the header, the frame names and the positions).
+    pub fn model_bytes(&self) -> usize {
+        let mut prefix = Vec::new();
+        self.models
+            .iter()
+            .map(|model| {
+                let len = model.to_bytes().len();
+                prefix.clear();
+                varint(&mut prefix, len as u64);
+                prefix.len() + len
+            })
+            .sum()
+    }
+
+    /// Writes the `.lodseq` file atomically, once its bytes read back
+    /// ([`LodSeq::from_bytes`](super::seq::LodSeq::from_bytes)) to this model (an
+    /// [`Error::Verification`] otherwise). Returns the file's size in bytes.
+    pub fn write(&self, path: &Path) -> Result<usize> {
+        write_checked(path, || Ok(self.to_bytes()), |bytes| read_back(self, Self::from_bytes(path, bytes)?, "lodseq"))
     }
 
     /// Reads a `.lodseq` file ([`LodSeq::from_bytes`](super::seq::LodSeq::from_bytes)).
@@ -607,4 +628,12 @@ impl super::seq::LodSeq {
         }
         Ok(super::seq::LodSeq { names, positions, frame_model, models: sets, quantization })
     }
+}
+
+/// The read-back check of a `.EXT` file: the model decoded from its bytes is `model`.
+fn read_back<T: PartialEq>(model: &T, back: T, ext: &str) -> Result<()> {
+    if back != *model {
+        return Err(Error::Verification(format!("the .{ext} bytes do not read back to the model")));
+    }
+    Ok(())
 }

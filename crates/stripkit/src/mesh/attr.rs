@@ -14,7 +14,7 @@
 //! formats that index attributes per corner (OBJ's `v/vt/vn`) weld corners into one
 //! vertex only where every attribute agrees, so a seam gives two vertices.
 
-use crate::Error;
+use crate::error::{Error, Result};
 
 /// The scalar type of an attribute's components.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -253,7 +253,7 @@ pub(crate) fn check(
     groups: &[Group],
     vertices: usize,
     faces: usize,
-) -> crate::Result<()> {
+) -> Result<()> {
     for a in attributes {
         if a.components == 0 || a.stride() == 0 {
             return Err(Error::Invalid(format!("attribute {} has no components", a.name)));
@@ -285,7 +285,7 @@ pub(crate) fn check(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Mesh;
+    use crate::mesh::Mesh;
 
     #[test]
     fn values_round_trip_and_blend_by_kind() {

@@ -14,8 +14,11 @@
 
 pub mod attr;
 pub mod io;
+pub(crate) mod order;
 
 pub use attr::{Attribute, Group, Scalar};
+
+use crate::error::{Error, Result};
 
 /// A polygon mesh: positions and faces of three or more vertices.
 #[derive(Clone, Debug, PartialEq)]
@@ -106,8 +109,7 @@ impl Mesh {
     /// O(faces + indices).
     ///
     /// [`Error::Invalid`]: crate::Error::Invalid
-    pub fn check_faces(&self) -> crate::Result<()> {
-        use crate::Error;
+    pub fn check_faces(&self) -> Result<()> {
         let n = self.vertex_count();
         if n > u32::MAX as usize {
             return Err(Error::Invalid(format!("{n} vertices do not fit 32-bit indices")));
@@ -132,7 +134,7 @@ impl Mesh {
 
     /// The attribute and group half of [`Mesh::check_faces`]: every attribute one whole
     /// value per vertex, face groups empty or one per face, each naming a group.
-    pub(crate) fn check_attributes(&self) -> crate::Result<()> {
+    pub(crate) fn check_attributes(&self) -> Result<()> {
         attr::check(&self.attributes, &self.face_groups, &self.groups, self.vertex_count(), self.face_count())
     }
 

@@ -9,7 +9,9 @@ use crate::mesh::Mesh;
 use crate::metrics::{self, CacheKind, Figures};
 use crate::strip::{self, StripSet};
 use crate::stripify::single::SingleReport;
+use std::borrow::Cow;
 use std::ops::Range;
+use std::path::Path;
 use std::time::Duration;
 
 /// Verified strips and what they were verified against.
@@ -146,51 +148,75 @@ impl Strips {
 
     /// [`Strips::to_file_bytes`] with write options (ASCII PLY).
     pub fn to_file_bytes_with(&self, mesh: &Mesh, format: Format, options: &WriteOptions) -> Result<Vec<u8>> {
-        let changed;
-        let mesh = if !self.changes_mesh() {
-            mesh
-        } else {
-            changed = self.changed_mesh(mesh);
-            &changed
-        };
-        if format == Format::Obj {
-            return self.obj_bytes(mesh, options);
-        }
-        let Some(to_write) = self.for_format(format) else {
-            return Err(Error::Invalid(format!(
-                "{format:?} files cannot hold strips; write PLY, glTF, GLB or OBJ (or JSON)"
-            )));
-        };
-        let bytes = io::write_bytes(format, mesh, Some(&to_write), options)?;
-        let name = format!("the {format:?} bytes to be written");
-        let back = io::read_bytes(std::path::Path::new(&name), format, &bytes)?;
-        let v = strip::verify_triangles(&self.triangles, &back.triangulate().tris);
-        if !v.ok() {
-            return Err(fail(&format!("{name}, read back"), &v));
-        }
-        Ok(bytes)
+        let (out, to_write) = self.file_content(mesh, format)?;
+        io::encode_checked(
+            || io::write_bytes(format, &out, to_write.as_ref(), options),
+            |bytes| self.check_file(&out, format, bytes),
+        )
     }
 
-    /// OBJ has no strips: the triangles the strips draw, in strip order (what a vertex
-    /// cache sees), group by group with their `g`/`usemtl`, over the mesh's vertices and
-    /// attributes; read back and checked (triangles and each one's group) before they
-    /// are returned.
-    fn obj_bytes(&self, mesh: &Mesh, options: &WriteOptions) -> Result<Vec<u8>> {
-        let mut out = Mesh { face_offsets: vec![0], face_indices: Vec::new(), face_groups: Vec::new(), ..mesh.clone() };
-        for g in 0..self.group_count() {
-            for s in self.strips_of(g).iter() {
-                strip::for_each_triangle(s, |t| {
-                    out.push_face(&t);
-                    out.face_groups.push(g as u32);
-                });
+    /// Writes `mesh`'s vertices and these strips to `path`, in the format its extension
+    /// names (gzip-compressed for `.gz`): the bytes of [`Strips::to_file_bytes_with`],
+    /// read back and checked, then written atomically (the library's one checked write
+    /// path). Nothing is written when the check fails.
+    pub fn write_file(&self, mesh: &Mesh, path: impl AsRef<Path>, options: &WriteOptions) -> Result<()> {
+        let path = path.as_ref();
+        let format = Format::from_path(path).map(|(f, _)| f).ok_or_else(|| Error::UnknownFormat {
+            path: path.to_path_buf(),
+            expected: io::SUPPORTED_EXTENSIONS,
+        })?;
+        let (out, to_write) = self.file_content(mesh, format)?;
+        io::write_checked(
+            path,
+            || io::write_bytes(format, &out, to_write.as_ref(), options),
+            |bytes| self.check_file(&out, format, bytes),
+        )
+        .map(drop)
+    }
+
+    /// What a `format` file holds: the mesh the strips draw and [`Strips::for_format`];
+    /// for OBJ, which has no strips, the triangles the strips draw, in strip order (what
+    /// a vertex cache sees), group by group with their `g`/`usemtl`, over the mesh's
+    /// vertices and attributes.
+    fn file_content<'a>(&self, mesh: &'a Mesh, format: Format) -> Result<(Cow<'a, Mesh>, Option<StripSet>)> {
+        let mesh = if self.changes_mesh() { Cow::Owned(self.changed_mesh(mesh)) } else { Cow::Borrowed(mesh) };
+        if format == Format::Obj {
+            let mut out =
+                Mesh { face_offsets: vec![0], face_indices: Vec::new(), face_groups: Vec::new(), ..mesh.into_owned() };
+            for g in 0..self.group_count() {
+                for s in self.strips_of(g).iter() {
+                    strip::for_each_triangle(s, |t| {
+                        out.push_face(&t);
+                        out.face_groups.push(g as u32);
+                    });
+                }
             }
+            if out.groups.is_empty() {
+                out.face_groups.clear();
+            }
+            return Ok((Cow::Owned(out), None));
         }
-        if out.groups.is_empty() {
-            out.face_groups.clear();
+        match self.for_format(format) {
+            Some(to_write) => Ok((mesh, Some(to_write))),
+            None => Err(Error::Invalid(format!(
+                "{format:?} files cannot hold strips; write PLY, glTF, GLB or OBJ (or JSON)"
+            ))),
         }
-        let bytes = io::write_bytes(Format::Obj, &out, None, options)?;
-        let name = "the Obj bytes to be written";
-        let back = io::read_bytes(std::path::Path::new(name), Format::Obj, &bytes)?;
+    }
+
+    /// The read-back check of [`Strips::file_content`] (`out`) written as `bytes`: the
+    /// triangles decoded again must be [`Strips::triangles`]; for OBJ, each with its
+    /// group too.
+    fn check_file(&self, out: &Mesh, format: Format, bytes: &[u8]) -> Result<()> {
+        let name = format!("the {format:?} bytes to be written");
+        let back = io::read_bytes(Path::new(&name), format, bytes)?;
+        if format != Format::Obj {
+            let v = strip::verify_triangles(&self.triangles, &back.triangulate().tris);
+            if !v.ok() {
+                return Err(fail(&format!("{name}, read back"), &v));
+            }
+            return Ok(());
+        }
         // Welded on reading (vt or vn written): vertices renumbered by first use.
         let ids: Vec<u32> = if back.attributes.is_empty() {
             (0..out.vertex_count() as u32).collect()
@@ -202,11 +228,11 @@ impl Strips {
         let v = strip::verify_triangles(&self.triangles, &tris);
         let group = |m: &Mesh, f: usize| m.groups.get(m.group_of(f) as usize).cloned().unwrap_or_default();
         let same_groups =
-            back.face_count() == out.face_count() && (0..out.face_count()).all(|f| group(&back, f) == group(&out, f));
+            back.face_count() == out.face_count() && (0..out.face_count()).all(|f| group(&back, f) == group(out, f));
         if !v.ok() || !same_groups {
             return Err(fail(&format!("{name}, read back (groups kept: {same_groups})"), &v));
         }
-        Ok(bytes)
+        Ok(())
     }
 
     /// Whether the strips draw a changed mesh (Steiner vertices or swapped edges).

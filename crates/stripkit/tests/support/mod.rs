@@ -53,5 +53,5 @@ pub fn model(name: &str) -> Option<stripkit::Mesh> {
 /// research meshes' documented facts are about their surfaces, which UV seams would
 /// cut into pieces.
 pub fn read_surface(path: &std::path::Path) -> stripkit::Result<stripkit::Mesh> {
-    stripkit::io::read_with(path, &stripkit::io::ReadOptions { positions_only: true, ..Default::default() })
+    stripkit::io::read_with(path, &stripkit::io::ReadOptions::default().positions_only(true))
 }

@@ -104,9 +104,6 @@ pub struct Args {
     pub json: bool,
     #[command(flatten)]
     pub read: super::super::ReadArgs,
-    /// Set by a folder run: report one line per file above this progress bar.
-    #[arg(skip)]
-    pub batch: Option<indicatif::ProgressBar>,
 }
 
 impl Args {

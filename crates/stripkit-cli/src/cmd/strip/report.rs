@@ -56,7 +56,7 @@ pub struct SceneCliReport<'a> {
     /// Encoding, checking (read back) and writing the output, in milliseconds.
     pub write_ms: f64,
     #[serde(flatten)]
-    pub scene: &'a stripkit::io::SceneReport,
+    pub scene: &'a stripkit::scene::SceneReport,
 }
 
 /// The text summary of a scene run; `line`: one line for a folder run.

@@ -42,16 +42,15 @@ fn output_kind(path: &Path, stdout_format: Option<Format>) -> anyhow::Result<Out
     }
 }
 
-/// Runs the command: read -> door -> encode -> write; a folder input runs every file.
-pub fn run(args: Args) -> anyhow::Result<()> {
-    if args.input.is_dir() {
-        return cmd::batch::strip_folder(args);
-    }
+/// Runs the command on one input file: read -> door -> encode -> write. `batch`: the
+/// progress bar of a folder run (`main` runs each file of a folder input through
+/// here), above which the report is one line.
+pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result<()> {
     let stdout_format = if cmd::is_dash(&args.output) {
         Some(cmd::output_format(&args.output, args.output_format, Some((&args.input, &args.read)))?)
     } else {
         anyhow::ensure!(
-            args.output_format.is_none() || args.batch.is_some(),
+            args.output_format.is_none() || batch.is_some(),
             "--output-format applies to standard output (-o -) and folder outputs; \
              {} names its format by its extension",
             args.output.display()
@@ -85,34 +84,31 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (None, _) => VertexOrder::Input,
     };
     if is_scene(&args.input, &kind) {
-        return run_scene(&args, &options, format_of(&kind), vertex_order);
+        return run_scene(&args, &options, format_of(&kind), vertex_order, batch);
     }
     // A spinner on a terminal (indicatif draws nothing when stderr is not one):
     // balanced and --refine take seconds on meshes of a million triangles.
-    let progress = match args.batch {
+    let progress = match batch {
         Some(_) => indicatif::ProgressBar::hidden(),
         None => indicatif::ProgressBar::new_spinner(),
     };
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
     let mesh = args.read.read(&args.input)?;
-    // A mesh written as glTF: one primitive per group with its attributes, each
-    // stripped on its own and written with its restart group (io::Scene::from_mesh).
-    // `single` (which adds vertices), --join separate (a primitive per strip) and a
-    // chosen restart index keep the plain writer.
-    if matches!(kind, OutKind::Mesh(Format::Gltf | Format::Glb))
-        && options.join != Join::Separate
-        && !matches!(options.algorithm, Algorithm::Single(_))
-        && options.restart_index == StripOptions::default().restart_index
-        && mesh.face_count() > 0
-    {
+    // A mesh written as glTF: the library chooses its writer (a scene of one
+    // primitive per group, or the plain writer; stripkit::scene::for_gltf_output).
+    let start = std::time::Instant::now();
+    let scene = match kind {
+        OutKind::Mesh(Format::Gltf | Format::Glb) => stripkit::scene::for_gltf_output(&mesh, &options)
+            .map_err(|e| anyhow::anyhow!(e).context(format!("{}", args.input.display())))?,
+        _ => None,
+    };
+    if let Some(scene) = scene {
         progress.finish_and_clear();
-        let start = std::time::Instant::now();
-        let scene = stripkit::io::Scene::from_mesh(&mesh).map_err(|e| anyhow::anyhow!(e).context(format!("{}", args.input.display())))?;
         for note in scene.notes() {
             eprintln!("note: {}: {note}", args.input.display());
         }
-        return strip_scene(&args, &options, scene, start.elapsed(), format_of(&kind), vertex_order);
+        return strip_scene(&args, &options, scene, start.elapsed(), format_of(&kind), vertex_order, batch);
     }
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
@@ -162,11 +158,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     cmd::write_output(&args.output, &bytes)?;
     progress.finish_and_clear();
 
-    let sink = match &args.batch {
+    let sink = match batch {
         Some(bar) => cmd::Sink::Batch(bar.clone()),
         None => cmd::Sink::for_output(&args.output),
     };
-    cmd::print_report_to(&sink, args.json, &report, |out, r| match args.batch {
+    cmd::print_report_to(&sink, args.json, &report, |out, r| match batch {
         Some(_) => report::print_line(out, r),
         None => report::print_summary(out, r),
     })
@@ -182,7 +178,13 @@ fn is_scene(input: &Path, kind: &OutKind) -> bool {
 /// else written as read; `--join restart` (default) adds EXT_mesh_primitive_restart
 /// groups beside the stitched strips, `--join degenerate` writes the stitched strips
 /// alone.
-fn run_scene(args: &Args, options: &StripOptions, format: Format, vertex_order: VertexOrder) -> anyhow::Result<()> {
+fn run_scene(
+    args: &Args,
+    options: &StripOptions,
+    format: Format,
+    vertex_order: VertexOrder,
+    batch: Option<&indicatif::ProgressBar>,
+) -> anyhow::Result<()> {
     use stripkit::io::Scene;
     let invalid = |m: String| -> anyhow::Result<()> { Err(Error::Invalid(m).into()) };
     if options.join == Join::Separate {
@@ -211,7 +213,7 @@ fn run_scene(args: &Args, options: &StripOptions, format: Format, vertex_order: 
     if scene.primitives().iter().all(|p| p.mesh.face_count() == 0) {
         return invalid(format!("no faces in {}", args.input.display()));
     }
-    strip_scene(args, options, scene, start.elapsed(), format, vertex_order)
+    strip_scene(args, options, scene, start.elapsed(), format, vertex_order, batch)
 }
 
 /// The mesh format of an output kind (glTF for the scene paths, which only take mesh outputs).
@@ -231,13 +233,14 @@ fn strip_scene(
     read_time: std::time::Duration,
     format: Format,
     vertex_order: VertexOrder,
+    batch: Option<&indicatif::ProgressBar>,
 ) -> anyhow::Result<()> {
     let scene_options = match options.join {
-        Join::Degenerate => stripkit::io::SceneOptions::stitched(),
-        _ => stripkit::io::SceneOptions::default(),
+        Join::Degenerate => stripkit::scene::SceneOptions::stitched(),
+        _ => stripkit::scene::SceneOptions::default(),
     }
     .reorder(vertex_order == VertexOrder::FirstUse);
-    let progress = match args.batch {
+    let progress = match batch {
         Some(_) => indicatif::ProgressBar::hidden(),
         None => indicatif::ProgressBar::new_spinner(),
     };
@@ -265,9 +268,9 @@ fn strip_scene(
         write_ms,
         scene: &report,
     };
-    let sink = match &args.batch {
+    let sink = match batch {
         Some(bar) => cmd::Sink::Batch(bar.clone()),
         None => cmd::Sink::for_output(&args.output),
     };
-    cmd::print_report_to(&sink, args.json, &r, |out, r| report::print_scene(out, r, args.batch.is_some()))
+    cmd::print_report_to(&sink, args.json, &r, |out, r| report::print_scene(out, r, batch.is_some()))
 }

@@ -31,7 +31,8 @@
 //! | glTF | `.gltf` (data URIs, external files), `.glb`; modes 4/5/6 | `.gltf` (embedded), `.glb`; TRIANGLES or one TRIANGLE_STRIP per strip |
 //!
 //! A whole glTF document (scenes, nodes, materials, skins, animations, ...) is read and
-//! written by [`Scene`]: every triangle primitive stripped on its own, the rest kept.
+//! written by [`Scene`]: its triangle primitives decoded, the rest kept. Stripping
+//! them is [`crate::scene`]'s business, above the door; this module only converts.
 
 mod common;
 mod gltf;
@@ -40,7 +41,7 @@ mod off;
 mod ply;
 mod stl;
 
-pub use gltf::{PrimitiveReport, Scene, SceneOptions, ScenePrimitive, SceneReport};
+pub use gltf::{Scene, ScenePrimitive};
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
@@ -62,11 +63,25 @@ pub fn supported_write_extensions() -> &'static str {
     SUPPORTED_EXTENSIONS
 }
 
-/// Options for [`write_with`].
+/// Options for [`write_with`] and [`write_bytes`]. Default: binary little-endian PLY.
+///
+/// ```
+/// let ascii = stripkit::io::WriteOptions::default().ply_ascii(true);
+/// assert!(ascii.ply_ascii);
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct WriteOptions {
-    /// Write PLY as ASCII text instead of binary little-endian (the default).
+    /// Write PLY as ASCII text instead of binary little-endian. Default `false`.
     pub ply_ascii: bool,
+}
+
+impl WriteOptions {
+    /// Sets [`WriteOptions::ply_ascii`].
+    pub fn ply_ascii(mut self, on: bool) -> Self {
+        self.ply_ascii = on;
+        self
+    }
 }
 
 /// The default of [`ReadOptions::max_external_bytes`]: 1 GiB.
@@ -100,7 +115,16 @@ pub const DECODED_BYTES_ALLOWANCE: u64 = 1 << 20;
 /// files outside those folders. Directories, devices and pipes are refused without
 /// being opened for reading; at most the buffer's declared `byteLength` is read, and a
 /// file shorter than that is refused. A file named by several buffers is read once.
+///
+/// Defaults: no extra roots, 1 GiB of external buffers, 4 GiB decompressed, the
+/// decoded mesh bounded by the input's buffers, attributes and groups read.
+///
+/// ```
+/// let options = stripkit::io::ReadOptions::default().max_decompressed_bytes(1 << 20).positions_only(true);
+/// assert_eq!(options.max_decompressed_bytes, 1 << 20);
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct ReadOptions {
     /// Folders besides the asset's own from which external glTF buffers may be read
     /// (reached through relative URIs such as `../shared/scene.bin`). Each is resolved
@@ -156,6 +180,34 @@ impl Default for ReadOptions {
     }
 }
 
+impl ReadOptions {
+    /// Sets [`ReadOptions::allowed_roots`].
+    pub fn allowed_roots(mut self, roots: Vec<PathBuf>) -> Self {
+        self.allowed_roots = roots;
+        self
+    }
+    /// Sets [`ReadOptions::max_external_bytes`].
+    pub fn max_external_bytes(mut self, bytes: u64) -> Self {
+        self.max_external_bytes = bytes;
+        self
+    }
+    /// Sets [`ReadOptions::max_decompressed_bytes`].
+    pub fn max_decompressed_bytes(mut self, bytes: u64) -> Self {
+        self.max_decompressed_bytes = bytes;
+        self
+    }
+    /// Sets [`ReadOptions::max_decoded_bytes`] (`None`: bounded by the input).
+    pub fn max_decoded_bytes(mut self, bytes: Option<u64>) -> Self {
+        self.max_decoded_bytes = bytes;
+        self
+    }
+    /// Sets [`ReadOptions::positions_only`].
+    pub fn positions_only(mut self, on: bool) -> Self {
+        self.positions_only = on;
+        self
+    }
+}
+
 /// A mesh file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
@@ -205,14 +257,28 @@ fn io_error(path: &Path, source: std::io::Error) -> Error {
 }
 
 /// Reads a mesh, choosing the format by the file's extension, with the default
-/// [`ReadOptions`] (external glTF buffers only from the asset's own folder).
-pub fn read(path: &Path) -> Result<Mesh> {
+/// [`ReadOptions`] (external glTF buffers only from the asset's own folder). `path` is
+/// anything that names a file: `&str`, `String`, `&Path`, `PathBuf`.
+///
+/// ```
+/// # let dir = std::env::temp_dir().join(format!("stripkit-doc-read-{}", std::process::id()));
+/// # std::fs::create_dir_all(&dir).unwrap();
+/// # let name = dir.join("triangle.obj").display().to_string();
+/// # std::fs::write(&name, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+/// let path: String = name; // a String, as a command line or a config gives it
+/// let mesh = stripkit::io::read(&path)?;
+/// assert_eq!(mesh.face_count(), 1);
+/// # std::fs::remove_dir_all(&dir).unwrap();
+/// # Ok::<(), stripkit::Error>(())
+/// ```
+pub fn read(path: impl AsRef<Path>) -> Result<Mesh> {
     read_with(path, &ReadOptions::default())
 }
 
 /// [`read`] with options (see [`ReadOptions`] for the rules on external glTF buffers
 /// and the cap on gzip decompression).
-pub fn read_with(path: &Path, options: &ReadOptions) -> Result<Mesh> {
+pub fn read_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Mesh> {
+    let path = path.as_ref();
     let (format, gz) = Format::from_path(path).ok_or_else(|| unknown(path))?;
     let raw = std::fs::read(path).map_err(|e| io_error(path, e))?;
     let data = if gz {
@@ -309,7 +375,7 @@ fn gunzip(path: &Path, raw: &[u8], cap: u64) -> Result<Vec<u8>> {
 /// hold strips (PLY `tristrips`, glTF `TRIANGLE_STRIP`) write them instead of faces;
 /// OBJ, OFF and STL always write the mesh's faces. PLY is binary little-endian; see
 /// [`write_with`] for ASCII.
-pub fn write(path: &Path, mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> {
+pub fn write(path: impl AsRef<Path>, mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> {
     write_with(path, mesh, strips, &WriteOptions::default())
 }
 
@@ -318,11 +384,12 @@ pub fn write(path: &Path, mesh: &Mesh, strips: Option<&StripSet>) -> Result<()> 
 /// accept the file). A name ending in `.gz` is gzip-compressed. The file is replaced
 /// atomically ([`write_atomic`]).
 pub fn write_with(
-    path: &Path,
+    path: impl AsRef<Path>,
     mesh: &Mesh,
     strips: Option<&StripSet>,
     options: &WriteOptions,
 ) -> Result<()> {
+    let path = path.as_ref();
     write_atomic(path, &encode_file(path, mesh, strips, options)?)
 }
 
@@ -340,6 +407,35 @@ pub fn encode_file(path: &Path, mesh: &Mesh, strips: Option<&StripSet>, options:
 /// ends in `.gz`. The file is replaced atomically ([`write_atomic`]).
 pub fn write_encoded(path: &Path, bytes: &[u8]) -> Result<()> {
     write_atomic(path, &compress_for(path, bytes)?)
+}
+
+/// The bytes `encode` makes, once `check` has read them back and found them to be
+/// what was meant (its error, typically [`Error::Verification`], otherwise): the
+/// first half of [`write_checked`], for outputs that go somewhere other than a file.
+pub(crate) fn encode_checked(
+    encode: impl FnOnce() -> Result<Vec<u8>>,
+    check: impl FnOnce(&[u8]) -> Result<()>,
+) -> Result<Vec<u8>> {
+    let bytes = encode()?;
+    check(&bytes)?;
+    Ok(bytes)
+}
+
+/// The one write path of checked outputs (strips in a mesh file, a glTF scene, the
+/// `.sets` and `.lodseq` files of `lod`): `encode` makes the bytes, `check` reads them
+/// back and compares them with what was meant, and only then are they written to
+/// `path` atomically ([`write_atomic`]: a temporary file beside it, synced, renamed),
+/// gzip-compressed when the name is a mesh format's ending in `.gz`. Nothing is
+/// written when either step fails. Returns the length of the encoded bytes (before
+/// any compression).
+pub(crate) fn write_checked(
+    path: &Path,
+    encode: impl FnOnce() -> Result<Vec<u8>>,
+    check: impl FnOnce(&[u8]) -> Result<()>,
+) -> Result<usize> {
+    let bytes = encode_checked(encode, check)?;
+    write_encoded(path, &bytes)?;
+    Ok(bytes.len())
 }
 
 /// `bytes` gzip-compressed when `path`'s name ends in `.gz`, unchanged otherwise.

@@ -18,7 +18,7 @@
 //! read the same bytes any number of times.
 //!
 //! Write (`write.rs`, the plain form; a scene and a mesh with attributes or groups go
-//! through [`Scene`](scene::Scene), which the CLI uses for every mesh): one buffer with the positions (VEC3 float, with min / max) and the indices
+//! through [`Scene`](scene::Scene), which the library's glTF output uses for every mesh it can): one buffer with the positions (VEC3 float, with min / max) and the indices
 //! (u16 when there are fewer than 65535 vertices, else u32); without strips one
 //! TRIANGLES primitive (polygons fanned), with strips one TRIANGLE_STRIP primitive per
 //! strip of at least three indices. A mesh with vertices but nothing to draw gets a
@@ -39,7 +39,8 @@ mod primitive;
 mod scene;
 mod write;
 
-pub use scene::{PrimitiveReport, Scene, SceneOptions, ScenePrimitive, SceneReport};
+pub use primitive::ScenePrimitive;
+pub use scene::Scene;
 use write::glb_container;
 pub(crate) use write::{base64_decode, base64_encode, write_glb, write_gltf};
 

@@ -1,12 +1,46 @@
 //! One primitive of a glTF scene: decoding it into a [`Mesh`] (POSITION, every other
 //! attribute with its type, the triangles, the material's group), listing its vertex
-//! accessors, and the bounds of gathered accessor data, for [`super::scene`].
+//! accessors, and the bounds of gathered accessor data, for [`super::scene`]. It
+//! defines [`ScenePrimitive`], which the scene holds, so that the two files do not
+//! import each other.
 
-use super::scene::ScenePrimitive;
 use super::{uint, Accessor, Budget, Doc};
 use crate::error::Result;
 use crate::mesh::{Attribute, Group, Mesh, Scalar};
+use crate::strip::StripSet;
 use serde_json::Value;
+
+/// One triangle primitive of a [`Scene`](super::Scene).
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct ScenePrimitive {
+    /// The primitive's mesh: its index in the document's `meshes`.
+    pub mesh_index: usize,
+    /// Its index in that mesh's `primitives`.
+    pub primitive_index: usize,
+    /// The mode read: 4 (TRIANGLES), 5 (TRIANGLE_STRIP) or 6 (TRIANGLE_FAN).
+    pub mode: u8,
+    /// The number of morph targets (`targets`).
+    pub targets: usize,
+    /// The indices read (the vertex count for a primitive without indices).
+    pub indices_read: usize,
+    /// The geometry: every vertex of the POSITION accessor (vertex ids are the
+    /// primitive's own), every attribute, one face per triangle (strips and fans
+    /// turned into triangles with their winding, degenerate ones skipped), and one
+    /// group named after the glTF mesh (or `mesh N`), with the material's name (or
+    /// `material N`).
+    pub mesh: Mesh,
+    /// The verified strips once the scene was stripped (`Scene::strip`, in
+    /// [`crate::scene`]); the writer writes these instead of the primitive's indices.
+    pub strips: Option<StripSet>,
+    /// The triangles the strips were verified against (the door's reference: the
+    /// faces fanned, or quads split along the diagonals the algorithm chose).
+    pub(crate) drawn: Vec<[u32; 3]>,
+    /// The written vertices, new id to old id, where the strips renumber them (first
+    /// use by the strips; vertices they do not use left out); `None` keeps the
+    /// primitive's vertex data as read.
+    pub(crate) order: Option<Vec<u32>>,
+}
 
 /// The vertex accessors of a primitive: (morph target or `None`, attribute name,
 /// accessor), POSITION and every attribute, then every target's.

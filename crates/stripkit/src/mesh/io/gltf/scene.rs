@@ -1,18 +1,20 @@
-//! glTF scenes in and out: the whole document kept, every triangle primitive
-//! stripped on its own (issue #15, items 2 and 7).
+//! glTF scenes in and out: the whole document kept, its triangle primitives decoded,
+//! and written back with the strips set on them (issue #15, items 2 and 7).
 //!
 //! [`Scene::read`] keeps the JSON document as it was read and the bytes of its buffers,
 //! and decodes every triangle primitive (modes 4, 5 and 6) into a [`Mesh`]: POSITION,
 //! every other vertex attribute with its type and `normalized` flag
 //! ([`crate::Attribute`], glTF semantic names), the triangles, and one [`Group`] named
-//! after the glTF mesh with the primitive's material. [`Scene::strip`] runs the front
-//! door ([`crate::stripify`]) on each of those meshes, so every primitive's strips are
-//! verified; [`Scene::to_bytes`] and [`Scene::write`] write the document back.
+//! after the glTF mesh with the primitive's material. This file converts only:
+//! stripping the primitives (`Scene::strip`, through the door) lives above the door in
+//! [`crate::scene`], which sets each primitive's strips, the triangles they were
+//! verified against and its vertex order; [`Scene::to_bytes`] and [`Scene::write`]
+//! write the document back and check it against those.
 //!
 //! What changes in the written document, and nothing else:
 //! - **Primitives.** Each stripped primitive becomes a `TRIANGLE_STRIP` (mode 5)
 //!   primitive whose `indices` are its strips stitched by degenerate triangles: core
-//!   glTF that every viewer draws. With [`SceneOptions::restart`] (the default) its mesh
+//!   glTF that every viewer draws. With [`SceneOptions::restart`](crate::scene::SceneOptions::restart) (the default) its mesh
 //!   also gets an `EXT_mesh_primitive_restart` primitive group per stripped primitive:
 //!   the group names that one primitive and an index accessor holding the strips
 //!   separated by the restart value (65535 for `UNSIGNED_SHORT`, 4294967295 for
@@ -24,7 +26,7 @@
 //!   restart buffer's bytes; a stitched fallback costs a second index list instead,
 //!   but keeps one draw call per primitive for viewers without the extension (bunny
 //!   has 1,189 strips).
-//! - **Vertex order.** With [`SceneOptions::reorder`] (the default) each stripped
+//! - **Vertex order.** With [`SceneOptions::reorder`](crate::scene::SceneOptions::reorder) (the default) each stripped
 //!   primitive's vertices are renumbered in their first use by its strips and those the
 //!   strips do not use are left out (meshoptimizer's `optimizeVertexFetch`): its
 //!   attributes and morph targets get new accessors with the same properties, the
@@ -63,18 +65,17 @@
 //! stored (Draco, meshopt compression, quantization) and `EXT_meshopt_compression`
 //! even where optional (its views name buffers of their own, which merging would break).
 
-use super::primitive::{bounds, decode_primitive, vertex_accessors};
+use super::primitive::{bounds, decode_primitive, vertex_accessors, ScenePrimitive};
 use super::{array, at, glb_container, open, parse_glb, parse_json, Budget, Buffer, Doc, View};
 use crate::error::{Error, Result};
-use crate::io::{Format, ReadOptions};
 use crate::mesh::io::common::Src;
+use crate::mesh::io::{encode_checked, write_checked, Format, ReadOptions};
+use crate::mesh::order::ids_of;
 use crate::mesh::Mesh;
 use crate::strip::{self, StripSet};
-use crate::{Algorithm, Figures, Join, StripOptions};
 use serde_json::{json, Value};
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
 
 /// The extension that lets a strip primitive hold restart indices.
 pub const RESTART_EXTENSION: &str = "EXT_mesh_primitive_restart";
@@ -90,7 +91,8 @@ const GEOMETRY_EXTENSIONS: [&str; 3] =
 /// are merged into one (the GLB binary chunk, or a `data:` URI in `.gltf`).
 ///
 /// ```
-/// use stripkit::io::{Format, ReadOptions, Scene, SceneOptions};
+/// use stripkit::io::{Format, ReadOptions};
+/// use stripkit::scene::{Scene, SceneOptions};
 /// use stripkit::{gen, StripOptions};
 /// use std::path::Path;
 ///
@@ -116,7 +118,8 @@ pub struct Scene {
     buffers: Vec<Buffer>,
     views: Vec<View>,
     primitives: Vec<ScenePrimitive>,
-    options: SceneOptions,
+    /// Whether stripped primitives get restart groups ([`Scene::set_restart_groups`]).
+    restart_groups: bool,
     notes: Vec<String>,
 }
 
@@ -130,129 +133,16 @@ impl std::fmt::Debug for Scene {
     }
 }
 
-/// One triangle primitive of a [`Scene`].
-#[derive(Clone, Debug)]
-#[non_exhaustive]
-pub struct ScenePrimitive {
-    /// The primitive's mesh: its index in the document's `meshes`.
-    pub mesh_index: usize,
-    /// Its index in that mesh's `primitives`.
-    pub primitive_index: usize,
-    /// The mode read: 4 (TRIANGLES), 5 (TRIANGLE_STRIP) or 6 (TRIANGLE_FAN).
-    pub mode: u8,
-    /// The number of morph targets (`targets`).
-    pub targets: usize,
-    /// The indices read (the vertex count for a primitive without indices).
-    pub indices_read: usize,
-    /// The geometry: every vertex of the POSITION accessor (vertex ids are the
-    /// primitive's own), every attribute, one face per triangle (strips and fans
-    /// turned into triangles with their winding, degenerate ones skipped), and one
-    /// group named after the glTF mesh (or `mesh N`), with the material's name (or
-    /// `material N`).
-    pub mesh: Mesh,
-    /// The verified strips once [`Scene::strip`] has run.
-    pub strips: Option<StripSet>,
-    /// The triangles the strips were verified against (the door's reference: the
-    /// faces fanned, or quads split along the diagonals the algorithm chose).
-    pub(super) drawn: Vec<[u32; 3]>,
-    /// With [`SceneOptions::reorder`]: the written vertices, new id to old id (first
-    /// use by the strips; vertices they do not use left out).
-    pub(super) order: Option<Vec<u32>>,
-}
-
-/// How [`Scene::strip`] writes the strips.
-#[derive(Clone, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub struct SceneOptions {
-    /// Add an `EXT_mesh_primitive_restart` group (restart indices) beside each
-    /// stitched strip primitive without morph targets. Default `true`; `false` writes
-    /// plain stitched strips, one primitive per input primitive, without the extension.
-    pub restart: bool,
-    /// Renumber each stripped primitive's vertices in their first use by the strips
-    /// and leave out those the strips do not use (meshoptimizer's
-    /// `optimizeVertexFetch`): its attributes and morph targets are written anew,
-    /// gathered in that order (min / max recomputed). Default `true`. A primitive
-    /// whose vertex data cannot be decoded (a sparse accessor) keeps its order.
-    pub reorder: bool,
-}
-
-impl Default for SceneOptions {
-    fn default() -> Self {
-        SceneOptions { restart: true, reorder: true }
-    }
-}
-
-impl SceneOptions {
-    /// Plain stitched strips: no `EXT_mesh_primitive_restart`.
-    pub fn stitched() -> Self {
-        SceneOptions { restart: false, ..SceneOptions::default() }
-    }
-
-    /// Sets [`SceneOptions::reorder`].
-    pub fn reorder(mut self, on: bool) -> Self {
-        self.reorder = on;
-        self
-    }
-}
-
-/// What [`Scene::strip`] did to one primitive.
-#[derive(Clone, Debug, serde::Serialize)]
-#[non_exhaustive]
-pub struct PrimitiveReport {
-    /// Index in the document's `meshes`.
-    pub mesh: usize,
-    /// Index in that mesh's `primitives`.
-    pub primitive: usize,
-    /// The mode read (4, 5 or 6).
-    pub mode_read: u8,
-    /// Indices the primitive had (its vertex count when not indexed).
-    pub indices_read: usize,
-    /// Indices of the stitched strip written as the primitive's `indices`.
-    pub indices_stitched: usize,
-    /// Indices of the restart group, where one is written.
-    pub indices_restart: Option<usize>,
-    /// The algorithm that ran.
-    pub algorithm: &'static str,
-    /// The figures of the strips (METRICS.md).
-    pub figures: Figures,
-}
-
-/// What [`Scene::strip`] did to the whole scene.
-#[derive(Clone, Debug, serde::Serialize)]
-#[non_exhaustive]
-pub struct SceneReport {
-    /// One entry per stripped primitive, in document order.
-    pub primitives: Vec<PrimitiveReport>,
-    /// Primitives left as they were: points and lines, and triangle primitives that
-    /// draw nothing.
-    pub skipped: usize,
-    /// Triangles stripped, all primitives together.
-    pub triangles: usize,
-    /// Indices read, all stripped primitives together.
-    pub indices_read: usize,
-    /// Stitched indices written, all together.
-    pub indices_stitched: usize,
-    /// Indices a viewer with primitive restart draws: the restart groups' indices,
-    /// plus the stitched ones of primitives without a group.
-    pub indices_drawn_restart: usize,
-    /// Vertices the stripped primitives write, all together (with
-    /// [`SceneOptions::reorder`], those their strips use).
-    pub vertices: usize,
-    /// Time of the stripifiers alone, all primitives together, in milliseconds.
-    pub stripify_ms: f64,
-    /// Time of the whole call (door, verification and figures), in milliseconds.
-    pub total_ms: f64,
-}
-
 impl Scene {
     /// Reads a `.gltf` or `.glb` file (optionally `.gz`) with the default
     /// [`ReadOptions`].
-    pub fn read(path: &Path) -> Result<Scene> {
+    pub fn read(path: impl AsRef<Path>) -> Result<Scene> {
         Scene::read_with(path, &ReadOptions::default())
     }
 
     /// [`Scene::read`] with options (external buffers, budgets; see [`ReadOptions`]).
-    pub fn read_with(path: &Path, options: &ReadOptions) -> Result<Scene> {
+    pub fn read_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Scene> {
+        let path = path.as_ref();
         let format = scene_format(path)?;
         let raw = std::fs::read(path).map_err(|e| Error::Io { path: path.to_path_buf(), source: e })?;
         let data = if Format::from_path(path).is_some_and(|(_, gz)| gz) {
@@ -313,7 +203,7 @@ impl Scene {
             buffers,
             views,
             primitives,
-            options: SceneOptions::default(),
+            restart_groups: true,
             notes: Vec::new(),
         })
     }
@@ -327,7 +217,7 @@ impl Scene {
     /// that [`Scene::strip`] may split quads as the algorithm chooses.
     pub fn from_mesh(mesh: &Mesh) -> Result<Scene> {
         let doc = super::from_mesh::mesh_document(mesh)?;
-        let options = ReadOptions { max_decoded_bytes: Some(u64::MAX), ..ReadOptions::default() };
+        let options = ReadOptions::default().max_decoded_bytes(Some(u64::MAX));
         let mut scene = Scene::from_bytes(Path::new("<mesh as glTF>"), Format::Glb, &doc.glb, &options)?;
         for ((sp, &g), (offsets, indices)) in scene.primitives.iter_mut().zip(&doc.group_of_primitive).zip(doc.faces) {
             sp.mesh.face_offsets = offsets;
@@ -356,93 +246,39 @@ impl Scene {
         &self.primitives
     }
 
-    /// Strips every triangle primitive on its own through the front door
-    /// ([`crate::stripify`], which verifies the strips), with `options` (its join and
-    /// restart index are the door's business: the written forms are chosen by
-    /// `scene_options`, see [`SceneOptions`]). [`Algorithm::Single`] is refused: it
-    /// adds vertices, and a scene's vertex data is not rewritten. Errors name the
-    /// primitive. Calling it again strips again.
-    pub fn strip(&mut self, options: &StripOptions, scene_options: &SceneOptions) -> Result<SceneReport> {
-        if matches!(options.algorithm, Algorithm::Single(_)) {
-            return Err(Error::Invalid(
-                "single adds vertices, and a glTF scene's vertex data is written as read; choose another algorithm"
-                    .into(),
-            ));
-        }
-        let start = Instant::now();
-        let options = options.clone().join(Join::Restart).restart_index(u32::MAX);
-        let mut stripifier = crate::Stripifier::new(options)?;
-        let mut report = SceneReport {
-            primitives: Vec::new(),
-            skipped: array_len(&self.json, "meshes", "primitives") - self.primitives.len(),
-            triangles: 0,
-            indices_read: 0,
-            indices_stitched: 0,
-            indices_drawn_restart: 0,
-            vertices: 0,
-            stripify_ms: 0.0,
-            total_ms: 0.0,
-        };
-        let mut stripify_time = Duration::ZERO;
-        // Whether each primitive's vertex accessors can be read back for reordering.
-        let readable: Vec<bool> = {
-            let doc = self.doc();
-            self.primitives
-                .iter()
-                .map(|sp| {
-                    vertex_accessors(&self.json, sp)
-                        .iter()
-                        .all(|(_, _, a)| doc.read_packed(*a, &mut |_| Ok(())).is_ok())
-                })
-                .collect()
-        };
-        for (sp, readable) in self.primitives.iter_mut().zip(readable) {
-            sp.strips = None;
-            sp.order = None;
-            if sp.mesh.face_count() == 0 {
-                report.skipped += 1;
-                continue;
-            }
-            let name = |e: Error| {
-                let place =
-                    format!("{}: meshes[{}].primitives[{}]", self.name.display(), sp.mesh_index, sp.primitive_index);
-                match e {
-                    Error::Invalid(m) => Error::Invalid(format!("{place}: {m}")),
-                    Error::Verification(m) => Error::Verification(format!("{place}: {m}")),
-                    other => other,
-                }
-            };
-            let strips = stripifier.stripify(&sp.mesh).map_err(name)?;
-            stripify_time += strips.stripify_time;
-            let set = strips.strips;
-            let stitched = strip::stitched_len(&set);
-            let restart = (scene_options.restart && sp.targets == 0)
-                .then(|| set.iter().filter(|s| s.len() >= 3).map(|s| s.len() + 1).sum::<usize>().saturating_sub(1));
-            report.triangles += strips.figures.triangles;
-            report.indices_read += sp.indices_read;
-            report.indices_stitched += stitched;
-            report.indices_drawn_restart += restart.unwrap_or(stitched);
-            report.primitives.push(PrimitiveReport {
-                mesh: sp.mesh_index,
-                primitive: sp.primitive_index,
-                mode_read: sp.mode,
-                indices_read: sp.indices_read,
-                indices_stitched: stitched,
-                indices_restart: restart,
-                algorithm: strips.algorithm.name(),
-                figures: strips.figures,
-            });
-            if scene_options.reorder && readable {
-                sp.order = Some(crate::vertex_order::first_use(strip::encode_stitched(&set), sp.mesh.vertex_count()));
-            }
-            sp.strips = Some(set);
-            report.vertices += sp.order.as_ref().map_or(sp.mesh.vertex_count(), Vec::len);
-            sp.drawn = strips.triangles;
-        }
-        self.options = scene_options.clone();
-        report.stripify_ms = stripify_time.as_secs_f64() * 1e3;
-        report.total_ms = start.elapsed().as_secs_f64() * 1e3;
-        Ok(report)
+    /// The document's primitives that are not listed in [`Scene::primitives`]: points
+    /// and lines, written back unchanged.
+    pub(crate) fn other_primitives(&self) -> usize {
+        array_len(&self.json, "meshes", "primitives") - self.primitives.len()
+    }
+
+    /// For each triangle primitive, whether its vertex accessors can be read back
+    /// (none sparse), which renumbering its vertices needs.
+    pub(crate) fn renumberable(&self) -> Vec<bool> {
+        let doc = self.doc();
+        self.primitives
+            .iter()
+            .map(|sp| vertex_accessors(&self.json, sp).iter().all(|(_, _, a)| doc.read_packed(*a, &mut |_| Ok(())).is_ok()))
+            .collect()
+    }
+
+    /// The triangle primitives, for the stripping above the door (`crate::scene`) to
+    /// set each one's strips, the triangles they were verified against and its vertex
+    /// order; the writer checks the written file against those.
+    pub(crate) fn primitives_mut(&mut self) -> &mut [ScenePrimitive] {
+        &mut self.primitives
+    }
+
+    /// Whether stripped primitives without morph targets get an
+    /// `EXT_mesh_primitive_restart` group beside their stitched strip (set by the
+    /// stripping above the door; `true` for a scene just read).
+    pub(crate) fn set_restart_groups(&mut self, on: bool) {
+        self.restart_groups = on;
+    }
+
+    /// The name of the file (or the stand-in name) the scene came from, for errors.
+    pub(crate) fn name(&self) -> &Path {
+        &self.name
     }
 
     /// The document as a `.glb` or `.gltf` file (`format`), read back and checked
@@ -450,8 +286,21 @@ impl Scene {
     /// compared) before it is returned. Without [`Scene::strip`] the primitives are
     /// written as read (buffers merged).
     pub fn to_bytes(&self, format: Format) -> Result<Vec<u8>> {
+        encode_checked(|| self.encode(format), |bytes| self.check_written(format, bytes))
+    }
+
+    /// Writes the scene to `path` (`.gltf` or `.glb`, optionally `.gz`), atomically,
+    /// after the check of [`Scene::to_bytes`].
+    pub fn write(&self, path: impl AsRef<Path>) -> Result<()> {
+        let path = path.as_ref();
+        let format = scene_format(path)?;
+        write_checked(path, || self.encode(format), |bytes| self.check_written(format, bytes)).map(drop)
+    }
+
+    /// The document as `format` bytes, unchecked.
+    fn encode(&self, format: Format) -> Result<Vec<u8>> {
         let (mut json, bin) = self.build()?;
-        let bytes = match format {
+        Ok(match format {
             Format::Glb => glb_container(&json, bin)?,
             Format::Gltf => {
                 if let Some(b) = json.get_mut("buffers").and_then(|b| b.get_mut(0)) {
@@ -461,16 +310,7 @@ impl Scene {
                 serde_json::to_vec(&json).map_err(|e| Error::Invalid(format!("cannot encode glTF JSON: {e}")))?
             }
             other => return Err(Error::Invalid(format!("a scene is written as glTF or GLB, not {other:?}"))),
-        };
-        self.check_written(format, &bytes)?;
-        Ok(bytes)
-    }
-
-    /// Writes the scene to `path` (`.gltf` or `.glb`, optionally `.gz`), atomically,
-    /// after the check of [`Scene::to_bytes`].
-    pub fn write(&self, path: &Path) -> Result<()> {
-        let bytes = self.to_bytes(scene_format(path)?)?;
-        crate::io::write_encoded(path, &bytes)
+        })
     }
 
     /// The JSON and the one binary buffer to write.
@@ -578,7 +418,7 @@ impl Scene {
                         Some(t) => prim["targets"][t][name.as_str()] = k.into(),
                     }
                 }
-                let new_id = crate::vertex_order::ids_of(order, sp.mesh.vertex_count());
+                let new_id = ids_of(order, sp.mesh.vertex_count());
                 let set = sp.strips.as_ref().expect("filtered above");
                 let strips: Vec<Vec<u32>> =
                     set.iter().map(|s| s.iter().map(|&v| new_id[v as usize]).collect()).collect();
@@ -632,7 +472,7 @@ impl Scene {
                 let prim = &mut json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
                 prim["indices"] = stitched.into();
                 prim["mode"] = 5.into();
-                if self.options.restart && sp.targets == 0 {
+                if self.restart_groups && sp.targets == 0 {
                     let restart = if wide { u32::MAX } else { u16::MAX as u32 };
                     let list: StripSet =
                         StripSet::from_strips(&set.iter().filter(|s| s.len() >= 3).collect::<Vec<_>>());
@@ -829,7 +669,7 @@ impl Scene {
     fn check_written(&self, format: Format, bytes: &[u8]) -> Result<()> {
         let name = PathBuf::from(format!("the {format:?} bytes to be written"));
         // The input was accepted under the caller's budget; the output decodes to the same.
-        let options = ReadOptions { max_decoded_bytes: Some(u64::MAX), ..ReadOptions::default() };
+        let options = ReadOptions::default().max_decoded_bytes(Some(u64::MAX));
         let back = Scene::from_bytes(&name, format, bytes, &options)?;
         let fail = |sp: &ScenePrimitive, what: String| {
             Error::Verification(format!(
@@ -880,7 +720,7 @@ impl Scene {
             let want: Cow<[[u32; 3]]> = match &a.order {
                 None => Cow::Borrowed(&a.drawn),
                 Some(order) => {
-                    let new_id = crate::vertex_order::ids_of(order, a.mesh.vertex_count());
+                    let new_id = ids_of(order, a.mesh.vertex_count());
                     Cow::Owned(a.drawn.iter().map(|t| t.map(|v| new_id[v as usize])).collect())
                 }
             };
@@ -893,7 +733,7 @@ impl Scene {
                 .pointer(&format!("/extensions/{RESTART_EXTENSION}/primitiveGroups"))
                 .and_then(Value::as_array)
                 .and_then(|gs| gs.iter().find(|g| g["primitives"] == json!([b.primitive_index])));
-            let expect_group = self.options.restart && a.targets == 0;
+            let expect_group = self.restart_groups && a.targets == 0;
             match (group, expect_group) {
                 (Some(g), true) => {
                     let acc = g["indices"].as_u64().ok_or_else(|| fail(a, "restart group without indices".into()))?;

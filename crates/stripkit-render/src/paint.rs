@@ -1,8 +1,9 @@
-//! Colours for `stripkit render`: the strips are "exploded" into an unindexed triangle
-//! list, in strip order, three corners per triangle, so that every triangle can carry
-//! the colour of its strip, of its place in the strip order, or of its facing.
+//! Colours for pictures of strips: the strips' triangles are "exploded" into an
+//! unindexed triangle list, in strip order, three corners per triangle, so that every
+//! triangle can carry the colour of its strip, of its place in the strip order, or of
+//! its facing. The triangles come decoded, each with the number of its strip.
 
-use stripkit::{for_each_triangle, StripSet};
+use glam::Vec3;
 
 /// What a triangle's colour shows.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,13 +22,13 @@ pub enum Paint {
     None,
 }
 
-/// `--color cull`: a triangle facing the eye.
+/// [`Paint::Cull`]: a triangle facing the eye.
 pub const FRONT: [u8; 4] = [58, 110, 190, 255];
-/// `--color cull`: a triangle turned away from the eye (back-face culling skips it).
+/// [`Paint::Cull`]: a triangle turned away from the eye (back-face culling skips it).
 pub const BACK: [u8; 4] = [246, 214, 200, 255];
-/// `--color none`.
+/// [`Paint::None`].
 pub const GREY: [u8; 4] = [205, 205, 205, 255];
-/// `--wireframe`: the edges.
+/// The edges of a wireframe ([`crate::wire`]).
 pub const WIRE: [u8; 4] = [30, 30, 30, 255];
 
 /// The colour of strip `k`: hues a golden-ratio turn apart (consecutive strips differ
@@ -101,17 +102,14 @@ impl Exploded {
     }
 }
 
-/// Explodes `strips` (over a mesh whose vertices are at `positions`) and colours each
-/// triangle as `paint` says. Triangles with a repeated index (swaps, stitches) draw
-/// nothing and are left out, as the GPU leaves them out.
-pub fn explode(strips: &StripSet, positions: &[[f32; 3]], paint: Paint) -> Exploded {
-    let mut tris: Vec<(usize, [u32; 3])> = Vec::with_capacity(strips.index_count());
-    for (k, s) in strips.iter().enumerate() {
-        for_each_triangle(s, |t| tris.push((k, t)));
-    }
-    let n = tris.len();
+/// Explodes `triangles` (in strip order, each with the number of its strip, over a
+/// mesh whose vertices are at `positions`) and colours each as `paint` says. The
+/// caller leaves out the triangles with a repeated index (swaps, stitches), as the GPU
+/// leaves them out.
+pub fn explode(triangles: &[(usize, [u32; 3])], positions: &[[f32; 3]], paint: Paint) -> Exploded {
+    let n = triangles.len();
     let mut out = Exploded { corners: Vec::with_capacity(3 * n), colors: Vec::with_capacity(3 * n), front: 0 };
-    for (j, &(k, t)) in tris.iter().enumerate() {
+    for (j, &(k, t)) in triangles.iter().enumerate() {
         let color = match paint {
             Paint::Strips => strip_color(k),
             Paint::Order => gradient(if n > 1 { j as f32 / (n - 1) as f32 } else { 0.0 }),
@@ -134,12 +132,10 @@ pub fn explode(strips: &StripSet, positions: &[[f32; 3]], paint: Paint) -> Explo
 /// Whether the triangle `[a, b, c]` (counter-clockwise front, as OpenGL and glTF) faces
 /// `eye`: the eye lies on the side its normal points to.
 pub fn faces(eye: [f32; 3], [a, b, c]: [[f32; 3]; 3]) -> bool {
-    let sub = |p: [f32; 3], q: [f32; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-    let (u, v, w) = (sub(b, a), sub(c, a), sub(eye, a));
-    let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
-    n[0] * w[0] + n[1] * w[1] + n[2] * w[2] > 0.0
+    let a = Vec3::from(a);
+    let (u, v, w) = (Vec3::from(b) - a, Vec3::from(c) - a, Vec3::from(eye) - a);
+    u.cross(v).dot(w) > 0.0
 }
-
 
 #[cfg(test)]
 mod tests {
@@ -180,11 +176,11 @@ mod tests {
         assert!(distinct.len() > 600, "{} distinct of 1,001", distinct.len());
     }
 
+    /// The triangles of strips `[0 1 2 3]` (two) and `[4 4 5 6]` (one swap, then the
+    /// odd triangle (5, 4, 6)), as a strip decoder gives them.
     #[test]
-    fn explode_keeps_strip_order_winding_and_skips_swaps() {
-        // Two strips: [0 1 2 3] (two triangles) and [4 4 5 6] (one swap, then the odd
-        // triangle (5, 4, 6)).
-        let strips = StripSet::from_strips(&[vec![0, 1, 2, 3], vec![4, 4, 5, 6]]);
+    fn explode_keeps_strip_order_winding() {
+        let strips = [(0, [0, 1, 2]), (0, [2, 1, 3]), (1, [5, 4, 6])];
         let positions = [[0.0f32; 3]; 7];
         let e = explode(&strips, &positions, Paint::Strips);
         assert_eq!(e.triangles(), 3);
@@ -203,7 +199,7 @@ mod tests {
         // Two triangles of the unit square in z = 0, counter-clockwise seen from +z,
         // and one of them flipped.
         let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
-        let strips = StripSet::from_strips(&[vec![0, 1, 2], vec![0, 2, 3], vec![0, 3, 2]]);
+        let strips = [(0, [0, 1, 2]), (1, [0, 2, 3]), (2, [0, 3, 2])];
         let from_above = explode(&strips, &positions, Paint::Cull { eye: [0.5, 0.5, 5.0] });
         assert_eq!(from_above.front, 2);
         assert_eq!(from_above.colors.iter().filter(|&&c| c == BACK).count(), 3);

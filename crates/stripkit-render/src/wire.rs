@@ -1,24 +1,24 @@
-//! `--wireframe`: every edge of the drawn triangles as a thin band of triangles, built on
+//! Wireframes: every edge of the drawn triangles as a thin band of triangles, built on
 //! the CPU (the renderer draws triangles only). A band lies across the edge as the eye
 //! sees it, `width` pixels wide at each end, and is moved towards the eye along the
 //! lines of sight (which keeps its place in the picture) by `lift` pixels' worth, so
 //! that the depth test keeps it in front of its own faces and hides it behind others.
 
+use crate::Camera;
+use glam::Vec3;
 use std::collections::HashSet;
 
 type V = [f32; 3];
 
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn len(a: V) -> f32 {
-    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
-}
-fn cross(a: V, b: V) -> V {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-fn add_scaled(a: V, d: V, s: f32) -> V {
-    [a[0] + d[0] * s, a[1] + d[1] * s, a[2] + d[2] * s]
+/// The wireframe of the triangles `corners` (three per triangle) over `positions` as
+/// `camera` sees them in a picture of `(width, height)` pixels: [`bands`] one pixel
+/// wide per 640 pixels of the shorter side (at least one), lifted by one and a half
+/// pixels. Two band triangles per edge.
+pub fn wireframe(positions: &[V], corners: &[u32], camera: &Camera, (w, h): (u32, u32)) -> Vec<V> {
+    let fov = (camera.fov_y_degrees as f64).to_radians();
+    let pixel = (2.0 * (fov * 0.5).tan() / h as f64) as f32;
+    let width = (w.min(h) as f32 / 640.0).max(1.0);
+    bands(positions, corners, camera.eye, pixel, width, 1.5)
 }
 
 /// Bands for the edges of the triangles `corners` (three per triangle) over `positions`,
@@ -34,21 +34,22 @@ pub fn bands(positions: &[V], corners: &[u32], eye: V, pixel: f32, width: f32, l
     let mut edges: Vec<_> = edges.into_iter().collect();
     edges.sort_unstable();
     let mut out = Vec::with_capacity(edges.len() * 6);
+    let eye = Vec3::from(eye);
     for (a, b) in edges {
-        let (pa, pb) = (positions[a as usize], positions[b as usize]);
-        let mid = add_scaled(pa, sub(pb, pa), 0.5);
-        let side = cross(sub(pb, pa), sub(eye, mid));
-        let l = len(side);
+        let (pa, pb) = (Vec3::from(positions[a as usize]), Vec3::from(positions[b as usize]));
+        let mid = pa + (pb - pa) * 0.5;
+        let side = (pb - pa).cross(eye - mid);
+        let l = side.length();
         if !(l > 0.0 && l.is_finite()) {
             continue; // an edge seen end-on, or of no length
         }
-        let side = side.map(|x| x / l);
+        let side = side / l;
         // Half the width, and the lift, in model units at each end's distance.
-        let place = |p: V, s: f32| {
-            let d = len(sub(eye, p)).max(1e-20);
-            let q = add_scaled(p, side, s * 0.5 * width * pixel * d);
+        let place = |p: Vec3, s: f32| {
+            let d = (eye - p).length().max(1e-20);
+            let q = p + side * (s * 0.5 * width * pixel * d);
             // Towards the eye along the line of sight: same pixel, nearer.
-            add_scaled(q, sub(eye, q), (lift * pixel).min(0.5))
+            (q + (eye - q) * (lift * pixel).min(0.5)).to_array()
         };
         let (a0, a1, b0, b1) = (place(pa, -1.0), place(pa, 1.0), place(pb, -1.0), place(pb, 1.0));
         out.extend_from_slice(&[a0, a1, b1, a0, b1, b0]);

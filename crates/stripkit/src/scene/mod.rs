@@ -1,0 +1,227 @@
+//! Stripping a glTF scene, above the door: every triangle primitive of an
+//! [`io::Scene`](crate::io::Scene) goes through the front door on its own, and the
+//! scene is told what to write (the strips, the triangles they were verified against,
+//! the first-use vertex order).
+//!
+//! `mesh::io` reads and writes the document and knows nothing of stripifiers; this
+//! module runs them and reports. [`Scene::strip`] is defined here, on the document
+//! type of `io`, so that a scene is still read, stripped and written as one value.
+//!
+//! ```
+//! use stripkit::io::Format;
+//! use stripkit::scene::{Scene, SceneOptions};
+//! use stripkit::{gen, StripOptions};
+//!
+//! let mut scene = Scene::from_mesh(&gen::icosphere(1))?;
+//! let options = SceneOptions::default().restart(false).reorder(true);
+//! let report = scene.strip(&StripOptions::default(), &options)?;
+//! assert_eq!(report.triangles, 80);
+//! assert_eq!(report.indices_drawn_restart, report.indices_stitched); // no restart groups
+//! let glb = scene.to_bytes(Format::Glb)?; // read back and checked
+//! assert!(!glb.is_empty());
+//! # Ok::<(), stripkit::Error>(())
+//! ```
+
+use crate::error::{Error, Result};
+use crate::mesh::order::first_use;
+use crate::mesh::Mesh;
+use crate::metrics::Figures;
+use crate::pipeline::{Algorithm, Join, StripOptions, Stripifier};
+use crate::strip::{self, DEFAULT_RESTART};
+use std::time::{Duration, Instant};
+
+pub use crate::mesh::io::{Scene, ScenePrimitive};
+
+/// The glTF writer the library uses for `mesh`'s strips under `options`: the scene
+/// of the mesh ([`Scene::from_mesh`]: one primitive per group with its attributes and
+/// material, each stripped on its own by [`Scene::strip`] and written with its restart
+/// group), or `None` for the plain writer (one stitched strip primitive over the whole
+/// mesh, [`Strips::to_file_bytes`](crate::Strips::to_file_bytes)) where a scene cannot
+/// hold what `options` ask for: [`Algorithm::Single`] (it adds vertices),
+/// [`Join::Separate`] (a primitive per strip), a restart index other than
+/// [`DEFAULT_RESTART`], or a mesh without faces.
+pub fn for_gltf_output(mesh: &Mesh, options: &StripOptions) -> Result<Option<Scene>> {
+    let plain = options.join == Join::Separate
+        || matches!(options.algorithm, Algorithm::Single(_))
+        || options.restart_index != DEFAULT_RESTART
+        || mesh.face_count() == 0;
+    if plain {
+        return Ok(None);
+    }
+    Scene::from_mesh(mesh).map(Some)
+}
+
+/// How [`Scene::strip`] writes the strips. Defaults: restart groups on, vertices
+/// renumbered in first use.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct SceneOptions {
+    /// Add an `EXT_mesh_primitive_restart` group (restart indices) beside each
+    /// stitched strip primitive without morph targets. Default `true`; `false` writes
+    /// plain stitched strips, one primitive per input primitive, without the extension.
+    pub restart: bool,
+    /// Renumber each stripped primitive's vertices in their first use by the strips
+    /// and leave out those the strips do not use (meshoptimizer's
+    /// `optimizeVertexFetch`): its attributes and morph targets are written anew,
+    /// gathered in that order (min / max recomputed). Default `true`. A primitive
+    /// whose vertex data cannot be decoded (a sparse accessor) keeps its order.
+    pub reorder: bool,
+}
+
+impl Default for SceneOptions {
+    fn default() -> Self {
+        SceneOptions { restart: true, reorder: true }
+    }
+}
+
+impl SceneOptions {
+    /// Plain stitched strips: the defaults with [`SceneOptions::restart`] off (no
+    /// `EXT_mesh_primitive_restart`).
+    pub fn stitched() -> Self {
+        SceneOptions::default().restart(false)
+    }
+
+    /// Sets [`SceneOptions::restart`].
+    pub fn restart(mut self, on: bool) -> Self {
+        self.restart = on;
+        self
+    }
+
+    /// Sets [`SceneOptions::reorder`].
+    pub fn reorder(mut self, on: bool) -> Self {
+        self.reorder = on;
+        self
+    }
+}
+
+/// What [`Scene::strip`] did to one primitive.
+#[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
+pub struct PrimitiveReport {
+    /// Index in the document's `meshes`.
+    pub mesh: usize,
+    /// Index in that mesh's `primitives`.
+    pub primitive: usize,
+    /// The mode read (4, 5 or 6).
+    pub mode_read: u8,
+    /// Indices the primitive had (its vertex count when not indexed).
+    pub indices_read: usize,
+    /// Indices of the stitched strip written as the primitive's `indices`.
+    pub indices_stitched: usize,
+    /// Indices of the restart group, where one is written.
+    pub indices_restart: Option<usize>,
+    /// The algorithm that ran.
+    pub algorithm: &'static str,
+    /// The figures of the strips (METRICS.md).
+    pub figures: Figures,
+}
+
+/// What [`Scene::strip`] did to the whole scene.
+#[derive(Clone, Debug, serde::Serialize)]
+#[non_exhaustive]
+pub struct SceneReport {
+    /// One entry per stripped primitive, in document order.
+    pub primitives: Vec<PrimitiveReport>,
+    /// Primitives left as they were: points and lines, and triangle primitives that
+    /// draw nothing.
+    pub skipped: usize,
+    /// Triangles stripped, all primitives together.
+    pub triangles: usize,
+    /// Indices read, all stripped primitives together.
+    pub indices_read: usize,
+    /// Stitched indices written, all together.
+    pub indices_stitched: usize,
+    /// Indices a viewer with primitive restart draws: the restart groups' indices,
+    /// plus the stitched ones of primitives without a group.
+    pub indices_drawn_restart: usize,
+    /// Vertices the stripped primitives write, all together (with
+    /// [`SceneOptions::reorder`], those their strips use).
+    pub vertices: usize,
+    /// Time of the stripifiers alone, all primitives together, in milliseconds.
+    pub stripify_ms: f64,
+    /// Time of the whole call (door, verification and figures), in milliseconds.
+    pub total_ms: f64,
+}
+
+impl Scene {
+    /// Strips every triangle primitive on its own through the front door
+    /// ([`crate::stripify`], which verifies the strips) and sets the strips on the
+    /// scene, which [`Scene::to_bytes`] and [`Scene::write`] then write, with `options` (its join and
+    /// restart index are the door's business: the written forms are chosen by
+    /// `scene_options`, see [`SceneOptions`]). [`Algorithm::Single`] is refused: it
+    /// adds vertices, and a scene's vertex data is not rewritten. Errors name the
+    /// primitive. Calling it again strips again.
+    pub fn strip(&mut self, options: &StripOptions, scene_options: &SceneOptions) -> Result<SceneReport> {
+        if matches!(options.algorithm, Algorithm::Single(_)) {
+            return Err(Error::Invalid(
+                "single adds vertices, and a glTF scene's vertex data is written as read; choose another algorithm"
+                    .into(),
+            ));
+        }
+        let start = Instant::now();
+        let options = options.clone().join(Join::Restart).restart_index(u32::MAX);
+        let mut stripifier = Stripifier::new(options)?;
+        let mut report = SceneReport {
+            primitives: Vec::new(),
+            skipped: self.other_primitives(),
+            triangles: 0,
+            indices_read: 0,
+            indices_stitched: 0,
+            indices_drawn_restart: 0,
+            vertices: 0,
+            stripify_ms: 0.0,
+            total_ms: 0.0,
+        };
+        let mut stripify_time = Duration::ZERO;
+        // Whether each primitive's vertex accessors can be read back for reordering.
+        let readable = self.renumberable();
+        let file = self.name().to_path_buf();
+        for (sp, readable) in self.primitives_mut().iter_mut().zip(readable) {
+            sp.strips = None;
+            sp.order = None;
+            if sp.mesh.face_count() == 0 {
+                report.skipped += 1;
+                continue;
+            }
+            let name = |e: Error| {
+                let place =
+                    format!("{}: meshes[{}].primitives[{}]", file.display(), sp.mesh_index, sp.primitive_index);
+                match e {
+                    Error::Invalid(m) => Error::Invalid(format!("{place}: {m}")),
+                    Error::Verification(m) => Error::Verification(format!("{place}: {m}")),
+                    other => other,
+                }
+            };
+            let strips = stripifier.stripify(&sp.mesh).map_err(name)?;
+            stripify_time += strips.stripify_time;
+            let set = strips.strips;
+            let stitched = strip::stitched_len(&set);
+            let restart = (scene_options.restart && sp.targets == 0)
+                .then(|| set.iter().filter(|s| s.len() >= 3).map(|s| s.len() + 1).sum::<usize>().saturating_sub(1));
+            report.triangles += strips.figures.triangles;
+            report.indices_read += sp.indices_read;
+            report.indices_stitched += stitched;
+            report.indices_drawn_restart += restart.unwrap_or(stitched);
+            report.primitives.push(PrimitiveReport {
+                mesh: sp.mesh_index,
+                primitive: sp.primitive_index,
+                mode_read: sp.mode,
+                indices_read: sp.indices_read,
+                indices_stitched: stitched,
+                indices_restart: restart,
+                algorithm: strips.algorithm.name(),
+                figures: strips.figures,
+            });
+            if scene_options.reorder && readable {
+                sp.order = Some(first_use(strip::encode_stitched(&set), sp.mesh.vertex_count()));
+            }
+            sp.strips = Some(set);
+            report.vertices += sp.order.as_ref().map_or(sp.mesh.vertex_count(), Vec::len);
+            sp.drawn = strips.triangles;
+        }
+        self.set_restart_groups(scene_options.restart);
+        report.stripify_ms = stripify_time.as_secs_f64() * 1e3;
+        report.total_ms = start.elapsed().as_secs_f64() * 1e3;
+        Ok(report)
+    }
+}
