@@ -45,7 +45,7 @@ impl DualWeights {
 }
 
 impl std::str::FromStr for DualWeights {
-    type Err = crate::Error;
+    type Err = crate::error::Error;
     /// The kind of this name ([`DualWeights::NAMES`]); `random` with the default seed.
     fn from_str(s: &str) -> Result<Self> {
         match s {

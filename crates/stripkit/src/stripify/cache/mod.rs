@@ -324,7 +324,7 @@ pub struct MeshStrips {
 /// the fan, starts decides its fan, so that stays part of the input; vertices at equal
 /// positions fall back to their ids.) The copy costs little next to the stripifier.
 pub fn stripify_mesh(
-    mesh: &crate::Mesh,
+    mesh: &crate::mesh::Mesh,
     options: &CacheOptions,
     max_acmr: Option<f64>,
     split: Split,
