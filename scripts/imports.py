@@ -4,7 +4,7 @@
 Usage:
     scripts/imports.py            # per crate: each file and the files it imports, then findings
     scripts/imports.py --summary  # findings only (circles, upward imports, root re-exports)
-    scripts/imports.py --check    # findings only; exit 1 on a circle or an upward import
+    scripts/imports.py --check    # findings only; exit 1 on a circle, an upward import or a use through the root
     scripts/imports.py --crate stripkit-cli   # one crate
 
 What counts as an import of file B by file A: a `use` (also `pub use`) or an inline path
@@ -23,8 +23,8 @@ Findings:
   * upward imports (library only): a file whose top-level module sits lower in LAYERS
     than the module of a file it imports;
   * root re-exports (library only): `use crate::Name` where `Name` is an item that
-    `lib.rs` re-exports; reported (a module should import from the module that defines
-    the name) but not counted by `--check`.
+    `lib.rs` re-exports (a module imports from the module that defines the name, so
+    that lib.rs stays the top of the layers).
 
 Python 3 standard library only. The parser is a careful approximation of Rust's module
 rules (comments and string literals removed, `#[path]` honoured, uniform paths); it is
@@ -518,7 +518,7 @@ def short(crate, f):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--check", action="store_true", help="findings only; exit 1 on a circle or an upward import")
+    ap.add_argument("--check", action="store_true", help="findings only; exit 1 on a circle, an upward import or a use through the root")
     ap.add_argument("--summary", action="store_true", help="findings only")
     ap.add_argument("--crate", help="only this crate (folder name under crates/)")
     ap.add_argument("--strict", action="store_true", help="count a module's use of its own submodules in circles")
@@ -562,6 +562,7 @@ def main():
                 failures += 1
                 print(f"  UPWARD: {short(crate, f)} [{top(crate, f)}] -> {short(crate, t)} [{top(crate, t)}] ({', '.join(sorted(graph[f][t])[:3])})")
             for f, path in sorted(set(via_root)):
+                failures += 1
                 print(f"  ROOT RE-EXPORT: {short(crate, f)} uses {path}")
             print(f"  -- {len(circles)} circle(s), {len(upward)} upward import(s), {len(set(via_root))} use(s) through the root's re-exports")
         else:

@@ -72,8 +72,8 @@ pub fn modes() -> Vec<Mode> {
 fn quad_modes() -> Vec<Mode> {
     let fan = StripOptions::default().split(Split::Fan);
     vec![
-        Mode::Ours("stripkit cache --diagonals fan", fan.clone().algorithm(Algorithm::cache())),
-        Mode::Ours("stripkit balanced --diagonals fan (acmr16 <= 0.8)", fan.algorithm(Algorithm::balanced(0.8))),
+        Mode::Ours("stripkit cache --split fan", fan.clone().algorithm(Algorithm::cache())),
+        Mode::Ours("stripkit balanced --split fan (acmr16 <= 0.8)", fan.algorithm(Algorithm::balanced(0.8))),
         Mode::Ours("stripkit qstrip (other faces: greedy)", StripOptions::default().algorithm(Algorithm::qstrip())),
     ]
 }
@@ -287,7 +287,7 @@ fn render(rows: &[Row], runs: usize) -> String {
          Lower is better everywhere; `idx/tri` = indices_restart / triangles; `idx/quad` = \
          indices_restart / quads on quad-dominant meshes, where QSTRIP works on the quads themselves \
          (either diagonal, checked at quad level) and the other rows on the fan triangulation, but \
-         for the `--diagonals auto` rows (the fan or QSTRIP's split of the quads, whichever gives the \
+         for the `--split auto` rows (the fan or QSTRIP's split of the quads, whichever gives the \
          cheaper strips; checked at quad level) and meshoptimizer on QSTRIP's split.\n\n"
     ));
     s.push_str("| model | triangles | stripifier | strips | swaps | indices_restart | idx/tri | idx/quad | indices_degenerate | acmr16 | acmr32 | ms | reorder ms | ok |\n");
