@@ -124,7 +124,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     print!("{out}");
     if let Some(file) = &args.out {
-        stripkit::io::write_atomic(file, out.as_bytes())?;
+        stripkit::io::write_encoded(file, out.as_bytes())?;
     }
     Ok(())
 }

@@ -124,7 +124,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     print!("{out}");
     if let Some(path) = &args.out {
-        stripkit::io::write_atomic(path, out.as_bytes())?;
+        stripkit::io::write_encoded(path, out.as_bytes())?;
     }
     if !failed.is_empty() {
         anyhow::bail!("failed: {}", failed.join("; "));

@@ -206,7 +206,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         };
         if let Some(bar) = args.bar.as_ref().filter(|_| v == args.view) {
             let svg = bar_svg(&strips.strips, &out, &format!("{} ({weights} weights), view {v}", file_name(&args.file)));
-            stripkit::io::write_atomic(bar, svg.as_bytes())?;
+            stripkit::io::write_encoded(bar, svg.as_bytes())?;
         }
     }
     let mut check = Culled::default();
