@@ -440,7 +440,7 @@ pub(crate) fn encode_checked(
 }
 
 /// The one write path of checked outputs (strips in a mesh file, a glTF scene, the
-/// `.sets` and `.lodseq` files of `lod`): `encode` makes the bytes, `check` reads them
+/// `.sets` and `.lodseq` files of `lod`, a collapse sequence): `encode` makes the bytes, `check` reads them
 /// back and compares them with what was meant, and only then are they written to
 /// `path` atomically ([`write_atomic`]: a temporary file beside it, synced, renamed),
 /// gzip-compressed when the name is a mesh format's ending in `.gz`. Nothing is
