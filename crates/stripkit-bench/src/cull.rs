@@ -17,15 +17,14 @@ use anyhow::Context;
 use std::ops::Range;
 use std::path::PathBuf;
 use std::time::Instant;
-use stripkit::cull::{helix_eyes, Bounds, CullOptions, Culled, Facing, FacingCounter, RenderFront, SegmentTree, HELIX_VIEWS};
+use stripkit::cull::{helix_eyes, survey, Bounds, CullOptions, Facing, FacingCounter, SegmentTree, HELIX_VIEWS};
 use stripkit::{Algorithm, SingleOptions, StripOptions, StripSet, Weights};
 
 /// Arguments of the `cull` comparison.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Folder of the research meshes (default: `STRIPKIT_MODELS`, else ../shared/models).
-    #[arg(long, value_name = "DIR")]
-    pub models: Option<PathBuf>,
+    #[command(flatten)]
+    pub models: crate::common::Models,
     /// Models, comma-separated file names in the folder, or paths.
     #[arg(long, default_value = "fandisk.obj,cow.obj,horse.ply,bunny_small.off,dragon.obj,spot_triangulated.obj")]
     pub only: String,
@@ -36,9 +35,8 @@ pub struct Args {
     /// most N culled triangles drawn as one); 0: none.
     #[arg(long, default_value_t = 16)]
     pub gap: u32,
-    /// Also write the markdown table to this file.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub table: crate::common::TableOut,
 }
 
 #[derive(Default)]
@@ -63,33 +61,19 @@ fn tree_row(
     eyes: &[[f32; 3]],
     repeat: usize,
 ) -> anyhow::Result<Row> {
-    let mut row = Row { method: method.into(), units: tree.len(), ..Row::default() };
-    let (mut out, mut check) = (Culled::default(), Culled::default());
-    let (mut best_root, mut best_front) = (vec![f64::MAX; eyes.len()], vec![f64::MAX; eyes.len()]);
-    for _ in 0..repeat.max(1) {
-        for (v, &eye) in eyes.iter().enumerate() {
-            let t = Instant::now();
-            tree.cull(eye, &o, &mut out);
-            best_root[v] = best_root[v].min(t.elapsed().as_secs_f64() * 1e6);
-        }
-        let mut front = RenderFront::new(tree);
-        for (v, &eye) in eyes.iter().enumerate() {
-            let t = Instant::now();
-            front.cull(tree, eye, &o, &mut check);
-            best_front[v] = best_front[v].min(t.elapsed().as_secs_f64() * 1e6);
-        }
-    }
-    let mut front = RenderFront::new(tree);
-    for &eye in eyes {
-        tree.cull(eye, &o, &mut out);
-        front.cull(tree, eye, &o, &mut check);
-        anyhow::ensure!(out.ranges == check.ranges, "{method}: the render front disagrees with the root traversal");
-        add(&mut row, &counter.count(eye, &out.ranges), out.ranges.len(), out.drawn_triangles);
-    }
-    finish(&mut row, eyes.len());
-    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
-    row.us = format!("{:.1} / {:.1}", mean(&best_root), mean(&best_front));
-    Ok(row)
+    let views = survey::survey(tree, counter, eyes, |_| o, repeat).with_context(|| method.to_string())?;
+    let m = survey::mean(&views);
+    Ok(Row {
+        method: method.into(),
+        units: tree.len(),
+        draws: m.segments,
+        drawn: m.drawn,
+        back: m.back,
+        back_culled: m.back_culled,
+        back_drawn: m.back_drawn,
+        front_missed: m.front_missed,
+        us: format!("{:.1} / {:.1}", m.us_root, m.us_front),
+    })
 }
 
 fn add(row: &mut Row, c: &stripkit::cull::FacingCounts, draws: usize, drawn: usize) {
@@ -159,7 +143,7 @@ fn meshlet_row(tris: &[[u32; 3]], positions: &[[f32; 3]], eyes: &[[f32; 3]], rep
         for t in m.triangles.chunks_exact(3) {
             let [a, b, c] = [0, 1, 2].map(|k| positions[m.vertices[t[k] as usize] as usize].map(|x| x as f64));
             let (u, w) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
-            let n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+            let n = glam::DVec3::from(u).cross(glam::DVec3::from(w)).to_array();
             p.push((n, n[0] * a[0] + n[1] * a[1] + n[2] * a[2]));
         }
         planes.push(p);
@@ -206,7 +190,7 @@ fn meshlet_row(tris: &[[u32; 3]], positions: &[[f32; 3]], eyes: &[[f32; 3]], rep
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let dir = args.models.clone().or_else(crate::models_dir);
+    let dir = args.models.dir();
     let mut out = String::new();
     out.push_str("| model | triangles | method | nodes / strips / meshlets | draws per view | triangles drawn | back-facing | back culled | back drawn (leak) | front missed | us per view (roots / front) |\n");
     out.push_str("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -219,7 +203,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("{name}: not found, skipped");
             continue;
         }
-        let mesh = crate::read_surface(&path).with_context(|| format!("reading {}", path.display()))?;
+        let mesh = crate::common::read_surface(&path).with_context(|| format!("reading {}", path.display()))?;
         let tris = mesh.triangulate().tris;
         eprintln!("{name}: {} triangles", tris.len());
         let (center, radius) = stripkit::cull::bounding_sphere(&mesh.positions);
@@ -236,7 +220,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let o = CullOptions::default();
             rows.push(tree_row(&format!("single strip, {w} weights, segment tree"), &tree, &counter, o, &eyes, args.repeat)?);
             if args.gap > 0 {
-                let o = CullOptions { max_gap: args.gap, ..o };
+                let o = o.max_gap(args.gap);
                 let m = format!("single strip, {w} weights, segment tree, gaps <= {} joined", args.gap);
                 rows.push(tree_row(&m, &tree, &counter, o, &eyes, args.repeat)?);
             }
@@ -255,7 +239,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         if let Some((tree, counter)) = &cull_tree {
             for k in 0..=8 {
                 let gap = if k == 0 { 0 } else { 1u32 << (2 * k) };
-                let o = CullOptions { max_gap: gap, ..CullOptions::default() };
+                let o = CullOptions::default().max_gap(gap);
                 let m = format!("single strip, cull weights, gaps <= {gap} joined (first gap of 4^k with <= 1/10 of the meshlet draws)");
                 let row = tree_row(&m, tree, counter, o, &eyes, 1)?;
                 if row.draws <= meshlets.draws / 10.0 || k == 8 {
@@ -283,7 +267,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     }
     print!("{out}");
-    if let Some(f) = &args.out {
+    if let Some(f) = &args.table.out {
         std::fs::write(f, &out)?;
     }
     Ok(())

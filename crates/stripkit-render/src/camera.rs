@@ -1,5 +1,6 @@
-//! Cameras: a look-at view with a perspective projection, fitted to a bounding box, and
-//! the helix camera path that the benchmarks and culling figures share.
+//! Cameras: a look-at view with a perspective projection, fitted to a bounding box or
+//! placed at a given eye around a bounding sphere (the eyes of the helix camera path
+//! come from the library, `stripkit::cull::helix_eyes`).
 
 use glam::{Mat4, Vec3};
 
@@ -41,6 +42,24 @@ impl Camera {
         }
     }
 
+    /// A camera at `eye` looking at the centre of the bounding sphere (`center`,
+    /// `radius`), +Y up, with a 60 degree vertical field of view and the near and far
+    /// planes 1.01 radii either side of the centre (near at least 0.01 radii): the
+    /// camera of each eye of the helix camera path (`stripkit::cull::helix_eyes`),
+    /// which keeps the whole sphere in view.
+    pub fn around(eye: [f32; 3], center: [f32; 3], radius: f32) -> Self {
+        let r = radius.max(1e-6);
+        let dist = (Vec3::from(eye) - Vec3::from(center)).length();
+        Camera {
+            eye,
+            target: center,
+            up: [0.0, 1.0, 0.0],
+            fov_y_degrees: 60.0,
+            near: (dist - r * 1.01).max(r * 0.01),
+            far: dist + r * 1.01,
+        }
+    }
+
     /// The column-major model-view-projection matrix for a viewport of `aspect` = width / height.
     pub fn view_proj(&self, aspect: f32) -> [f32; 16] {
         let view = Mat4::look_at_rh(self.eye.into(), self.target.into(), self.up.into());
@@ -49,51 +68,20 @@ impl Camera {
     }
 }
 
-/// Views on the helix camera path.
-pub const HELIX_VIEWS: usize = 591;
-
-/// The helix camera path: `views` eyes on an ascending helix around the bounding-sphere
-/// `center`, at 3 `radius` from its axis, three turns, height from -1.5 to +1.5 radii
-/// along +Y, each looking at the centre with a 60 degree vertical field of view.
-/// [`HELIX_VIEWS`] views is the path the figures use.
-pub fn helix_path(center: [f32; 3], radius: f32, views: usize) -> Vec<Camera> {
-    let c = Vec3::from(center);
-    let r = radius.max(1e-6);
-    (0..views)
-        .map(|i| {
-            let s = if views > 1 { i as f32 / (views - 1) as f32 } else { 0.0 };
-            let angle = s * 3.0 * std::f32::consts::TAU;
-            let eye = c + Vec3::new(3.0 * r * angle.cos(), (-1.5 + 3.0 * s) * r, 3.0 * r * angle.sin());
-            let dist = (eye - c).length();
-            Camera {
-                eye: eye.into(),
-                target: center,
-                up: [0.0, 1.0, 0.0],
-                fov_y_degrees: 60.0,
-                near: (dist - r * 1.01).max(r * 0.01),
-                far: dist + r * 1.01,
-            }
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn helix_starts_low_ends_high_and_turns_three_times() {
-        let p = helix_path([0.0; 3], 1.0, HELIX_VIEWS);
-        assert_eq!(p.len(), 591);
-        assert!((p[0].eye[1] + 1.5).abs() < 1e-5);
-        assert!((p[590].eye[1] - 1.5).abs() < 1e-5);
-        // Three turns: the eye crosses +X (angle 0 mod 2 pi) at the start and after each turn.
-        assert!((p[0].eye[0] - 3.0).abs() < 1e-5 && p[0].eye[2].abs() < 1e-5);
-        assert!((p[590].eye[0] - 3.0).abs() < 1e-4 && p[590].eye[2].abs() < 1e-3);
-        for c in &p {
+    fn camera_around_a_sphere_holds_it_between_near_and_far() {
+        for eye in [[3.0, -1.5, 0.0], [0.0, 1.5, -3.0], [2.0, 0.0, 2.0]] {
+            let c = Camera::around(eye, [0.0; 3], 1.0);
             let d = Vec3::from(c.eye).length();
+            assert_eq!((c.eye, c.target, c.up, c.fov_y_degrees), (eye, [0.0; 3], [0.0, 1.0, 0.0], 60.0));
             assert!(c.near < d - 1.0 && c.far > d + 1.0);
         }
+        // An eye inside the sphere keeps a positive near plane.
+        assert!(Camera::around([0.1, 0.0, 0.0], [0.0; 3], 1.0).near > 0.0);
     }
 
     #[test]

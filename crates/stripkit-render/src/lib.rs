@@ -33,6 +33,7 @@
 //! ```
 
 mod camera;
+pub mod chart;
 mod egl;
 mod frame;
 mod image;
@@ -41,7 +42,7 @@ pub mod paint;
 mod shaders;
 pub mod wire;
 
-pub use camera::{helix_path, Camera, HELIX_VIEWS};
+pub use camera::Camera;
 pub use frame::{FrameError, Framing};
 pub use image::Image;
 pub use normals::vertex_normals;

@@ -9,26 +9,19 @@ mod support;
 use std::collections::HashMap;
 use stripkit::cull::{
     bounding_sphere, helix_eyes, CullOptions, Culled, Facing, FacingCounter, Frustum, RenderFront, SegmentTree, Side,
-    HELIX_VIEWS, NONE,
+    HELIX_VIEWS,
 };
 use stripkit::{gen, stripify, Algorithm, Mesh, SingleOptions, StripOptions, Strips, Weights};
 
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use stripkit_testkit::geom::{cross, dot, sub};
+use stripkit_testkit::XorShift64 as Rng;
 
 fn jitter(mesh: &Mesh, amount: f32, seed: u64) -> Mesh {
     let mut rng = Rng(seed.wrapping_mul(0x9E3779B97F4A7C15) | 1);
     let mut m = mesh.clone();
     for p in &mut m.positions {
         for x in p.iter_mut() {
-            *x += amount * (rng.next() as f32 - 0.5);
+            *x += amount * (rng.unit() as f32 - 0.5);
         }
     }
     m
@@ -56,15 +49,6 @@ fn single(mesh: &Mesh, weights: Weights) -> Strips {
     strip_with(mesh, Algorithm::Single(SingleOptions::new(weights)))
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
 fn p64(p: [f32; 3]) -> [f64; 3] {
     p.map(|x| x as f64)
 }
@@ -145,7 +129,7 @@ fn check_tree(name: &str, strips: &Strips, pos: &[[f32; 3]], tree: &SegmentTree)
             assert_eq!((a.start, b.end, a.triangles + b.triangles), (n.start, n.end, n.triangles), "{name}");
             assert_eq!((a.strip, b.strip), (n.strip, n.strip));
         }
-        if n.parent == NONE {
+        if n.is_root() {
             assert!(tree.roots.contains(&(i as u32)));
         }
         // The average normal.
@@ -234,12 +218,12 @@ fn random_path(center: [f32; 3], radius: f32, views: usize, seed: u64) -> Vec<[f
     let (mut th, mut ph, mut d) = (0.0f64, 0.0f64, 3.0f64);
     for i in 0..views {
         if i % 40 == 0 {
-            th = rng.next() * std::f64::consts::TAU;
-            ph = (rng.next() * 2.0 - 1.0).acos();
-            d = 0.2 + rng.next() * 5.0;
+            th = rng.unit() * std::f64::consts::TAU;
+            ph = (rng.unit() * 2.0 - 1.0).acos();
+            d = 0.2 + rng.unit() * 5.0;
         }
-        th += 0.05 * (rng.next() - 0.3);
-        ph += 0.03 * (rng.next() - 0.5);
+        th += 0.05 * (rng.unit() - 0.3);
+        ph += 0.03 * (rng.unit() - 0.5);
         let r = radius as f64 * d;
         out.push([
             center[0] + (r * ph.sin() * th.cos()) as f32,
@@ -306,9 +290,9 @@ fn greedy_strips_and_small_leaves_keep_the_front_equal() {
         let s = strip_with(&mesh, Algorithm::greedy());
         check_strips(&format!("{name} greedy"), &s, &mesh, CullOptions::default());
         let s = single(&mesh, Weights::Cull);
-        check_strips(&format!("{name} min 8"), &s, &mesh, CullOptions { min_triangles: 8, max_gap: 0, frustum: None });
-        check_strips(&format!("{name} gap 6"), &s, &mesh, CullOptions { min_triangles: 0, max_gap: 6, frustum: None });
-        check_strips(&format!("{name} min 4 gap 30"), &s, &mesh, CullOptions { min_triangles: 4, max_gap: 30, frustum: None });
+        check_strips(&format!("{name} min 8"), &s, &mesh, CullOptions::default().min_triangles(8));
+        check_strips(&format!("{name} gap 6"), &s, &mesh, CullOptions::default().max_gap(6));
+        check_strips(&format!("{name} min 4 gap 30"), &s, &mesh, CullOptions::default().min_triangles(4).max_gap(30));
     }
 }
 
@@ -424,13 +408,13 @@ fn frustum_culling_skips_only_what_lies_outside() {
             // The helix's own camera (60 degrees) holds the whole model: no change.
             let wide = Frustum::perspective(eye, center, [0.0, 1.0, 0.0], 60.0, 1.0, 0.01, 100.0 * radius).unwrap();
             tree.cull(eye, &CullOptions::default(), &mut plain);
-            tree.cull(eye, &CullOptions { frustum: Some(wide), ..CullOptions::default() }, &mut a);
+            tree.cull(eye, &CullOptions::default().frustum(Some(wide)), &mut a);
             assert_eq!(a.ranges, plain.ranges, "{name}: view {v}");
             assert_eq!(a.outside_triangles, 0);
             // A 12-degree camera aimed off-centre.
             let target = [center[0] + 0.3 * radius, center[1], center[2]];
             let narrow = Frustum::perspective(eye, target, [0.0, 1.0, 0.0], 12.0, 1.5, 0.01, 100.0 * radius).unwrap();
-            let options = CullOptions { frustum: Some(narrow), ..CullOptions::default() };
+            let options = CullOptions::default().frustum(Some(narrow));
             tree.cull(eye, &options, &mut a);
             front.cull(&tree, eye, &options, &mut b);
             assert_eq!(a.ranges, b.ranges, "{name}: view {v}: the front equals the root traversal");

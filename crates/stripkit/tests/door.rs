@@ -11,6 +11,7 @@ use stripkit::{
 };
 
 use support::algorithms;
+use stripkit_testkit::XorShift64;
 
 /// Oriented triangles up to rotation, degenerate ones dropped, sorted.
 fn oriented(flat: &[u32]) -> Vec<[u32; 3]> {
@@ -30,13 +31,8 @@ fn oriented(flat: &[u32]) -> Vec<[u32; 3]> {
 /// a random permutation and triangles shuffled and rotated: a mesh no stripifier saw
 /// in this order.
 fn scrambled_grid(w: u32, h: u32, seed: u64) -> (Vec<u32>, usize) {
-    let mut state = seed | 1;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        state
-    };
+    let mut rng = XorShift64(seed | 1);
+    let mut next = move || rng.next();
     let n = ((w + 1) * (h + 1)) as usize;
     let mut perm: Vec<u32> = (0..n as u32).collect();
     for i in (1..n).rev() {
@@ -459,13 +455,8 @@ fn quads_on_the_same_four_vertices_in_every_order_verify() {
 /// renumbered and shuffled: every quad algorithm and split verifies. Fixed seed.
 #[test]
 fn random_quad_clusters_on_few_vertices_verify() {
-    let mut x = 0x2545_F491_4F6C_DD1Du64;
-    let mut rnd = |n: u64| {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        (x % n) as u32
-    };
+    let mut rng = XorShift64(0x2545_F491_4F6C_DD1D);
+    let mut rnd = |n: u64| (rng.next() % n) as u32;
     for case in 0..400 {
         let k = 2 + rnd(9) as usize;
         let faces: Vec<[u32; 4]> = (0..k)

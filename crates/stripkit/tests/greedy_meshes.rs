@@ -68,28 +68,18 @@ fn icosphere(levels: u32) -> (Vec<[u32; 3]>, usize) {
     triangles_of(stripkit::gen::icosphere(levels))
 }
 
-/// A small deterministic generator (no dependency needed).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self, n: usize) -> usize {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 33) % n as u64) as usize
-    }
-}
+use stripkit_testkit::Lcg;
 
 /// Shuffles the faces, renumbers the vertices and rotates each triangle.
 fn shuffled(tris: &[[u32; 3]], vertex_count: usize, seed: u64) -> Vec<[u32; 3]> {
     let mut rng = Lcg(seed);
     let mut out = tris.to_vec();
     for i in (1..out.len()).rev() {
-        out.swap(i, rng.next(i + 1));
+        out.swap(i, rng.below(i + 1));
     }
     let mut perm: Vec<u32> = (0..vertex_count as u32).collect();
     for i in (1..perm.len()).rev() {
-        perm.swap(i, rng.next(i + 1));
+        perm.swap(i, rng.below(i + 1));
     }
     for t in &mut out {
         *t = [
@@ -97,7 +87,7 @@ fn shuffled(tris: &[[u32; 3]], vertex_count: usize, seed: u64) -> Vec<[u32; 3]> 
             perm[t[1] as usize],
             perm[t[2] as usize],
         ];
-        t.rotate_left(rng.next(3));
+        t.rotate_left(rng.below(3));
     }
     out
 }

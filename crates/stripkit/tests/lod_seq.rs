@@ -8,6 +8,7 @@ mod support;
 use std::path::{Path, PathBuf};
 use stripkit::lod::{self, LevelSpec, LodSeq, SeqOptions};
 use stripkit::{gen, Mesh};
+use stripkit_testkit::XorShift64;
 
 /// A torus that bends and swells over `frames` frames, written as OBJ files (and a
 /// reference pose) into a fresh folder.
@@ -36,7 +37,7 @@ fn animation(name: &str, frames: usize) -> PathBuf {
 }
 
 fn options() -> SeqOptions {
-    SeqOptions { samples: 800, ..SeqOptions::default() }
+    SeqOptions::default().samples(800)
 }
 
 #[test]
@@ -69,16 +70,14 @@ fn every_model_draws_its_replay_at_every_level() {
 fn the_cursor_follows_frames_and_levels() {
     let dir = animation("cursor", 5);
     let frames = lod::read_frames(&dir, &Default::default()).unwrap();
-    let b = lod::build_seq(&frames, &SeqOptions { tolerance: 1.0, ..options() }, &mut |_| {}).unwrap();
+    let b = lod::build_seq(&frames, &options().tolerance(1.0), &mut |_| {}).unwrap();
     let seq = &b.seq;
     assert!(seq.models().len() >= 2, "frames with different sequences: {:?}", b.report.sequences);
     let mut cursor = seq.cursor(0, LevelSpec::Level(0));
     let mut previous = cursor.buffer().to_vec();
-    let mut x = 0x9E3779B97F4A7C15u64;
+    let mut rng = XorShift64(0x9E3779B97F4A7C15);
     for step in 0..200 {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
+        let x = rng.next();
         let frame = (x % 5) as usize;
         let spec = match step % 4 {
             0 => LevelSpec::Level((x >> 8) as u32 % 700),
@@ -148,7 +147,7 @@ fn lodseq_files_round_trip_and_refuse_damage() {
     let dir = animation("file", 4);
     let frames = lod::read_frames(&dir, &Default::default()).unwrap();
     for bits in [None, Some(12)] {
-        let b = lod::build_seq(&frames, &SeqOptions { position_bits: bits, ..options() }, &mut |_| {}).unwrap();
+        let b = lod::build_seq(&frames, &options().position_bits(bits), &mut |_| {}).unwrap();
         let bytes = b.seq.to_bytes();
         let path = Path::new("anim.lodseq");
         assert_eq!(LodSeq::from_bytes(path, &bytes).unwrap(), b.seq);
@@ -162,12 +161,10 @@ fn lodseq_files_round_trip_and_refuse_damage() {
         assert!(LodSeq::from_bytes(path, &b.seq.models()[0].to_bytes()).is_err());
         assert!(lod::Sets::from_bytes(path, &bytes).is_err());
         // Damage behind a valid checksum: an error or a sequence, never a panic.
-        let mut x = 0x2545F4914F6CDD1Du64;
+        let mut rng = XorShift64(0x2545F4914F6CDD1D);
         for _ in 0..300 {
             let mut bad = bytes.clone();
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            let x = rng.next();
             let at = 8 + (x as usize >> 8) % (bad.len() - 12);
             bad[at] = (x & 0xff) as u8;
             let n = bad.len() - 4;
@@ -188,7 +185,7 @@ fn quantized_positions_round_trip_exactly() {
     let frames = lod::read_frames(&dir, &Default::default()).unwrap();
     let exact = lod::build_seq(&frames, &options(), &mut |_| {}).unwrap();
     for bits in [8, 12, 16, 20] {
-        let b = lod::build_seq(&frames, &SeqOptions { position_bits: Some(bits), ..options() }, &mut |_| {}).unwrap();
+        let b = lod::build_seq(&frames, &options().position_bits(Some(bits)), &mut |_| {}).unwrap();
         let bytes = b.seq.to_bytes();
         let back = LodSeq::from_bytes(Path::new("q.lodseq"), &bytes).unwrap();
         assert_eq!(back, b.seq, "{bits} bits: the file holds exactly the quantized positions");
@@ -203,7 +200,7 @@ fn quantized_positions_round_trip_exactly() {
         }
         assert!(bytes.len() < exact.seq.to_bytes().len(), "{bits} bits: smaller than exact positions");
     }
-    let e = lod::build_seq(&frames, &SeqOptions { position_bits: Some(4), ..options() }, &mut |_| {});
+    let e = lod::build_seq(&frames, &options().position_bits(Some(4)), &mut |_| {});
     assert!(e.is_err());
 }
 
@@ -216,7 +213,7 @@ fn research_sequence_cat() {
     }
     let frames = lod::read_frames(&dir, &Default::default()).unwrap();
     assert_eq!(frames.positions.len(), 9);
-    let b = lod::build_seq(&frames, &SeqOptions { samples: 1000, ..SeqOptions::default() }, &mut |_| {}).unwrap();
+    let b = lod::build_seq(&frames, &SeqOptions::default().samples(1000), &mut |_| {}).unwrap();
     let mesh = Mesh::from_triangles(frames.positions[0].clone(), &b.triangles);
     for (sets, sequence) in b.seq.models().iter().zip(&b.sequences) {
         lod::check_levels(sets, &mesh, sequence, 1, 5).unwrap();

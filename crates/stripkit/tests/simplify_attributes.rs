@@ -4,6 +4,7 @@
 
 use stripkit::simplify::{simplify, Options, Placement, Target};
 use stripkit::{Attribute, Group, Mesh};
+use stripkit_testkit::XorShift64;
 
 const N: u32 = 24;
 const SEAM: u32 = N / 2;
@@ -62,13 +63,7 @@ fn seamed() -> (Mesh, Vec<bool>) {
         }
     }
     // A fixed shuffle of the faces.
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    for i in (1..faces.len()).rev() {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        faces.swap(i, (state % (i as u64 + 1)) as usize);
-    }
+    XorShift64(0x2545_f491_4f6c_dd1d).shuffle(&mut faces);
     let tris: Vec<[u32; 3]> = faces.iter().map(|f| f.0).collect();
     let mut mesh = Mesh::from_triangles(positions, &tris);
     mesh.face_groups = faces.iter().map(|f| f.1).collect();
@@ -120,7 +115,7 @@ fn simplification_keeps_uv_seams_closed_and_never_mixes_the_islands() {
     assert_eq!(input_seam.len(), N as usize);
     assert_eq!(input_seam, seam_edges(&mesh, &right, true));
     for placement in [Placement::Endpoint, Placement::Optimal] {
-        let options = Options { target: Target::Ratio(0.2), placement, ..Options::default() };
+        let options = Options::default().target(Target::Ratio(0.2)).placement(placement);
         let out = simplify(&mesh, &options, &mut |_| {}).unwrap().mesh;
         let what = format!("{placement:?}");
         let triangles = out.triangle_count();
@@ -169,7 +164,7 @@ fn without_attributes_nothing_is_locked() {
     // The same mesh without attributes: its seam is just a cut, free to move, so it
     // simplifies further than with the seam kept.
     let (mut mesh, _) = seamed();
-    let options = Options { target: Target::Ratio(0.02), ..Options::default() };
+    let options = Options::default().target(Target::Ratio(0.02));
     let with = simplify(&mesh, &options, &mut |_| {}).unwrap().triangles_out();
     mesh.attributes.clear();
     let without = simplify(&mesh, &options, &mut |_| {}).unwrap().triangles_out();
@@ -183,7 +178,7 @@ fn moved_survivors_get_unit_normals_between_their_ends() {
     let mut mesh = stripkit::gen::icosphere(3);
     let normals: Vec<f32> = mesh.positions.iter().flatten().copied().collect();
     mesh.attributes.push(Attribute::from_f32("NORMAL", 3, &normals));
-    let options = Options { target: Target::Ratio(0.1), placement: Placement::Optimal, ..Options::default() };
+    let options = Options::default().target(Target::Ratio(0.1)).placement(Placement::Optimal);
     let out = simplify(&mesh, &options, &mut |_| {}).unwrap().mesh;
     let n = out.attribute("NORMAL").unwrap();
     let mut moved = 0;

@@ -8,7 +8,7 @@ use stripkit::simplify::{simplify, CollapseSequence, Options, Placement, Simplif
 use stripkit::Mesh;
 
 fn run(mesh: &Mesh, placement: Placement, target: Target, max: Option<usize>) -> Simplified {
-    let opts = Options { target, placement, max_collapses: max, ..Options::default() };
+    let opts = Options::default().target(target).placement(placement).max_collapses(max);
     simplify(mesh, &opts, &mut |_| {}).expect("simplify")
 }
 
@@ -183,7 +183,7 @@ fn error_target_stops_at_the_bound() {
 #[test]
 fn bad_options_are_errors() {
     let mesh = bumpy_sphere(1);
-    let opts = Options { target: Target::Ratio(1.5), ..Options::default() };
+    let opts = Options::default().target(Target::Ratio(1.5));
     assert!(simplify(&mesh, &opts, &mut |_| {}).is_err());
     let bad = Mesh::from_triangles(vec![[0.0; 3]; 2], &[[0, 1, 2]]);
     assert!(simplify(&bad, &Options::default(), &mut |_| {}).is_err());
@@ -222,10 +222,10 @@ fn pair_contraction_joins_close_pieces_only_when_asked() {
     tris.extend(right.triangulate().tris.iter().map(|t| t.map(|v| v + n)));
     let mesh = Mesh::from_triangles(positions, &tris);
     let joined = |s: &Simplified| s.sequence.collapses.iter().any(|c| (c.removed < n) != (c.kept < n));
-    let opts = Options { target: Target::Ratio(0.5), ..Options::default() };
+    let opts = Options::default().target(Target::Ratio(0.5));
     let off = simplify(&mesh, &opts, &mut |_| {}).unwrap();
     assert!(!joined(&off));
-    let opts = Options { target: Target::Ratio(0.5), pair_distance: Some(0.01), boundary_weight: 0.0, ..Options::default() };
+    let opts = Options::default().target(Target::Ratio(0.5)).pair_distance(Some(0.01)).boundary_weight(0.0);
     let on = simplify(&mesh, &opts, &mut |_| {}).unwrap();
     assert!(joined(&on), "no pair across the gap was contracted");
     assert!(on.sequence.replay(&mesh, on.sequence.len()).unwrap().to_mesh() == on.mesh);
@@ -298,14 +298,14 @@ fn pair_distances_that_are_not_finite_non_negative_numbers_are_refused() {
     // NaN, negative and infinite distances were taken silently as "no pairs".
     let mesh = bumpy_sphere(1);
     for d in [f64::NAN, -0.5, f64::INFINITY, f64::NEG_INFINITY] {
-        let opts = Options { pair_distance: Some(d), ..Options::default() };
+        let opts = Options::default().pair_distance(Some(d));
         let e = simplify(&mesh, &opts, &mut |_| {}).unwrap_err();
         assert!(matches!(e, stripkit::Error::Invalid(_)), "{d}: {e:?}");
         assert!(e.to_string().contains(&format!("pair distance {d} is not a finite non-negative number")), "{e}");
     }
     // 0 finds no pair: the same result as without pairs.
     let off = run(&mesh, Placement::Endpoint, Target::Ratio(0.5), None);
-    let opts = Options { target: Target::Ratio(0.5), pair_distance: Some(0.0), ..Options::default() };
+    let opts = Options::default().target(Target::Ratio(0.5)).pair_distance(Some(0.0));
     assert_eq!(simplify(&mesh, &opts, &mut |_| {}).unwrap().mesh, off.mesh);
 }
 
@@ -316,7 +316,7 @@ fn a_pair_distance_that_pairs_everything_is_refused_before_queueing() {
     let mesh = bumpy_sphere(5);
     let used = mesh.positions.len();
     assert!(used * used / 2 > 32 * used + (1 << 20), "{used} vertices are too few for the test");
-    let opts = Options { pair_distance: Some(1e30), ..Options::default() };
+    let opts = Options::default().pair_distance(Some(1e30));
     let e = simplify(&mesh, &opts, &mut |_| {}).unwrap_err();
     assert!(matches!(e, stripkit::Error::Invalid(_)), "{e:?}");
     let limit = 32 * used + (1 << 20);

@@ -19,7 +19,7 @@ fn bunny_and_horse_replay_and_stay_valid() {
         };
         let input = mesh.triangulate().tris;
         for placement in [Placement::Endpoint, Placement::Optimal] {
-            let opts = Options { target: Target::Ratio(0.01), placement, ..Options::default() };
+            let opts = Options::default().target(Target::Ratio(0.01)).placement(placement);
             let s = simplify(&mesh, &opts, &mut |_| {}).unwrap();
             assert!(s.triangles_out() <= input.len().div_ceil(100) + 1, "{file}: {}", s.triangles_out());
             let replay = s.sequence.replay(&mesh, s.sequence.len()).unwrap();

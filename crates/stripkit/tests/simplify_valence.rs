@@ -15,14 +15,13 @@ use stripkit::Mesh;
 use valence_meshes::{edge_fan, polygon, star};
 
 fn run(mesh: &Mesh, placement: Placement, ratio: f64) -> Simplified {
-    let opts = Options { target: Target::Ratio(ratio), placement, ..Options::default() };
+    let opts = Options::default().target(Target::Ratio(ratio)).placement(placement);
     simplify(mesh, &opts, &mut |_| {}).expect("simplify")
 }
 
 fn normal(p: &[[f32; 3]], t: [u32; 3]) -> [f64; 3] {
     let [a, b, c] = t.map(|v| p[v as usize].map(f64::from));
-    let (e1, e2) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
-    [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+    stripkit_testkit::geom::tri_normal(a, b, c)
 }
 
 /// Target reached (not overshot by more than the last collapse), every triangle
@@ -119,7 +118,7 @@ fn polygon_of_50k_corners_halves_as_a_fan_from_its_first_corner() {
 #[test]
 fn pair_contraction_around_a_hub_reaches_its_target() {
     let mesh = star(10_000);
-    let opts = Options { target: Target::Ratio(0.1), pair_distance: Some(1e-3), ..Options::default() };
+    let opts = Options::default().target(Target::Ratio(0.1)).pair_distance(Some(1e-3));
     let s = simplify(&mesh, &opts, &mut |_| {}).expect("simplify");
     check(&mesh, &s, 0.1, &[0]);
 }

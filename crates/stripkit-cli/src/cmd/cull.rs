@@ -4,10 +4,10 @@
 
 use anyhow::Context;
 use serde::Serialize;
-use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
-use stripkit::cull::{helix_eyes, CullOptions, Culled, FacingCounter, Frustum, RenderFront, SegmentTree, HELIX_VIEWS};
+use stripkit::cull::survey::{self, PathMean, ViewFigures};
+use stripkit::cull::{helix_eyes, CullOptions, Culled, FacingCounter, Frustum, SegmentTree, HELIX_VIEWS};
 use stripkit::{Algorithm, SingleOptions, StripOptions, Weights};
 
 /// Arguments of `stripkit cull`.
@@ -94,23 +94,6 @@ pub enum PathKind {
     Spiral,
 }
 
-/// One view's figures.
-#[derive(Serialize, Clone, Copy, Default)]
-pub struct View {
-    pub segments: usize,
-    pub drawn: usize,
-    pub back_culled: usize,
-    pub back_drawn: usize,
-    pub front_missed: usize,
-    /// Triangles skipped as outside the frustum (--frustum).
-    pub outside: usize,
-    pub visited_root: usize,
-    pub visited_front: usize,
-    pub reused_front: usize,
-    pub us_root: f64,
-    pub us_front: f64,
-}
-
 /// The report.
 #[derive(Serialize)]
 pub struct Report {
@@ -126,27 +109,9 @@ pub struct Report {
     /// Frustum culling on, and the camera's vertical field of view.
     pub frustum: bool,
     pub fov: f32,
-    pub mean: Averages,
+    pub mean: PathMean,
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub per_view: Vec<View>,
-}
-
-/// Figures averaged over the views.
-#[derive(Serialize, Default)]
-pub struct Averages {
-    pub segments: f64,
-    pub drawn: f64,
-    pub back: f64,
-    pub back_culled: f64,
-    pub back_drawn: f64,
-    pub front_missed: f64,
-    pub outside: f64,
-    pub visited_root: f64,
-    pub visited_front: f64,
-    pub reused_front: f64,
-    pub us_root: f64,
-    pub us_front: f64,
-    pub us_front_max: f64,
+    pub per_view: Vec<ViewFigures>,
 }
 
 /// Runs the command.
@@ -174,77 +139,24 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     let fov = args.fov.unwrap_or(60.0);
     anyhow::ensure!(fov > 0.0 && fov < 179.0, "--fov {fov} is out of range: more than 0 and less than 179 degrees");
-    let base = CullOptions { min_triangles: args.min_triangles, max_gap: args.max_gap, frustum: None };
+    let base = CullOptions::default().min_triangles(args.min_triangles).max_gap(args.max_gap);
     let near_far = (0.01 * radius.max(1e-6), 100.0 * radius.max(1e-6));
-    let cull_at = |eye: [f32; 3]| CullOptions {
-        frustum: args
-            .frustum
-            .then(|| Frustum::perspective(eye, center, [0.0, 1.0, 0.0], fov, 1.0, near_far.0, near_far.1))
-            .flatten(),
-        ..base
+    let cull_at = |eye: [f32; 3]| {
+        base.frustum(
+            args.frustum
+                .then(|| Frustum::perspective(eye, center, [0.0, 1.0, 0.0], fov, 1.0, near_far.0, near_far.1))
+                .flatten(),
+        )
     };
     let counter = FacingCounter::new(&strips.strips, &positions);
-
-    let mut views = vec![View::default(); eyes.len()];
-    let mut out = Culled::default();
-    let mut backs = 0usize;
-    for (v, &eye) in eyes.iter().enumerate() {
+    let views = survey::survey(&tree, &counter, &eyes, &cull_at, args.repeat)?;
+    if let Some(bar) = &args.bar {
+        let (v, eye) = (args.view, eyes[args.view]);
+        let mut out = Culled::default();
         tree.cull(eye, &cull_at(eye), &mut out);
-        let c = counter.count(eye, &out.ranges);
-        backs += c.back;
-        views[v] = View {
-            segments: out.ranges.len(),
-            drawn: out.drawn_triangles,
-            back_culled: c.back_culled(),
-            back_drawn: c.back_drawn,
-            front_missed: c.front - c.front_drawn,
-            outside: out.outside_triangles,
-            visited_root: out.visited,
-            us_root: f64::MAX,
-            us_front: f64::MAX,
-            ..View::default()
-        };
-        if let Some(bar) = args.bar.as_ref().filter(|_| v == args.view) {
-            let svg = bar_svg(&strips.strips, &out, &format!("{} ({weights} weights), view {v}", file_name(&args.file)));
-            stripkit::io::write_encoded(bar, svg.as_bytes())?;
-        }
+        let svg = bar_svg(&strips.strips, &out, &format!("{} ({weights} weights), view {v}", file_name(&args.file)));
+        stripkit::io::write_encoded(bar, svg.as_bytes())?;
     }
-    let mut check = Culled::default();
-    for _ in 0..args.repeat.max(1) {
-        for (v, &eye) in eyes.iter().enumerate() {
-            let cull = cull_at(eye);
-            let t = Instant::now();
-            tree.cull(eye, &cull, &mut out);
-            views[v].us_root = views[v].us_root.min(t.elapsed().as_secs_f64() * 1e6);
-        }
-        let mut front = RenderFront::new(&tree);
-        for (v, &eye) in eyes.iter().enumerate() {
-            let cull = cull_at(eye);
-            let t = Instant::now();
-            front.cull(&tree, eye, &cull, &mut check);
-            views[v].us_front = views[v].us_front.min(t.elapsed().as_secs_f64() * 1e6);
-            views[v].visited_front = check.visited;
-            views[v].reused_front = check.reused;
-            anyhow::ensure!(check.ranges.len() == views[v].segments, "view {v}: the render front disagrees with the root traversal");
-        }
-    }
-    let n = views.len() as f64;
-    let mean = |f: fn(&View) -> f64| views.iter().map(f).sum::<f64>() / n;
-    let averages = Averages {
-        segments: mean(|v| v.segments as f64),
-        drawn: mean(|v| v.drawn as f64),
-        back: backs as f64 / n,
-        back_culled: mean(|v| v.back_culled as f64),
-        back_drawn: mean(|v| v.back_drawn as f64),
-        front_missed: mean(|v| v.front_missed as f64),
-        outside: mean(|v| v.outside as f64),
-        visited_root: mean(|v| v.visited_root as f64),
-        visited_front: mean(|v| v.visited_front as f64),
-        reused_front: mean(|v| v.reused_front as f64),
-        us_root: mean(|v| v.us_root),
-        us_front: mean(|v| v.us_front),
-        us_front_max: views.iter().map(|v| v.us_front).fold(0.0, f64::max),
-    };
     let report = Report {
         file: args.file.display().to_string(),
         weights: weights.to_string(),
@@ -257,7 +169,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         views: views.len(),
         frustum: args.frustum,
         fov,
-        mean: averages,
+        mean: survey::mean(&views),
         per_view: if args.json { views } else { Vec::new() },
     };
     // Outside the frustum, front-facing triangles are culled on purpose (the library's
@@ -288,69 +200,22 @@ fn file_name(p: &std::path::Path) -> String {
     p.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default()
 }
 
-/// The strip bar: the index buffer as a horizontal band, drawn ranges dark, culled
-/// parts light, strip ends marked.
+/// The strip bar of one view: the index buffer as a horizontal band, drawn ranges dark,
+/// culled parts light, strip ends marked.
 pub fn bar_svg(strips: &stripkit::StripSet, culled: &Culled, title: &str) -> String {
-    let (w, h, top) = (1200.0f64, 48.0f64, 28.0f64);
-    let len = strips.indices.len().max(1) as f64;
-    let x = |i: u32| i as f64 / len * w;
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}">
-<rect width="100%" height="100%" fill="white"/>
-<text x="0" y="18" font-family="sans-serif" font-size="14">{} - {} segments drawn, {} triangles drawn, {} culled</text>
-<rect x="0" y="{top}" width="{w}" height="{h}" fill="#d8d8d8"/>
-"##,
-        w,
-        top + h + 4.0,
-        w,
-        top + h + 4.0,
-        xml_escape(title),
+    let heading = format!(
+        "{title} - {} segments drawn, {} triangles drawn, {} culled",
         culled.ranges.len(),
         culled.drawn_triangles,
         culled.culled_triangles
     );
-    for r in &culled.ranges {
-        let _ = writeln!(
-            s,
-            r##"<rect x="{:.3}" y="{top}" width="{:.3}" height="{h}" fill="#202020"/>"##,
-            x(r.start),
-            (x(r.end) - x(r.start)).max(0.3)
-        );
-    }
-    for &o in &strips.offsets[1..strips.offsets.len().saturating_sub(1)] {
-        let _ = writeln!(s, r##"<line x1="{0:.3}" x2="{0:.3}" y1="{1}" y2="{2}" stroke="#d02020" stroke-width="1"/>"##, x(o), top - 3.0, top + h + 3.0);
-    }
-    s.push_str("</svg>\n");
-    s
-}
-
-fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    let strip_starts = &strips.offsets[1..strips.offsets.len().saturating_sub(1)];
+    stripkit_render::chart::strip_bar(strips.indices.len(), &culled.ranges, strip_starts, &heading)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The library's eye points are the render crate's helix cameras.
-    #[test]
-    fn helix_eyes_match_the_render_crate() {
-        for (c, r, n) in [([0.0f32; 3], 1.0f32, HELIX_VIEWS), ([1.0, -2.0, 3.5], 0.25, 17), ([5.0, 5.0, 5.0], 40.0, 2)] {
-            let eyes = helix_eyes(c, r, n);
-            let cams = stripkit_render::helix_path(c, r, n);
-            assert_eq!(eyes.len(), cams.len());
-            for (e, cam) in eyes.iter().zip(&cams) {
-                assert_eq!(cam.target, c);
-                assert_eq!(cam.fov_y_degrees, 60.0);
-                for k in 0..3 {
-                    assert!((e[k] - cam.eye[k]).abs() <= 1e-5 * r.max(1.0) * 8.0, "{e:?} vs {:?}", cam.eye);
-                }
-            }
-        }
-        assert_eq!(HELIX_VIEWS, stripkit_render::HELIX_VIEWS);
-    }
 
     #[test]
     fn bar_marks_drawn_ranges() {

@@ -115,13 +115,11 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
     let write_options = super::write_options(args.ascii, &args.output, Some(format))?;
     super::check_output_folder(&args.output)?;
     let mesh = args.read.read(&args.file)?;
-    let options = Options {
-        target,
-        placement,
-        boundary_weight: args.boundary_weight,
-        pair_distance: args.pair_distance,
-        max_collapses: None,
-    };
+    let options = Options::default()
+        .target(target)
+        .placement(placement)
+        .boundary_weight(args.boundary_weight)
+        .pair_distance(args.pair_distance);
     let bar = super::progress_bar(mesh.triangle_count() > 200_000 && batch.is_none(), "simplify");
     let start = Instant::now();
     let result = simplify(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))

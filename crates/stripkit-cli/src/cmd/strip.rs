@@ -289,7 +289,7 @@ struct Report<'a> {
     /// QSTRIP only: quads stripped as quads.
     #[serde(skip_serializing_if = "Option::is_none")]
     quads: Option<usize>,
-    /// QSTRIP only: `indices_restart / quads` (METRICS.md).
+    /// QSTRIP only: `indices_restart / quads` (docs/metrics.md).
     #[serde(skip_serializing_if = "Option::is_none")]
     indices_per_quad: Option<f64>,
     /// `single` only: Steiner vertices, swaps, pieces merged, times.

@@ -47,7 +47,7 @@ impl FacingCounter {
                 if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
                     continue;
                 }
-                let n = super::triangle_normal(&t, positions);
+                let n = super::bounds::triangle_normal(&t, positions);
                 let a = positions[t[0] as usize].map(|x| x as f64);
                 out.at.push(base + i as u32);
                 out.planes.push((n, n[0] * a[0] + n[1] * a[1] + n[2] * a[2]));

@@ -1,6 +1,5 @@
-//! The helix camera path of the culling figures: the eye points of
-//! `stripkit_render::camera::helix_path`, which the library does not depend on (a test
-//! in stripkit-cli keeps the two equal).
+//! The helix camera path of the culling and GPU figures: its eye points, the one copy
+//! of the path (stripkit-render's `Camera::around` makes each eye a camera).
 
 /// Views on the helix camera path (the paper's 591 frames).
 pub const HELIX_VIEWS: usize = 591;

@@ -3,18 +3,11 @@
 //!
 //! [`refine`]: super::refine::refine
 
-use super::moves::{ends, Move, MoveList, Piece, MOVE_SLOTS, NONE};
+use super::moves::{Move, MoveList};
+use super::piece::{ends, Piece, FLIP_LINKS, MOVE_SLOTS, NONE};
 use super::slots::Slots;
 use crate::topology::walks::{inner_swap, walk_swaps};
 use crate::topology::NO_NEIGHBOR;
-
-/// Most links one flip of [`refine`] can drop (the size of its fixed arrays); each
-/// call sets its own limit, [`Effort::flip_links`]: cycles of up to twice that many
-/// dual edges, paths of one more.
-///
-/// [`refine`]: super::refine::refine
-/// [`Effort::flip_links`]: super::refine::Effort::flip_links
-pub(super) const FLIP_LINKS: usize = 4;
 
 /// Generates the flips of [`refine`]: alternating cycles and paths in the dual graph,
 /// whose edges alternate between links of the walks (used) and dual edges no walk

@@ -1,8 +1,9 @@
 //! The local search over walks: [`refine`] and the FIFO replay that scores its moves
 //! exactly ([`Refiner`]).
 
-use super::flips::{Flips, FLIP_LINKS};
-use super::moves::{ends, simple_moves, Move, MoveList, Piece, MOVE_SLOTS, NONE};
+use super::flips::Flips;
+use super::moves::{simple_moves, Move, MoveList};
+use super::piece::{ends, Piece, FLIP_LINKS, MOVE_SLOTS, NONE};
 use super::slots::Slots;
 use super::tunnels::Tunnels;
 use crate::metrics::Fifo;

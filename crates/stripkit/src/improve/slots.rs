@@ -3,7 +3,7 @@
 //! a triangle's slot, its position in the slot's walk, and the swaps of that walk up
 //! to it.
 
-use super::moves::{Piece, NONE};
+use super::piece::{Piece, NONE};
 use crate::strip::{joins_at_vertex, StripSet};
 use crate::topology::walks::{inner_swap, walk, walk_swaps};
 use crate::topology::{DualGraph, Walks};

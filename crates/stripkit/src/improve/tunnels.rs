@@ -2,14 +2,11 @@
 //! is a different search from greedy's tunnelling pass ([`super::tunnel`]) is written
 //! at the top of that file.
 
-use super::moves::{Move, MoveList, Piece, MOVE_SLOTS, NONE};
+use super::moves::{Move, MoveList};
+use super::piece::{Piece, MOVE_SLOTS, NONE, REFINE_CUTS};
 use super::slots::Slots;
 use crate::topology::walks::walk_swaps;
 use crate::topology::NO_NEIGHBOR;
-
-/// Most links a tunnel of `refine` cuts (measured on bunny: 4 saves a few more indices
-/// for a third more time).
-pub(super) const REFINE_CUTS: usize = 3;
 
 /// Generates the tunnels of [`refine`] from one strip: alternating paths in the dual
 /// graph that start at an end of the strip, cross to a triangle `n` of another strip

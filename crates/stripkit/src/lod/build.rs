@@ -9,15 +9,40 @@ use crate::pipeline::{stripify, StripOptions};
 use crate::simplify::{simplify, CollapseSequence, Options, Placement, Target};
 use std::time::Instant;
 
-/// Options of [`build`].
+/// Options of [`build`]: the door's defaults and half-edge collapses unless changed
+/// with the builder methods.
+///
+/// ```
+/// use stripkit::{lod::BuildOptions, simplify::Placement, Algorithm, StripOptions};
+/// let options = BuildOptions::default()
+///     .strip(StripOptions::default().algorithm(Algorithm::balanced(0.8)))
+///     .placement(Placement::Optimal);
+/// assert_eq!(options.placement, Placement::Optimal);
+/// ```
 #[derive(Clone, Debug, Default)]
+#[non_exhaustive]
 pub struct BuildOptions {
-    /// The stripifier of level 0 (any the door runs).
+    /// The stripifier of level 0 (any the door runs). Default
+    /// [`StripOptions::default`].
     pub strip: StripOptions,
-    /// Survivor placement of the collapses: [`Placement::Endpoint`] (half-edge
-    /// collapses, no new vertices: what `stripkit simplify` does by default) or
-    /// [`Placement::Optimal`] (a new vertex per collapse).
+    /// Survivor placement of the collapses: [`Placement::Endpoint`] (the default:
+    /// half-edge collapses, no new vertices, what `stripkit simplify` does by default)
+    /// or [`Placement::Optimal`] (a new vertex per collapse).
     pub placement: Placement,
+}
+
+impl BuildOptions {
+    /// Sets [`BuildOptions::strip`].
+    pub fn strip(mut self, strip: StripOptions) -> Self {
+        self.strip = strip;
+        self
+    }
+
+    /// Sets [`BuildOptions::placement`].
+    pub fn placement(mut self, placement: Placement) -> Self {
+        self.placement = placement;
+        self
+    }
 }
 
 /// What [`build`] did.
@@ -80,7 +105,7 @@ pub fn build(mesh: &Mesh, options: &BuildOptions, progress: &mut dyn FnMut(f64))
     positions.extend_from_slice(&strips.added_positions);
     let simplified_mesh = Mesh::from_triangles(positions, &strips.triangles);
     let t = Instant::now();
-    let simplify_options = Options { target: Target::Triangles(0), placement: options.placement, ..Options::default() };
+    let simplify_options = Options::default().target(Target::Triangles(0)).placement(options.placement);
     let simplified = simplify(&simplified_mesh, &simplify_options, progress)?;
     let simplify_ms = t.elapsed().as_secs_f64() * 1e3;
     let t = Instant::now();

@@ -1,9 +1,8 @@
-//! Recovery of levels with coherence, and the paper's recovery tests.
+//! Recovery of levels with coherence.
 
 use super::sets::Sets;
 use crate::strip::StripSet;
 use std::ops::Range;
-use std::time::Instant;
 
 /// The strips of one level of a [`Sets`] model, kept up to date as the level changes.
 ///
@@ -162,52 +161,4 @@ impl<'a> Cursor<'a> {
     pub fn index_count(&self) -> usize {
         self.lens.iter().map(|&l| l as usize).sum()
     }
-}
-
-/// How [`bench_levels`] spaces the levels it recovers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Spacing {
-    /// Equal steps from the finest level to the coarsest.
-    Linear,
-    /// Level `j` of `n` is `(L + 1)^(j / (n - 1)) - 1` for `L` levels, rounded:
-    /// close steps near the finest level, far ones near the coarsest (a model moving
-    /// away from the viewer).
-    Exponential,
-}
-
-/// The paper's recovery test: recover `percent`% of the model's levels (at least
-/// two), spaced by `spacing`, from the finest to the coarsest and back, `rounds`
-/// times; returns the levels of one pass down and the mean microseconds per level
-/// recovered (the cursor's update, with `compact` the tight buffer too).
-pub fn bench_levels(sets: &Sets, percent: f64, spacing: Spacing, rounds: usize, compact: bool) -> (usize, f64) {
-    let total = sets.levels() as usize + 1;
-    let count = ((total as f64 * percent / 100.0).ceil() as usize).clamp(2, total.max(2));
-    let max = sets.levels() as f64;
-    let mut levels: Vec<u32> = (0..count)
-        .map(|j| {
-            let f = j as f64 / (count - 1) as f64;
-            match spacing {
-                Spacing::Linear => (f * max).round() as u32,
-                Spacing::Exponential => ((max + 1.0).powf(f) - 1.0).round() as u32,
-            }
-        })
-        .collect();
-    levels.dedup();
-    let down = levels.len();
-    let mut path = levels.clone();
-    path.extend(levels.iter().rev().skip(1));
-    let mut cursor = sets.cursor(0);
-    let mut out = Vec::new();
-    let start = Instant::now();
-    for _ in 0..rounds.max(1) {
-        for &l in &path {
-            cursor.set_level(l);
-            if compact {
-                cursor.compact(u32::MAX, &mut out);
-            }
-        }
-    }
-    let us = start.elapsed().as_secs_f64() * 1e6 / (path.len() * rounds.max(1)) as f64;
-    (down, us)
 }

@@ -473,6 +473,22 @@ impl super::seq::LodSeq {
         out
     }
 
+    /// Bytes of the models in [`LodSeq::to_bytes`](super::seq::LodSeq::to_bytes), each a
+    /// positionless `.sets` with its length prefix: the level-of-detail data (the rest
+    /// of the file is the header, the frame names and the positions).
+    pub fn model_bytes(&self) -> usize {
+        let mut prefix = Vec::new();
+        self.models
+            .iter()
+            .map(|model| {
+                let len = model.to_bytes().len();
+                prefix.clear();
+                varint(&mut prefix, len as u64);
+                prefix.len() + len
+            })
+            .sum()
+    }
+
     /// Writes the `.lodseq` file atomically, once its bytes read back
     /// ([`LodSeq::from_bytes`](super::seq::LodSeq::from_bytes)) to this model (an
     /// [`Error::Verification`] otherwise). Returns the file's size in bytes.

@@ -20,6 +20,8 @@
 //!   one strip connectivity for every frame of an animation, a few shared
 //!   sequences chosen by measuring them on every frame, any (frame, level)
 //!   recovered, positions morphed between key frames.
+//! * [`timing`]: the paper's recovery tests and the animation's extraction timings (a
+//!   bench API, what `stripkit lod bench` prints).
 
 mod build;
 mod check;
@@ -28,10 +30,11 @@ mod file;
 mod model;
 mod seq;
 mod sets;
+pub mod timing;
 
 pub use build::{build, BuildOptions, BuildReport, Built};
 pub use check::{check_levels, LevelCheck};
-pub use cursor::{bench_levels, Cursor, Spacing};
+pub use cursor::Cursor;
 pub use file::{LODSEQ_MAGIC, SETS_MAGIC};
 pub use model::{Extracted, Model};
 pub use seq::{

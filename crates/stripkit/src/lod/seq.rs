@@ -100,10 +100,19 @@ pub fn read_frames(folder: &Path, options: &ReadOptions) -> Result<Frames> {
     Ok(Frames { names, mesh, positions, reference })
 }
 
-/// Options of [`build_seq`].
+/// Options of [`build_seq`]: the defaults below unless changed with the builder
+/// methods.
+///
+/// ```
+/// use stripkit::lod::SeqOptions;
+/// let options = SeqOptions::default().samples(800).position_bits(Some(12));
+/// assert_eq!((options.samples, options.max_sequences, options.position_bits), (800, 16, Some(12)));
+/// ```
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct SeqOptions {
     /// The stripifier of the shared level-0 strips (one that adds no vertices).
+    /// Default [`StripOptions::default`].
     pub strip: StripOptions,
     /// Most sequences to choose (each is one [`Sets`] model), besides the reference
     /// pose's, which is kept too when a frame falls back to it. Default 16.
@@ -135,6 +144,44 @@ impl Default for SeqOptions {
             candidates: 24,
             position_bits: None,
         }
+    }
+}
+
+impl SeqOptions {
+    /// Sets [`SeqOptions::strip`].
+    pub fn strip(mut self, strip: StripOptions) -> Self {
+        self.strip = strip;
+        self
+    }
+
+    /// Sets [`SeqOptions::max_sequences`].
+    pub fn max_sequences(mut self, sequences: usize) -> Self {
+        self.max_sequences = sequences;
+        self
+    }
+
+    /// Sets [`SeqOptions::tolerance`].
+    pub fn tolerance(mut self, factor: f64) -> Self {
+        self.tolerance = factor;
+        self
+    }
+
+    /// Sets [`SeqOptions::samples`].
+    pub fn samples(mut self, samples: usize) -> Self {
+        self.samples = samples;
+        self
+    }
+
+    /// Sets [`SeqOptions::candidates`].
+    pub fn candidates(mut self, candidates: usize) -> Self {
+        self.candidates = candidates;
+        self
+    }
+
+    /// Sets [`SeqOptions::position_bits`].
+    pub fn position_bits(mut self, bits: Option<u32>) -> Self {
+        self.position_bits = bits;
+        self
     }
 }
 
@@ -316,7 +363,7 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
     let f_count = frames.positions.len();
     // Every frame's own sequence, and the reference pose's (or frame 0's).
     let t = Instant::now();
-    let full = Options { target: Target::Triangles(0), placement: Placement::Endpoint, ..Options::default() };
+    let full = Options::default().target(Target::Triangles(0)).placement(Placement::Endpoint);
     let mut own = Vec::with_capacity(f_count);
     for (i, p) in frames.positions.iter().enumerate() {
         own.push(simplify(&frame_mesh(p), &full, &mut |_| {})?.sequence);
@@ -360,54 +407,7 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
         progress(0.4 + 0.5 * (f + 1) as f64 / f_count as f64);
     }
     let distance_ms = t.elapsed().as_secs_f64() * 1e3;
-    // Greedy k-center on the worse Hausdorff factor against the frame's own. A
-    // sequence counts for a frame only where it is no worse than the reference
-    // pose's (candidate 0), which every frame may fall back to; so the objective
-    // is the one the assignment below sees.
-    let factor = |c: usize, f: usize| {
-        if c == 0 || quality[c][f].within(&quality[0][f]) {
-            quality[c][f].factor(&own_quality[f])
-        } else {
-            f64::INFINITY
-        }
-    };
-    let mut chosen: Vec<usize> = Vec::new();
-    let mut best: Vec<f64> = (0..f_count).map(|f| factor(0, f)).collect();
-    while chosen.len() < options.max_sequences {
-        let worst = best.iter().copied().fold(0.0, f64::max);
-        if worst <= options.tolerance {
-            break;
-        }
-        let score = |c: usize| {
-            let v: Vec<f64> = (0..f_count).map(|f| best[f].min(factor(c, f))).collect();
-            (v.iter().copied().fold(0.0, f64::max), v.iter().sum::<f64>())
-        };
-        let Some((c, (max, sum))) = (0..candidates.len())
-            .filter(|c| !chosen.contains(c))
-            .map(|c| (c, score(c)))
-            .min_by(|a, b| a.1 .0.total_cmp(&b.1 .0).then(a.1 .1.total_cmp(&b.1 .1)))
-        else {
-            break;
-        };
-        if max >= worst && sum >= best.iter().sum::<f64>() {
-            break;
-        }
-        chosen.push(c);
-        for (f, b) in best.iter_mut().enumerate() {
-            *b = b.min(factor(c, f));
-        }
-    }
-    // Each frame: the best of the chosen sequences and the reference pose's.
-    let assign: Vec<usize> = (0..f_count)
-        .map(|f| {
-            chosen
-                .iter()
-                .copied()
-                .chain([0])
-                .min_by(|&a, &b| factor(a, f).total_cmp(&factor(b, f)))
-                .unwrap_or(0)
-        })
-        .collect();
+    let assign = assign_sequences(&quality, &own_quality, options.max_sequences, options.tolerance);
     let mut used: Vec<usize> = assign.clone();
     used.sort_unstable();
     used.dedup();
@@ -451,6 +451,64 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
     let seq =
         LodSeq { names: frames.names.clone(), positions: frames.positions.clone(), frame_model, models, quantization };
     Ok(BuiltSeq { seq, triangles: tris, sequences, report })
+}
+
+/// The sequence of each frame (an index into the candidates of `quality[c][f]`, 0
+/// the reference pose's): at most `max_sequences` candidates chosen besides the
+/// reference pose's by greedy k-center on each frame's Hausdorff factor against its
+/// own sequence (`own_quality`), stopping once every frame is within `tolerance`; each frame
+/// then takes the best chosen one that is no worse than the reference pose's.
+fn assign_sequences(quality: &[Vec<Quality>], own_quality: &[Quality], max_sequences: usize, tolerance: f64) -> Vec<usize> {
+    let f_count = own_quality.len();
+    let candidates = quality.len();
+    // Greedy k-center on the worse Hausdorff factor against the frame's own. A
+    // sequence counts for a frame only where it is no worse than the reference
+    // pose's (candidate 0), which every frame may fall back to; so the objective
+    // is the one the assignment below sees.
+    let factor = |c: usize, f: usize| {
+        if c == 0 || quality[c][f].within(&quality[0][f]) {
+            quality[c][f].factor(&own_quality[f])
+        } else {
+            f64::INFINITY
+        }
+    };
+    let mut chosen: Vec<usize> = Vec::new();
+    let mut best: Vec<f64> = (0..f_count).map(|f| factor(0, f)).collect();
+    while chosen.len() < max_sequences {
+        let worst = best.iter().copied().fold(0.0, f64::max);
+        if worst <= tolerance {
+            break;
+        }
+        let score = |c: usize| {
+            let v: Vec<f64> = (0..f_count).map(|f| best[f].min(factor(c, f))).collect();
+            (v.iter().copied().fold(0.0, f64::max), v.iter().sum::<f64>())
+        };
+        let Some((c, (max, sum))) = (0..candidates)
+            .filter(|c| !chosen.contains(c))
+            .map(|c| (c, score(c)))
+            .min_by(|a, b| a.1 .0.total_cmp(&b.1 .0).then(a.1 .1.total_cmp(&b.1 .1)))
+        else {
+            break;
+        };
+        if max >= worst && sum >= best.iter().sum::<f64>() {
+            break;
+        }
+        chosen.push(c);
+        for (f, b) in best.iter_mut().enumerate() {
+            *b = b.min(factor(c, f));
+        }
+    }
+    // Each frame: the best of the chosen sequences and the reference pose's.
+    (0..f_count)
+        .map(|f| {
+            chosen
+                .iter()
+                .copied()
+                .chain([0])
+                .min_by(|&a, &b| factor(a, f).total_cmp(&factor(b, f)))
+                .unwrap_or(0)
+        })
+        .collect()
 }
 
 impl LodSeq {

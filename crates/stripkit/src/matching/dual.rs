@@ -5,6 +5,7 @@
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::topology::{DualGraph, NO_NEIGHBOR};
+use crate::vec3;
 use stripkit_matching::Graph;
 
 /// How to weight the dual edges.
@@ -67,15 +68,7 @@ pub fn mesh_dual_graph(mesh: &Mesh, weights: DualWeights) -> Result<Graph> {
                     [q[0] as f64, q[1] as f64, q[2] as f64]
                 };
                 let [a, b, c] = tris[t].map(p);
-                let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-                let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-                let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
-                let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-                if len > 0.0 && len.is_finite() {
-                    [n[0] / len, n[1] / len, n[2] / len]
-                } else {
-                    [0.0; 3]
-                }
+                vec3::unit(vec3::tri_normal(a, b, c)).unwrap_or([0.0; 3])
             };
             graph_from_dual(&dual, |t, _, u| {
                 let (a, b) = (normal(t), normal(u));

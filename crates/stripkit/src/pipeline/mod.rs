@@ -3,7 +3,7 @@
 //! [`unstripify`] do the same for plain index buffers.
 //!
 //! Every result has passed an independent check before it is returned:
-//! * triangle level: the strips decode (METRICS.md rule) to exactly the mesh's fan
+//! * triangle level: the strips decode (the reading rule of docs/metrics.md) to exactly the mesh's fan
 //!   triangles, as multisets of oriented triangles (nothing lost, added or flipped);
 //! * quad level, where the algorithm split quads along diagonals of its choosing
 //!   (QSTRIP, quad-single, cache or balanced on QSTRIP's split): every quad is covered

@@ -1,13 +1,13 @@
 //! The collapse engine: quadrics, the candidates (in `super::heap`), the validity
 //! checks, the collapse itself, hub mode and pair contraction.
 //!
-//! Why one file of about 1,200 lines with a `run` of about 270: the engine's state
-//! (per-vertex quadrics and triangle lists, the heap, the pair union-find, the hub
-//! triangle lists) is private to this file, and `run` is its set-up (lists, face
-//! quadrics, boundary and crease planes, initial candidates) followed by the main
-//! loop, in that order; cutting it would hand most of `State`'s fields from function
-//! to function. Hub mode (issue #16) reads and writes the same lists at every step,
-//! so it stayed here too; the heap, which holds no mesh state, moved out.
+//! Why one file of about 1,300 lines: the engine's state (per-vertex quadrics and
+//! triangle lists, the heap, the pair union-find, the hub triangle lists) is private
+//! to this file. `run` reads as its steps: the face quadrics, the state, hub mode, the
+//! boundary and crease planes, the initial candidates (edges, then close pairs), the
+//! main loop (`collapse_all`, about 110 lines) and the output. Hub mode (issue #16)
+//! reads and writes the same lists at every step, so it stayed here too; the heap,
+//! which holds no mesh state, moved out.
 
 use super::heap::{tag, Entry, QuadHeap, CHOICE_END, CHOICE_MASK, CHOICE_MID, CHOICE_MIN, KIND_EDGE, KIND_EDGE_REVERSED, KIND_PAIR};
 use super::quadric::{dot, norm, sub, tri_normal, Quadric, V3};
@@ -854,28 +854,7 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
     let (mut start, refs) = crate::topology::vertex_triangles(&all, n).into_parts();
     let len: Vec<u32> = (0..n).map(|v| start[v + 1] - start[v]).collect();
     start.pop();
-
-    // Face quadrics, area weighted.
-    let mut quadric = vec![Quadric::default(); n];
-    let mut area = vec![0.0f64; n];
-    let mut ancestor_normal = vec![[0.0; 3]; triangle_count];
-    for (t, tri) in all.iter().enumerate() {
-        if !tri_alive[t] {
-            continue;
-        }
-        let [a, b, c] = tri.map(|v| pos[v as usize]);
-        let nrm = tri_normal(a, b, c);
-        ancestor_normal[t] = nrm;
-        let len2 = norm(nrm);
-        if len2 > 0.0 {
-            let unit = nrm.map(|x| x / len2);
-            let q = Quadric::plane(unit, -dot(unit, a), 0.5 * len2);
-            for &v in tri {
-                quadric[v as usize].add(&q);
-                area[v as usize] += 0.5 * len2;
-            }
-        }
-    }
+    let (quadric, area, ancestor_normal) = face_quadrics(&all, &tri_alive, &pos);
 
     let mut st = State {
         pos,
@@ -916,126 +895,192 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
         hub_tris: Vec::new(),
         locked: super::attributes::seam_vertices(mesh),
     };
-    let mut live_tris = vec![0u32; n];
-    for (t, tri) in st.tris.iter().enumerate() {
-        if st.tri_alive[t] {
-            tri.iter().for_each(|&v| live_tris[v as usize] += 1);
-        }
-    }
-    if live_tris.iter().any(|&c| c > HUB_TRIANGLES) {
-        st.hubs = true;
-        st.boundary_edges = vec![0; n];
-        for (t, tri) in st.tris.iter().enumerate() {
-            if st.tri_alive[t] {
-                for e in 0..3 {
-                    *st.edge_count.entry(edge_key(tri[e], tri[(e + 1) % 3])).or_insert(0) += 1;
-                }
-            }
-        }
-        for (&key, &c) in &st.edge_count {
-            if c == 1 {
-                st.boundary_edges[(key >> 32) as usize] += 1;
-                st.boundary_edges[(key & 0xFFFF_FFFF) as usize] += 1;
-            }
-        }
-        st.live_tris = live_tris;
-        st.cap = st.len.clone();
-        st.tri_mark = vec![0; triangle_count];
-    }
-
-    // Penalty planes through each boundary edge, perpendicular to its face, and
-    // through each crease edge, perpendicular to each of its two faces: these keep
-    // borders and the rims of folds (fins, ears) in place, which the face planes
-    // alone do not (a fin's faces are nearly parallel).
-    // (Neighbour, triangles, first and last triangle) of each edge (v, u > v), in
-    // first-seen order; `count_at[u]` is u's index in `counts` (a sparse set, O(1) a
-    // lookup however high v's valence).
-    let mut counts: Vec<(u32, u32, u32, u32)> = Vec::new();
-    let mut count_at = vec![0u32; n];
-    for v in 0..n as u32 {
-        counts.clear();
-        for i in st.tris_of(v) {
-            let t = st.refs[i];
-            for u in st.tris[t as usize] {
-                if u > v {
-                    let j = count_at[u as usize] as usize;
-                    if j < counts.len() && counts[j].0 == u {
-                        counts[j].1 += 1;
-                        counts[j].3 = t;
-                    } else {
-                        count_at[u as usize] = counts.len() as u32;
-                        counts.push((u, 1, t, t));
-                    }
-                }
-            }
-        }
-        for &(u, c, t, t2) in &counts {
-            if c == 2 {
-                let normal = |t: u32| {
-                    let [a, b, cc] = st.tris[t as usize].map(|x| st.pos[x as usize]);
-                    tri_normal(a, b, cc)
-                };
-                let (n1, n2) = (normal(t), normal(t2));
-                let (l1, l2) = (norm(n1), norm(n2));
-                if !(l1 > 0.0 && l2 > 0.0) {
-                    continue;
-                }
-                let cos = dot(n1, n2) / (l1 * l2);
-                if cos >= CREASE_COS {
-                    continue;
-                }
-                let sharp = (CREASE_COS - cos) / (1.0 + CREASE_COS);
-                let (pv, pu) = (st.pos[v as usize], st.pos[u as usize]);
-                let e = sub(pu, pv);
-                for face in [n1, n2] {
-                    let pn = super::quadric::cross(e, face);
-                    let l = norm(pn);
-                    if l > 0.0 {
-                        let unit = pn.map(|x| x / l);
-                        let q = Quadric::plane(unit, -dot(unit, pv), CREASE_WEIGHT * sharp * dot(e, e));
-                        st.quadric[v as usize].add(&q);
-                        st.quadric[u as usize].add(&q);
-                    }
-                }
-                continue;
-            }
-            if c != 1 || options.boundary_weight == 0.0 {
-                continue;
-            }
-            let tri = st.tris[t as usize];
-            let [a, b, cc] = tri.map(|x| st.pos[x as usize]);
-            let face = tri_normal(a, b, cc);
-            let (pv, pu) = (st.pos[v as usize], st.pos[u as usize]);
-            let e = sub(pu, pv);
-            let pn = super::quadric::cross(e, face);
-            let l = norm(pn);
-            if l > 0.0 {
-                let unit = pn.map(|x| x / l);
-                let q = Quadric::plane(unit, -dot(unit, pv), options.boundary_weight * dot(e, e));
-                st.quadric[v as usize].add(&q);
-                st.quadric[u as usize].add(&q);
-            }
-        }
-    }
-
-    // Initial candidates: every edge once.
-    for v in 0..n as u32 {
-        st.stamp += 1;
-        let stamp = st.stamp;
-        for i in st.tris_of(v) {
-            let t = st.refs[i] as usize;
-            for u in st.tris[t] {
-                if u > v && st.mark[u as usize] != stamp {
-                    st.mark[u as usize] = stamp;
-                    st.push(v, u, KIND_EDGE);
-                }
-            }
-        }
-    }
+    st.init_hubs(triangle_count);
+    st.add_edge_planes(options.boundary_weight);
+    st.push_edges();
     if let Some(d) = options.pair_distance {
         push_close_pairs(&mut st, d)?;
     }
+    let (sequence, live, max_error) = collapse_all(&mut st, options, triangles_in, &mut attributes, progress);
+    Ok(simplified(&st, mesh, attributes, &face_of, sequence, live, triangles_in, max_error))
+}
 
+/// The area-weighted plane quadric of every vertex (the sum over its live
+/// triangles), the area around each vertex, and each triangle's normal.
+fn face_quadrics(all: &[[u32; 3]], tri_alive: &[bool], pos: &[V3]) -> (Vec<Quadric>, Vec<f64>, Vec<V3>) {
+    let n = pos.len();
+    let mut quadric = vec![Quadric::default(); n];
+    let mut area = vec![0.0f64; n];
+    let mut ancestor_normal = vec![[0.0; 3]; all.len()];
+    for (t, tri) in all.iter().enumerate() {
+        if !tri_alive[t] {
+            continue;
+        }
+        let [a, b, c] = tri.map(|v| pos[v as usize]);
+        let nrm = tri_normal(a, b, c);
+        ancestor_normal[t] = nrm;
+        let len2 = norm(nrm);
+        if len2 > 0.0 {
+            let unit = nrm.map(|x| x / len2);
+            let q = Quadric::plane(unit, -dot(unit, a), 0.5 * len2);
+            for &v in tri {
+                quadric[v as usize].add(&q);
+                area[v as usize] += 0.5 * len2;
+            }
+        }
+    }
+
+    (quadric, area, ancestor_normal)
+}
+
+impl State {
+    /// Hub mode, when some vertex has more than [`HUB_TRIANGLES`] live triangles:
+    /// live triangle counts, edge counts and boundary edges per vertex.
+    fn init_hubs(&mut self, triangle_count: usize) {
+        let st = self;
+        let n = st.pos.len();
+        let mut live_tris = vec![0u32; n];
+        for (t, tri) in st.tris.iter().enumerate() {
+            if st.tri_alive[t] {
+                tri.iter().for_each(|&v| live_tris[v as usize] += 1);
+            }
+        }
+        if live_tris.iter().any(|&c| c > HUB_TRIANGLES) {
+            st.hubs = true;
+            st.boundary_edges = vec![0; n];
+            for (t, tri) in st.tris.iter().enumerate() {
+                if st.tri_alive[t] {
+                    for e in 0..3 {
+                        *st.edge_count.entry(edge_key(tri[e], tri[(e + 1) % 3])).or_insert(0) += 1;
+                    }
+                }
+            }
+            for (&key, &c) in &st.edge_count {
+                if c == 1 {
+                    st.boundary_edges[(key >> 32) as usize] += 1;
+                    st.boundary_edges[(key & 0xFFFF_FFFF) as usize] += 1;
+                }
+            }
+            st.live_tris = live_tris;
+            st.cap = st.len.clone();
+            st.tri_mark = vec![0; triangle_count];
+        }
+
+    }
+
+    /// Adds the penalty planes of the boundary edges (weighted by `boundary_weight`;
+    /// none for 0) and of the crease edges to the quadrics.
+    fn add_edge_planes(&mut self, boundary_weight: f64) {
+        let st = self;
+        let n = st.pos.len();
+        // Penalty planes through each boundary edge, perpendicular to its face, and
+        // through each crease edge, perpendicular to each of its two faces: these keep
+        // borders and the rims of folds (fins, ears) in place, which the face planes
+        // alone do not (a fin's faces are nearly parallel).
+        // (Neighbour, triangles, first and last triangle) of each edge (v, u > v), in
+        // first-seen order; `count_at[u]` is u's index in `counts` (a sparse set, O(1) a
+        // lookup however high v's valence).
+        let mut counts: Vec<(u32, u32, u32, u32)> = Vec::new();
+        let mut count_at = vec![0u32; n];
+        for v in 0..n as u32 {
+            counts.clear();
+            for i in st.tris_of(v) {
+                let t = st.refs[i];
+                for u in st.tris[t as usize] {
+                    if u > v {
+                        let j = count_at[u as usize] as usize;
+                        if j < counts.len() && counts[j].0 == u {
+                            counts[j].1 += 1;
+                            counts[j].3 = t;
+                        } else {
+                            count_at[u as usize] = counts.len() as u32;
+                            counts.push((u, 1, t, t));
+                        }
+                    }
+                }
+            }
+            for &(u, c, t, t2) in &counts {
+                if c == 2 {
+                    let normal = |t: u32| {
+                        let [a, b, cc] = st.tris[t as usize].map(|x| st.pos[x as usize]);
+                        tri_normal(a, b, cc)
+                    };
+                    let (n1, n2) = (normal(t), normal(t2));
+                    let (l1, l2) = (norm(n1), norm(n2));
+                    if !(l1 > 0.0 && l2 > 0.0) {
+                        continue;
+                    }
+                    let cos = dot(n1, n2) / (l1 * l2);
+                    if cos >= CREASE_COS {
+                        continue;
+                    }
+                    let sharp = (CREASE_COS - cos) / (1.0 + CREASE_COS);
+                    let (pv, pu) = (st.pos[v as usize], st.pos[u as usize]);
+                    let e = sub(pu, pv);
+                    for face in [n1, n2] {
+                        let pn = super::quadric::cross(e, face);
+                        let l = norm(pn);
+                        if l > 0.0 {
+                            let unit = pn.map(|x| x / l);
+                            let q = Quadric::plane(unit, -dot(unit, pv), CREASE_WEIGHT * sharp * dot(e, e));
+                            st.quadric[v as usize].add(&q);
+                            st.quadric[u as usize].add(&q);
+                        }
+                    }
+                    continue;
+                }
+                if c != 1 || boundary_weight == 0.0 {
+                    continue;
+                }
+                let tri = st.tris[t as usize];
+                let [a, b, cc] = tri.map(|x| st.pos[x as usize]);
+                let face = tri_normal(a, b, cc);
+                let (pv, pu) = (st.pos[v as usize], st.pos[u as usize]);
+                let e = sub(pu, pv);
+                let pn = super::quadric::cross(e, face);
+                let l = norm(pn);
+                if l > 0.0 {
+                    let unit = pn.map(|x| x / l);
+                    let q = Quadric::plane(unit, -dot(unit, pv), boundary_weight * dot(e, e));
+                    st.quadric[v as usize].add(&q);
+                    st.quadric[u as usize].add(&q);
+                }
+            }
+        }
+
+    }
+
+    /// Queues every edge once as a candidate.
+    fn push_edges(&mut self) {
+        let st = self;
+        let n = st.pos.len();
+            for v in 0..n as u32 {
+            st.stamp += 1;
+            let stamp = st.stamp;
+            for i in st.tris_of(v) {
+                let t = st.refs[i] as usize;
+                for u in st.tris[t] {
+                    if u > v && st.mark[u as usize] != stamp {
+                        st.mark[u as usize] = stamp;
+                        st.push(v, u, KIND_EDGE);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The main loop: the cheapest valid collapse, one after another, until the target,
+/// the error bound or `max_collapses`; returns the sequence, the live triangles left
+/// and the largest error.
+fn collapse_all(
+    st: &mut State,
+    options: &Options,
+    triangles_in: usize,
+    attributes: &mut Vec<crate::mesh::Attribute>,
+    progress: &mut dyn FnMut(f64),
+) -> (CollapseSequence, usize, f64) {
+    let (n, triangle_count) = (st.pos.len(), st.tris.len());
     let (target, max_cost) = match options.target {
         Target::Ratio(r) => (super::ratio_target(triangles_in, r), f64::INFINITY),
         Target::Triangles(t) => (t, f64::INFINITY),
@@ -1105,7 +1150,7 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
             Verdict::Ok => {}
         }
         if !attributes.is_empty() {
-            super::attributes::carry(&mut attributes, r, k, [st.pos[k as usize], st.pos[r as usize]], p);
+            super::attributes::carry(attributes, r, k, [st.pos[k as usize], st.pos[r as usize]], p);
         }
         let removed = st.collapse(r, k, p);
         live -= removed;
@@ -1122,7 +1167,7 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
         // once a quarter of the heap was pushed since the last pass: linear time
         // overall even where most entries stay valid, as with many pairs.)
         if st.heap.items.len() > 2 * live + 4096 && 4 * st.heap.pushes >= st.heap.items.len() {
-            let State { heap, alive, version, .. } = &mut st;
+            let State { heap, alive, version, .. } = st;
             heap.retain(|e| {
                 alive[e.removed as usize]
                     && alive[e.kept as usize]
@@ -1136,6 +1181,22 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
     }
     progress(1.0);
 
+    (sequence, live, max_error)
+}
+
+/// The output of [`run`]: the live triangles in input order, with their groups and
+/// the survivors' attributes.
+#[allow(clippy::too_many_arguments)]
+fn simplified(
+    st: &State,
+    mesh: &Mesh,
+    attributes: Vec<crate::mesh::Attribute>,
+    face_of: &[u32],
+    sequence: CollapseSequence,
+    live: usize,
+    triangles_in: usize,
+    max_error: f64,
+) -> Simplified {
     let mut triangle_ids = Vec::with_capacity(live);
     let mut out_tris = Vec::with_capacity(live);
     for (t, tri) in st.tris.iter().enumerate() {
@@ -1151,13 +1212,13 @@ pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64))
         out.face_groups = triangle_ids.iter().map(|&t| mesh.group_of(face_of[t as usize] as usize)).collect();
     }
     out.groups = mesh.groups.clone();
-    Ok(Simplified {
+    Simplified {
         mesh: out,
         triangle_ids,
         sequence,
         triangles_in,
         max_error,
-    })
+    }
 }
 
 /// How many close pairs per used vertex [`push_close_pairs`] may queue (beyond

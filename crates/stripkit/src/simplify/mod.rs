@@ -1,5 +1,5 @@
 //! Quadric-error-metric edge collapse (Garland and Heckbert 1997) that records its
-//! collapse sequence, the input of multiresolution strip models (not built yet).
+//! collapse sequence, the input of the multiresolution strip models of [`crate::lod`].
 //!
 //! * Per-vertex quadrics from area-weighted face planes; boundary edges add penalty
 //!   planes perpendicular to their face, so borders keep their shape, and so do
@@ -82,15 +82,24 @@ pub fn ratio_target(triangles: usize, ratio: f64) -> usize {
     (triangles as f64 * ratio).ceil() as usize
 }
 
-/// Options of [`simplify`].
+/// Options of [`simplify`]: the defaults below unless changed with the builder
+/// methods.
+///
+/// ```
+/// use stripkit::simplify::{Options, Placement, Target};
+/// let options = Options::default().target(Target::Ratio(0.1)).placement(Placement::Optimal);
+/// assert_eq!((options.target, options.boundary_weight), (Target::Ratio(0.1), 100.0));
+/// ```
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct Options {
-    /// When to stop.
+    /// When to stop. Default [`Target::Ratio`]`(0.5)`: half the triangles.
     pub target: Target,
-    /// Survivor placement.
+    /// Survivor placement. Default [`Placement::Endpoint`].
     pub placement: Placement,
     /// Weight of the boundary penalty planes, relative to face planes of the same area
     /// (each boundary edge adds a plane weighted `boundary_weight * length^2`).
+    /// Default 100.
     pub boundary_weight: f64,
     /// QSlim's pair contraction: also consider vertex pairs closer than this distance
     /// that share no edge (joins separate pieces; may create non-manifold vertices).
@@ -100,7 +109,7 @@ pub struct Options {
     /// before the pairs are queued, since a distance near the mesh's size pairs every
     /// vertex with every other (gigabytes on a 35,000-vertex mesh).
     pub pair_distance: Option<f64>,
-    /// Stop after this many collapses in any case.
+    /// Stop after this many collapses in any case. Default `None`: no limit.
     pub max_collapses: Option<usize>,
 }
 
@@ -113,6 +122,38 @@ impl Default for Options {
             pair_distance: None,
             max_collapses: None,
         }
+    }
+}
+
+impl Options {
+    /// Sets [`Options::target`].
+    pub fn target(mut self, target: Target) -> Self {
+        self.target = target;
+        self
+    }
+
+    /// Sets [`Options::placement`].
+    pub fn placement(mut self, placement: Placement) -> Self {
+        self.placement = placement;
+        self
+    }
+
+    /// Sets [`Options::boundary_weight`].
+    pub fn boundary_weight(mut self, weight: f64) -> Self {
+        self.boundary_weight = weight;
+        self
+    }
+
+    /// Sets [`Options::pair_distance`].
+    pub fn pair_distance(mut self, distance: Option<f64>) -> Self {
+        self.pair_distance = distance;
+        self
+    }
+
+    /// Sets [`Options::max_collapses`].
+    pub fn max_collapses(mut self, collapses: Option<usize>) -> Self {
+        self.max_collapses = collapses;
+        self
     }
 }
 

@@ -213,7 +213,7 @@ impl Greedy<'_> {
 ///
 /// `tris` are oriented triangles over vertices `0..vertex_count` (every index must be
 /// below `vertex_count`); degenerate ones are dropped. The result, decoded by the
-/// METRICS.md rule, gives every other triangle exactly once with its winding.
+/// strip reading rule (docs/metrics.md), gives every other triangle exactly once with its winding.
 /// O(triangles + vertices) time and memory.
 pub fn stripify(tris: &[[u32; 3]], vertex_count: usize, options: &GreedyOptions) -> StripSet {
     let graph = DualGraph::from_triangles(tris, vertex_count);

@@ -24,8 +24,8 @@
 //!   one quad's diagonal is forced so that no coincident triangle can appear; the
 //!   programme above respects forced diagonals.
 //!
-//! Every output triangle keeps its quad's orientation, so the strips decode (by the
-//! METRICS.md rule) to exactly two triangles per quad that together form it; see
+//! Every output triangle keeps its quad's orientation, so the strips decode (by the reading
+//! rule of docs/metrics.md) to exactly two triangles per quad that together form it; see
 //! [`verify_quads`](super::quad_verify::verify_quads).
 //!
 //! Cost: O(faces + vertices) time and memory, dominated by [`EdgeMap::build`].

@@ -208,7 +208,7 @@ fn the_miss_weight_trades_misses_for_indices() {
 #[test]
 fn bunny_figures_beat_meshoptimizer_and_the_old_designs() {
     // meshoptimizer optimize_vertex_cache + stripify on bunny: 120,924 indices at acmr16
-    // 0.711 (METRICS.md); issue #4's cache target: at most 0.711 with at most 100,000
+    // 0.711 (docs/metrics.md); issue #4's cache target: at most 0.711 with at most 100,000
     // indices. The previous design (Forsyth scores with strip bonuses): 112,354 at
     // 0.703 (cache) and 95,591 at 0.798 (balanced). Now about 94,400 at 0.646 and
     // (balanced: the weight search 88,807 at 0.790, refined) 85,540 at 0.800, 1.232

@@ -111,7 +111,7 @@ fn strip_hashes() {
             });
             for (sname, pd) in [("simplify", None), ("simplify pairs", Some(0.01 * diag))] {
                 let t = Instant::now();
-                let o = simplify::Options { pair_distance: pd, ..Default::default() };
+                let o = simplify::Options::default().pair_distance(pd);
                 let s = match simplify::simplify(&mesh, &o, &mut |_| {}) {
                     Ok(s) => {
                         let mut h = Fnv::new();

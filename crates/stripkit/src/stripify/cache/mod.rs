@@ -14,7 +14,7 @@
 //!    by position in Z-order, faces sorted), so that a shuffled input gives the same
 //!    strips, and picks how quads are split ([`Diagonals`]).
 //! 2. The stripifier (`fifo_strips.rs`) grows one strip at a time while it simulates
-//!    exactly the FIFO of METRICS.md ([`crate::metrics`]), choosing among walks from
+//!    exactly the FIFO of docs/metrics.md ([`crate::metrics`]), choosing among walks from
 //!    the free triangles around the cache by their indices and weighed misses per
 //!    triangle; `miss_weight` trades indices for misses ([`CacheOptions::cache`] and
 //!    [`CacheOptions::balanced`] are two points). It records the strips and the walks

@@ -1,0 +1,172 @@
+//! `stripkit lod extract`: one level (and frame) of a model, written and read back.
+
+use anyhow::Context;
+use serde::Serialize;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use stripkit::io::{self, Format};
+use stripkit::lod::{Extracted, LevelSpec, Model};
+use stripkit::{Error, Mesh, StripSet};
+
+#[derive(clap::Args)]
+#[command(group(clap::ArgGroup::new("which").required(true).args(["level", "triangles", "ratio"])))]
+pub(super) struct ExtractArgs {
+    /// The model (`.sets`).
+    file: PathBuf,
+    /// Level (collapses applied; 0 is the input); past the coarsest is the coarsest.
+    #[arg(long)]
+    level: Option<u32>,
+    /// The first level with at most this many triangles.
+    #[arg(long)]
+    triangles: Option<u64>,
+    /// The first level with at most ceil(RATIO x input triangles): where `stripkit
+    /// simplify --ratio RATIO` stops. 0 to 1.
+    #[arg(long)]
+    ratio: Option<f64>,
+    /// Animations (.lodseq): the frame, 0 to frames - 1. A fraction morphs the
+    /// positions linearly between the two key frames around it; the level follows
+    /// the nearest key frame.
+    #[arg(long)]
+    frame: Option<f64>,
+    /// Output file; the extension picks the format.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Print one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
+    /// Write PLY as ASCII text instead of binary (PLY outputs only).
+    #[arg(long)]
+    ascii: bool,
+}
+
+#[derive(Serialize)]
+struct ExtractOut {
+    input: String,
+    output: String,
+    frame: Option<f64>,
+    level: u32,
+    levels: u32,
+    triangles: u32,
+    strips: usize,
+    indices: usize,
+    indices_per_triangle: f64,
+    verified: bool,
+    us: f64,
+}
+
+pub(super) fn extract(args: ExtractArgs) -> anyhow::Result<()> {
+    let format = match Format::from_path(&args.output) {
+        Some((f, _)) => Some(f),
+        None if is_json(&args.output) => None,
+        None => {
+            return Err(Error::Invalid(format!(
+                "cannot tell the format of {} from its extension (use {} or .json)",
+                args.output.display(),
+                io::supported_write_extensions()
+            ))
+            .into())
+        }
+    };
+    if let Some(r) = args.ratio {
+        anyhow::ensure!((0.0..=1.0).contains(&r), "--ratio {r} is out of range: 0 to 1");
+    }
+    let write_options = crate::cmd::write_options(args.ascii, &args.output, crate::cmd::path_format(&args.output))?;
+    crate::cmd::check_output_folder(&args.output)?;
+    let model = read_model(&args.file)?;
+    let spec = match (args.level, args.triangles, args.ratio) {
+        (Some(l), _, _) => LevelSpec::Level(l),
+        (_, Some(t), _) => LevelSpec::Triangles(t),
+        (_, _, Some(r)) => LevelSpec::Ratio(r),
+        _ => anyhow::bail!("give one of --level, --triangles, --ratio"),
+    };
+    // A .lodseq (by its header) needs --frame; a .sets refuses it.
+    let start = Instant::now();
+    let Extracted { positions, strips, level, levels, triangles: expected, frame } =
+        model.extract(spec, args.frame).with_context(|| format!("{} (--frame)", args.file.display()))?;
+    let us = start.elapsed().as_secs_f64() * 1e6;
+    let frame = frame.map(|(t, _)| t);
+    let triangles = stripkit::decode(&strips);
+    if triangles.len() != expected as usize {
+        return Err(Error::Verification(format!(
+            "level {level}: the strips draw {} triangles, the model says {expected}",
+            triangles.len()
+        ))
+        .into());
+    }
+    let bytes = match format {
+        None => {
+            let obj = serde_json::json!({
+                "level": level,
+                "frame": frame,
+                "restart_index": u32::MAX,
+                "strips": strips.iter().collect::<Vec<_>>(),
+            });
+            serde_json::to_vec(&obj)?
+        }
+        Some(format) => encode_level(positions, &strips, &triangles, format, &args.output, &write_options)?,
+    };
+    io::write_encoded(&args.output, &bytes)?;
+    let indices = strips.index_count();
+    let out = ExtractOut {
+        input: args.file.display().to_string(),
+        output: args.output.display().to_string(),
+        frame,
+        level,
+        levels,
+        triangles: triangles.len() as u32,
+        strips: strips.len(),
+        indices,
+        indices_per_triangle: (strips.restart_len()) as f64 / triangles.len().max(1) as f64,
+        verified: true,
+        us,
+    };
+    crate::cmd::print_report(args.json, &out, |w, o| {
+        writeln!(
+            w,
+            "{}: level {} of {}: {} triangles in {} strips, {} indices ({:.3} per triangle with restarts), verified -> {}",
+            o.input, o.level, o.levels, o.triangles, o.strips, o.indices, o.indices_per_triangle, o.output
+        )
+    })
+}
+
+/// The file bytes of one level, read back and compared with the strips' triangles.
+fn encode_level(
+    positions: Vec<[f32; 3]>,
+    strips: &StripSet,
+    triangles: &[[u32; 3]],
+    format: Format,
+    path: &Path,
+    options: &io::WriteOptions,
+) -> anyhow::Result<Vec<u8>> {
+    let mesh = Mesh::from_triangles(positions, triangles);
+    let to_write = match format {
+        Format::Ply => Some(strips.clone()),
+        Format::Gltf | Format::Glb => Some(StripSet::from_strips(&[stripkit::encode_stitched(strips)])),
+        _ => None,
+    };
+    let bytes = io::write_bytes(format, &mesh, to_write.as_ref(), options)?;
+    let name = format!("the {format:?} bytes of {}", path.display());
+    let back = io::read_bytes(Path::new(&name), format, &bytes)?;
+    let v = stripkit::verify_triangles(triangles, &back.triangulate().tris);
+    if !v.ok() {
+        return Err(Error::Verification(format!("{name}, read back: {v}")).into());
+    }
+    Ok(bytes)
+}
+
+/// A `.sets` or `.lodseq` file; anything else is a format error naming it.
+pub(super) fn read_model(path: &Path) -> anyhow::Result<Model> {
+    Model::read(path)?.ok_or_else(|| {
+        Error::Format {
+            path: path.to_path_buf(),
+            at: "byte 0".into(),
+            what: "not a stripkit .sets or .lodseq file (bad magic)".into(),
+        }
+        .into()
+    })
+}
+
+fn is_json(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"))
+}

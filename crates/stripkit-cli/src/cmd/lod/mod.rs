@@ -1,0 +1,325 @@
+//! `stripkit lod`: multiresolution strips (SETS). `build` makes a `.sets` model from a
+//! mesh and proves every level against a replay of the collapses, `extract` writes
+//! one level, `bench` runs the paper's recovery tests.
+
+mod bench;
+mod extract;
+
+use anyhow::Context;
+use clap::{Subcommand, ValueEnum};
+use serde::Serialize;
+use std::io::Write;
+use std::path::PathBuf;
+use std::time::Instant;
+use stripkit::lod::{self, BuildOptions, SeqOptions};
+use stripkit::simplify::Placement;
+use stripkit::Mesh;
+
+/// Arguments of `stripkit lod`.
+#[derive(clap::Args)]
+#[command(after_help = "Levels: level L is the mesh after the first L collapses of the simplifier; \
+level 0 is the input, the last level the coarsest the simplifier reaches.
+
+  stripkit lod build ../shared/models/bunny.obj -o bunny.sets
+  stripkit lod extract bunny.sets --ratio 0.1 -o bunny_10.glb
+  stripkit lod bench bunny.sets")]
+pub struct Args {
+    #[command(subcommand)]
+    what: What,
+}
+
+#[derive(Subcommand)]
+enum What {
+    /// Strip a mesh, simplify it as far as the simplifier goes (its defaults), and
+    /// write the SETS model of both: the strips of every level, recovered by binary
+    /// search. Every level is checked against a replay of the collapses before the
+    /// file is written.
+    Build(BuildArgs),
+    /// Build the level-of-detail strips of an animation: a folder of frames that
+    /// share one face list (`.obj.gz` and every mesh format; a file whose name
+    /// contains `reference` is the reference pose). One set of strips for every
+    /// frame; each frame's own simplification, and the reference pose's, measured on
+    /// every frame; a few kept (each a SETS model), each frame taking the best kept
+    /// one that is no worse than the reference pose's. Writes a `.lodseq`.
+    BuildSeq(BuildSeqArgs),
+    /// Write the strips of one level of a `.sets` model or of one frame of a
+    /// `.lodseq` (`--frame`) (PLY `tristrips`, glTF
+    /// `TRIANGLE_STRIP` stitched, OBJ/OFF/STL as triangles, `.json` as strips).
+    Extract(extract::ExtractArgs),
+    /// The paper's recovery tests on a `.sets` model: 1, 3, 6, 10, 15 and 20% of the
+    /// levels, spaced linearly and exponentially, from the finest level to the
+    /// coarsest and back; mean time per level recovered.
+    Bench(bench::BenchArgs),
+}
+
+/// Where a collapse puts the surviving vertex.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum PlacementArg {
+    /// Half-edge collapses: the kept vertex keeps its position; no new vertices.
+    Endpoint,
+    /// A new vertex per collapse at the simplifier's optimal position
+    /// (progressive-mesh style): closer surfaces, one more position per level.
+    Optimal,
+}
+
+/// How much of the model `lod build` checks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum CheckArg {
+    /// Every level (bunny: 34,819 levels in about 1.6 s).
+    All,
+    /// 2,000 levels spread over the range, plus the coarsest.
+    Sample,
+    /// Only the library's own check: 17 levels spread over the range.
+    Off,
+}
+
+#[derive(clap::Args)]
+struct BuildArgs {
+    /// Input mesh (OBJ, PLY, OFF, STL, glTF; `.gz` is decompressed).
+    file: PathBuf,
+    /// Output model (`.sets`).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Survivor placement of the collapses.
+    #[arg(long, value_enum, default_value = "endpoint")]
+    placement: PlacementArg,
+    #[command(flatten)]
+    common: CommonArgs,
+}
+
+#[derive(clap::Args)]
+struct BuildSeqArgs {
+    /// The folder of frames.
+    folder: PathBuf,
+    /// Output (`.lodseq`).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Most simplification sequences to choose (each is one SETS model, about
+    /// 9 bytes per triangle), besides the reference pose's, which is kept too when
+    /// a frame falls back to it.
+    #[arg(long, default_value_t = 16)]
+    max_sequences: usize,
+    /// Stop keeping sequences once every frame's Hausdorff distance, at 10% and 2%
+    /// of the triangles, is within this factor of its own simplification's.
+    #[arg(long, default_value_t = 1.25)]
+    tolerance: f64,
+    /// Samples per surface for the distances that choose the sequences (and the
+    /// quality table the report prints).
+    #[arg(long, default_value_t = 4000)]
+    samples: usize,
+    /// Candidate sequences: every frame's when there are at most this many frames,
+    /// else this many evenly spaced (the reference pose's is always one).
+    #[arg(long, default_value_t = 24)]
+    candidates: usize,
+    /// Store positions quantized to this many bits per coordinate (8 to 20) over the
+    /// animation's bounding box, as differences from the previous frame, deflated
+    /// (horse-gallop, 12 bits: about 22 KB per frame instead of 99 KB, within
+    /// 7e-5 of the diagonal). The frames are quantized first, so the sequences and
+    /// the quality table see the stored positions. Default: exact f32 positions.
+    #[arg(long, value_name = "BITS", value_parser = clap::value_parser!(u32).range(8..=20))]
+    position_bits: Option<u32>,
+    #[command(flatten)]
+    common: CommonArgs,
+}
+
+/// What `lod build` and `lod build-seq` share.
+#[derive(clap::Args)]
+struct CommonArgs {
+    /// How many levels of each model to check against a replay of its collapses
+    /// before the file is written.
+    #[arg(long, value_enum, default_value = "all")]
+    check: CheckArg,
+    /// Print one JSON object on stdout (`build-seq`: with the per-frame quality table).
+    #[arg(long)]
+    json: bool,
+    #[command(flatten)]
+    strip: crate::cmd::strip::StripArgs,
+    #[command(flatten)]
+    read: crate::cmd::ReadArgs,
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    match args.what {
+        What::Build(a) => build(a),
+        What::BuildSeq(a) => build_seq(a),
+        What::Extract(a) => extract::extract(a),
+        What::Bench(a) => bench::bench(a),
+    }
+}
+
+#[derive(Serialize)]
+struct BuildOut {
+    input: String,
+    output: String,
+    #[serde(flatten)]
+    report: lod::BuildReport,
+    placement: &'static str,
+    bytes: usize,
+    check: Option<lod::LevelCheck>,
+}
+
+fn build(args: BuildArgs) -> anyhow::Result<()> {
+    args.common.strip.check()?;
+    crate::cmd::check_output_folder(&args.output)?;
+    let mesh = args.common.read.read(&args.file)?;
+    args.common.strip.check_mesh(&mesh, &args.file)?;
+    let placement = match args.placement {
+        PlacementArg::Endpoint => Placement::Endpoint,
+        PlacementArg::Optimal => Placement::Optimal,
+    };
+    let options = BuildOptions::default().strip(args.common.strip.options(Some(&mesh))).placement(placement);
+    let bar = crate::cmd::progress_bar(mesh.triangle_count() > 200_000, "simplify");
+    let built = lod::build(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
+        .with_context(|| format!("building the model of {}", args.file.display()))?;
+    bar.finish_and_clear();
+    let check = match args.common.check {
+        CheckArg::Off => None,
+        CheckArg::All | CheckArg::Sample => {
+            let stride =
+                if args.common.check == CheckArg::All { 1 } else { (built.sets.levels() as usize / 2000).max(1) };
+            Some(lod::check_levels(&built.sets, &built.mesh, &built.sequence, stride, 100)?)
+        }
+    };
+    // Written once the bytes read back to the model that was checked.
+    let bytes = built.sets.write(&args.output)?;
+    let out = BuildOut {
+        input: args.file.display().to_string(),
+        output: args.output.display().to_string(),
+        report: built.report,
+        placement: match placement {
+            Placement::Endpoint => "endpoint",
+            Placement::Optimal => "optimal",
+        },
+        bytes,
+        check,
+    };
+    crate::cmd::print_report(args.common.json, &out, |w, o| {
+        let r = &o.report;
+        writeln!(
+            w,
+            "{}: {} triangles in {} {} strips, {} levels down to {} triangles ({} placement)",
+            o.input, r.triangles, r.strips, r.algorithm, r.levels, r.coarsest_triangles, o.placement
+        )?;
+        writeln!(
+            w,
+            "model: {} slots, {} versions, {} strip beginnings; {} bytes on disk, {} in memory",
+            r.slots, r.versions, r.beginnings, o.bytes, r.memory_bytes
+        )?;
+        match &o.check {
+            Some(c) => writeln!(
+                w,
+                "checked: {} levels against the replay ({} replays from scratch), exact with winding, {:.0} ms",
+                c.levels_checked, c.replays, c.ms
+            )?,
+            None => writeln!(w, "checked: no (--check off)")?,
+        }
+        writeln!(
+            w,
+            "times: strips {:.1} ms, simplify {:.1} ms, model {:.1} ms -> {}",
+            r.strip_ms, r.simplify_ms, r.build_ms, o.output
+        )
+    })
+}
+
+#[derive(Serialize)]
+struct BuildSeqOut {
+    input: String,
+    output: String,
+    #[serde(flatten)]
+    report: lod::SeqReport,
+    bytes: usize,
+    /// Bytes of the file outside the models: the frames' positions, names, header.
+    position_bytes: usize,
+    /// Bytes of the models: the level-of-detail data.
+    lod_bytes: usize,
+    levels_checked: usize,
+    check_ms: f64,
+}
+
+fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
+    args.common.strip.check()?;
+    crate::cmd::check_output_folder(&args.output)?;
+    anyhow::ensure!(args.max_sequences >= 1, "--max-sequences must be at least 1");
+    anyhow::ensure!(args.tolerance >= 1.0, "--tolerance {} must be 1 or more", args.tolerance);
+    anyhow::ensure!(args.samples >= 1, "--samples must be at least 1");
+    anyhow::ensure!(args.candidates >= 1, "--candidates must be at least 1");
+    let frames = lod::read_frames(&args.folder, &args.common.read.options())?;
+    if frames.mesh.face_count() == 0 {
+        return Err(stripkit::Error::Invalid(format!("no faces in {}", args.folder.display())).into());
+    }
+    args.common.strip.check_mesh(&frames.mesh, &args.folder)?;
+    let options = SeqOptions::default()
+        .strip(args.common.strip.options(Some(&frames.mesh)))
+        .max_sequences(args.max_sequences)
+        .tolerance(args.tolerance)
+        .samples(args.samples)
+        .candidates(args.candidates)
+        .position_bits(args.position_bits);
+    let bar = crate::cmd::progress_bar(true, "simplify and measure");
+    let built = lod::build_seq(&frames, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
+        .with_context(|| format!("building the level-of-detail strips of {}", args.folder.display()))?;
+    bar.finish_and_clear();
+    let t = Instant::now();
+    let mut levels_checked = 0;
+    if args.common.check != CheckArg::Off {
+        let mesh = Mesh::from_triangles(frames.positions[0].clone(), &built.triangles);
+        for (sets, sequence) in built.seq.models().iter().zip(&built.sequences) {
+            let stride = if args.common.check == CheckArg::All { 1 } else { (sets.levels() as usize / 2000).max(1) };
+            levels_checked += lod::check_levels(sets, &mesh, sequence, stride, 20)?.levels_checked;
+        }
+    }
+    let check_ms = t.elapsed().as_secs_f64() * 1e3;
+    let bytes = built.seq.write(&args.output)?;
+    let lod_bytes = built.seq.model_bytes();
+    let position_bytes = bytes - lod_bytes;
+    let out = BuildSeqOut {
+        input: args.folder.display().to_string(),
+        output: args.output.display().to_string(),
+        report: built.report,
+        bytes,
+        position_bytes,
+        lod_bytes,
+        levels_checked,
+        check_ms,
+    };
+    crate::cmd::print_report(args.common.json, &out, |w, o| {
+        let r = &o.report;
+        let f = r.frames as f64 * 1024.0;
+        writeln!(
+            w,
+            "{}: {} frames of {} vertices, {} triangles in {} strips; {} sequences kept of {} candidates: {}",
+            o.input,
+            r.frames,
+            r.vertices,
+            r.triangles,
+            r.strips,
+            r.sequences.len(),
+            r.candidates,
+            r.sequences.join(", ")
+        )?;
+        writeln!(
+            w,
+            "size: {} bytes, {:.1} KB per frame: positions {:.1} KB, level-of-detail data {:.1} KB",
+            o.bytes,
+            o.bytes as f64 / f,
+            o.position_bytes as f64 / f,
+            o.lod_bytes as f64 / f
+        )?;
+        let worst = |g: &dyn Fn(&lod::FrameQuality) -> f64| r.quality.iter().map(g).fold(0.0, f64::max);
+        for (i, pct) in ["10%", "2%"].iter().enumerate() {
+            writeln!(
+                w,
+                "worst frame at {pct} (Hausdorff / diagonal): this scheme {:.3e}, reference pose's sequence {:.3e}, each frame's own {:.3e}",
+                worst(&|q| q.chosen.hausdorff[i]),
+                worst(&|q| q.reference.hausdorff[i]),
+                worst(&|q| q.own.hausdorff[i])
+            )?;
+        }
+        writeln!(
+            w,
+            "checked: {} levels against the replay, {:.0} ms; times: simplify {:.0} ms, distances {:.0} ms, models {:.0} ms -> {}",
+            o.levels_checked, o.check_ms, r.simplify_ms, r.distance_ms, r.model_ms, o.output
+        )
+    })
+}
