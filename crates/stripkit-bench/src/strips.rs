@@ -49,7 +49,7 @@ pub enum Mode {
 }
 
 fn greedy(heuristic: Heuristic, tunnel_cuts: Option<usize>) -> StripOptions {
-    StripOptions::default().algorithm(Algorithm::Greedy(GreedyOptions { heuristic, tunnel_cuts }))
+    StripOptions::default().algorithm(Algorithm::Greedy(GreedyOptions::default().heuristic(heuristic).tunnel_cuts(tunnel_cuts)))
 }
 
 /// The rows for every mesh, in table order. Other stripkit modes are one line each.

@@ -386,8 +386,8 @@ pub struct BatchModel {
 
 impl BatchModel {
     /// The model fitted to an NVIDIA H100: batches of 30 triangles and 32 shaded
-    /// vertices, strips reusing the last 15 shaded vertices (the fit:
-    /// docs/experiments/gpu-draw-times.md).
+    /// vertices, strips reusing the last 15 shaded vertices (the fit and its error:
+    /// docs/experiments/gpu/h100-model-fit.md).
     pub const NVIDIA_H100: BatchModel = BatchModel {
         max_triangles: 30,
         max_vertices: 32,
@@ -398,8 +398,8 @@ impl BatchModel {
 
     /// What the `batch` stripifier plans for by default ([`crate::Algorithm::batch`]):
     /// [`BatchModel::NVIDIA_H100`] with a reuse window of 14, 10 for the first two
-    /// indices of a strip; the windows measured on a GPU and why these were kept:
-    /// docs/experiments/gpu-batch-strips.md.
+    /// indices of a strip, which shaded the fewest vertices on a real GPU of the
+    /// windows tried (docs/experiments/gpu-batch-strips.md).
     pub const NVIDIA_H100_PLANNING: BatchModel = BatchModel {
         strip_window: 14,
         restart_window: 10,

@@ -24,7 +24,7 @@ fn greedy(tris: &[[u32; 3]], vertex_count: usize, options: GreedyOptions) -> (St
 
 /// Stripifies, verifies and checks the bookkeeping identities; returns the figures.
 fn check(tris: &[[u32; 3]], vertex_count: usize, heuristic: Heuristic) -> (StripSet, Figures) {
-    let (strips, f) = greedy(tris, vertex_count, GreedyOptions::with_heuristic(heuristic));
+    let (strips, f) = greedy(tris, vertex_count, GreedyOptions::default().heuristic(heuristic));
     assert!(
         f.verified,
         "{heuristic:?}: {}",
@@ -291,20 +291,14 @@ fn tunnelling_saves_indices_and_keeps_every_triangle() {
             let plain = run_with(
                 tris,
                 *n,
-                GreedyOptions {
-                    heuristic,
-                    tunnel_cuts: None,
-                },
+                GreedyOptions::default().heuristic(heuristic).tunnel_cuts(None),
             );
             let mut last = plain.indices_restart;
             for cuts in [0, 1, 2, 3] {
                 let f = run_with(
                     tris,
                     *n,
-                    GreedyOptions {
-                        heuristic,
-                        tunnel_cuts: Some(cuts),
-                    },
+                    GreedyOptions::default().heuristic(heuristic).tunnel_cuts(Some(cuts)),
                 );
                 assert_eq!(f.triangles, plain.triangles);
                 match heuristic {
@@ -339,9 +333,9 @@ fn bunny_meets_the_index_goal() {
     let mesh = stripkit::io::read(&dir.join("bunny.obj")).unwrap();
     let tris = mesh.triangulate().tris;
     let n = mesh.vertex_count();
-    let f = run_with(&tris, n, GreedyOptions::with_heuristic(Heuristic::Indices));
+    let f = run_with(&tris, n, GreedyOptions::default().heuristic(Heuristic::Indices));
     // Issue #3: at most 82,000 (the paper about 82,470, FTSG about 82,029).
     assert!(f.indices_restart <= 82_000, "{}", f.indices_restart);
-    let f = run_with(&tris, n, GreedyOptions::with_heuristic(Heuristic::Strips));
+    let f = run_with(&tris, n, GreedyOptions::default().heuristic(Heuristic::Strips));
     assert!(f.strips <= 563, "{}", f.strips);
 }

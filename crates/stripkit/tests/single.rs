@@ -152,16 +152,19 @@ fn weights_parse_and_bad_settings_are_refused() {
     );
     assert_eq!(mix.to_string().parse::<Weights>().unwrap(), mix);
     for bad in ["", "culls", "direction:0,0,0", "direction:1,2", "mix:", "mix:cull", "mix:cull=-1", "mix:cull=0", "mix:cull=nan"] {
-        assert!(matches!(bad.parse::<Weights>(), Err(Error::Invalid(_))), "{bad:?}");
+        assert!(
+            matches!(bad.parse::<Weights>(), Err(Error::BadOption { option: stripkit::OptionName::Weights, .. })),
+            "{bad:?}"
+        );
     }
     let mesh = gen::icosphere(1);
     for o in [SingleOptions::default().swap_angle(Some(90.0)), SingleOptions::default().cull_angle(0.0)] {
         let r = stripify(&mesh, &StripOptions::default().algorithm(Algorithm::Single(o)));
-        assert!(matches!(r, Err(Error::Invalid(_))));
+        assert!(matches!(r, Err(Error::BadOption { .. })));
     }
     // A plain index buffer cannot return Steiner vertices.
     let idx: Vec<u32> = mesh.triangulate().tris.iter().flatten().copied().collect();
-    let r = stripify_indices(&idx, mesh.vertex_count(), u32::MAX, &StripOptions::default().algorithm(Algorithm::Single(SingleOptions::default())));
+    let r = stripify_indices(&idx, mesh.vertex_count(), &StripOptions::default().algorithm(Algorithm::Single(SingleOptions::default())));
     assert!(matches!(r, Err(Error::Invalid(_))));
 }
 

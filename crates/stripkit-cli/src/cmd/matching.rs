@@ -7,16 +7,6 @@ use std::path::PathBuf;
 use std::time::Instant;
 use stripkit::matching::{self, DualWeights, Graph, Objective};
 
-/// Weights for `--dual`.
-#[derive(Clone, Copy, Debug, clap::ValueEnum)]
-pub enum WeightKind {
-    /// Every dual edge weighs 1.
-    Uniform,
-    /// Uniform random integers 1..=1000 (seeded by --seed).
-    Random,
-    /// Dihedral angle between the two triangles' normals, round(angle / pi * 1000).
-    NormalAngle,
-}
 
 /// Arguments of `stripkit match`.
 #[derive(clap::Args)]
@@ -34,10 +24,11 @@ pub struct Args {
     /// oriented mesh edge.
     #[arg(long, value_name = "MESHFILE")]
     pub dual: Option<PathBuf>,
-    /// Edge weights of the dual graph (with --dual; a graph file has its own).
-    /// Default `random`.
-    #[arg(long, value_enum, requires = "dual")]
-    pub weights: Option<WeightKind>,
+    /// Edge weights of the dual graph (with --dual; a graph file has its own):
+    /// `uniform` (every edge 1), `random` (integers 1..=1000 seeded by --seed) or
+    /// `normal-angle` (dihedral angle, round(angle / pi * 1000)). Default `random`.
+    #[arg(long, requires = "dual", value_parser = super::named::<DualWeights>(DualWeights::NAMES))]
+    pub weights: Option<DualWeights>,
     /// Seed for --weights random (with --dual). Default 1.
     #[arg(long, requires = "dual")]
     pub seed: Option<u64>,
@@ -67,14 +58,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let (graph, source) = if let Some(mesh_path) = &args.dual {
         let mesh = args.read.read_surface(mesh_path)?;
         anyhow::ensure!(
-            args.seed.is_none() || matches!(args.weights, None | Some(WeightKind::Random)),
+            args.seed.is_none() || matches!(args.weights, None | Some(DualWeights::Random { .. })),
             "--seed applies to --weights random"
         );
-        let w = match args.weights.unwrap_or(WeightKind::Random) {
-            WeightKind::Uniform => DualWeights::Uniform,
-            WeightKind::Random => DualWeights::Random { seed: args.seed.unwrap_or(1) },
-            WeightKind::NormalAngle => DualWeights::NormalAngle,
-        };
+        let mut w = args.weights.unwrap_or_default();
+        if let (DualWeights::Random { seed }, Some(s)) = (&mut w, args.seed) {
+            *seed = s;
+        }
         let g = matching::mesh_dual_graph(&mesh, w)
             .with_context(|| format!("{}: building the dual graph", mesh_path.display()))?;
         (g, mesh_path.display().to_string())

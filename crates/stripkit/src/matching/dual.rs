@@ -24,6 +24,39 @@ pub enum DualWeights {
     NormalAngle,
 }
 
+impl Default for DualWeights {
+    /// [`DualWeights::Random`] with seed 1.
+    fn default() -> Self {
+        DualWeights::Random { seed: 1 }
+    }
+}
+
+impl DualWeights {
+    /// Every kind's name, in the order of the variants.
+    pub const NAMES: &'static [&'static str] = &["uniform", "random", "normal-angle"];
+    /// The lowercase name of this kind (one of [`DualWeights::NAMES`]).
+    pub fn name(&self) -> &'static str {
+        match self {
+            DualWeights::Uniform => "uniform",
+            DualWeights::Random { .. } => "random",
+            DualWeights::NormalAngle => "normal-angle",
+        }
+    }
+}
+
+impl std::str::FromStr for DualWeights {
+    type Err = crate::error::Error;
+    /// The kind of this name ([`DualWeights::NAMES`]); `random` with the default seed.
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "uniform" => Ok(DualWeights::Uniform),
+            "random" => Ok(DualWeights::default()),
+            "normal-angle" => Ok(DualWeights::NormalAngle),
+            _ => Err(crate::error::unknown("dual weights", s, DualWeights::NAMES)),
+        }
+    }
+}
+
 /// splitmix64: deterministic, seedable, good enough for test weights.
 pub(crate) fn splitmix(state: &mut u64) -> u64 {
     *state = state.wrapping_add(0x9E3779B97F4A7C15);

@@ -10,10 +10,10 @@ pub use stripkit_testkit::{assets_dir, encode_base64, gltf_validator, models_dir
 pub fn algorithms() -> Vec<stripkit::Algorithm> {
     use stripkit::{Algorithm, GreedyOptions, Heuristic};
     vec![
-        Algorithm::Auto,
+        Algorithm::auto(),
         Algorithm::greedy(),
-        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Strips, tunnel_cuts: Some(2) }),
-        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: None }),
+        Algorithm::Greedy(GreedyOptions::default().heuristic(Heuristic::Strips).tunnel_cuts(Some(2))),
+        Algorithm::Greedy(GreedyOptions::default().heuristic(Heuristic::Indices).tunnel_cuts(None)),
         Algorithm::qstrip(),
         Algorithm::cache(),
         Algorithm::Cache { refine: true },
