@@ -122,7 +122,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     print!("{out}");
     if let Some(file) = &args.table.out {
-        stripkit::io::write_atomic(file, out.as_bytes())?;
+        stripkit::io::write_encoded(file, out.as_bytes())?;
     }
     Ok(())
 }

@@ -139,7 +139,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     print!("{table}");
     if let Some(out) = &args.output {
-        stripkit::io::write_atomic(out, table.as_bytes())?;
+        stripkit::io::write_encoded(out, table.as_bytes())?;
     }
     Ok(())
 }

@@ -121,7 +121,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     print!("{out}");
     if let Some(path) = &args.table.out {
-        stripkit::io::write_atomic(path, out.as_bytes())?;
+        stripkit::io::write_encoded(path, out.as_bytes())?;
     }
     if !failed.is_empty() {
         anyhow::bail!("failed: {}", failed.join("; "));

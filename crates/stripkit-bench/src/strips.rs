@@ -226,10 +226,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let table = render(&rows, runs);
     print!("{table}");
     if let Some(out) = &args.table.out {
-        stripkit::io::write_atomic(out, table.as_bytes()).with_context(|| format!("writing {}", out.display()))?;
+        stripkit::io::write_encoded(out, table.as_bytes()).with_context(|| format!("writing {}", out.display()))?;
     }
     if let Some(svg) = &args.svg {
-        stripkit::io::write_atomic(svg, pareto_svg(&rows).as_bytes()).with_context(|| format!("writing {}", svg.display()))?;
+        stripkit::io::write_encoded(svg, pareto_svg(&rows).as_bytes()).with_context(|| format!("writing {}", svg.display()))?;
     }
     if !failed.is_empty() {
         anyhow::bail!("verification failed: {}", failed.join(", "));

@@ -90,7 +90,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let [a, b] = graph.edges()[e as usize];
             let _ = writeln!(s, "{} {} {}", a + 1, b + 1, graph.weights()[e as usize]);
         }
-        stripkit::io::write_atomic(out, s.as_bytes()).with_context(|| format!("{}: cannot write", out.display()))?;
+        stripkit::io::write_encoded(out, s.as_bytes()).with_context(|| format!("{}: cannot write", out.display()))?;
     }
     let matched_nodes = 2 * m.edges.len();
     if args.json {

@@ -297,7 +297,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let pixels = image.pixels_other_than(args.background);
     progress.set_message(format!("writing {}", args.output.display()));
     let write_start = Instant::now();
-    stripkit::io::write_atomic(&args.output, &image.encode_png_rgb())?;
+    stripkit::io::write_encoded(&args.output, &image.encode_png_rgb())?;
     let write_time = write_start.elapsed();
     progress.finish_and_clear();
 

@@ -121,23 +121,18 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         compacted = result.mesh.compact().0;
         &compacted
     };
-    let mesh_bytes = if super::is_dash(&args.output) {
-        stripkit::io::write_bytes(format, out_mesh, None, &write_options)?
-    } else {
-        stripkit::io::encode_file(&args.output, out_mesh, None, &write_options)?
-    };
+    // Compressed by the writers for a .gz name.
+    let mesh_bytes = stripkit::io::write_bytes(format, out_mesh, None, &write_options)?;
     match &args.sequence {
         Some(seq) if super::is_dash(&args.output) => {
-            stripkit::io::write_atomic(seq, &result.sequence.encode(seq)?)?;
+            result.sequence.write(seq)?;
             super::write_output(&args.output, &mesh_bytes)?;
         }
         Some(seq) => {
             let seq_bytes = result.sequence.encode(seq)?;
-            stripkit::io::write_atomic_all(&[(seq, &seq_bytes), (&args.output, &mesh_bytes)])?;
+            stripkit::io::write_encoded_all(&[(seq, &seq_bytes), (&args.output, &mesh_bytes)])?;
         }
-        None if super::is_dash(&args.output) => super::write_output(&args.output, &mesh_bytes)?,
-        // Already compressed for a .gz name.
-        None => stripkit::io::write_atomic(&args.output, &mesh_bytes)?,
+        None => super::write_output(&args.output, &mesh_bytes)?,
     }
     let sink = match batch {
         Some(bar) => super::Sink::Batch(bar.clone()),
