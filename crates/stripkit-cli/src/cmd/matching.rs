@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 use stripkit::matching::{self, DualWeights, Graph, Objective};
 
-/// Weights for `--dual`.
+/// Weights for `--dual`: the kinds of [`DualWeights`], the seed given apart.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
 pub enum WeightKind {
     /// Every dual edge weighs 1.
@@ -16,6 +16,16 @@ pub enum WeightKind {
     Random,
     /// Dihedral angle between the two triangles' normals, round(angle / pi * 1000).
     NormalAngle,
+}
+
+impl From<WeightKind> for DualWeights {
+    fn from(kind: WeightKind) -> DualWeights {
+        match kind {
+            WeightKind::Uniform => DualWeights::Uniform,
+            WeightKind::Random => DualWeights::Random { seed: DualWeights::DEFAULT_SEED },
+            WeightKind::NormalAngle => DualWeights::NormalAngle,
+        }
+    }
 }
 
 /// Arguments of `stripkit match`.
@@ -66,14 +76,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let t0 = Instant::now();
     let (graph, source) = if let Some(mesh_path) = &args.dual {
         let mesh = args.read.read_surface(mesh_path)?;
-        anyhow::ensure!(
-            args.seed.is_none() || matches!(args.weights, None | Some(WeightKind::Random)),
-            "--seed applies to --weights random"
-        );
-        let w = match args.weights.unwrap_or(WeightKind::Random) {
-            WeightKind::Uniform => DualWeights::Uniform,
-            WeightKind::Random => DualWeights::Random { seed: args.seed.unwrap_or(1) },
-            WeightKind::NormalAngle => DualWeights::NormalAngle,
+        let w = args.weights.map_or_else(DualWeights::default, DualWeights::from);
+        let w = match args.seed {
+            Some(seed) => w.with_seed(seed).context("--seed applies to --weights random")?,
+            None => w,
         };
         let g = matching::mesh_dual_graph(&mesh, w)
             .with_context(|| format!("{}: building the dual graph", mesh_path.display()))?;
@@ -94,13 +100,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     spinner.finish_and_clear();
     let m = result?;
     if let Some(out) = &args.output {
-        use std::fmt::Write;
-        let mut s = String::new();
-        for &e in &m.edges {
-            let [a, b] = graph.edges()[e as usize];
-            let _ = writeln!(s, "{} {} {}", a + 1, b + 1, graph.weights()[e as usize]);
-        }
-        stripkit::io::write_atomic(out, s.as_bytes()).with_context(|| format!("{}: cannot write", out.display()))?;
+        stripkit::io::write_atomic(out, graph.to_edge_lines(&m.edges).as_bytes())
+            .with_context(|| format!("{}: cannot write", out.display()))?;
     }
     let matched_nodes = 2 * m.edges.len();
     if args.json {

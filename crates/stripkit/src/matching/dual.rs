@@ -7,7 +7,8 @@ use crate::mesh::Mesh;
 use crate::topology::{DualGraph, NO_NEIGHBOR};
 use stripkit_matching::Graph;
 
-/// How to weight the dual edges.
+/// How to weight the dual edges. Default: [`DualWeights::Random`] with
+/// [`DualWeights::DEFAULT_SEED`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DualWeights {
     /// Every edge weighs 1.
@@ -21,6 +22,27 @@ pub enum DualWeights {
     /// `round(angle / pi * 1000)`, so 0 for coplanar neighbours and 1000 for folded
     /// back ones. A degenerate (zero-area) triangle counts as angle 0.
     NormalAngle,
+}
+
+impl DualWeights {
+    /// The seed of the default weights, and of `Random` when no seed is asked for: 1.
+    pub const DEFAULT_SEED: u64 = 1;
+
+    /// These weights drawn from `seed`: `Some` for [`DualWeights::Random`], `None` for
+    /// the weights that take no seed.
+    pub fn with_seed(self, seed: u64) -> Option<DualWeights> {
+        match self {
+            DualWeights::Random { .. } => Some(DualWeights::Random { seed }),
+            DualWeights::Uniform | DualWeights::NormalAngle => None,
+        }
+    }
+}
+
+impl Default for DualWeights {
+    /// Random weights with [`DualWeights::DEFAULT_SEED`].
+    fn default() -> Self {
+        DualWeights::Random { seed: DualWeights::DEFAULT_SEED }
+    }
 }
 
 /// splitmix64: deterministic, seedable, good enough for test weights.
