@@ -7,27 +7,6 @@ use std::path::PathBuf;
 use std::time::Instant;
 use stripkit::matching::{self, DualWeights, Graph, Objective};
 
-/// Weights for `--dual`: the kinds of [`DualWeights`], the seed given apart.
-#[derive(Clone, Copy, Debug, clap::ValueEnum)]
-pub enum WeightKind {
-    /// Every dual edge weighs 1.
-    Uniform,
-    /// Uniform random integers 1..=1000 (seeded by --seed).
-    Random,
-    /// Dihedral angle between the two triangles' normals, round(angle / pi * 1000).
-    NormalAngle,
-}
-
-impl From<WeightKind> for DualWeights {
-    fn from(kind: WeightKind) -> DualWeights {
-        match kind {
-            WeightKind::Uniform => DualWeights::Uniform,
-            WeightKind::Random => DualWeights::Random { seed: DualWeights::DEFAULT_SEED },
-            WeightKind::NormalAngle => DualWeights::NormalAngle,
-        }
-    }
-}
-
 /// Arguments of `stripkit match`.
 #[derive(clap::Args)]
 #[command(after_help = "Graph files: a line `p edge N M`, then M lines `e U V W` (1-based \
@@ -44,10 +23,11 @@ pub struct Args {
     /// oriented mesh edge.
     #[arg(long, value_name = "MESHFILE")]
     pub dual: Option<PathBuf>,
-    /// Edge weights of the dual graph (with --dual; a graph file has its own).
-    /// Default `random`.
-    #[arg(long, value_enum, requires = "dual")]
-    pub weights: Option<WeightKind>,
+    /// Edge weights of the dual graph (with --dual; a graph file has its own):
+    /// `uniform` (every edge 1), `random` (integers 1..=1000 seeded by --seed) or
+    /// `normal-angle` (dihedral angle, round(angle / pi * 1000)). Default `random`.
+    #[arg(long, requires = "dual", value_parser = super::named::<DualWeights>(DualWeights::NAMES))]
+    pub weights: Option<DualWeights>,
     /// Seed for --weights random (with --dual). Default 1.
     #[arg(long, requires = "dual")]
     pub seed: Option<u64>,
@@ -76,11 +56,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let t0 = Instant::now();
     let (graph, source) = if let Some(mesh_path) = &args.dual {
         let mesh = args.read.read_surface(mesh_path)?;
-        let w = args.weights.map_or_else(DualWeights::default, DualWeights::from);
-        let w = match args.seed {
-            Some(seed) => w.with_seed(seed).context("--seed applies to --weights random")?,
-            None => w,
-        };
+        anyhow::ensure!(
+            args.seed.is_none() || matches!(args.weights, None | Some(DualWeights::Random { .. })),
+            "--seed applies to --weights random"
+        );
+        let mut w = args.weights.unwrap_or_default();
+        if let (DualWeights::Random { seed }, Some(s)) = (&mut w, args.seed) {
+            *seed = s;
+        }
         let g = matching::mesh_dual_graph(&mesh, w)
             .with_context(|| format!("{}: building the dual graph", mesh_path.display()))?;
         (g, mesh_path.display().to_string())

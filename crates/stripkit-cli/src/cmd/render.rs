@@ -18,7 +18,7 @@ use stripkit::Error;
 use stripkit_render::paint::{self, Paint};
 use stripkit_render::{wire, DrawParams, FrameError, Framing, IndexWidth, Renderer, Shading, Topology, Vertices};
 
-use super::strip::{HeuristicArg, StripArgs};
+use super::strip::{heuristic_of, StripArgs};
 
 /// What the colours show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize)]
@@ -304,7 +304,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         input: &args.input,
         output: &args.output,
         algo: door.as_ref().map_or("lod", |s| s.algorithm.name()),
-        heuristic: door.as_ref().and_then(|s| args.strip.heuristic_used(&s.algorithm)),
+        heuristic: door.as_ref().and_then(|s| heuristic_of(&s.algorithm)),
         color: args.color,
         shading: args.shading,
         width: w,

@@ -9,7 +9,7 @@
 //! its own name. List properties of vertices are skipped (not kept). The `face`
 //! element's `vertex_indices` / `vertex_index` list (any count and index types; other
 //! face properties skipped), and the `tristrips` element (one or more int lists in
-//! which `-1` ends a strip, decoded by the METRICS.md rule with degenerate triangles
+//! which `-1` ends a strip, decoded by the strip reading rule (docs/metrics.md) with degenerate triangles
 //! skipped). Other elements are skipped. Before any element is read, its announced
 //! count times its smallest possible record size is checked against the bytes left.
 //!
