@@ -7,7 +7,6 @@ use std::path::PathBuf;
 use std::time::Instant;
 use stripkit::matching::{self, DualWeights, Graph, Objective};
 
-
 /// Arguments of `stripkit match`.
 #[derive(clap::Args)]
 #[command(after_help = "Graph files: a line `p edge N M`, then M lines `e U V W` (1-based \
@@ -84,13 +83,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     spinner.finish_and_clear();
     let m = result?;
     if let Some(out) = &args.output {
-        use std::fmt::Write;
-        let mut s = String::new();
-        for &e in &m.edges {
-            let [a, b] = graph.edges()[e as usize];
-            let _ = writeln!(s, "{} {} {}", a + 1, b + 1, graph.weights()[e as usize]);
-        }
-        stripkit::io::write_encoded(out, s.as_bytes()).with_context(|| format!("{}: cannot write", out.display()))?;
+        stripkit::io::write_encoded(out, graph.to_edge_lines(&m.edges).as_bytes())
+            .with_context(|| format!("{}: cannot write", out.display()))?;
     }
     let matched_nodes = 2 * m.edges.len();
     if args.json {
