@@ -24,7 +24,7 @@
 //! beyond [`MAX_INDICES`] before anything is allocated.
 //!
 //! Subdivision carries vertex attributes (normals, UVs, colours, ...) with the
-//! positions' own stencil weights ([`crate::Attribute::push_blend`]) and face groups
+//! positions' own stencil weights ([`crate::mesh::Attribute::push_blend`]) and face groups
 //! to the child faces. An attribute seam (two vertices at one position) is a
 //! boundary on each side, so both sides follow the same crease rule; where a seam
 //! meets another crease, its vertices stay fixed so that the seam stays closed.
@@ -402,10 +402,10 @@ fn neighbours(mesh: &Mesh, map: &EdgeMap) -> (Vec<Vec<u32>>, Vec<Vec<u32>>) {
 }
 
 /// `mesh`'s attributes at new vertices, each a weighted blend of input vertices
-/// ([`crate::Attribute::push_blend`]: floats and normalized integers blended, other
+/// ([`crate::mesh::Attribute::push_blend`]: floats and normalized integers blended, other
 /// integers from the heaviest vertex; normals and tangents made unit again). Empty
 /// without attributes (stencils unused).
-fn blend_attributes(mesh: &Mesh, stencils: &[Vec<(usize, f64)>]) -> Vec<crate::Attribute> {
+fn blend_attributes(mesh: &Mesh, stencils: &[Vec<(usize, f64)>]) -> Vec<crate::mesh::Attribute> {
     mesh.attributes
         .iter()
         .map(|a| {
