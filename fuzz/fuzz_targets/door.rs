@@ -13,7 +13,7 @@ const VERTICES: usize = 16;
 fuzz_target!(|data: &[u8]| {
     let Some((&first, rest)) = data.split_first() else { return };
     let algorithm = match first % 7 {
-        0 => Algorithm::Auto,
+        0 => Algorithm::auto(),
         1 => Algorithm::greedy(),
         2 => Algorithm::qstrip(),
         3 => Algorithm::cache(),
@@ -30,8 +30,8 @@ fuzz_target!(|data: &[u8]| {
     }
     let want = oriented(&indices);
     let restart = VERTICES as u32;
-    let options = StripOptions::default().algorithm(algorithm.clone()).join(join);
-    let buf = match stripify_indices(&indices, VERTICES, restart, &options) {
+    let options = StripOptions::default().algorithm(algorithm.clone()).join(join).restart_index(restart);
+    let buf = match stripify_indices(&indices, VERTICES, &options) {
         Ok(buf) => buf,
         // Only a list of nothing but degenerate triangles may be refused.
         Err(Error::Invalid(_)) if want.is_empty() => return,

@@ -15,7 +15,7 @@ use stripkit::{stripify, unstripify, Algorithm, Error, Mesh, StripOptions};
 fuzz_target!(|data: &[u8]| {
     let Some((&first, rest)) = data.split_first() else { return };
     let algorithm = match first % 8 {
-        0 => Algorithm::Auto,
+        0 => Algorithm::auto(),
         1 => Algorithm::greedy(),
         2 => Algorithm::qstrip(),
         3 => Algorithm::QuadSingle,
@@ -41,7 +41,7 @@ fuzz_target!(|data: &[u8]| {
     let options = StripOptions::default().algorithm(algorithm.clone());
     let strips = match stripify(&mesh, &options) {
         Ok(s) => s,
-        Err(Error::Invalid(_)) => return,
+        Err(e) if e.is_invalid() => return,
         Err(e) => panic!("{}: {e}", algorithm.name()),
     };
     // The triangles a face may give, up to rotation: a quad of four distinct

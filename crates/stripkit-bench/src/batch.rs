@@ -5,19 +5,12 @@
 
 use anyhow::Context;
 use std::path::PathBuf;
+use crate::buffers::{buffers, invocations};
 use stripkit_render::Topology;
 
 /// The model itself lives in the library ([`stripkit::BatchModel`], one copy: the
 /// `batch` stripifier plans with it).
 pub use stripkit::BatchModel;
-
-/// Vertex-shader invocations `model` predicts for one draw.
-pub fn invocations(model: &BatchModel, indices: &[u32], topology: Topology) -> u64 {
-    match topology {
-        Topology::Triangles => model.list_invocations(indices),
-        Topology::Strip => model.strip_invocations(indices, u32::MAX),
-    }
-}
 
 /// Arguments of `gpu-model`.
 #[derive(clap::Args)]
@@ -38,11 +31,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     for m in j["meshes"].as_array().context("meshes")? {
         let name = m["name"].as_str().context("name")?;
         let path = args.models.join(name);
-        let Ok(mesh) = crate::read_surface(&path) else {
+        let Ok(mesh) = crate::common::read_surface(&path) else {
             eprintln!("skipping {name}: not in {}", args.models.display());
             continue;
         };
-        let bufs = crate::gpu::buffers(&mesh, true)?;
+        let bufs = buffers(&mesh, true)?;
         for row in m["rows"].as_array().context("rows")? {
             let label = row["label"].as_str().unwrap_or_default();
             let Some(inv) = row["invocations"].as_f64() else { continue };

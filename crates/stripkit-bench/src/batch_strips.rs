@@ -1,7 +1,7 @@
 //! The `batch-strips` comparison: modelled vertex-shader invocations
 //! ([`stripkit::BatchModel::NVIDIA_H100`]) and indices per triangle of stripkit's
 //! strip modes next to meshoptimizer's vertex-cache list, on the shared meshes. No
-//! GPU needed: the model stands in for one (0.82% mean error on the H100).
+//! GPU needed: the model stands in for one (its fit: docs/experiments/gpu-draw-times.md).
 
 use anyhow::Context;
 use std::path::PathBuf;
@@ -62,7 +62,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     println!("| mesh | triangles | row | shaded / tri | vs list | indices / tri |\n|---|---:|---|---:|---:|---:|");
     for name in &args.meshes {
         let path = args.models.join(name);
-        let mesh = crate::read_surface(&path).with_context(|| path.display().to_string())?;
+        let mesh = crate::common::read_surface(&path).with_context(|| path.display().to_string())?;
         let tris = mesh.triangulate().tris;
         let t = tris.len() as f64;
         let list: Vec<u32> = tris.iter().flatten().copied().collect();

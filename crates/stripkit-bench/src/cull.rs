@@ -23,9 +23,8 @@ use stripkit::{Algorithm, SingleOptions, StripOptions, StripSet, Weights};
 /// Arguments of the `cull` comparison.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Folder of the research meshes (default: `STRIPKIT_MODELS`, else ../shared/models).
-    #[arg(long, value_name = "DIR")]
-    pub models: Option<PathBuf>,
+    #[command(flatten)]
+    pub models: crate::common::Models,
     /// Models, comma-separated file names in the folder, or paths.
     #[arg(long, default_value = "fandisk.obj,cow.obj,horse.ply,bunny_small.off,dragon.obj,spot_triangulated.obj")]
     pub only: String,
@@ -36,9 +35,8 @@ pub struct Args {
     /// most N culled triangles drawn as one); 0: none.
     #[arg(long, default_value_t = 16)]
     pub gap: u32,
-    /// Also write the markdown table to this file.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub table: crate::common::TableOut,
 }
 
 #[derive(Default)]
@@ -145,7 +143,7 @@ fn meshlet_row(tris: &[[u32; 3]], positions: &[[f32; 3]], eyes: &[[f32; 3]], rep
         for t in m.triangles.chunks_exact(3) {
             let [a, b, c] = [0, 1, 2].map(|k| positions[m.vertices[t[k] as usize] as usize].map(|x| x as f64));
             let (u, w) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
-            let n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+            let n = glam::DVec3::from(u).cross(glam::DVec3::from(w)).to_array();
             p.push((n, n[0] * a[0] + n[1] * a[1] + n[2] * a[2]));
         }
         planes.push(p);
@@ -192,7 +190,7 @@ fn meshlet_row(tris: &[[u32; 3]], positions: &[[f32; 3]], eyes: &[[f32; 3]], rep
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let dir = args.models.clone().or_else(crate::models_dir);
+    let dir = args.models.dir();
     let mut out = String::new();
     out.push_str("| model | triangles | method | nodes / strips / meshlets | draws per view | triangles drawn | back-facing | back culled | back drawn (leak) | front missed | us per view (roots / front) |\n");
     out.push_str("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -205,7 +203,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("{name}: not found, skipped");
             continue;
         }
-        let mesh = crate::read_surface(&path).with_context(|| format!("reading {}", path.display()))?;
+        let mesh = crate::common::read_surface(&path).with_context(|| format!("reading {}", path.display()))?;
         let tris = mesh.triangulate().tris;
         eprintln!("{name}: {} triangles", tris.len());
         let (center, radius) = stripkit::cull::bounding_sphere(&mesh.positions);
@@ -269,7 +267,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     }
     print!("{out}");
-    if let Some(f) = &args.out {
+    if let Some(f) = &args.table.out {
         std::fs::write(f, &out)?;
     }
     Ok(())

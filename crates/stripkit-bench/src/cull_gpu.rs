@@ -42,9 +42,8 @@ use stripkit_render::{
 /// Arguments of the `cull-gpu` comparison.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Folder of the research meshes (default: `STRIPKIT_MODELS`, else ../shared/models).
-    #[arg(long, value_name = "DIR")]
-    pub models: Option<PathBuf>,
+    #[command(flatten)]
+    pub models: crate::common::Models,
     /// Models, comma-separated file names in the folder, or paths.
     #[arg(long, default_value = "fandisk.obj,cow.obj,horse.ply,bunny_small.off,dragon.obj,spot_triangulated.obj")]
     pub only: String,
@@ -68,9 +67,8 @@ pub struct Args {
     /// Only the 1920x1080 light-shader configuration.
     #[arg(long)]
     pub quick: bool,
-    /// Write the markdown table here too.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub table: crate::common::TableOut,
     /// Write every figure as JSON here.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -228,7 +226,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let info = r.info().clone();
     let gpu = format!("{} ({}, {})", info.renderer, info.vendor, info.version);
     eprintln!("renderer: {gpu}");
-    let dir = args.models.clone().or_else(crate::models_dir);
+    let dir = args.models.dir();
     let find = |name: &str| match &dir {
         Some(d) if d.join(name).exists() => d.join(name),
         _ => PathBuf::from(name),
@@ -240,13 +238,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("{name}: not found, skipped");
             continue;
         }
-        meshes.push((name.to_string(), crate::read_surface(&p).with_context(|| format!("reading {}", p.display()))?));
+        meshes.push((name.to_string(), crate::common::read_surface(&p).with_context(|| format!("reading {}", p.display()))?));
     }
     for s in &args.subdivided {
         let (file, levels) = s.rsplit_once(':').context("--subdivided takes FILE:LEVELS")?;
         let levels: u32 = levels.parse().context("--subdivided levels")?;
         let p = find(file);
-        let m = crate::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
+        let m = crate::common::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
         let m = stripkit::gen::subdivide_loop(
             &stripkit::Mesh::from_triangles(m.positions.clone(), &m.triangulate().tris),
             levels,
@@ -335,7 +333,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     }
     print!("{table}");
-    if let Some(f) = &args.out {
+    if let Some(f) = &args.table.out {
         std::fs::write(f, &table)?;
     }
     if let Some(f) = &args.json {

@@ -19,7 +19,8 @@
 use anyhow::Context;
 use std::path::PathBuf;
 use std::time::Instant;
-use stripkit::{Algorithm, CacheKind, StripOptions};
+use crate::buffers::{buffers, invocations};
+use stripkit::CacheKind;
 use stripkit::cull::{helix_eyes, HELIX_VIEWS};
 use stripkit_render::{
     Camera, DrawParams, Geometry, IndexBuffer, IndexWidth, Renderer, Shading, Topology, Vertices,
@@ -47,9 +48,8 @@ pub struct Args {
     /// Only the main configuration (64x64, light shader, u32, both vertex orders).
     #[arg(long)]
     pub quick: bool,
-    /// Write the markdown tables here too.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub table: crate::common::TableOut,
     /// Write every figure as JSON here.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -62,15 +62,6 @@ pub struct Args {
     pub no_probes: bool,
 }
 
-/// One index buffer to draw: strips use `u32::MAX` as restart.
-pub struct Buffer {
-    /// Row label.
-    pub label: String,
-    /// Triangles or strips.
-    pub topology: Topology,
-    /// The indices.
-    pub indices: Vec<u32>,
-}
 
 /// A drawing configuration.
 #[derive(Clone, Copy)]
@@ -96,75 +87,6 @@ fn configs(quick: bool) -> Vec<Config> {
     v
 }
 
-/// Every index buffer of the comparison for one mesh, each checked against its triangles.
-/// `variants` adds the rows that explore settings (batch windows, cache sizes 32 and
-/// 64) next to the modes a user would pick. stripkit's modes run on parallel threads.
-pub fn buffers(mesh: &stripkit::Mesh, variants: bool) -> anyhow::Result<Vec<Buffer>> {
-    let tris = mesh.triangulate().tris;
-    let n = mesh.vertex_count();
-    let list = tris.as_flattened().to_vec();
-    let vc = meshopt::optimize_vertex_cache(&list, n);
-    let vcs = meshopt::optimize_vertex_cache_strip(&list, n);
-    let mo_strip = |l: &[u32]| meshopt::stripify(l, n, u32::MAX).map_err(|e| anyhow::anyhow!("meshopt stripify: {e:?}"));
-    let mut out = vec![
-        Buffer { label: "input triangle list".into(), topology: Topology::Triangles, indices: list.clone() },
-        Buffer { label: "meshopt optimizeVertexCache list".into(), topology: Topology::Triangles, indices: vc.clone() },
-        Buffer { label: "meshopt vc + stripify".into(), topology: Topology::Strip, indices: mo_strip(&vc)? },
-        Buffer { label: "meshopt optimizeVertexCacheStrip + stripify".into(), topology: Topology::Strip, indices: mo_strip(&vcs)? },
-    ];
-    let mut modes: Vec<(String, StripOptions)> = vec![
-        ("stripkit greedy".into(), StripOptions::default().algorithm(Algorithm::greedy())),
-        ("stripkit cache".into(), StripOptions::default().algorithm(Algorithm::cache())),
-        ("stripkit balanced".into(), StripOptions::default().algorithm(Algorithm::balanced(0.8))),
-        ("stripkit batch".into(), StripOptions::default().algorithm(Algorithm::batch())),
-    ];
-    modes.push(("stripkit cache --cache 8".into(), StripOptions::default().algorithm(Algorithm::cache()).cache_size(8)));
-    // The batch stripifier planned for neighbouring reuse windows: where the model's
-    // window is right, one of these shades fewer vertices than the other.
-    for window in [13, 14, 15].into_iter().filter(|_| variants) {
-        let model = stripkit::BatchModel { strip_window: window, restart_window: window, ..stripkit::BatchModel::NVIDIA_H100 };
-        modes.push((format!("stripkit batch, window {window}"), StripOptions::default().algorithm(Algorithm::Batch(model))));
-    }
-    // Planned for a shorter window at the start of a strip (the variant of the model
-    // that fits the H200's counts best: 16 and 11; the default plans for 14 and 10).
-    if variants {
-        let model = stripkit::BatchModel { strip_window: 16, restart_window: 11, ..stripkit::BatchModel::NVIDIA_H100 };
-        modes.push(("stripkit batch, window 16, 11 after a restart".into(), StripOptions::default().algorithm(Algorithm::Batch(model))));
-    }
-    for size in [32, 64].into_iter().filter(|_| variants) {
-        modes.push((format!("stripkit cache --cache {size}"), StripOptions::default().algorithm(Algorithm::cache()).cache_size(size)));
-    }
-    if stripkit::is_quad_dominant(mesh) {
-        modes.push(("stripkit qstrip".into(), StripOptions::default().algorithm(Algorithm::qstrip())));
-    }
-    let strips: Vec<anyhow::Result<Vec<u32>>> = std::thread::scope(|scope| {
-        let handles: Vec<_> = modes
-            .iter()
-            .map(|(label, opts)| {
-                scope.spawn(move || {
-                    stripkit::stripify(mesh, opts).map(|s| s.restart_buffer()).with_context(|| label.clone())
-                })
-            })
-            .collect();
-        handles.into_iter().map(|h| h.join().unwrap_or_else(|_| Err(anyhow::anyhow!("stripifier thread panicked")))).collect()
-    });
-    for ((label, _), indices) in modes.into_iter().zip(strips) {
-        out.push(Buffer { label, topology: Topology::Strip, indices: indices? });
-    }
-    // stripkit's rows are verified by the door (QSTRIP against its own diagonals); the
-    // peers' rows are checked here.
-    for b in out.iter().take(4) {
-        let decoded = match b.topology {
-            Topology::Triangles => b.indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
-            Topology::Strip => stripkit::decode(&stripkit::decode_restart(&b.indices, u32::MAX)),
-        };
-        let v = stripkit::verify_triangles(&tris, &decoded);
-        if !v.ok() {
-            eprintln!("warning: {}: {} lost, {} added, {} flipped", b.label, v.lost, v.added, v.flipped);
-        }
-    }
-    Ok(out)
-}
 
 /// Vertex order by first use in `indices` (restart skipped): `remap[old] = new`;
 /// unreferenced vertices go last.
@@ -245,7 +167,7 @@ struct RowResult {
     indices: usize,
     /// Vertex-shader invocations for one draw (None where the context cannot count).
     invocations: Option<u64>,
-    /// Invocations predicted by the batch model fitted to the H100 ([`crate::batch::BatchModel::NVIDIA_H100`]).
+    /// Invocations predicted by the batch model fitted to the H100 ([`stripkit::BatchModel::NVIDIA_H100`]).
     h100_model: u64,
     fifo16_misses: usize,
     fifo32_misses: usize,
@@ -268,14 +190,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         if args.only.as_ref().is_some_and(|o| !name.contains(o.as_str())) {
             continue;
         }
-        let m = crate::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
+        let m = crate::common::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
         meshes.push((name, m));
     }
     for s in &args.subdivided {
         let (file, levels) = s.rsplit_once(':').context("--subdivided takes FILE:LEVELS")?;
         let levels: u32 = levels.parse().context("--subdivided levels")?;
         let p = args.models.join(file);
-        let m = crate::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
+        let m = crate::common::read_surface(&p).with_context(|| format!("reading {}", p.display()))?;
         let m = stripkit::gen::subdivide_loop(&stripkit::Mesh::from_triangles(m.positions.clone(), &m.triangulate().tris), levels)?;
         meshes.push((format!("{file} Loop x{levels}"), m));
     }
@@ -307,7 +229,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                     strips: b.topology == Topology::Strip,
                     indices: b.indices.len(),
                     invocations: None,
-                    h100_model: crate::batch::invocations(&crate::batch::BatchModel::NVIDIA_H100, &b.indices, b.topology),
+                    h100_model: invocations(&stripkit::BatchModel::NVIDIA_H100, &b.indices, b.topology),
                     fifo16_misses: stripkit::cache_misses(&decoded, n, 16, CacheKind::Fifo),
                     fifo32_misses: stripkit::cache_misses(&decoded, n, 32, CacheKind::Fifo),
                     ms: Vec::new(),
@@ -370,7 +292,7 @@ fn report(
     probes: &[Probe],
 ) -> anyhow::Result<String> {
     let md = markdown(gpu, configs, results, probes, args.draws, args.repeats);
-    if let Some(out) = &args.out {
+    if let Some(out) = &args.table.out {
         std::fs::write(out, &md).with_context(|| out.display().to_string())?;
     }
     if let Some(path) = &args.json {

@@ -21,9 +21,8 @@ const QUALITY_RATIOS: [f64; 3] = [0.5, 0.1, 0.01];
 /// Arguments of the `lod` comparison.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Folder of the research meshes (default: `STRIPKIT_MODELS`, else ../shared/models).
-    #[arg(long, value_name = "DIR")]
-    pub models: Option<PathBuf>,
+    #[command(flatten)]
+    pub models: crate::common::Models,
     /// Models: file names in the folder, or their stems (`bunny`, `horse`, `dragon`,
     /// `cow`). Default: bunny, horse, dragon.
     #[arg(long, value_name = "NAME", num_args = 1.., value_delimiter = ',')]
@@ -34,9 +33,8 @@ pub struct Args {
     /// Rounds of the down-and-back switching path (medians over all switches).
     #[arg(long, default_value_t = 200)]
     pub rounds: usize,
-    /// Also write the markdown tables to this file.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub table: crate::common::TableOut,
 }
 
 /// `name` in `dir`: the file itself, else the first `.obj`, `.ply` or `.off` file whose
@@ -85,7 +83,7 @@ struct Tables {
 /// Runs the comparison.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let dir =
-        args.models.clone().or_else(crate::models_dir).context("no models folder (../shared/models or --models)")?;
+        args.models.dir().context("no models folder (../shared/models or --models)")?;
     let names: Vec<String> = if args.only.is_empty() {
         ["bunny", "horse", "dragon"].iter().map(|s| s.to_string()).collect()
     } else {
@@ -108,7 +106,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             continue;
         };
         let label = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_else(|| name.clone());
-        let mesh = crate::read_surface(&path).with_context(|| format!("reading {}", path.display()))?;
+        let mesh = crate::common::read_surface(&path).with_context(|| format!("reading {}", path.display()))?;
         model(&mesh, &label, &args, &mut t)?;
         eprintln!("done: {label}");
     }
@@ -123,8 +121,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         writeln!(out, "### {title}\n\n{table}")?;
     }
     print!("{out}");
-    if let Some(file) = &args.out {
-        stripkit::io::write_atomic(file, out.as_bytes())?;
+    if let Some(file) = &args.table.out {
+        stripkit::io::write_encoded(file, out.as_bytes())?;
     }
     Ok(())
 }

@@ -2,6 +2,8 @@
 //! run; writes markdown tables. One module per comparison.
 
 mod batch;
+mod buffers;
+mod common;
 mod cull;
 mod cull_gpu;
 mod batch_strips;
@@ -14,7 +16,6 @@ mod single;
 mod lod;
 
 use clap::{Parser, Subcommand};
-use std::path::PathBuf;
 
 /// Side-by-side comparisons of stripkit with other libraries.
 #[derive(Parser)]
@@ -49,23 +50,6 @@ enum Command {
     /// SETS multiresolution strips: size, strips of a level against greedy from scratch, and next
     /// to a discrete LoD chain of meshoptimizer's simplify (memory, levels, switch time, distances).
     Lod(lod::Args),
-}
-
-/// The research meshes: the folder named by `STRIPKIT_MODELS`, else `../shared/models`
-/// beside the checkout (as the tests find it); `None` when it is absent.
-fn models_dir() -> Option<PathBuf> {
-    let dir = match std::env::var_os("STRIPKIT_MODELS") {
-        Some(d) => PathBuf::from(d),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/models"),
-    };
-    dir.is_dir().then_some(dir)
-}
-
-/// Reads a research mesh as its bare surface (positions and faces, the file's vertex
-/// ids; `ReadOptions::positions_only`): the figures in docs/ are of the shapes, and an
-/// OBJ's UV seams (spot) would otherwise split its vertices and its strips.
-fn read_surface(path: &std::path::Path) -> stripkit::Result<stripkit::Mesh> {
-    stripkit::io::read_with(path, &stripkit::io::ReadOptions::default().positions_only(true))
 }
 
 fn main() -> anyhow::Result<()> {

@@ -20,9 +20,8 @@ pub struct Args {
     /// Icosphere levels whose dual graphs (20 * 4^level nodes) get random weights 1..=1000.
     #[arg(long, value_delimiter = ',', default_value = "6,7,8")]
     levels: Vec<u32>,
-    /// Folder of the research meshes (bunny.obj, dragon.obj); default ../shared/models.
-    #[arg(long)]
-    models: Option<PathBuf>,
+    #[command(flatten)]
+    models: crate::common::Models,
     /// Loop subdivision levels applied to dragon.obj for the two-valued-weights row
     /// (2 gives 1.6M triangles); negative to skip.
     #[arg(long, default_value_t = 2, allow_negative_numbers = true)]
@@ -161,9 +160,9 @@ fn min_med_max(v: &[f64]) -> String {
 
 /// `--ties SEEDS`: the two-valued dragon graph over seeds and edge orders.
 fn run_ties(args: &Args, seeds: u64, tmp: &Path) -> anyhow::Result<()> {
-    let dir = args.models.clone().or_else(crate::models_dir).context("no models folder (--models)")?;
+    let dir = args.models.dir().context("no models folder (--models)")?;
     let levels = args.dragon_levels.max(0) as u32;
-    let mesh = crate::read_surface(&dir.join("dragon.obj"))?;
+    let mesh = crate::common::read_surface(&dir.join("dragon.obj"))?;
     let mesh = stripkit::gen::subdivide_loop(&mesh, levels)?;
     let lemon = if args.no_lemon { None } else { build_lemon(tmp)? };
     println!("dragon.obj Loop x{levels} dual, weights 1|2; seconds of one solve (certificate checked)");
@@ -256,11 +255,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             graph: matching::mesh_dual_graph(&mesh, DualWeights::Random { seed: 1 })?,
         });
     }
-    let models = args.models.clone().or_else(crate::models_dir);
+    let models = args.models.dir();
     if let Some(dir) = &models {
         let bunny = dir.join("bunny.obj");
         if bunny.exists() {
-            let mesh = crate::read_surface(&bunny)?;
+            let mesh = crate::common::read_surface(&bunny)?;
             rows.push(Row {
                 name: "bunny.obj dual, random 1..1000".into(),
                 graph: matching::mesh_dual_graph(&mesh, DualWeights::Random { seed: 1 })?,
@@ -268,7 +267,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         let dragon = dir.join("dragon.obj");
         if dragon.exists() && args.dragon_levels >= 0 {
-            let mesh = crate::read_surface(&dragon)?;
+            let mesh = crate::common::read_surface(&dragon)?;
             let mesh = stripkit::gen::subdivide_loop(&mesh, args.dragon_levels as u32)?;
             let g = matching::mesh_dual_graph(&mesh, DualWeights::Random { seed: 1 })?;
             // Two-valued weights: 1 or 2.

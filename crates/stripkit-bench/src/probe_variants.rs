@@ -4,7 +4,7 @@
 //! a window in indices. Findings in docs/experiments/gpu-batch-strips.md.
 #[cfg(test)]
 mod tests {
-    use crate::batch::invocations;
+    use crate::buffers::invocations;
     use stripkit::BatchModel;
     use stripkit_render::Topology;
 
@@ -66,9 +66,9 @@ mod tests {
         let mut cases = Vec::new();
         for m in j["meshes"].as_array().unwrap() {
             let name = m["name"].as_str().unwrap();
-            let Some(dir) = crate::models_dir() else { return };
-            let mesh = crate::read_surface(&dir.join(name)).unwrap();
-            let bufs = crate::gpu::buffers(&mesh, true).unwrap();
+            let Some(dir) = crate::common::models_dir() else { return };
+            let mesh = crate::common::read_surface(&dir.join(name)).unwrap();
+            let bufs = crate::buffers::buffers(&mesh, true).unwrap();
             for row in m["rows"].as_array().unwrap() {
                 let label = row["label"].as_str().unwrap_or_default();
                 let Some(inv) = row["invocations"].as_f64() else { continue };

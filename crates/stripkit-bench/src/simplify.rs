@@ -11,9 +11,8 @@ use stripkit::Mesh;
 /// Arguments of the `simplify` comparison.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Folder with the models (default: the shared research models).
-    #[arg(long)]
-    pub models: Option<PathBuf>,
+    #[command(flatten)]
+    pub models: crate::common::Models,
     /// Model files inside that folder.
     #[arg(long, value_delimiter = ',', default_value = "bunny.obj,horse.ply,dragon.obj")]
     pub files: Vec<String>,
@@ -51,7 +50,7 @@ pub(crate) fn meshopt_simplify(mesh: &Mesh, tris: &[[u32; 3]], target_tris: usiz
 
 /// Runs the comparison.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let dir = match args.models.clone().or_else(crate::models_dir) {
+    let dir = match args.models.dir() {
         Some(d) => d,
         None => anyhow::bail!("no models folder (give --models)"),
     };
@@ -60,7 +59,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     writeln!(table, "|---|---|---|---:|---:|---:|---:|---:|---:|")?;
     for file in &args.files {
         let path = dir.join(file);
-        let mesh = crate::read_surface(&path)?;
+        let mesh = crate::common::read_surface(&path)?;
         let tris = mesh.triangulate().tris;
         for &ratio in &args.ratios {
             let target = ((tris.len() as f64) * ratio).round() as usize;
@@ -113,7 +112,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     if args.big {
         let first = args.files.first().map(|f| dir.join(f)).unwrap_or_default();
-        let mesh = stripkit::gen::subdivide_loop(&crate::read_surface(&first)?, 2)?;
+        let mesh = stripkit::gen::subdivide_loop(&crate::common::read_surface(&first)?, 2)?;
         let n = mesh.triangle_count();
         for placement in [Placement::Endpoint, Placement::Optimal] {
             let opts = Options::default().target(Target::Ratio(0.01)).placement(placement);
@@ -140,7 +139,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     print!("{table}");
     if let Some(out) = &args.output {
-        stripkit::io::write_atomic(out, table.as_bytes())?;
+        stripkit::io::write_encoded(out, table.as_bytes())?;
     }
     Ok(())
 }

@@ -5,16 +5,14 @@
 //! list, and its strips) on the same triangles, in the same run.
 
 use anyhow::Context;
-use std::path::PathBuf;
 use std::time::Instant;
 use stripkit::{Algorithm, CacheModel, MatchingMode, SingleOptions, StripOptions, StripSet, Weights};
 
 /// Arguments of the `single` comparison.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Folder of the research meshes (default: `STRIPKIT_MODELS`, else ../shared/models).
-    #[arg(long, value_name = "DIR")]
-    pub models: Option<PathBuf>,
+    #[command(flatten)]
+    pub models: crate::common::Models,
     /// Models, comma-separated file names in the folder.
     #[arg(long, default_value = "bunny_small.off,cow.obj,spot_triangulated.obj,fandisk.obj,horse.ply,dragon.obj,bunny.obj")]
     pub only: String,
@@ -27,9 +25,8 @@ pub struct Args {
     /// How the dual graph is matched: auto, exact or greedy.
     #[arg(long, default_value = "auto")]
     pub matching: String,
-    /// Also write the markdown table to this file.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub table: crate::common::TableOut,
 }
 
 /// A triangle list as a strip set of one strip per triangle (figures read it in order).
@@ -38,7 +35,7 @@ fn list(tris: &[[u32; 3]]) -> StripSet {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let dir = args.models.clone().or_else(crate::models_dir).context("no models folder (../shared/models or --models)")?;
+    let dir = args.models.dir().context("no models folder (../shared/models or --models)")?;
     let kinds: Vec<Weights> =
         args.weights.split(';').map(|w| w.parse::<Weights>()).collect::<Result<_, _>>()?;
     let levels: Vec<u32> = args.levels.split(',').map(|l| l.trim().parse()).collect::<Result<_, _>>()?;
@@ -58,7 +55,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("{name}: not in {}, skipped", dir.display());
             continue;
         }
-        let base = crate::read_surface(&path).with_context(|| format!("reading {}", path.display()))?;
+        let base = crate::common::read_surface(&path).with_context(|| format!("reading {}", path.display()))?;
         for &level in &levels {
             let mesh = if level == 0 {
                 base.clone()
@@ -123,8 +120,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     }
     print!("{out}");
-    if let Some(path) = &args.out {
-        stripkit::io::write_atomic(path, out.as_bytes())?;
+    if let Some(path) = &args.table.out {
+        stripkit::io::write_encoded(path, out.as_bytes())?;
     }
     if !failed.is_empty() {
         anyhow::bail!("failed: {}", failed.join("; "));

@@ -1,6 +1,6 @@
 //! The `strips` comparison: stripkit's stripifiers next to meshoptimizer on every mesh
 //! of a folder, every figure computed by stripkit's own decoder and metrics
-//! (METRICS.md), every row verified, times as medians.
+//! (docs/metrics.md), every row verified, times as medians.
 //!
 //! Every stripkit row goes through the library's front door, as a user's call would.
 //! Adding a row: one more entry in [`modes`] (or [`quad_modes`]).
@@ -16,9 +16,8 @@ pub struct Args {
     /// Folder of meshes; its `quads/` subfolder is read too (quads are fanned).
     #[arg(default_value = "../shared/models")]
     pub dir: PathBuf,
-    /// Also write the markdown table to this file.
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub table: crate::common::TableOut,
     /// Timed runs per row; the table shows the median.
     #[arg(long, default_value_t = 5)]
     pub runs: usize,
@@ -50,7 +49,7 @@ pub enum Mode {
 }
 
 fn greedy(heuristic: Heuristic, tunnel_cuts: Option<usize>) -> StripOptions {
-    StripOptions::default().algorithm(Algorithm::Greedy(GreedyOptions { heuristic, tunnel_cuts }))
+    StripOptions::default().algorithm(Algorithm::Greedy(GreedyOptions::default().heuristic(heuristic).tunnel_cuts(tunnel_cuts)))
 }
 
 /// The rows for every mesh, in table order. Other stripkit modes are one line each.
@@ -73,8 +72,8 @@ pub fn modes() -> Vec<Mode> {
 fn quad_modes() -> Vec<Mode> {
     let fan = StripOptions::default().split(Split::Fan);
     vec![
-        Mode::Ours("stripkit cache --diagonals fan", fan.clone().algorithm(Algorithm::cache())),
-        Mode::Ours("stripkit balanced --diagonals fan (acmr16 <= 0.8)", fan.algorithm(Algorithm::balanced(0.8))),
+        Mode::Ours("stripkit cache --split fan", fan.clone().algorithm(Algorithm::cache())),
+        Mode::Ours("stripkit balanced --split fan (acmr16 <= 0.8)", fan.algorithm(Algorithm::balanced(0.8))),
         Mode::Ours("stripkit qstrip (other faces: greedy)", StripOptions::default().algorithm(Algorithm::qstrip())),
     ]
 }
@@ -172,7 +171,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         {
             continue;
         }
-        let mut mesh = crate::read_surface(&path)
+        let mut mesh = crate::common::read_surface(&path)
             .with_context(|| format!("reading {}", path.display()))?;
         let name = if args.loop_levels > 0 {
             mesh = stripkit::gen::subdivide_loop(
@@ -226,11 +225,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let table = render(&rows, runs);
     print!("{table}");
-    if let Some(out) = &args.out {
-        stripkit::io::write_atomic(out, table.as_bytes()).with_context(|| format!("writing {}", out.display()))?;
+    if let Some(out) = &args.table.out {
+        stripkit::io::write_encoded(out, table.as_bytes()).with_context(|| format!("writing {}", out.display()))?;
     }
     if let Some(svg) = &args.svg {
-        stripkit::io::write_atomic(svg, pareto_svg(&rows).as_bytes()).with_context(|| format!("writing {}", svg.display()))?;
+        stripkit::io::write_encoded(svg, pareto_svg(&rows).as_bytes()).with_context(|| format!("writing {}", svg.display()))?;
     }
     if !failed.is_empty() {
         anyhow::bail!("verification failed: {}", failed.join(", "));
@@ -281,14 +280,14 @@ fn render(rows: &[Row], runs: usize) -> String {
     let mut s = String::new();
     s.push_str("# Triangle strips: stripkit next to meshoptimizer\n\n");
     s.push_str(&format!(
-        "Every figure by stripkit's decoder and metrics (METRICS.md). meshoptimizer's strips use restart \
+        "Every figure by stripkit's decoder and metrics (docs/metrics.md). meshoptimizer's strips use restart \
          index 0xFFFFFFFF and are split with stripkit's decoder. `ms`: median of {runs} runs of the stripify \
          call alone, single thread; `reorder ms`: meshoptimizer's vertex-cache reordering before it. \
          `ok`: decoded triangles equal the input's (nothing lost, nothing added, no winding flipped). \
          Lower is better everywhere; `idx/tri` = indices_restart / triangles; `idx/quad` = \
          indices_restart / quads on quad-dominant meshes, where QSTRIP works on the quads themselves \
          (either diagonal, checked at quad level) and the other rows on the fan triangulation, but \
-         for the `--diagonals auto` rows (the fan or QSTRIP's split of the quads, whichever gives the \
+         for the `--split auto` rows (the fan or QSTRIP's split of the quads, whichever gives the \
          cheaper strips; checked at quad level) and meshoptimizer on QSTRIP's split.\n\n"
     ));
     s.push_str("| model | triangles | stripifier | strips | swaps | indices_restart | idx/tri | idx/quad | indices_degenerate | acmr16 | acmr32 | ms | reorder ms | ok |\n");

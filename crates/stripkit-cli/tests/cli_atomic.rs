@@ -23,7 +23,7 @@ fn names(dir: &Path) -> Vec<String> {
     v
 }
 
-/// `.NAME.tmp-PID-N`, the temporary name of `stripkit::io::write_atomic`.
+/// `.NAME.tmp-PID-N`, the temporary name of stripkit's atomic writes (`stripkit::io::write_encoded`).
 fn is_temporary_of(file: &str, name: &str) -> bool {
     let Some(rest) = file.strip_prefix(&format!(".{name}.tmp-")) else { return false };
     let Some((pid, n)) = rest.split_once('-') else { return false };

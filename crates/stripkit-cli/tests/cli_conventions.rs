@@ -86,10 +86,10 @@ fn options_that_do_not_apply_exit_2() {
     refused(&["strip", g, "-o", o, "--algo", "cache", "--max-acmr", "0.9"], "--max-acmr applies to --algo balanced");
     refused(&["strip", g, "-o", o, "--algo", "greedy", "--refine"], "--refine applies to --algo cache");
     refused(&["strip", g, "-o", o, "--algo", "balanced", "--refine"], "--refine applies to --algo cache");
-    refused(&["strip", g, "-o", o, "--algo", "greedy", "--diagonals", "qstrip"], "--diagonals qstrip applies to");
+    refused(&["strip", g, "-o", o, "--algo", "greedy", "--diagonals", "qstrip"], "--split qstrip applies to");
     refused(&["strip", g, "-o", o, "--algo", "qstrip"], "this mesh has none");
     for algo in ["greedy", "batch", "single", "qstrip", "quad-single"] {
-        refused(&["strip", g, "-o", o, "--algo", algo, "--diagonals", "auto"], "--diagonals auto applies to");
+        refused(&["strip", g, "-o", o, "--algo", algo, "--diagonals", "auto"], "--split auto applies to");
     }
     refused(&["strip", g, "-o", o, "--algo", "cache", "--tunnel", "2"], "--heuristic and --tunnel apply");
     refused(&["strip", g, "-o", o, "--algo", "greedy", "--weights", "cull"], "apply to --algo single");

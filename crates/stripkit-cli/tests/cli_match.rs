@@ -169,3 +169,24 @@ fn a_byte_order_mark_is_read_and_other_bytes_are_placed() {
     assert!(out.is_empty());
     assert!(err.contains("latin1.dimacs: line 2: byte 0xE9 at column 6"), "{err}");
 }
+
+#[test]
+fn dual_defaults_and_the_edge_file_are_the_librarys() {
+    use stripkit::matching::{self, DualWeights, Objective};
+    let mesh = stripkit::gen::icosphere(1);
+    let f = tmp("ico1.obj");
+    stripkit::io::write(&f, &mesh, None).unwrap();
+    let out = tmp("ico1.matched");
+    let _ = std::fs::remove_file(&out);
+    // No --weights, no --seed: the library's default weights.
+    let v = json(&["match", "--dual", f.to_str().unwrap(), "--json", "-o", out.to_str().unwrap()]);
+    let read = stripkit::io::read(&f).unwrap();
+    let g = matching::mesh_dual_graph(&read, DualWeights::default()).unwrap();
+    let m = matching::solve(&g, Objective::MaxWeight).unwrap();
+    assert_eq!(v["total_weight"], m.total_weight);
+    // The edge file is the library's `U V W` text of the matched edges.
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), g.to_edge_lines(&m.edges));
+    // --weights random alone takes the default seed.
+    let r = json(&["match", "--dual", f.to_str().unwrap(), "--weights", "random", "--json"]);
+    assert_eq!(r["total_weight"], m.total_weight);
+}

@@ -76,7 +76,7 @@ fn misused_flags_exit_2() {
         (vec!["--algo", "single", "--swap-angle", "sideways"], "--swap-angle"),
         (vec!["--algo", "single", "--swap-angle", "95"], "--swap-angle"),
         (vec!["--algo", "single", "--cull-angle", "0"], "--cull-angle"),
-        (vec!["--algo", "single", "--diagonals", "qstrip"], "--diagonals qstrip"),
+        (vec!["--algo", "single", "--split", "qstrip"], "--split qstrip"),
     ] {
         let mut all = vec!["strip", i, "-o", o];
         all.extend(args.iter());

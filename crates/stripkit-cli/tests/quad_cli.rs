@@ -119,7 +119,7 @@ fn cache_modes_split_shuffled_quads_along_qstrip_diagonals() {
     let mesh = stripkit::gen::shuffle_faces(&stripkit::gen::torus_quads(40, 24, 3.0, 1.0), 3);
     support::write_mesh(&input, &mesh);
     for algo in ["cache", "balanced"] {
-        let run = |diagonals: &str| run_json_with(&input, algo, &["--diagonals", diagonals]);
+        let run = |diagonals: &str| run_json_with(&input, algo, &["--split", diagonals]);
         let fan = run("fan");
         let auto = run("auto");
         let forced = run("qstrip");

@@ -30,16 +30,12 @@
 //!   retired). Forming a blossom costs its number of children and expanding one its
 //!   number of children, not its size, however deep the nesting.
 //! * **Zero-dual blossoms are dissolved** when their tree has augmented (the classic
-//!   end-of-stage expansion). With many equal weights this keeps the nesting
-//!   shallower: the Loop-subdivided dragon with weights 1|2 went from 55 s to 13 s.
-//!   Ties still build deep nests (dragon seed 1: 1.26 billion parent steps in the
-//!   old per-vertex hint lookups, for 8.1 million events), so nothing walks a nest
-//!   level by level more than once: lookups compress, augmenting a nest walks up from
-//!   the new base once, and the certificate's blossom list is built top-down
-//!   (docs/experiments/matching-ties.md: dragon seed 4 went from 183 s to 6 s).
-//!   Ties are *not* broken by perturbing weights: a random perturbation below the
-//!   weight unit was tried and made the greedy start worse and the run about twice as
-//!   slow.
+//!   end-of-stage expansion), which keeps the nesting shallower under many equal
+//!   weights. Ties still build deep nests, so nothing walks a nest level by level
+//!   more than once: lookups compress, augmenting a nest walks up from the new base
+//!   once, and the certificate's blossom list is built top-down. Ties are *not*
+//!   broken by perturbing weights. Measurements and the variants tried:
+//!   docs/experiments/matching-ties.md.
 //! * **A radix heap** for the event keys, which only grow.
 //!
 //! Integrality: the caller doubles the weights, so every weight is even, and the roots'

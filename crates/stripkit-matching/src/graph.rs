@@ -251,6 +251,19 @@ impl Graph {
         }
         s
     }
+
+    /// Writes the edges `ids` (edge ids, as in [`crate::Matching::edges`]) as text, one
+    /// `U V W` line each: 1-based vertices and the weight, as in the `e` lines of
+    /// [`Graph::to_dimacs`]. Panics on an id that is not an edge of the graph.
+    pub fn to_edge_lines(&self, ids: &[u32]) -> String {
+        use std::fmt::Write;
+        let mut s = String::with_capacity(16 * ids.len());
+        for &e in ids {
+            let [a, b] = self.edges[e as usize];
+            let _ = writeln!(s, "{} {} {}", a + 1, b + 1, self.weights[e as usize]);
+        }
+        s
+    }
 }
 
 /// The text of a DIMACS file's bytes: UTF-8 (a byte order mark is left for

@@ -5,7 +5,8 @@
 //! certificate that is checked from scratch on every solve.
 //!
 //! * [`Graph`]: edge list + CSR adjacency, `i64` weights, DIMACS-style reader
-//!   ([`Graph::read_dimacs`], [`Graph::parse_dimacs`]) and writer.
+//!   ([`Graph::read_dimacs`], [`Graph::parse_dimacs`]) and writers ([`Graph::to_dimacs`],
+//!   [`Graph::to_edge_lines`] for a matching's edges).
 //! * [`max_weight_perfect_matching`] / [`min_cost_perfect_matching`] (both [`solve`]):
 //!   the exact optimum as a [`Matching`]. When the graph has no perfect matching the
 //!   result says so (`perfect == false`) and holds a maximum-cardinality matching of
@@ -32,6 +33,8 @@
 //! assert_eq!(m.edges, vec![0, 2]);
 //! assert_eq!(m.mate, vec![1, 0, 3, 2]);
 //! assert_eq!(m.total_weight, 10);
+//! // The matched edges as text, one `U V W` line each (1-based, as in DIMACS).
+//! assert_eq!(g.to_edge_lines(&m.edges), "1 2 5\n3 4 5\n");
 //!
 //! // The certificate proves it: its dual bound equals the matching's weight, in the
 //! // internal (doubled) weights.

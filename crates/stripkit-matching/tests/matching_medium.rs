@@ -6,8 +6,7 @@
 
 use stripkit_matching::{self as matching, Graph, Objective, UNMATCHED};
 
-mod test_rng;
-use test_rng::Rng;
+use stripkit_testkit::XorShift64Star as Rng;
 
 /// Dense Hungarian algorithm (shortest augmenting paths with potentials), O(n^3):
 /// maximum-weight perfect assignment of `w[i][j]`; `None` entries are missing edges.

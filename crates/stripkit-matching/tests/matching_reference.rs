@@ -7,8 +7,7 @@ use std::collections::VecDeque;
 use stripkit_matching::{self as matching, Graph, Objective, UNMATCHED};
 
 mod matching_brute;
-mod test_rng;
-use test_rng::Rng;
+use stripkit_testkit::XorShift64Star as Rng;
 
 // ---------------------------------------------------------------------------------
 // Reference: dense O(n^3) maximum-weight matching for general graphs.

@@ -3,8 +3,7 @@
 
 use stripkit_matching::{self as matching, Graph, Objective, UNMATCHED};
 
-mod test_rng;
-use test_rng::Rng;
+use stripkit_testkit::XorShift64Star as Rng;
 
 mod matching_brute;
 

@@ -7,8 +7,7 @@
 use stripkit_matching::{self as matching, verify, Graph, Objective};
 
 mod matching_brute;
-mod test_rng;
-use test_rng::Rng;
+use stripkit_testkit::XorShift64Star as Rng;
 
 /// Honeycomb lattice on a `w x h` torus (`w` even): 3-regular, bipartite.
 fn honeycomb(w: u32, h: u32) -> (usize, Vec<[u32; 2]>) {

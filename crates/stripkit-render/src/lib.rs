@@ -9,7 +9,8 @@
 //! Pictures of strips need a little geometry, all over plain slices of positions and
 //! indices: [`Framing`] places a camera tightly around the points drawn, [`paint`]
 //! colours triangles by strip, by order or by facing, and [`wire`] turns edges into
-//! thin bands of triangles for a wireframe.
+//! thin bands of triangles for a wireframe; [`morph_positions`] is the shader's morph
+//! on the CPU, for what is built from the drawn positions.
 //!
 //! It reads pixels back ([`Image`], PNG through the `png` crate), times draws, and counts
 //! vertex-shader invocations where the context has storage buffers (GLES 3.1), which
@@ -37,6 +38,7 @@ pub mod chart;
 mod egl;
 mod frame;
 mod image;
+mod morph;
 mod normals;
 pub mod paint;
 mod shaders;
@@ -45,6 +47,7 @@ pub mod wire;
 pub use camera::Camera;
 pub use frame::{FrameError, Framing};
 pub use image::Image;
+pub use morph::morph_positions;
 pub use normals::vertex_normals;
 
 use glow::HasContext;

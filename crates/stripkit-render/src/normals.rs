@@ -1,14 +1,15 @@
 //! Vertex normals for smooth shading, from an indexed triangle list.
 
+use glam::DVec3;
+
 /// Area-weighted vertex normals of the triangles (for smooth shading); unit length,
 /// +Z for a vertex on no triangle or on triangles of no area.
 pub fn vertex_normals(positions: &[[f32; 3]], corners: &[u32]) -> Vec<[f32; 3]> {
     let mut acc = vec![[0.0f64; 3]; positions.len()];
     for t in corners.chunks_exact(3) {
         let p = |i: usize| positions[t[i] as usize].map(f64::from);
-        let (a, b, c) = (p(0), p(1), p(2));
-        let (u, v) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
-        let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+        let (a, b, c) = (DVec3::from(p(0)), DVec3::from(p(1)), DVec3::from(p(2)));
+        let n = (b - a).cross(c - a).to_array();
         for &i in t {
             for d in 0..3 {
                 acc[i as usize][d] += n[d];

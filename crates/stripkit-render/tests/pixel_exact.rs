@@ -36,10 +36,10 @@ const PIXELS: usize = (SIZE * SIZE) as usize;
 
 fn triangle_algorithms() -> Vec<(&'static str, Algorithm)> {
     vec![
-        ("auto", Algorithm::Auto),
+        ("auto", Algorithm::auto()),
         ("greedy", Algorithm::greedy()),
-        ("greedy-strips", Algorithm::Greedy(GreedyOptions::with_heuristic(Heuristic::Strips))),
-        ("greedy-notunnel", Algorithm::Greedy(GreedyOptions { tunnel_cuts: None, ..GreedyOptions::default() })),
+        ("greedy-strips", Algorithm::Greedy(GreedyOptions::default().heuristic(Heuristic::Strips))),
+        ("greedy-notunnel", Algorithm::Greedy(GreedyOptions::default().tunnel_cuts(None))),
         ("cache", Algorithm::cache()),
         ("cache-refine", Algorithm::Cache { refine: true }),
         ("balanced", Algorithm::balanced(0.8)),
@@ -48,7 +48,7 @@ fn triangle_algorithms() -> Vec<(&'static str, Algorithm)> {
 
 fn quad_algorithms() -> Vec<(&'static str, Algorithm)> {
     vec![
-        ("auto", Algorithm::Auto),
+        ("auto", Algorithm::auto()),
         ("qstrip", Algorithm::qstrip()),
         ("quad-single", Algorithm::QuadSingle),
         ("greedy", Algorithm::greedy()),

@@ -18,8 +18,13 @@
 //! | [`subdivide_loop`]`(mesh, k)` | V + E per level | F·4^k triangles |
 //! | [`subdivide_catmull_clark`]`(mesh, k)` | V + E + F per level | Σ face sizes quads per level |
 //!
+//! A caller that builds meshes on request (a command line, a service) checks the
+//! request first: [`check_grid`], [`check_icosphere`], [`check_torus`] and
+//! [`check_subdivision`] predict the size in overflow-free arithmetic and refuse one
+//! beyond [`MAX_INDICES`] before anything is allocated.
+//!
 //! Subdivision carries vertex attributes (normals, UVs, colours, ...) with the
-//! positions' own stencil weights ([`crate::Attribute::push_blend`]) and face groups
+//! positions' own stencil weights ([`crate::mesh::Attribute::push_blend`]) and face groups
 //! to the child faces. An attribute seam (two vertices at one position) is a
 //! boundary on each side, so both sides follow the same crease rule; where a seam
 //! meets another crease, its vertices stay fixed so that the seam stays closed.
@@ -397,10 +402,10 @@ fn neighbours(mesh: &Mesh, map: &EdgeMap) -> (Vec<Vec<u32>>, Vec<Vec<u32>>) {
 }
 
 /// `mesh`'s attributes at new vertices, each a weighted blend of input vertices
-/// ([`crate::Attribute::push_blend`]: floats and normalized integers blended, other
+/// ([`crate::mesh::Attribute::push_blend`]: floats and normalized integers blended, other
 /// integers from the heaviest vertex; normals and tangents made unit again). Empty
 /// without attributes (stencils unused).
-fn blend_attributes(mesh: &Mesh, stencils: &[Vec<(usize, f64)>]) -> Vec<crate::Attribute> {
+fn blend_attributes(mesh: &Mesh, stencils: &[Vec<(usize, f64)>]) -> Vec<crate::mesh::Attribute> {
     mesh.attributes
         .iter()
         .map(|a| {
@@ -647,6 +652,67 @@ fn check_size(vertices: u64, indices: u64) -> Result<()> {
     if vertices > u32::MAX as u64 || indices > u32::MAX as u64 {
         return Err(Error::Invalid(format!(
             "subdivision result too large: {vertices} vertices, {indices} face indices (limit 2^32 - 1)"
+        )));
+    }
+    Ok(())
+}
+
+/// The largest mesh built on request: 2^30 face indices (4 GiB of `u32` indices) and
+/// as many vertices. The `check_*` functions refuse a request beyond it, so that a
+/// typo cannot exhaust memory; the generators themselves only need `u32` indices.
+pub const MAX_INDICES: u64 = 1 << 30;
+
+/// The highest [`icosphere`] level built on request: 10, 20,971,520 triangles
+/// ([`icosphere`] itself goes to 12).
+pub const MAX_ICOSPHERE_LEVEL: u32 = 10;
+
+/// Refuses a [`grid`] (`quads == false`) or [`grid_quads`] of `w` by `h` squares
+/// whose face indices or vertices would pass [`MAX_INDICES`]. Checks the size only:
+/// zero squares is the caller's to refuse.
+pub fn check_grid(w: u32, h: u32, quads: bool) -> Result<()> {
+    let faces = w as u64 * h as u64;
+    // Saturating: at w = h = 2^32 - 1 the products pass 2^64, and a wrapped one would
+    // slip under the limit.
+    let vertices = (w as u64 + 1).saturating_mul(h as u64 + 1);
+    check_limit(faces.saturating_mul(if quads { 4 } else { 6 }), vertices)
+}
+
+/// Refuses an [`icosphere`] level above [`MAX_ICOSPHERE_LEVEL`].
+pub fn check_icosphere(level: u32) -> Result<()> {
+    if level > MAX_ICOSPHERE_LEVEL {
+        return Err(Error::Invalid(format!(
+            "icosphere level {level} is too large (at most {MAX_ICOSPHERE_LEVEL}: 20,971,520 triangles)"
+        )));
+    }
+    Ok(())
+}
+
+/// Refuses a [`torus`] or [`torus_quads`] of `major` by `minor` segments whose face
+/// indices or vertices would pass [`MAX_INDICES`] (counted as triangles, six indices
+/// per segment pair, for both). Checks the size only.
+pub fn check_torus(major: u32, minor: u32) -> Result<()> {
+    let segments = major as u64 * minor as u64;
+    check_limit(segments.saturating_mul(6), segments)
+}
+
+/// Refuses `levels` subdivisions (Loop or Catmull-Clark: each level multiplies the
+/// face indices by 4) of a mesh with `face_indices` face indices when the result would
+/// pass [`MAX_INDICES`]; a product beyond `u64` is refused with the request in the
+/// message, never wrapped. `name` names the input in the message (a file, "cube").
+pub fn check_subdivision(face_indices: usize, levels: u32, name: &str) -> Result<()> {
+    let indices = face_indices as u64;
+    let grown = 4u64.checked_pow(levels).and_then(|f| f.checked_mul(indices)).ok_or_else(|| {
+        Error::Invalid(format!(
+            "the requested mesh is too large ({name}: {indices} face indices x 4^{levels} is beyond 2^64; limit {MAX_INDICES})"
+        ))
+    })?;
+    check_limit(grown, 0)
+}
+
+fn check_limit(indices: u64, vertices: u64) -> Result<()> {
+    if indices > MAX_INDICES || vertices > MAX_INDICES {
+        return Err(Error::Invalid(format!(
+            "the requested mesh is too large ({indices} face indices, {vertices} vertices; limit {MAX_INDICES})"
         )));
     }
     Ok(())

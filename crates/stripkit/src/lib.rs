@@ -58,7 +58,7 @@
 //!
 //! // A plain index list: two triangles sharing the edge 1-2.
 //! let triangles = [0, 1, 2, 2, 1, 3];
-//! let strip = stripify_indices(&triangles, 4, u32::MAX, &StripOptions::default())?;
+//! let strip = stripify_indices(&triangles, 4, &StripOptions::default())?;
 //! assert_eq!(strip.len(), 4);
 //! assert_eq!(unstripify(&strip, u32::MAX).len(), triangles.len());
 //! # Ok::<(), stripkit::Error>(())
@@ -95,11 +95,11 @@ pub(crate) mod test_support;
 #[cfg(test)]
 mod tests;
 
-pub use error::{Error, Result};
+pub use error::{Error, OptionName, Result};
 pub use mesh::{io, Attribute, Group, Mesh, Scalar, Triangles};
 pub use metrics::{acmr, cache_misses, figures, swaps, BatchModel, CacheKind, CacheModel, Figures};
 pub use pipeline::{
-    is_quad_dominant, stripify, stripify_bound, stripify_indices, unstripify, Algorithm, Join, Split,
+    is_quad_dominant, stripify, stripify_bound, stripify_indices, unstripify, Algorithm, AutoOptions, Join, Split,
     StripOptions, Stripifier, Strips, MAX_CACHE_SIZE, MAX_TUNNEL_CUTS, QUAD_DOMINANT,
 };
 pub use strip::{

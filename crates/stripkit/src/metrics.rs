@@ -1,5 +1,5 @@
-//! Figures of METRICS.md: strip counts, index counts per join, swaps, vertex-cache
-//! miss ratios (FIFO as METRICS.md defines it, LRU as an option), and the verdict of
+//! Figures of docs/metrics.md: strip counts, index counts per join, swaps, vertex-cache
+//! miss ratios (FIFO as docs/metrics.md defines it, LRU as an option), and the verdict of
 //! [`crate::strip::verify`].
 //!
 //! ```
@@ -18,7 +18,7 @@ use crate::strip::{self, StripSet};
 #[serde(rename_all = "lowercase")]
 pub enum CacheKind {
     /// First in, first out: a hit does not reorder, a miss evicts the oldest entry
-    /// (the model of METRICS.md and of most post-transform caches).
+    /// (the model of docs/metrics.md and of most post-transform caches).
     #[default]
     Fifo,
     /// Least recently used: a hit moves the vertex to the front.
@@ -109,7 +109,7 @@ pub fn cache_misses(
     misses
 }
 
-/// The FIFO vertex cache of METRICS.md, simulated: a hit does not reorder, a miss
+/// The FIFO vertex cache of docs/metrics.md, simulated: a hit does not reorder, a miss
 /// pushes the vertex and evicts the oldest entry. The one simulation behind
 /// [`cache_misses`], the cache-aware stripifier (which also asks what a few more
 /// pushes would leave cached) and its refinement (which replays stretches of the
@@ -273,7 +273,7 @@ pub fn swaps(strips: &StripSet) -> usize {
     n
 }
 
-/// Every figure of METRICS.md for one strip set.
+/// Every figure of docs/metrics.md for one strip set.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Figures {
     /// T: non-degenerate input triangles.
@@ -385,9 +385,8 @@ pub struct BatchModel {
 }
 
 impl BatchModel {
-    /// The model fitted to an NVIDIA H100 (driver 580.159.04): batches of 30
-    /// triangles and 32 shaded vertices, strips reusing the last 15 shaded vertices
-    /// (0.82% mean error over 176 index buffers of the shared models;
+    /// The model fitted to an NVIDIA H100: batches of 30 triangles and 32 shaded
+    /// vertices, strips reusing the last 15 shaded vertices (the fit and its error:
     /// docs/experiments/gpu/h100-model-fit.md).
     pub const NVIDIA_H100: BatchModel = BatchModel {
         max_triangles: 30,
@@ -399,12 +398,8 @@ impl BatchModel {
 
     /// What the `batch` stripifier plans for by default ([`crate::Algorithm::batch`]):
     /// [`BatchModel::NVIDIA_H100`] with a reuse window of 14, 10 for the first two
-    /// indices of a strip. The fit is wrong for the batch stripifier's many short
-    /// strips: on an H200 (same driver) its strips of bunny shaded 0.953 vertices per
-    /// triangle when planned for the fitted window of 15 (0.833 modelled), 0.928 for
-    /// 13, 0.929 for 16 and 11 after a restart (a variant that fit one run's
-    /// counts best), and 0.918 for these settings, the fewest of the five on
-    /// all seven shared models (docs/experiments/gpu-batch-strips.md).
+    /// indices of a strip, which shaded the fewest vertices on a real GPU of the
+    /// windows tried (docs/experiments/gpu-batch-strips.md).
     pub const NVIDIA_H100_PLANNING: BatchModel = BatchModel {
         strip_window: 14,
         restart_window: 10,

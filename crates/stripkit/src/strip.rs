@@ -1,5 +1,5 @@
 //! Strips: the [`StripSet`] every stripifier returns, the decoder that turns strips
-//! back into triangles by the rule of METRICS.md, the three ways of joining strips into
+//! back into triangles by the rule of docs/metrics.md, the three ways of joining strips into
 //! buffers, and [`verify`], the independent check every output goes through.
 //!
 //! Triangle `i` of a strip `s` is `(s[i], s[i+1], s[i+2])` for even `i` and
@@ -74,7 +74,7 @@ impl StripSet {
 }
 
 /// Calls `emit` with every non-degenerate triangle of one strip, in order, with the
-/// winding the METRICS.md rule gives it.
+/// winding the strip reading rule (docs/metrics.md) gives it.
 pub fn for_each_triangle(strip: &[u32], mut emit: impl FnMut([u32; 3])) {
     for i in 0..strip.len().saturating_sub(2) {
         let t = if i % 2 == 0 {
@@ -102,13 +102,13 @@ pub fn decode(strips: &StripSet) -> Vec<[u32; 3]> {
 pub const DEFAULT_RESTART: u32 = u32::MAX;
 
 impl StripSet {
-    /// Total number of indices over all strips (`indices_separate` of METRICS.md).
+    /// Total number of indices over all strips (`indices_separate` of docs/metrics.md).
     pub fn index_count(&self) -> usize {
         self.indices.len()
     }
 
     /// Length of the single buffer with a restart index between strips
-    /// (`indices_restart` of METRICS.md): all indices plus one per strip boundary.
+    /// (`indices_restart` of docs/metrics.md): all indices plus one per strip boundary.
     pub fn restart_len(&self) -> usize {
         (self.index_count() + self.len()).saturating_sub(1)
     }
@@ -376,7 +376,7 @@ impl std::fmt::Display for Verification {
 }
 
 /// Checks strips against the triangles they should draw: the multiset of oriented,
-/// non-degenerate triangles decoded by the METRICS.md rule must equal the multiset of
+/// non-degenerate triangles decoded by the strip reading rule (docs/metrics.md) must equal the multiset of
 /// the non-degenerate `expected` triangles, up to rotation. Degenerate expected
 /// triangles are counted in `dropped_degenerate` and not required. O(n log n).
 pub fn verify(expected: &[[u32; 3]], strips: &StripSet) -> Verification {

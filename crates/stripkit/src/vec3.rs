@@ -1,5 +1,6 @@
-//! The small f64 vector helpers shared by the geometry code (quadrics, distances, the
-//! single-strip builder, the culling tree).
+//! The small vector helpers shared by the geometry code (quadrics, distances, the
+//! single-strip builder, the culling tree, normals for the matching weights and STL):
+//! f64, plus the f32 normal of the sites that compute in the file's precision.
 
 /// A 3-vector of f64.
 pub type V3 = [f64; 3];
@@ -34,4 +35,10 @@ pub(crate) fn unit(a: V3) -> Option<V3> {
 #[inline]
 pub(crate) fn tri_normal(a: V3, b: V3, c: V3) -> V3 {
     cross(sub(b, a), sub(c, a))
+}
+/// [`tri_normal`] computed in f32 throughout (positions as a file stores them).
+#[inline]
+pub(crate) fn tri_normal_f32(a: [f32; 3], b: [f32; 3], c: [f32; 3]) -> [f32; 3] {
+    let (u, v) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
+    [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
 }

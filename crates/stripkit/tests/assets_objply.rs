@@ -11,23 +11,7 @@ use stripkit::{decode, for_each_triangle};
 use stripkit::{stripify, Algorithm, Error, Join, Mesh, StripOptions};
 use stripkit::{Attribute, Group, Scalar};
 
-/// A small deterministic generator (no dependencies).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        self.0 >> 33
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-    fn shuffle<T>(&mut self, v: &mut [T]) {
-        for i in (1..v.len()).rev() {
-            v.swap(i, self.below(i + 1));
-        }
-    }
-}
+use stripkit_testkit::Lcg as Rng;
 
 fn obj(text: &str) -> Mesh {
     io::read_bytes(Path::new("test.obj"), Format::Obj, text.as_bytes()).unwrap()

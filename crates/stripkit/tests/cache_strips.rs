@@ -11,19 +11,7 @@ use stripkit::{
     Strips,
 };
 
-/// Small deterministic generator (xorshift), so tests need no dependency.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-}
+use stripkit_testkit::XorShift64 as Rng;
 
 /// A torus of `n x m` quads, each split along a random diagonal.
 fn torus(n: u32, m: u32, rng: &mut Rng) -> Vec<[u32; 3]> {

@@ -13,22 +13,15 @@ use stripkit::cull::{
 };
 use stripkit::{gen, stripify, Algorithm, Mesh, SingleOptions, StripOptions, Strips, Weights};
 
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use stripkit_testkit::geom::{cross, dot, sub};
+use stripkit_testkit::XorShift64 as Rng;
 
 fn jitter(mesh: &Mesh, amount: f32, seed: u64) -> Mesh {
     let mut rng = Rng(seed.wrapping_mul(0x9E3779B97F4A7C15) | 1);
     let mut m = mesh.clone();
     for p in &mut m.positions {
         for x in p.iter_mut() {
-            *x += amount * (rng.next() as f32 - 0.5);
+            *x += amount * (rng.unit() as f32 - 0.5);
         }
     }
     m
@@ -56,15 +49,6 @@ fn single(mesh: &Mesh, weights: Weights) -> Strips {
     strip_with(mesh, Algorithm::Single(SingleOptions::new(weights)))
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
 fn p64(p: [f32; 3]) -> [f64; 3] {
     p.map(|x| x as f64)
 }
@@ -234,12 +218,12 @@ fn random_path(center: [f32; 3], radius: f32, views: usize, seed: u64) -> Vec<[f
     let (mut th, mut ph, mut d) = (0.0f64, 0.0f64, 3.0f64);
     for i in 0..views {
         if i % 40 == 0 {
-            th = rng.next() * std::f64::consts::TAU;
-            ph = (rng.next() * 2.0 - 1.0).acos();
-            d = 0.2 + rng.next() * 5.0;
+            th = rng.unit() * std::f64::consts::TAU;
+            ph = (rng.unit() * 2.0 - 1.0).acos();
+            d = 0.2 + rng.unit() * 5.0;
         }
-        th += 0.05 * (rng.next() - 0.3);
-        ph += 0.03 * (rng.next() - 0.5);
+        th += 0.05 * (rng.unit() - 0.3);
+        ph += 0.03 * (rng.unit() - 0.5);
         let r = radius as f64 * d;
         out.push([
             center[0] + (r * ph.sin() * th.cos()) as f32,

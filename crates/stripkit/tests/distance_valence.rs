@@ -11,6 +11,7 @@ use stripkit::distance::bvh::{point_triangle_distance2, Bvh};
 use stripkit::distance::{distance, sample_surface};
 use stripkit::Mesh;
 use valence_meshes::{edge_fan, polygon, star};
+use stripkit_testkit::XorShift64;
 
 fn lifted(m: &Mesh, dz: f32) -> Mesh {
     let mut out = m.clone();
@@ -46,13 +47,8 @@ fn the_hierarchy_agrees_with_brute_force_on_fans() {
         let corners: Vec<[[f64; 3]; 3]> =
             tris.iter().map(|t| t.map(|v| m.positions[v as usize].map(f64::from))).collect();
         let mut points = sample_surface(&m, 150, 11);
-        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
-        let mut r = move || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.4 - 1.2
-        };
+        let mut rng = XorShift64(0x9E37_79B9_7F4A_7C15);
+        let mut r = move || rng.unit() * 2.4 - 1.2;
         points.extend((0..150).map(|_| [r(), r(), r()]));
         points.extend((0..50).map(|_| [r() * 1e-3, r() * 1e-3, 0.5 + r() * 1e-3]));
         let mut stack = Vec::new();

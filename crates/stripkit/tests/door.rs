@@ -7,10 +7,11 @@ mod support;
 use proptest::prelude::*;
 use stripkit::{
     decode, gen, io, stripify, stripify_bound, stripify_indices, unstripify, verify_triangles, Algorithm, Error,
-    Join, Mesh, Split, StripOptions,
+    Join, Mesh, OptionName, Split, StripOptions,
 };
 
 use support::algorithms;
+use stripkit_testkit::XorShift64;
 
 /// Oriented triangles up to rotation, degenerate ones dropped, sorted.
 fn oriented(flat: &[u32]) -> Vec<[u32; 3]> {
@@ -30,13 +31,8 @@ fn oriented(flat: &[u32]) -> Vec<[u32; 3]> {
 /// a random permutation and triangles shuffled and rotated: a mesh no stripifier saw
 /// in this order.
 fn scrambled_grid(w: u32, h: u32, seed: u64) -> (Vec<u32>, usize) {
-    let mut state = seed | 1;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        state
-    };
+    let mut rng = XorShift64(seed | 1);
+    let mut next = move || rng.next();
     let n = ((w + 1) * (h + 1)) as usize;
     let mut perm: Vec<u32> = (0..n as u32).collect();
     for i in (1..n).rev() {
@@ -73,9 +69,9 @@ fn round_trip(indices: &[u32], vertex_count: usize) {
     let want = oriented(indices);
     for algorithm in algorithms() {
         for join in [Join::Restart, Join::Degenerate] {
-            let options = StripOptions::default().algorithm(algorithm.clone()).join(join);
             let restart = vertex_count as u32;
-            let buf = stripify_indices(indices, vertex_count, restart, &options)
+            let options = StripOptions::default().algorithm(algorithm.clone()).join(join).restart_index(restart);
+            let buf = stripify_indices(indices, vertex_count, &options)
                 .unwrap_or_else(|e| panic!("{} {join:?}: {e}", algorithm.name()));
             assert!(buf.len() <= stripify_bound(indices.len()), "{} {join:?}: over the bound", algorithm.name());
             let back = unstripify(&buf, if join == Join::Restart { restart } else { u32::MAX });
@@ -169,42 +165,54 @@ fn invalid(r: Result<impl std::fmt::Debug, Error>, needle: &str) {
     }
 }
 
+/// An [`Error::BadOption`] naming `option`, its text holding `needle`.
+fn bad_option(r: Result<impl std::fmt::Debug, Error>, option: OptionName, needle: &str) {
+    match r {
+        Err(e @ Error::BadOption { option: o, .. }) if o == option => {
+            assert!(e.to_string().contains(needle), "{e} lacks {needle:?}")
+        }
+        other => panic!("expected a bad {option:?} with {needle:?}, got {other:?}"),
+    }
+}
+
 #[test]
 fn bad_input_and_options_that_do_not_apply_are_errors() {
     let d = StripOptions::default();
     let quad = [0, 1, 2, 0, 2, 3];
-    invalid(stripify_indices(&[], 3, u32::MAX, &d), "empty");
-    invalid(stripify_indices(&[0, 1], 3, u32::MAX, &d), "multiple of 3");
-    invalid(stripify_indices(&[0, 1, 5], 3, u32::MAX, &d), "vertex 5");
-    invalid(stripify_indices(&quad, 4, 2, &d), "restart index 2");
-    invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().join(Join::Separate)), "separate");
-    invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().cache_size(0)), "cache");
+    invalid(stripify_indices(&[], 3, &d), "empty");
+    invalid(stripify_indices(&[0, 1], 3, &d), "multiple of 3");
+    invalid(stripify_indices(&[0, 1, 5], 3, &d), "vertex 5");
+    bad_option(stripify_indices(&quad, 4, &d.clone().restart_index(2)), OptionName::RestartIndex, "restart index 2");
+    bad_option(stripify_indices(&quad, 4, &d.clone().join(Join::Separate)), OptionName::Join, "separate");
+    bad_option(stripify_indices(&quad, 4, &d.clone().cache_size(0)), OptionName::CacheSize, "cache");
     // Above MAX_CACHE_SIZE the cache-aware stripifiers' ring would follow the request
     // (u32::MAX once panicked; 2^32 tried 17 GB).
     for size in [stripkit::MAX_CACHE_SIZE + 1, u32::MAX as usize, usize::MAX] {
         for algo in [Algorithm::cache(), Algorithm::balanced(0.8), Algorithm::greedy()] {
-            invalid(
-                stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(algo).cache_size(size)),
+            bad_option(
+                stripify_indices(&quad, 4, &d.clone().algorithm(algo).cache_size(size)),
+                OptionName::CacheSize,
                 &format!("the cache size {size} is too large (at most 65536 entries)"),
             );
         }
     }
-    assert!(stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::cache()).cache_size(stripkit::MAX_CACHE_SIZE)).is_ok());
-    invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::balanced(f64::NAN))), "positive");
-    invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::balanced(0.0))), "positive");
-    invalid(
-        stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::greedy()).split(Split::Qstrip)),
+    assert!(stripify_indices(&quad, 4, &d.clone().algorithm(Algorithm::cache()).cache_size(stripkit::MAX_CACHE_SIZE)).is_ok());
+    bad_option(stripify_indices(&quad, 4, &d.clone().algorithm(Algorithm::balanced(f64::NAN))), OptionName::MaxAcmr, "positive");
+    bad_option(stripify_indices(&quad, 4, &d.clone().algorithm(Algorithm::balanced(0.0))), OptionName::MaxAcmr, "positive");
+    bad_option(
+        stripify_indices(&quad, 4, &d.clone().algorithm(Algorithm::greedy()).split(Split::Qstrip)),
+        OptionName::Split,
         "greedy",
     );
-    invalid(stripify_indices(&quad, 4, u32::MAX, &d.clone().algorithm(Algorithm::qstrip()).split(Split::Fan)), "qstrip");
+    bad_option(stripify_indices(&quad, 4, &d.clone().algorithm(Algorithm::qstrip()).split(Split::Fan)), OptionName::Split, "qstrip");
     // Auto's choice is checked against the split too: QSTRIP on quads takes no fan.
     let quads = gen::grid_quads(3, 3);
-    invalid(stripify(&quads, &d.clone().split(Split::Fan)), "qstrip");
+    bad_option(stripify(&quads, &d.clone().split(Split::Fan)), OptionName::Split, "qstrip");
     assert!(stripify(&quads, &d.clone().split(Split::Qstrip)).is_ok());
     // A restart index at or past the vertices is fine, even one unused by any index.
-    assert_eq!(stripify_indices(&quad, 5, 5, &d).unwrap().len(), 4);
+    assert_eq!(stripify_indices(&quad, 5, &d.clone().restart_index(5)).unwrap().len(), 4);
     // With stitching the restart index is not used at all.
-    assert_eq!(stripify_indices(&quad, 4, 0, &d.clone().join(Join::Degenerate)).unwrap().len(), 4);
+    assert_eq!(stripify_indices(&quad, 4, &d.clone().join(Join::Degenerate).restart_index(0)).unwrap().len(), 4);
 
     // The mesh door checks faces before any stripifier sees them.
     let mut m = Mesh::from_triangles(vec![[0.0; 3]; 3], &[[0, 1, 2]]);
@@ -212,7 +220,7 @@ fn bad_input_and_options_that_do_not_apply_are_errors() {
     invalid(stripify(&m, &d), "vertex 9");
     let m = Mesh::from_polygons(vec![[0.0; 3]; 3], &[vec![0u32, 1]]);
     invalid(stripify(&m, &d), "at least 3");
-    invalid(stripify(&gen::grid(2, 2), &d.clone().restart_index(3)), "restart index 3");
+    bad_option(stripify(&gen::grid(2, 2), &d.clone().restart_index(3)), OptionName::RestartIndex, "restart index 3");
     // Quad-single refuses a mesh that is not closed and made of quads.
     invalid(stripify(&gen::grid_quads(2, 2), &d.clone().algorithm(Algorithm::QuadSingle)), "quad");
     // An empty mesh gives no strips, verified.
@@ -224,7 +232,7 @@ fn bad_input_and_options_that_do_not_apply_are_errors() {
 fn every_setting() -> Vec<StripOptions> {
     let mut out = Vec::new();
     for algorithm in [
-        Algorithm::Auto,
+        Algorithm::auto(),
         Algorithm::greedy(),
         Algorithm::qstrip(),
         Algorithm::cache(),
@@ -259,8 +267,8 @@ fn strips_every_face_with_every_setting(name: &str, mesh: &Mesh) {
     let want = fan_triangles(mesh);
     for options in every_setting() {
         let what = format!("{name}: {} split {:?}", options.algorithm.name(), options.split);
-        if options.algorithm == Algorithm::Auto && options.split == Split::Fan && stripkit::is_quad_dominant(mesh) {
-            assert!(matches!(stripify(mesh, &options), Err(Error::Invalid(_))), "{what}");
+        if options.algorithm == Algorithm::auto() && options.split == Split::Fan && stripkit::is_quad_dominant(mesh) {
+            assert!(matches!(stripify(mesh, &options), Err(Error::BadOption { option: OptionName::Split, .. })), "{what}");
             continue;
         }
         let s = stripify(mesh, &options).unwrap_or_else(|e| panic!("{what}: {e}"));
@@ -355,7 +363,7 @@ fn qstrip_on_an_edge_with_three_quads_gives_verified_strips() {
     .collect();
     let mesh = Mesh::from_polygons(positions(15), &faces);
     assert!(stripify(&mesh, &StripOptions::default().algorithm(Algorithm::greedy())).is_ok());
-    for algorithm in [Algorithm::Auto, Algorithm::qstrip()] {
+    for algorithm in [Algorithm::auto(), Algorithm::qstrip()] {
         let s = stripify(&mesh, &StripOptions::default().algorithm(algorithm)).unwrap();
         assert_eq!(s.figures.triangles, 26);
     }
@@ -371,7 +379,7 @@ fn qstrip_on_an_edge_with_three_quads_gives_verified_strips() {
 fn qstrip_solves_a_cluster_of_quads_that_pairwise_forcing_gets_wrong() {
     let faces = [[2, 1, 7, 3], [0, 2, 3, 1], [2, 6, 7, 3], [2, 3, 7, 6]];
     let mesh = Mesh::from_polygons(positions(8), &faces);
-    for algorithm in [Algorithm::Auto, Algorithm::qstrip()] {
+    for algorithm in [Algorithm::auto(), Algorithm::qstrip()] {
         let s = stripify(&mesh, &StripOptions::default().algorithm(algorithm.clone()))
             .unwrap_or_else(|e| panic!("{}: {e}", algorithm.name()));
         let mut sets = support::drawn_sets(&s);
@@ -397,7 +405,7 @@ fn qstrip_keeps_a_face_listed_many_times_apart_from_its_flip() {
         })
         .collect();
     let mesh = Mesh::from_polygons(positions(8), &faces);
-    for algorithm in [Algorithm::Auto, Algorithm::qstrip()] {
+    for algorithm in [Algorithm::auto(), Algorithm::qstrip()] {
         let s = stripify(&mesh, &StripOptions::default().algorithm(algorithm.clone()))
             .unwrap_or_else(|e| panic!("{}: {e}", algorithm.name()));
         let drawn: Vec<[u32; 3]> = unstripify(&s.restart_buffer(), s.restart_index)
@@ -432,7 +440,7 @@ fn qstrip_keeps_the_diagonals_of_a_big_cluster_when_it_solves_another() {
     let mut faces: Vec<[u32; 4]> = vec![[4, 5, 9, 8]; 63];
     faces.extend([[4, 5, 9, 7], [4, 5, 9, 7], [0, 1, 4, 5], [0, 1, 5, 4]]);
     let mesh = Mesh::from_polygons(positions(10), &faces);
-    for algorithm in [Algorithm::Auto, Algorithm::qstrip()] {
+    for algorithm in [Algorithm::auto(), Algorithm::qstrip()] {
         let s = stripify(&mesh, &StripOptions::default().algorithm(algorithm.clone()))
             .unwrap_or_else(|e| panic!("{}: {e}", algorithm.name()));
         assert_eq!(s.figures.triangles, 2 * faces.len(), "{}", algorithm.name());
@@ -448,7 +456,7 @@ fn qstrip_keeps_the_diagonals_of_a_big_cluster_when_it_solves_another() {
 fn quads_on_the_same_four_vertices_in_every_order_verify() {
     let faces = [[12u32, 4, 2, 10], [4, 2, 10, 12], [2, 12, 10, 4], [12, 10, 2, 4], [12, 2, 4, 10]];
     let mesh = Mesh::from_polygons(positions(13), &faces);
-    for algorithm in [Algorithm::Auto, Algorithm::qstrip(), Algorithm::cache(), Algorithm::balanced(0.8)] {
+    for algorithm in [Algorithm::auto(), Algorithm::qstrip(), Algorithm::cache(), Algorithm::balanced(0.8)] {
         let s = stripify(&mesh, &StripOptions::default().algorithm(algorithm.clone()).split(Split::Qstrip))
             .unwrap_or_else(|e| panic!("{}: {e}", algorithm.name()));
         assert_eq!(s.figures.triangles, 10, "{}", algorithm.name());
@@ -459,13 +467,8 @@ fn quads_on_the_same_four_vertices_in_every_order_verify() {
 /// renumbered and shuffled: every quad algorithm and split verifies. Fixed seed.
 #[test]
 fn random_quad_clusters_on_few_vertices_verify() {
-    let mut x = 0x2545_F491_4F6C_DD1Du64;
-    let mut rnd = |n: u64| {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        (x % n) as u32
-    };
+    let mut rng = XorShift64(0x2545_F491_4F6C_DD1D);
+    let mut rnd = |n: u64| (rng.next() % n) as u32;
     for case in 0..400 {
         let k = 2 + rnd(9) as usize;
         let faces: Vec<[u32; 4]> = (0..k)

@@ -230,3 +230,29 @@ fn icosphere_level_eight_has_1_310_720_triangles() {
     assert_eq!(m.face_count(), 1_310_720);
     assert!(facts(&m).closed_manifold);
 }
+
+#[test]
+fn requests_beyond_the_size_limit_are_refused_before_building() {
+    let limit = gen::MAX_INDICES;
+    // The predictions match what the generators build.
+    assert!(gen::check_grid(708, 708, false).is_ok());
+    assert_eq!(gen::grid(3, 2).face_indices.len(), 6 * 3 * 2);
+    assert!(gen::check_icosphere(gen::MAX_ICOSPHERE_LEVEL).is_ok());
+    assert!(gen::check_torus(200, 100).is_ok());
+    assert!(gen::check_subdivision(gen::cube().face_indices.len(), 12, "cube").is_ok());
+    assert!(gen::check_subdivision(24, 13, "cube").is_err());
+    // Over the limit, without wrapping: 2^32 - 1 squares each way passes 2^64 indices.
+    let e = gen::check_grid(u32::MAX, u32::MAX, false).unwrap_err().to_string();
+    assert!(e.starts_with("the requested mesh is too large (") && e.ends_with(&format!("limit {limit})")), "{e}");
+    assert!(gen::check_grid(u32::MAX, u32::MAX, true).is_err());
+    assert!(gen::check_torus(u32::MAX, u32::MAX).is_err());
+    let e = gen::check_icosphere(11).unwrap_err().to_string();
+    assert_eq!(e, "icosphere level 11 is too large (at most 10: 20,971,520 triangles)");
+    let e = gen::check_subdivision(24, 14, "cube").unwrap_err().to_string();
+    assert!(e.contains("(6442450944 face indices, 0 vertices; limit 1073741824)"), "{e}");
+    // 24 * 4^31 once wrapped to 0 and got past the check.
+    for levels in [31, 32, 40, u32::MAX] {
+        let e = gen::check_subdivision(24, levels, "cube").unwrap_err().to_string();
+        assert!(e.contains(&format!("cube: 24 face indices x 4^{levels} is beyond 2^64")), "{e}");
+    }
+}

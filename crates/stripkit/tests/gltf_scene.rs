@@ -62,11 +62,8 @@ impl Builder {
 }
 
 /// A deterministic shuffle (the triangles' order must not matter).
-fn shuffle<T>(v: &mut [T], mut seed: u64) {
-    for i in (1..v.len()).rev() {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        v.swap(i, (seed >> 33) as usize % (i + 1));
-    }
+fn shuffle<T>(v: &mut [T], seed: u64) {
+    stripkit_testkit::Lcg(seed).shuffle(v);
 }
 
 const PNG_1X1: &str =

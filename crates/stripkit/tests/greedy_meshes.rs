@@ -24,7 +24,7 @@ fn greedy(tris: &[[u32; 3]], vertex_count: usize, options: GreedyOptions) -> (St
 
 /// Stripifies, verifies and checks the bookkeeping identities; returns the figures.
 fn check(tris: &[[u32; 3]], vertex_count: usize, heuristic: Heuristic) -> (StripSet, Figures) {
-    let (strips, f) = greedy(tris, vertex_count, GreedyOptions::with_heuristic(heuristic));
+    let (strips, f) = greedy(tris, vertex_count, GreedyOptions::default().heuristic(heuristic));
     assert!(
         f.verified,
         "{heuristic:?}: {}",
@@ -68,28 +68,18 @@ fn icosphere(levels: u32) -> (Vec<[u32; 3]>, usize) {
     triangles_of(stripkit::gen::icosphere(levels))
 }
 
-/// A small deterministic generator (no dependency needed).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self, n: usize) -> usize {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 33) % n as u64) as usize
-    }
-}
+use stripkit_testkit::Lcg;
 
 /// Shuffles the faces, renumbers the vertices and rotates each triangle.
 fn shuffled(tris: &[[u32; 3]], vertex_count: usize, seed: u64) -> Vec<[u32; 3]> {
     let mut rng = Lcg(seed);
     let mut out = tris.to_vec();
     for i in (1..out.len()).rev() {
-        out.swap(i, rng.next(i + 1));
+        out.swap(i, rng.below(i + 1));
     }
     let mut perm: Vec<u32> = (0..vertex_count as u32).collect();
     for i in (1..perm.len()).rev() {
-        perm.swap(i, rng.next(i + 1));
+        perm.swap(i, rng.below(i + 1));
     }
     for t in &mut out {
         *t = [
@@ -97,7 +87,7 @@ fn shuffled(tris: &[[u32; 3]], vertex_count: usize, seed: u64) -> Vec<[u32; 3]> 
             perm[t[1] as usize],
             perm[t[2] as usize],
         ];
-        t.rotate_left(rng.next(3));
+        t.rotate_left(rng.below(3));
     }
     out
 }
@@ -301,20 +291,14 @@ fn tunnelling_saves_indices_and_keeps_every_triangle() {
             let plain = run_with(
                 tris,
                 *n,
-                GreedyOptions {
-                    heuristic,
-                    tunnel_cuts: None,
-                },
+                GreedyOptions::default().heuristic(heuristic).tunnel_cuts(None),
             );
             let mut last = plain.indices_restart;
             for cuts in [0, 1, 2, 3] {
                 let f = run_with(
                     tris,
                     *n,
-                    GreedyOptions {
-                        heuristic,
-                        tunnel_cuts: Some(cuts),
-                    },
+                    GreedyOptions::default().heuristic(heuristic).tunnel_cuts(Some(cuts)),
                 );
                 assert_eq!(f.triangles, plain.triangles);
                 match heuristic {
@@ -349,9 +333,9 @@ fn bunny_meets_the_index_goal() {
     let mesh = stripkit::io::read(&dir.join("bunny.obj")).unwrap();
     let tris = mesh.triangulate().tris;
     let n = mesh.vertex_count();
-    let f = run_with(&tris, n, GreedyOptions::with_heuristic(Heuristic::Indices));
+    let f = run_with(&tris, n, GreedyOptions::default().heuristic(Heuristic::Indices));
     // Issue #3: at most 82,000 (the paper about 82,470, FTSG about 82,029).
     assert!(f.indices_restart <= 82_000, "{}", f.indices_restart);
-    let f = run_with(&tris, n, GreedyOptions::with_heuristic(Heuristic::Strips));
+    let f = run_with(&tris, n, GreedyOptions::default().heuristic(Heuristic::Strips));
     assert!(f.strips <= 563, "{}", f.strips);
 }

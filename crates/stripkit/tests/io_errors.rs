@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 use stripkit::io::{self, Format};
 use stripkit::{Error, Mesh};
+use stripkit_testkit::XorShift64;
 
 fn tmp(name: &str) -> PathBuf {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("io_errors");
@@ -218,13 +219,8 @@ fn corrupted_files_never_panic() {
         &[vec![0, 1, 2], vec![0, 2, 3], vec![1, 4, 2, 3]],
     );
     let strips = stripkit::StripSet::from_strips(&[vec![0, 1, 2, 3], vec![4, 2, 1]]);
-    let mut rng = 0x2545_F491_4F6C_DD1Du64;
-    let mut next = move || {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        rng
-    };
+    let mut rng = XorShift64(0x2545_F491_4F6C_DD1D);
+    let mut next = move || rng.next();
     let cases: Vec<(Format, Vec<u8>)> = vec![
         (Format::Obj, io::write_bytes(Format::Obj, &mesh, None, &Default::default()).unwrap()),
         (Format::Off, io::write_bytes(Format::Off, &mesh, None, &Default::default()).unwrap()),

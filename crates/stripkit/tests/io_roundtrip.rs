@@ -16,16 +16,11 @@ fn tmp(name: &str) -> PathBuf {
     dir.join(name)
 }
 
-/// A deterministic pseudo-random sequence (no external crate needed).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        self.0 >> 33
-    }
-    fn unit(&mut self) -> f32 {
-        (self.next() % 1_000_000) as f32 / 1_000_000.0
-    }
+use stripkit_testkit::Lcg;
+
+/// A number in `[0, 1)` in steps of one millionth.
+fn unit(rng: &mut Lcg) -> f32 {
+    (rng.next() % 1_000_000) as f32 / 1_000_000.0
 }
 
 /// A perturbed `w x h` grid of quads (some rotated, some split into two triangles)
@@ -35,7 +30,7 @@ fn mixed_mesh(w: u32, h: u32, seed: u64) -> Mesh {
     let mut positions = Vec::new();
     for y in 0..=h {
         for x in 0..=w {
-            positions.push([x as f32 * 0.731 + rng.unit() * 0.1, y as f32 * 1.37 - rng.unit() * 0.1, rng.unit() * 3.0 - 1.5]);
+            positions.push([x as f32 * 0.731 + unit(&mut rng) * 0.1, y as f32 * 1.37 - unit(&mut rng) * 0.1, unit(&mut rng) * 3.0 - 1.5]);
         }
     }
     let v = |x: u32, y: u32| y * (w + 1) + x;

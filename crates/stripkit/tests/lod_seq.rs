@@ -8,6 +8,7 @@ mod support;
 use std::path::{Path, PathBuf};
 use stripkit::lod::{self, LevelSpec, LodSeq, SeqOptions};
 use stripkit::{gen, Mesh};
+use stripkit_testkit::XorShift64;
 
 /// A torus that bends and swells over `frames` frames, written as OBJ files (and a
 /// reference pose) into a fresh folder.
@@ -74,11 +75,9 @@ fn the_cursor_follows_frames_and_levels() {
     assert!(seq.models().len() >= 2, "frames with different sequences: {:?}", b.report.sequences);
     let mut cursor = seq.cursor(0, LevelSpec::Level(0));
     let mut previous = cursor.buffer().to_vec();
-    let mut x = 0x9E3779B97F4A7C15u64;
+    let mut rng = XorShift64(0x9E3779B97F4A7C15);
     for step in 0..200 {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
+        let x = rng.next();
         let frame = (x % 5) as usize;
         let spec = match step % 4 {
             0 => LevelSpec::Level((x >> 8) as u32 % 700),
@@ -162,12 +161,10 @@ fn lodseq_files_round_trip_and_refuse_damage() {
         assert!(LodSeq::from_bytes(path, &b.seq.models()[0].to_bytes()).is_err());
         assert!(lod::Sets::from_bytes(path, &bytes).is_err());
         // Damage behind a valid checksum: an error or a sequence, never a panic.
-        let mut x = 0x2545F4914F6CDD1Du64;
+        let mut rng = XorShift64(0x2545F4914F6CDD1D);
         for _ in 0..300 {
             let mut bad = bytes.clone();
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            let x = rng.next();
             let at = 8 + (x as usize >> 8) % (bad.len() - 12);
             bad[at] = (x & 0xff) as u8;
             let n = bad.len() - 4;

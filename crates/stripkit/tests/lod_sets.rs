@@ -10,6 +10,7 @@ use std::path::Path;
 use stripkit::lod::{self, BuildOptions, Built};
 use stripkit::simplify::{simplify, Options, Placement, Target};
 use stripkit::{gen, Algorithm, Mesh, SingleOptions, StripOptions};
+use stripkit_testkit::XorShift64;
 
 fn built(mesh: &Mesh, algorithm: Algorithm, placement: Placement) -> Built {
     let options = BuildOptions::default().strip(StripOptions::default().algorithm(algorithm)).placement(placement);
@@ -75,12 +76,10 @@ fn coherent_levels_equal_walks_from_scratch() {
     let b = built(&shuffled(&bumpy_sphere(3), 5), Algorithm::greedy(), Placement::Endpoint);
     let sets = &b.sets;
     let mut cursor = sets.cursor(0);
-    let mut x = 0x2545F4914F6CDD1Du64;
+    let mut rng = XorShift64(0x2545F4914F6CDD1D);
     let mut previous = cursor.strips();
     for step in 0..300 {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
+        let x = rng.next();
         // Small steps, big jumps, and staying put.
         let level = match step % 3 {
             0 => (x % (sets.levels() as u64 + 1)) as u32,
@@ -172,13 +171,11 @@ fn sets_files_round_trip_and_refuse_damage() {
         }
         // Random damage behind a valid checksum: an error or a model, never a panic,
         // and any model read walks every level safely.
-        let mut x = 0x9E3779B97F4A7C15u64;
+        let mut rng = XorShift64(0x9E3779B97F4A7C15);
         for _ in 0..400 {
             let mut bad = bytes.clone();
             for _ in 0..3 {
-                x ^= x << 13;
-                x ^= x >> 7;
-                x ^= x << 17;
+                let x = rng.next();
                 let at = 8 + (x as usize >> 8) % (bad.len() - 12);
                 bad[at] = (x & 0xff) as u8;
             }

@@ -39,3 +39,9 @@ fn mesh_dual_graphs_have_certified_perfect_matchings() {
         }
     }
 }
+
+#[test]
+fn dual_weights_default_to_random_with_seed_one() {
+    assert_eq!(DualWeights::default(), DualWeights::Random { seed: 1 });
+    assert_eq!("random".parse::<DualWeights>().unwrap(), DualWeights::default());
+}

@@ -58,7 +58,7 @@ fn greedy_after_triangulation(mesh: &stripkit::Mesh) -> usize {
     [Heuristic::Strips, Heuristic::Indices]
         .into_iter()
         .map(|heuristic| {
-            let options = StripOptions::default().algorithm(Algorithm::Greedy(GreedyOptions::with_heuristic(heuristic)));
+            let options = StripOptions::default().algorithm(Algorithm::Greedy(GreedyOptions::default().heuristic(heuristic)));
             let s = stripify(mesh, &options).expect("verified greedy strips");
             assert!(s.figures.verified);
             s.figures.indices_restart

@@ -4,6 +4,7 @@
 
 use stripkit::simplify::{simplify, Options, Placement, Target};
 use stripkit::{Attribute, Group, Mesh};
+use stripkit_testkit::XorShift64;
 
 const N: u32 = 24;
 const SEAM: u32 = N / 2;
@@ -62,13 +63,7 @@ fn seamed() -> (Mesh, Vec<bool>) {
         }
     }
     // A fixed shuffle of the faces.
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    for i in (1..faces.len()).rev() {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        faces.swap(i, (state % (i as u64 + 1)) as usize);
-    }
+    XorShift64(0x2545_f491_4f6c_dd1d).shuffle(&mut faces);
     let tris: Vec<[u32; 3]> = faces.iter().map(|f| f.0).collect();
     let mut mesh = Mesh::from_triangles(positions, &tris);
     mesh.face_groups = faces.iter().map(|f| f.1).collect();

@@ -21,8 +21,7 @@ fn run(mesh: &Mesh, placement: Placement, ratio: f64) -> Simplified {
 
 fn normal(p: &[[f32; 3]], t: [u32; 3]) -> [f64; 3] {
     let [a, b, c] = t.map(|v| p[v as usize].map(f64::from));
-    let (e1, e2) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
-    [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+    stripkit_testkit::geom::tri_normal(a, b, c)
 }
 
 /// Target reached (not overshot by more than the last collapse), every triangle

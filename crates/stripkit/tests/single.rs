@@ -3,15 +3,11 @@
 //! boundaries and non-manifold input handled, bad settings refused.
 
 use stripkit::{gen, stripify, stripify_indices, Algorithm, Error, Mesh, SingleOptions, StripOptions, Weights};
+use stripkit_testkit::XorShift64;
 
 fn jitter(mesh: &Mesh, amount: f32, seed: u64) -> Mesh {
-    let mut s = seed.wrapping_mul(0x9E3779B97F4A7C15) | 1;
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f32 / (1u64 << 53) as f32 - 0.5
-    };
+    let mut rng = XorShift64(seed.wrapping_mul(0x9E3779B97F4A7C15) | 1);
+    let mut next = move || (rng.next() >> 11) as f32 / (1u64 << 53) as f32 - 0.5;
     let mut m = mesh.clone();
     for p in &mut m.positions {
         for x in p.iter_mut() {
@@ -127,14 +123,13 @@ fn open_and_non_manifold_meshes() {
         assert_eq!(s.figures.triangles + s.figures.dropped_degenerate, s.triangles.len());
     }
     // Random soups.
-    let mut seed = 99u64;
+    let mut rng = stripkit_testkit::Lcg(99);
     for _ in 0..30 {
         let mut tris = Vec::new();
         for _ in 0..25 {
             let mut t = [0u32; 3];
             for x in &mut t {
-                seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-                *x = (seed >> 33) as u32 % 7;
+                *x = rng.next() as u32 % 7;
             }
             tris.push(t);
         }
@@ -157,16 +152,19 @@ fn weights_parse_and_bad_settings_are_refused() {
     );
     assert_eq!(mix.to_string().parse::<Weights>().unwrap(), mix);
     for bad in ["", "culls", "direction:0,0,0", "direction:1,2", "mix:", "mix:cull", "mix:cull=-1", "mix:cull=0", "mix:cull=nan"] {
-        assert!(matches!(bad.parse::<Weights>(), Err(Error::Invalid(_))), "{bad:?}");
+        assert!(
+            matches!(bad.parse::<Weights>(), Err(Error::BadOption { option: stripkit::OptionName::Weights, .. })),
+            "{bad:?}"
+        );
     }
     let mesh = gen::icosphere(1);
     for o in [SingleOptions::default().swap_angle(Some(90.0)), SingleOptions::default().cull_angle(0.0)] {
         let r = stripify(&mesh, &StripOptions::default().algorithm(Algorithm::Single(o)));
-        assert!(matches!(r, Err(Error::Invalid(_))));
+        assert!(matches!(r, Err(Error::BadOption { .. })));
     }
     // A plain index buffer cannot return Steiner vertices.
     let idx: Vec<u32> = mesh.triangulate().tris.iter().flatten().copied().collect();
-    let r = stripify_indices(&idx, mesh.vertex_count(), u32::MAX, &StripOptions::default().algorithm(Algorithm::Single(SingleOptions::default())));
+    let r = stripify_indices(&idx, mesh.vertex_count(), &StripOptions::default().algorithm(Algorithm::Single(SingleOptions::default())));
     assert!(matches!(r, Err(Error::Invalid(_))));
 }
 

@@ -42,9 +42,7 @@ fn icosphere_faces_point_outwards() {
     for face in mesh.faces() {
         let p: Vec<[f64; 3]> =
             face.iter().map(|&v| mesh.positions[v as usize].map(|x| x as f64)).collect();
-        let u = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
-        let w = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
-        let n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+        let n = stripkit_testkit::geom::tri_normal(p[0], p[1], p[2]);
         assert!(n[0] * p[0][0] + n[1] * p[0][1] + n[2] * p[0][2] > 0.0, "face {face:?} points inwards");
     }
     let level8 = gen::icosphere(3);

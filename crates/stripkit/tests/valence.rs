@@ -39,7 +39,7 @@ fn edge_fan(n: u32) -> Mesh {
 /// so a fan costs it more than the bounds below: it has its own test at the end.
 fn algorithms() -> Vec<Algorithm> {
     let mut all: Vec<Algorithm> = support::algorithms().into_iter().filter(|a| a.name() != "batch").collect();
-    all.push(Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: Some(MAX_TUNNEL_CUTS) }));
+    all.push(Algorithm::Greedy(GreedyOptions::default().heuristic(Heuristic::Indices).tunnel_cuts(Some(MAX_TUNNEL_CUTS))));
     all
 }
 
@@ -84,9 +84,11 @@ fn twenty_thousand_triangles_on_one_edge() {
 fn tunnel_depth_beyond_the_maximum_is_refused() {
     let mesh = star(100);
     for cuts in [MAX_TUNNEL_CUTS + 1, usize::MAX] {
-        let a = Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: Some(cuts) });
+        let a = Algorithm::Greedy(GreedyOptions::default().heuristic(Heuristic::Indices).tunnel_cuts(Some(cuts)));
         match stripify(&mesh, &StripOptions::default().algorithm(a)) {
-            Err(Error::Invalid(m)) => assert!(m.contains(&format!("at most {MAX_TUNNEL_CUTS}")), "{m}"),
+            Err(e @ Error::BadOption { option: stripkit::OptionName::TunnelCuts, .. }) => {
+                assert!(e.to_string().contains(&format!("at most {MAX_TUNNEL_CUTS}")), "{e}")
+            }
             other => panic!("{cuts} cuts: {other:?}"),
         }
     }
@@ -113,12 +115,12 @@ fn twenty_thousand_quads_on_one_edge() {
     // QSTRIP once tried every pair of quads on an edge: 2 x 10^8 pairs here. The
     // last 300 share three vertices: pair by pair they would be 45,000 pairs.
     let mesh = quad_book(N, 300);
-    for a in [Algorithm::Auto, Algorithm::qstrip(), Algorithm::cache(), Algorithm::balanced(0.8)] {
+    for a in [Algorithm::auto(), Algorithm::qstrip(), Algorithm::cache(), Algorithm::balanced(0.8)] {
         let s = stripify(&mesh, &StripOptions::default().algorithm(a.clone())).unwrap_or_else(|e| panic!("{a:?}: {e}"));
         let f = &s.figures;
         assert!(f.verified && f.winding_preserved, "{a:?}: {f:?}");
         assert_eq!((f.triangles, f.lost, f.added, f.flipped), (2 * (N as usize + 300), 0, 0, 0), "{a:?}");
-        if !matches!(a, Algorithm::Auto | Algorithm::Qstrip(_)) {
+        if !matches!(a, Algorithm::Auto(_) | Algorithm::Qstrip(_)) {
             // cache and balanced split quads along the fan here, so the 300 quads all
             // give triangle (0, 2, 1): the input's coincidence, not theirs.
             continue;

@@ -155,7 +155,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let mut out = Culled::default();
         tree.cull(eye, &cull_at(eye), &mut out);
         let svg = bar_svg(&strips.strips, &out, &format!("{} ({weights} weights), view {v}", file_name(&args.file)));
-        stripkit::io::write_atomic(bar, svg.as_bytes())?;
+        stripkit::io::write_encoded(bar, svg.as_bytes())?;
     }
     let report = Report {
         file: args.file.display().to_string(),

@@ -34,10 +34,6 @@ pub struct Args {
     output_format: Option<stripkit::io::Format>,
 }
 
-/// Largest output we agree to build (face indices), about 4 GB of indices: keeps
-/// a typo from exhausting memory.
-const MAX_INDICES: u64 = 1 << 30;
-
 #[derive(Subcommand)]
 enum What {
     /// A W x H grid of unit squares in the plane z = 0 (2WH triangles, or WH quads).
@@ -141,23 +137,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let (mesh, output, what) = match args.what {
         What::Grid { w, h, quads, output } => {
             anyhow::ensure!(w >= 1 && h >= 1, "a grid needs W and H of at least 1 (got {w} x {h})");
-            let faces = w as u64 * h as u64;
-            // Saturating: at w = h = 2^32 - 1 the products pass 2^64, and a wrapped one
-            // would slip under the limit.
-            let vertices = (w as u64 + 1).saturating_mul(h as u64 + 1);
-            check_size(faces.saturating_mul(if quads { 4 } else { 6 }), vertices)?;
+            gen::check_grid(w, h, quads)?;
             let mesh = if quads { gen::grid_quads(w, h) } else { gen::grid(w, h) };
             (mesh, output, format!("grid {w}x{h}"))
         }
         What::Icosphere { level, output } => {
-            anyhow::ensure!(level <= 10, "icosphere level {level} is too large (at most 10: 20,971,520 triangles)");
+            gen::check_icosphere(level)?;
             (gen::icosphere(level), output, format!("icosphere level {level}"))
         }
         What::Torus { major, minor, radius, tube, quads, output } => {
             anyhow::ensure!(major >= 3 && minor >= 3, "a torus needs --major and --minor of at least 3");
             anyhow::ensure!(radius.is_finite() && tube.is_finite(), "--radius and --tube must be finite numbers");
-            let n = major as u64 * minor as u64;
-            check_size(n.saturating_mul(6), n)?;
+            gen::check_torus(major, minor)?;
             let mesh = if quads {
                 gen::torus_quads(major, minor, radius, tube)
             } else {
@@ -166,13 +157,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             (mesh, output, format!("torus {major}x{minor}"))
         }
         What::Cube { levels, output } => {
-            check_size(grown(24, levels, "cube")?, 0)?;
+            gen::check_subdivision(gen::cube().face_indices.len(), levels, "cube")?;
             let mesh = subdivide(gen::cube(), Scheme::CatmullClark, levels)?;
             (mesh, output, format!("cube, {levels} Catmull-Clark levels"))
         }
         What::Subdivide { file, scheme, levels, output, read } => {
             let mesh = read.read(&file)?;
-            check_size(grown(mesh.face_indices.len() as u64, levels, &file.display().to_string())?, 0)?;
+            gen::check_subdivision(mesh.face_indices.len(), levels, &file.display().to_string())?;
             let name = match scheme {
                 Scheme::Loop => "Loop",
                 Scheme::CatmullClark => "Catmull-Clark",
@@ -226,24 +217,4 @@ fn subdivide(mut mesh: Mesh, scheme: Scheme, levels: u32) -> anyhow::Result<Mesh
     }
     bar.finish_and_clear();
     Ok(mesh)
-}
-
-/// Face indices after `levels` subdivisions of `indices` (each level multiplies them
-/// by 4), in checked arithmetic: a product beyond `u64` is refused with the request
-/// in the message, never wrapped (`24 * 4^31` once wrapped to 0 and got past the size
-/// check).
-fn grown(indices: u64, levels: u32, what: &str) -> anyhow::Result<u64> {
-    4u64.checked_pow(levels).and_then(|f| f.checked_mul(indices)).ok_or_else(|| {
-        anyhow::anyhow!(
-            "the requested mesh is too large ({what}: {indices} face indices x 4^{levels} is beyond 2^64; limit {MAX_INDICES})"
-        )
-    })
-}
-
-fn check_size(indices: u64, vertices: u64) -> anyhow::Result<()> {
-    anyhow::ensure!(
-        indices <= MAX_INDICES && vertices <= MAX_INDICES,
-        "the requested mesh is too large ({indices} face indices, {vertices} vertices; limit {MAX_INDICES})"
-    );
-    Ok(())
 }

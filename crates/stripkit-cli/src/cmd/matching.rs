@@ -7,17 +7,6 @@ use std::path::PathBuf;
 use std::time::Instant;
 use stripkit::matching::{self, DualWeights, Graph, Objective};
 
-/// Weights for `--dual`.
-#[derive(Clone, Copy, Debug, clap::ValueEnum)]
-pub enum WeightKind {
-    /// Every dual edge weighs 1.
-    Uniform,
-    /// Uniform random integers 1..=1000 (seeded by --seed).
-    Random,
-    /// Dihedral angle between the two triangles' normals, round(angle / pi * 1000).
-    NormalAngle,
-}
-
 /// Arguments of `stripkit match`.
 #[derive(clap::Args)]
 #[command(after_help = "Graph files: a line `p edge N M`, then M lines `e U V W` (1-based \
@@ -34,10 +23,11 @@ pub struct Args {
     /// oriented mesh edge.
     #[arg(long, value_name = "MESHFILE")]
     pub dual: Option<PathBuf>,
-    /// Edge weights of the dual graph (with --dual; a graph file has its own).
-    /// Default `random`.
-    #[arg(long, value_enum, requires = "dual")]
-    pub weights: Option<WeightKind>,
+    /// Edge weights of the dual graph (with --dual; a graph file has its own):
+    /// `uniform` (every edge 1), `random` (integers 1..=1000 seeded by --seed) or
+    /// `normal-angle` (dihedral angle, round(angle / pi * 1000)). Default `random`.
+    #[arg(long, requires = "dual", value_parser = super::named::<DualWeights>(DualWeights::NAMES))]
+    pub weights: Option<DualWeights>,
     /// Seed for --weights random (with --dual). Default 1.
     #[arg(long, requires = "dual")]
     pub seed: Option<u64>,
@@ -67,14 +57,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let (graph, source) = if let Some(mesh_path) = &args.dual {
         let mesh = args.read.read_surface(mesh_path)?;
         anyhow::ensure!(
-            args.seed.is_none() || matches!(args.weights, None | Some(WeightKind::Random)),
+            args.seed.is_none() || matches!(args.weights, None | Some(DualWeights::Random { .. })),
             "--seed applies to --weights random"
         );
-        let w = match args.weights.unwrap_or(WeightKind::Random) {
-            WeightKind::Uniform => DualWeights::Uniform,
-            WeightKind::Random => DualWeights::Random { seed: args.seed.unwrap_or(1) },
-            WeightKind::NormalAngle => DualWeights::NormalAngle,
-        };
+        let mut w = args.weights.unwrap_or_default();
+        if let (DualWeights::Random { seed }, Some(s)) = (&mut w, args.seed) {
+            *seed = s;
+        }
         let g = matching::mesh_dual_graph(&mesh, w)
             .with_context(|| format!("{}: building the dual graph", mesh_path.display()))?;
         (g, mesh_path.display().to_string())
@@ -94,13 +83,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     spinner.finish_and_clear();
     let m = result?;
     if let Some(out) = &args.output {
-        use std::fmt::Write;
-        let mut s = String::new();
-        for &e in &m.edges {
-            let [a, b] = graph.edges()[e as usize];
-            let _ = writeln!(s, "{} {} {}", a + 1, b + 1, graph.weights()[e as usize]);
-        }
-        stripkit::io::write_atomic(out, s.as_bytes()).with_context(|| format!("{}: cannot write", out.display()))?;
+        stripkit::io::write_encoded(out, graph.to_edge_lines(&m.edges).as_bytes())
+            .with_context(|| format!("{}: cannot write", out.display()))?;
     }
     let matched_nodes = 2 * m.edges.len();
     if args.json {

@@ -40,19 +40,12 @@ pub fn ignore_closed_pipe(result: std::io::Result<()>) -> anyhow::Result<()> {
 /// The memory ceiling for reading meshes, shared by every command that reads one.
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct ReadArgs {
-    /// Memory ceiling for reading each input mesh, in bytes or with a binary suffix
-    /// (K, M, G, T: 512M, 8G). It sets three limits at once: how far a .gz input may
-    /// decompress (default 4 GiB), how many bytes of external buffer files a .gltf may
-    /// load (default 1 GiB), and how large a mesh (12 bytes per vertex, 4 per face
-    /// index and per face) a glTF asset may decode to (default 32 x its buffer bytes +
-    /// 1 MiB, since its accessors may reuse the same data any number of times). OBJ,
-    /// PLY, OFF and STL need file bytes for every vertex and face, so their size
-    /// bounds their memory. A refusal names the limit; raise it with this flag.
+    /// Memory ceiling for reading each input (bytes, or 512M, 8G): caps .gz
+    /// decompression, a .gltf's external buffers and the mesh a glTF decodes to
+    /// (defaults and details: docs/cli.md).
     #[arg(long, value_name = "SIZE", value_parser = parse_size)]
     pub max_memory: Option<u64>,
-    /// The format of a mesh read from standard input, given as `-`: obj, ply, off,
-    /// stl, gltf or glb (uncompressed; a glTF from standard input may only embed its
-    /// buffers). A file's extension names its own format.
+    /// Format of a mesh read from standard input (`-`): obj, ply, off, stl, gltf or glb.
     #[arg(long, value_name = "FORMAT", value_parser = parse_format)]
     pub format: Option<stripkit::io::Format>,
 }
@@ -305,6 +298,48 @@ pub fn parse_size(text: &str) -> Result<u64, String> {
         .parse()
         .map_err(|_| format!("`{text}` is not a size: a whole number of bytes, optionally followed by K, M, G or T"))?;
     n.checked_mul(1u64 << shift).ok_or_else(|| format!("`{text}` is too large (more than 2^64 bytes)"))
+}
+
+/// A clap value parser for a library enum: its names (`T::NAMES`) offered as the
+/// possible values, each parsed by the library's `FromStr`. No mirror enum, no
+/// conversion: the flag's value is the library's own.
+pub fn named<T>(names: &'static [&'static str]) -> impl clap::builder::TypedValueParser<Value = T>
+where
+    T: std::str::FromStr + Clone + Send + Sync + 'static,
+    T::Err: std::fmt::Display,
+{
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(names).try_map(|name| name.parse::<T>().map_err(|e| e.to_string()))
+}
+
+/// The flag that sets each library option the library's errors can name
+/// ([`stripkit::Error::BadOption`]); `None` for options no flag sets.
+pub fn flag_of(option: stripkit::OptionName) -> Option<&'static str> {
+    use stripkit::OptionName as O;
+    Some(match option {
+        O::CacheSize => "--cache",
+        O::MaxAcmr => "--max-acmr",
+        O::TunnelCuts => "--tunnel",
+        O::Split => "--split",
+        O::Join => "--join",
+        O::RestartIndex => "--restart-index",
+        O::Weights => "--weights",
+        O::SwapAngle => "--swap-angle",
+        O::CullAngle => "--cull-angle",
+        _ => return None,
+    })
+}
+
+/// A library error as the user, who typed flags, should read it: an option the
+/// library names becomes its flag ([`flag_of`]); other errors pass unchanged.
+pub fn flag_error(e: stripkit::Error) -> stripkit::Error {
+    match e {
+        stripkit::Error::BadOption { option, message } => match flag_of(option) {
+            Some(flag) => stripkit::Error::Invalid(format!("{flag} {message}")),
+            None => stripkit::Error::BadOption { option, message },
+        },
+        other => other,
+    }
 }
 
 /// Exit status for an error: 1 for a failed verification, 2 for bad input.

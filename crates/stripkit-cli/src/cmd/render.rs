@@ -18,7 +18,7 @@ use stripkit::Error;
 use stripkit_render::paint::{self, Paint};
 use stripkit_render::{wire, DrawParams, FrameError, Framing, IndexWidth, Renderer, Shading, Topology, Vertices};
 
-use super::strip::{HeuristicArg, StripArgs};
+use super::strip::{heuristic_of, StripArgs};
 
 /// What the colours show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize)]
@@ -233,9 +233,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // The camera frames every vertex a face uses, of both meshes when morphing, so
     // that the pictures of one pair at several t line up.
     let (w, h) = args.size;
-    let mut points = input::used_positions(&mesh);
+    let mut points = mesh.used_positions();
     if let Some(other) = &target {
-        points.extend(input::used_positions(other));
+        points.extend(other.used_positions());
     }
     let framing = Framing::fit(&points, args.view, args.up, args.fov, args.zoom, w as f32 / h as f32).map_err(|e| {
         Error::Invalid(match e {
@@ -268,9 +268,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (None, Some((positions, strips, _))) => (strips.clone(), positions.clone(), None),
         (None, None) => unreachable!("a mesh goes through the door"),
     };
-    let blended: Option<Vec<[f32; 3]>> = target_positions.as_ref().map(|other| {
-        positions.iter().zip(other).map(|(a, b)| std::array::from_fn(|d| a[d] + (b[d] - a[d]) * t)).collect()
-    });
+    let blended = target_positions.as_ref().map(|other| stripkit_render::morph_positions(&positions, other, t));
     let drawn = blended.as_deref().unwrap_or(&positions);
 
     progress.set_message("drawing");
@@ -297,7 +295,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let pixels = image.pixels_other_than(args.background);
     progress.set_message(format!("writing {}", args.output.display()));
     let write_start = Instant::now();
-    stripkit::io::write_atomic(&args.output, &image.encode_png_rgb())?;
+    stripkit::io::write_encoded(&args.output, &image.encode_png_rgb())?;
     let write_time = write_start.elapsed();
     progress.finish_and_clear();
 
@@ -306,7 +304,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         input: &args.input,
         output: &args.output,
         algo: door.as_ref().map_or("lod", |s| s.algorithm.name()),
-        heuristic: door.as_ref().and_then(|s| args.strip.heuristic_used(&s.algorithm)),
+        heuristic: door.as_ref().and_then(|s| heuristic_of(&s.algorithm)),
         color: args.color,
         shading: args.shading,
         width: w,

@@ -2,21 +2,10 @@
 //! simplified mesh and (optionally) the collapse sequence.
 
 use anyhow::Context;
-use clap::ValueEnum;
 use std::path::PathBuf;
 use std::time::Instant;
 use stripkit::simplify::{simplify, Options, Placement, Target};
 
-/// Where a collapse puts the surviving vertex.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum PlacementArg {
-    /// Half-edge collapse: the removed vertex moves onto the kept one; no new
-    /// positions (what level-of-detail strips need).
-    Endpoint,
-    /// The cheapest of the quadric's minimiser, both ends and their midpoint (new
-    /// positions; the surface stays closer to the input).
-    Optimal,
-}
 
 /// Arguments of `stripkit simplify`.
 #[derive(clap::Args, Clone)]
@@ -40,9 +29,9 @@ pub struct Args {
     pub error: Option<f64>,
     /// Survivor placement: `endpoint` keeps input positions (and ids), `optimal`
     /// moves the survivor to the cheapest of the quadric's minimiser, the two ends and
-    /// their midpoint.
-    #[arg(long, value_enum, default_value = "endpoint")]
-    pub placement: PlacementArg,
+    /// their midpoint. Default endpoint.
+    #[arg(long, value_parser = super::named::<Placement>(Placement::NAMES))]
+    pub placement: Option<Placement>,
     /// Weight of the boundary penalty planes (0 lets borders move freely).
     #[arg(long, default_value_t = Options::default().boundary_weight)]
     pub boundary_weight: f64,
@@ -92,10 +81,7 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         (_, _, Some(e)) => Target::Error(e),
         _ => anyhow::bail!("give one of --ratio, --triangles, --error"),
     };
-    let placement = match args.placement {
-        PlacementArg::Endpoint => Placement::Endpoint,
-        PlacementArg::Optimal => Placement::Optimal,
-    };
+    let placement = args.placement.unwrap_or(Options::default().placement);
     if let Some(seq) = &args.sequence {
         if stripkit::io::same_destination(&args.output, seq) {
             return Err(stripkit::Error::Invalid(format!(
@@ -135,23 +121,18 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         compacted = result.mesh.compact().0;
         &compacted
     };
-    let mesh_bytes = if super::is_dash(&args.output) {
-        stripkit::io::write_bytes(format, out_mesh, None, &write_options)?
-    } else {
-        stripkit::io::encode_file(&args.output, out_mesh, None, &write_options)?
-    };
+    // Compressed by the writers for a .gz name.
+    let mesh_bytes = stripkit::io::write_bytes(format, out_mesh, None, &write_options)?;
     match &args.sequence {
         Some(seq) if super::is_dash(&args.output) => {
-            stripkit::io::write_atomic(seq, &result.sequence.encode(seq)?)?;
+            result.sequence.write(seq)?;
             super::write_output(&args.output, &mesh_bytes)?;
         }
         Some(seq) => {
             let seq_bytes = result.sequence.encode(seq)?;
-            stripkit::io::write_atomic_all(&[(seq, &seq_bytes), (&args.output, &mesh_bytes)])?;
+            stripkit::io::write_encoded_all(&[(seq, &seq_bytes), (&args.output, &mesh_bytes)])?;
         }
-        None if super::is_dash(&args.output) => super::write_output(&args.output, &mesh_bytes)?,
-        // Already compressed for a .gz name.
-        None => stripkit::io::write_atomic(&args.output, &mesh_bytes)?,
+        None => super::write_output(&args.output, &mesh_bytes)?,
     }
     let sink = match batch {
         Some(bar) => super::Sink::Batch(bar.clone()),
@@ -167,7 +148,7 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
             "vertices_out": out_mesh.vertex_count(),
             "collapses": result.sequence.len(),
             "max_error": result.max_error,
-            "placement": format!("{:?}", placement).to_lowercase(),
+            "placement": placement.name(),
             "ms": ms,
         });
         super::print_report_to(&sink, true, &out, |_, _| Ok(()))
@@ -207,9 +188,7 @@ mod tests {
         let library = Options::default();
         assert_eq!(args.boundary_weight, library.boundary_weight);
         assert_eq!(args.pair_distance, library.pair_distance);
-        assert!(matches!(
-            (args.placement, library.placement),
-            (PlacementArg::Endpoint, Placement::Endpoint) | (PlacementArg::Optimal, Placement::Optimal)
-        ));
+        // Unset: the library's own placement is used.
+        assert_eq!(args.placement, None);
     }
 }

@@ -37,16 +37,8 @@ pub fn write_mesh(path: &std::path::Path, mesh: &stripkit::Mesh) {
     stripkit::io::write(path, mesh, None).expect("writes the test mesh");
 }
 
-#[path = "../../../stripkit/tests/support/base64.rs"]
-#[allow(dead_code)] // not every test binary writes glTF
-mod base64;
-#[allow(unused_imports)]
-pub use base64::encode_base64;
-
-#[path = "../../../stripkit/tests/support/dirs.rs"]
-mod dirs;
-#[allow(unused_imports)]
-pub use dirs::{assets_dir, models_dir};
+#[allow(unused_imports)] // each test binary uses a different subset
+pub use stripkit_testkit::{assets_dir, encode_base64, gltf_validator, models_dir};
 
 /// Runs the built `stripkit` binary with `args` under a 1 GiB address-space limit
 /// (`ulimit -v`, through `sh`), so that a run which tries to allocate from an
@@ -65,6 +57,3 @@ pub fn stripkit_1gib(args: &[&str]) -> (Output, f64) {
     (out, start.elapsed().as_secs_f64())
 }
 
-#[path = "../../../stripkit/tests/support/gltf_validator.rs"]
-#[allow(dead_code)] // not every test binary writes glTF
-pub mod gltf_validator;

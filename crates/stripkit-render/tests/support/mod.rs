@@ -5,10 +5,8 @@
 
 use stripkit_render::{Camera, DrawParams, Image, IndexWidth, Renderer, Shading, Topology, Vertices};
 
-#[path = "../../../stripkit/tests/support/dirs.rs"]
-mod dirs;
 #[allow(unused_imports)]
-pub use dirs::{assets_dir, models_dir};
+pub use stripkit_testkit::{assets_dir, models_dir};
 
 /// Picture size of every check.
 pub const SIZE: u32 = 512;
@@ -30,7 +28,7 @@ pub fn renderer() -> Renderer {
 /// The research mesh `name` from [`models_dir`]; `None` (after printing why) when the
 /// folder or the file is absent or unreadable, so that a test can skip it.
 pub fn model(name: &str) -> Option<stripkit::Mesh> {
-    dirs::model_with(name, |path| stripkit::io::read(path))
+    stripkit_testkit::model_with(name, |path| stripkit::io::read(path))
 }
 
 /// A camera on `mesh`'s bounding box looking from `direction`.

@@ -1,6 +1,6 @@
 //! Brute-force facing counts of a view, to measure a culler (figures and tests).
 
-use crate::StripSet;
+use crate::strip::StripSet;
 use std::ops::Range;
 
 /// Every drawable triangle of a [`StripSet`] with its plane, in strip order, to count

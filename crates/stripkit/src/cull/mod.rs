@@ -2,7 +2,7 @@
 //! paper, sections 4.2 to 4.4): cut a strip into a few long segments per view, drawing
 //! the front-facing ones and skipping the back-facing ones.
 //!
-//! * [`SegmentTree::build`] builds the tree bottom-up over the strips of a [`StripSet`]:
+//! * [`SegmentTree::build`] builds the tree bottom-up over the strips of a [`StripSet`](crate::StripSet):
 //!   neighbouring segments whose normals deviate least are merged first (a priority
 //!   queue over adjacent pairs keyed by the merged normal cone, neighbours in a linked
 //!   list, `O(n log n)`), so flat regions join early and sharp features stay near the

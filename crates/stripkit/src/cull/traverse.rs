@@ -60,7 +60,7 @@ impl CullOptions {
 /// Reused between views to keep its buffers.
 #[derive(Clone, Debug, Default)]
 pub struct Culled {
-    /// Index ranges into [`StripSet::indices`], in strip order, each drawn as its own
+    /// Index ranges into [`StripSet::indices`](crate::StripSet::indices), in strip order, each drawn as its own
     /// strip (a multi-draw); neighbouring drawn nodes are merged into one range.
     pub ranges: Vec<Range<u32>>,
     /// Triangles in the drawn ranges (swaps not counted).
@@ -242,7 +242,7 @@ impl Entry {
 /// [`SegmentTree::cull`] from the roots.
 ///
 /// Each node of the front keeps the eye it was tested from and the smaller of its own
-/// margin and its parent's ([`Bounds::classify`], less a bound on rounding): while the
+/// margin and its parent's ([`Bounds::classify`](super::bounds::Bounds::classify), less a bound on rounding): while the
 /// eye stays that close, the node still stops the traversal with the same answer and
 /// its parent is still split, so it is kept without a test ([`Culled::reused`]).
 #[derive(Clone, Debug, Default)]

@@ -3,7 +3,7 @@
 use super::bounds::{classify, f32s, p64, safe_reach, Acc, Bounds, Work};
 use super::{Facing, NONE};
 use crate::vec3::{norm, sub, unit};
-use crate::StripSet;
+use crate::strip::StripSet;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::ops::Range;

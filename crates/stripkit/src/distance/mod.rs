@@ -7,6 +7,7 @@ pub mod bvh;
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
+use crate::vec3;
 use bvh::Bvh;
 
 /// Distances from the samples of one surface to the other surface.
@@ -61,12 +62,7 @@ pub const MAX_SAMPLES: usize = 100_000_000;
 pub fn sample_surface(mesh: &Mesh, n: usize, seed: u64) -> Vec<[f64; 3]> {
     let tris = mesh.triangulate().tris;
     let corners = |t: &[u32; 3]| t.map(|v| mesh.positions[v as usize].map(|x| x as f64));
-    let area = |c: &[[f64; 3]; 3]| {
-        let e1 = [c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]];
-        let e2 = [c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2]];
-        let x = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
-        0.5 * (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()
-    };
+    let area = |c: &[[f64; 3]; 3]| 0.5 * vec3::norm(vec3::tri_normal(c[0], c[1], c[2]));
     let total: f64 = tris.iter().map(|t| area(&corners(t))).sum();
     #[allow(clippy::neg_cmp_op_on_partial_ord)] // also true for NaN, on purpose
     if n == 0 || !(total > 0.0) {

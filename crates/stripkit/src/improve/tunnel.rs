@@ -1,6 +1,6 @@
 //! Fewer strips after the fact: *tunnelling* (after A. J. Stewart, "Tunneling for
 //! triangle strips in continuous level-of-detail meshes", Graphics Interface 2001),
-//! scored by the index count of METRICS.md.
+//! scored by the index count of docs/metrics.md.
 //!
 //! A set of strips is a set of disjoint paths in the dual graph: each triangle has at
 //! most two *links* (the dual edges its strip runs through). A strip ends at a triangle

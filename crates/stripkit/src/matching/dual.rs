@@ -5,6 +5,7 @@
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::topology::{DualGraph, NO_NEIGHBOR};
+use crate::vec3;
 use stripkit_matching::Graph;
 
 /// How to weight the dual edges.
@@ -21,6 +22,39 @@ pub enum DualWeights {
     /// `round(angle / pi * 1000)`, so 0 for coplanar neighbours and 1000 for folded
     /// back ones. A degenerate (zero-area) triangle counts as angle 0.
     NormalAngle,
+}
+
+impl Default for DualWeights {
+    /// [`DualWeights::Random`] with seed 1.
+    fn default() -> Self {
+        DualWeights::Random { seed: 1 }
+    }
+}
+
+impl DualWeights {
+    /// Every kind's name, in the order of the variants.
+    pub const NAMES: &'static [&'static str] = &["uniform", "random", "normal-angle"];
+    /// The lowercase name of this kind (one of [`DualWeights::NAMES`]).
+    pub fn name(&self) -> &'static str {
+        match self {
+            DualWeights::Uniform => "uniform",
+            DualWeights::Random { .. } => "random",
+            DualWeights::NormalAngle => "normal-angle",
+        }
+    }
+}
+
+impl std::str::FromStr for DualWeights {
+    type Err = crate::error::Error;
+    /// The kind of this name ([`DualWeights::NAMES`]); `random` with the default seed.
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "uniform" => Ok(DualWeights::Uniform),
+            "random" => Ok(DualWeights::default()),
+            "normal-angle" => Ok(DualWeights::NormalAngle),
+            _ => Err(crate::error::unknown("dual weights", s, DualWeights::NAMES)),
+        }
+    }
 }
 
 /// splitmix64: deterministic, seedable, good enough for test weights.
@@ -67,15 +101,7 @@ pub fn mesh_dual_graph(mesh: &Mesh, weights: DualWeights) -> Result<Graph> {
                     [q[0] as f64, q[1] as f64, q[2] as f64]
                 };
                 let [a, b, c] = tris[t].map(p);
-                let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-                let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-                let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
-                let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-                if len > 0.0 && len.is_finite() {
-                    [n[0] / len, n[1] / len, n[2] / len]
-                } else {
-                    [0.0; 3]
-                }
+                vec3::unit(vec3::tri_normal(a, b, c)).unwrap_or([0.0; 3])
             };
             graph_from_dual(&dual, |t, _, u| {
                 let (a, b) = (normal(t), normal(u));

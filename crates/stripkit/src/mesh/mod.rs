@@ -298,6 +298,18 @@ impl Mesh {
         }
         Some((lo, hi))
     }
+
+    /// Positions of the vertices some face uses, in vertex order (unreferenced
+    /// vertices left out: what a camera should frame, for instance). O(vertices +
+    /// face indices). The faces must be in range ([`Mesh::check_faces`]); panics
+    /// otherwise.
+    pub fn used_positions(&self) -> Vec<[f32; 3]> {
+        let mut used = vec![false; self.vertex_count()];
+        for &v in &self.face_indices {
+            used[v as usize] = true;
+        }
+        self.positions.iter().zip(&used).filter(|(_, &u)| u).map(|(p, _)| *p).collect()
+    }
 }
 
 #[cfg(test)]
@@ -342,5 +354,13 @@ mod tests {
         assert_eq!(mesh.triangle_count(), 0);
         assert!(mesh.triangulate().tris.is_empty());
         assert!(mesh.bounds().is_none());
+        assert!(mesh.used_positions().is_empty());
+    }
+
+    #[test]
+    fn used_positions_leave_out_unreferenced_vertices_in_vertex_order() {
+        let positions = (0..5).map(|i| [i as f32, 0.0, 0.0]).collect();
+        let mesh = Mesh::from_triangles(positions, &[[3, 1, 4]]);
+        assert_eq!(mesh.used_positions(), [[1.0, 0.0, 0.0], [3.0, 0.0, 0.0], [4.0, 0.0, 0.0]]);
     }
 }

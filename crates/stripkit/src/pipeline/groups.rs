@@ -19,7 +19,7 @@ pub(super) fn run_groups(mesh: &Mesh, options: &StripOptions) -> Result<Strips> 
         )));
     }
     let sub_options = StripOptions { algorithm: algorithm.clone(), ..options.clone() };
-    if options.algorithm == Algorithm::Auto && options.split != Split::Auto {
+    if matches!(options.algorithm, Algorithm::Auto(_)) && options.split != Split::Auto {
         sub_options.check()?;
     }
     let groups = mesh.group_count();

@@ -1,8 +1,8 @@
 //! The door for plain index buffers, meshoptimizer-style: [`stripify_indices`],
 //! [`stripify_bound`] and [`unstripify`] take and give slices.
 
-use super::{run, Algorithm, Join, StripOptions};
-use crate::error::{Error, Result};
+use super::{check_restart, run, Algorithm, Join, StripOptions};
+use crate::error::{Error, OptionName, Result};
 use crate::mesh::Mesh;
 use crate::strip;
 
@@ -16,9 +16,9 @@ pub fn stripify_bound(index_count: usize) -> usize {
 
 /// Strips for a plain triangle list, meshoptimizer-style: `indices` holds three
 /// vertex ids per triangle, all below `vertex_count`. Returns one buffer: strips
-/// separated by `restart_index` ([`Join::Restart`], which then must not be below
-/// `vertex_count`) or one stitched strip ([`Join::Degenerate`]; `restart_index`
-/// unused). At most [`stripify_bound`]`(indices.len())` indices, verified like
+/// separated by [`StripOptions::restart_index`] ([`Join::Restart`], which then must
+/// not be below `vertex_count`) or one stitched strip ([`Join::Degenerate`]; the
+/// restart index unused). At most [`stripify_bound`]`(indices.len())` indices, verified like
 /// [`stripify`](super::stripify)'s, which it calls (positions are not needed: vertices are given
 /// coincident positions, and orders that would use them fall back to vertex ids).
 ///
@@ -30,7 +30,7 @@ pub fn stripify_bound(index_count: usize) -> usize {
 /// use stripkit::{stripify_indices, unstripify, StripOptions};
 /// // A 2 x 1 quad grid: 4 triangles.
 /// let tris = [0, 3, 1, 1, 3, 4, 1, 4, 2, 2, 4, 5];
-/// let buf = stripify_indices(&tris, 6, u32::MAX, &StripOptions::default())?;
+/// let buf = stripify_indices(&tris, 6, &StripOptions::default())?; // restart u32::MAX
 /// assert_eq!(buf.len(), 6); // one strip, no restart
 /// let mut back = unstripify(&buf, u32::MAX);
 /// assert_eq!(back.len(), tris.len());
@@ -39,7 +39,6 @@ pub fn stripify_bound(index_count: usize) -> usize {
 pub fn stripify_indices(
     indices: &[u32],
     vertex_count: usize,
-    restart_index: u32,
     options: &StripOptions,
 ) -> Result<Vec<u32>> {
     if indices.is_empty() {
@@ -62,9 +61,10 @@ pub fn stripify_indices(
         )));
     }
     if options.join == Join::Separate {
-        return Err(Error::Invalid(
-            "a flat buffer holds restart-separated or stitched strips, not separate ones (join restart or degenerate)"
-                .into(),
+        return Err(Error::option(
+            OptionName::Join,
+            "separate does not fit a flat buffer, which holds restart-separated or stitched strips \
+             (join restart or degenerate)",
         ));
     }
     if let Algorithm::Single(_) = options.algorithm {
@@ -75,19 +75,14 @@ pub fn stripify_indices(
         ));
     }
     // Against the caller's vertex count, not only the vertices used.
-    if options.join == Join::Restart && (restart_index as usize) < vertex_count {
-        return Err(Error::Invalid(format!(
-            "restart index {restart_index} is a vertex id ({vertex_count} vertices); choose one of at least {vertex_count}"
-        )));
-    }
-    let options = StripOptions { restart_index, ..options.clone() };
+    check_restart(options, vertex_count)?;
     options.check()?;
     // Vertices past the largest index are unreferenced: leaving them out changes no
     // strip and keeps the allocation to the input's size.
     let used = indices.iter().map(|&v| v as usize + 1).max().unwrap_or(0);
     let tris: Vec<[u32; 3]> = indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
     let mesh = Mesh::from_triangles(vec![[0.0; 3]; used], &tris);
-    let strips = run(&mesh, &options)?;
+    let strips = run(&mesh, options)?;
     let out = match options.join {
         Join::Degenerate => strips.stitched(),
         _ => strips.restart_buffer(),
@@ -103,7 +98,7 @@ pub fn stripify_indices(
     Ok(out)
 }
 
-/// The triangle list a strip buffer draws (METRICS.md rule), three indices per
+/// The triangle list a strip buffer draws (the reading rule of docs/metrics.md), three indices per
 /// triangle, in order; `restart_index` separates strips, degenerate triangles are
 /// dropped. For a stitched strip pass any index it does not use (e.g. `u32::MAX`).
 /// O(n).
@@ -124,9 +119,9 @@ mod tests {
         // Three triangles sharing no edge: each its own strip.
         let tris = [0, 1, 2, 3, 4, 5, 6, 7, 8];
         let options = StripOptions::default().join(Join::Degenerate);
-        let out = stripify_indices(&tris, 9, 0, &options).unwrap();
+        let out = stripify_indices(&tris, 9, &options.restart_index(0)).unwrap();
         assert!(out.len() <= stripify_bound(tris.len()));
-        let restart = stripify_indices(&tris, 9, 9, &StripOptions::default()).unwrap();
+        let restart = stripify_indices(&tris, 9, &StripOptions::default().restart_index(9)).unwrap();
         assert_eq!(restart.len(), 11);
     }
 }

@@ -3,7 +3,7 @@
 //! [`unstripify`] do the same for plain index buffers.
 //!
 //! Every result has passed an independent check before it is returned:
-//! * triangle level: the strips decode (METRICS.md rule) to exactly the mesh's fan
+//! * triangle level: the strips decode (the reading rule of docs/metrics.md) to exactly the mesh's fan
 //!   triangles, as multisets of oriented triangles (nothing lost, added or flipped);
 //! * quad level, where the algorithm split quads along diagonals of its choosing
 //!   (QSTRIP, quad-single, cache or balanced on QSTRIP's split): every quad is covered
@@ -17,11 +17,11 @@
 //! its encoders), `indices.rs` (plain index buffers), `groups.rs` (meshes whose faces
 //! fall in several groups); this file holds the door itself.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, OptionName, Result};
 use crate::mesh::Mesh;
 use crate::metrics;
 use crate::strip::{self, StripSet};
-use crate::stripify::cache::{self, CacheOptions, Diagonals};
+use crate::stripify::cache::{self, CacheOptions};
 use crate::stripify::greedy;
 use crate::stripify::single;
 use crate::stripify::{quad, quad_single, quad_verify};
@@ -36,7 +36,7 @@ use strips::joined;
 
 pub use indices::{stripify_bound, stripify_indices, unstripify};
 pub use options::{
-    is_quad_dominant, Algorithm, Join, Split, StripOptions, MAX_CACHE_SIZE, MAX_TUNNEL_CUTS, QUAD_DOMINANT,
+    is_quad_dominant, Algorithm, AutoOptions, Join, Split, StripOptions, MAX_CACHE_SIZE, MAX_TUNNEL_CUTS, QUAD_DOMINANT,
 };
 pub use strips::Strips;
 
@@ -80,9 +80,9 @@ impl Stripifier {
 ///
 /// A mesh without faces gives no strips (verified, all figures 0).
 ///
-/// Errors: [`Error::Invalid`] for options that do not apply (see [`StripOptions`]), a
-/// face of fewer than three corners, an index past the
-/// vertices, a restart index that is a vertex id, or a mesh quad-single cannot take;
+/// Errors: [`Error::BadOption`] for options that do not apply (see [`StripOptions`])
+/// or a restart index that is a vertex id; [`Error::Invalid`] for a face of fewer
+/// than three corners, an index past the vertices, or a mesh quad-single cannot take;
 /// [`Error::Verification`] if a check fails (a bug, reported rather than returned).
 ///
 /// Cost: the algorithm's (greedy, QSTRIP and cache O(n) to O(n log n); `balanced` and
@@ -126,25 +126,32 @@ fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
 /// Checks the restart index against the mesh's vertex ids and resolves
 /// `Algorithm::Auto` (QSTRIP on quad-dominant meshes, else greedy).
 fn resolve(mesh: &Mesh, options: &StripOptions) -> Result<Algorithm> {
-    let vertex_count = mesh.vertex_count();
-    if options.join == Join::Restart && (options.restart_index as usize) < vertex_count {
-        return Err(Error::Invalid(format!(
-            "restart index {} is a vertex id of the mesh ({vertex_count} vertices); choose one of at least {vertex_count}",
-            options.restart_index
-        )));
-    }
+    check_restart(options, mesh.vertex_count())?;
     Ok(match &options.algorithm {
-        Algorithm::Auto if is_quad_dominant(mesh) => Algorithm::qstrip(),
-        Algorithm::Auto => Algorithm::greedy(),
+        Algorithm::Auto(auto) => auto.resolve(mesh),
         other => other.clone(),
     })
+}
+
+/// With [`Join::Restart`], the restart index must not be one of `vertex_count` ids.
+fn check_restart(options: &StripOptions, vertex_count: usize) -> Result<()> {
+    if options.join == Join::Restart && (options.restart_index as usize) < vertex_count {
+        return Err(Error::option(
+            OptionName::RestartIndex,
+            format!(
+                "{} is a vertex id of the mesh ({vertex_count} vertices); choose one of at least {vertex_count}",
+                options.restart_index
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// The door for one group of faces (the whole mesh), its faces already checked.
 fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     let vertex_count = mesh.vertex_count();
     let algorithm = resolve(mesh, options)?;
-    if options.algorithm == Algorithm::Auto && options.split != Split::Auto {
+    if matches!(options.algorithm, Algorithm::Auto(_)) && options.split != Split::Auto {
         // The split must suit the algorithm auto chose (QSTRIP takes no fan).
         StripOptions { algorithm: algorithm.clone(), ..options.clone() }.check()?;
     }
@@ -181,12 +188,7 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
                 Algorithm::Cache { refine } => (CacheOptions { refine, ..CacheOptions::cache(size) }, None),
                 _ => unreachable!("matched above"),
             };
-            let diagonals = match options.split {
-                Split::Auto => Diagonals::Auto,
-                Split::Fan => Diagonals::Fan,
-                Split::Qstrip => Diagonals::Qstrip,
-            };
-            let m = cache::stripify_mesh(mesh, &cache_options, bound, diagonals);
+            let m = cache::stripify_mesh(mesh, &cache_options, bound, options.split);
             if m.qstrip_diagonals {
                 (m.strips, Split::Qstrip, None, None)
             } else {
@@ -207,7 +209,7 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
             single_report = Some(single.report);
             (single.strips, Split::Fan, None, Some(single.work.tris))
         }
-        Algorithm::Auto => unreachable!("resolved above"),
+        Algorithm::Auto(_) => unreachable!("resolved above"),
     };
     let stripify_time = stripify_time_single.unwrap_or_else(|| start.elapsed());
     let triangles = match fan {

@@ -2,12 +2,14 @@
 //! ([`Split`]) and strips joined ([`Join`]), the limits on what is accepted, and
 //! [`StripOptions`], which holds them all and checks them on their own.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, OptionName, Result};
 use crate::mesh::Mesh;
 use crate::metrics::{BatchModel, CacheModel};
 use crate::strip;
+use crate::error::named_enum;
 use crate::stripify::greedy::GreedyOptions;
-use crate::stripify::quad;
+pub use crate::stripify::Split;
+use crate::stripify::quad::{self, QuadOptions};
 use crate::stripify::single::SingleOptions;
 
 /// Faces that must be quads for [`Algorithm::Auto`] to take QSTRIP (and for
@@ -21,31 +23,38 @@ pub fn is_quad_dominant(mesh: &Mesh) -> bool {
 }
 
 /// Which stripifier runs, with the settings that belong to it alone.
-#[derive(Clone, Debug, Default, PartialEq)]
+///
+/// Each algorithm has a lowercase name ([`Algorithm::name`], listed in
+/// [`Algorithm::NAMES`]); parsing a name ([`str::parse`]) gives that algorithm with
+/// its default settings.
+#[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Algorithm {
-    /// QSTRIP on quad-dominant meshes (see [`QUAD_DOMINANT`]), greedy otherwise; the
-    /// result names the one that ran.
-    #[default]
-    Auto,
+    /// QSTRIP on quad-dominant meshes (see [`QUAD_DOMINANT`]), greedy otherwise, each
+    /// with the settings [`AutoOptions`] holds for it; the result names the one that
+    /// ran. The default algorithm.
+    Auto(AutoOptions),
     /// Greedy lowest-degree strips with one-level look-ahead (van Kaick et al.), then
     /// tunnelling; on the mesh's fan triangulation.
     Greedy(GreedyOptions),
     /// QSTRIP: quad sequences made into strips, each quad split along the diagonal
     /// that needs the fewest swaps; other faces by greedy.
-    Qstrip(quad::QuadOptions),
+    Qstrip(QuadOptions),
     /// One generalized strip per connected component of a closed pure-quad mesh.
     QuadSingle,
     /// Cache-aware short strips side by side under a simulated FIFO of
     /// [`StripOptions::cache`] entries. `refine`: then the local search of
-    /// `balanced` with no move adding a miss (fewer indices and misses, about 30x
-    /// the time).
+    /// `balanced` with no move adding a miss (fewer indices and misses, many times
+    /// the time). Default without refinement.
     Cache {
         /// Refine the strips with the local search.
         refine: bool,
     },
     /// The fewest indices the cache-aware stripifier and its local search find while
-    /// the cache misses per triangle stay at most `max_acmr`.
+    /// the cache misses per triangle stay at most `max_acmr` (FIFO of
+    /// [`StripOptions::cache`] entries). A bound out of reach is no error: the
+    /// strips then miss more, and [`Strips::max_acmr_unreached`](super::Strips::max_acmr_unreached)
+    /// says how much. Default bound [`Algorithm::DEFAULT_MAX_ACMR`].
     Balanced {
         /// The most FIFO misses per triangle to accept (positive, finite).
         max_acmr: f64,
@@ -53,12 +62,9 @@ pub enum Algorithm {
     /// Strips planned for a GPU that shades vertices in batches ([`BatchModel`]):
     /// the mesh's fan cut into compact patches of one batch of triangles each, each
     /// patch covered by short swap-free strips side by side, every choice simulated
-    /// on the model. The model predicts fewer shaded vertices than meshoptimizer's
-    /// vertex-cache-optimized list on most shared models, but an H200 shades 9-15%
-    /// more than modelled for these strips: 0-3% fewer than `cache` with a FIFO of 8
-    /// (0.91 to 0.92 per triangle against the list's 0.82 to 0.85), at about 2
-    /// indices per triangle, in about 100 times the time of `cache`. Experimental
-    /// (docs/experiments/gpu-batch-strips.md).
+    /// on the model. Experimental: what a real GPU shades for them is measured in
+    /// docs/experiments/gpu-batch-strips.md. Default model
+    /// [`BatchModel::NVIDIA_H100_PLANNING`].
     Batch(BatchModel),
     /// One strip per connected component (the fewest strips on meshes with boundaries)
     /// from a maximum-weight perfect matching of the dual graph, its loops merged at
@@ -68,33 +74,89 @@ pub enum Algorithm {
     Single(SingleOptions),
 }
 
+impl Default for Algorithm {
+    /// [`Algorithm::Auto`] with its default settings.
+    fn default() -> Self {
+        Algorithm::Auto(AutoOptions::default())
+    }
+}
+
+/// The settings [`Algorithm::Auto`] runs each algorithm it may choose with. Build it
+/// from [`AutoOptions::default`] (both algorithms' defaults) with the builder methods.
+///
+/// ```
+/// use stripkit::{Algorithm, AutoOptions, GreedyOptions, Heuristic};
+/// let auto = Algorithm::Auto(AutoOptions::default().greedy(GreedyOptions::default().heuristic(Heuristic::Strips)));
+/// assert_eq!(auto.name(), "auto");
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
+pub struct AutoOptions {
+    /// Greedy's settings, where auto takes greedy. Default [`GreedyOptions::default`].
+    pub greedy: GreedyOptions,
+    /// QSTRIP's settings, where auto takes QSTRIP. Default [`QuadOptions::default`].
+    pub qstrip: QuadOptions,
+}
+
+impl AutoOptions {
+    /// Sets greedy's settings.
+    pub fn greedy(mut self, greedy: GreedyOptions) -> Self {
+        self.greedy = greedy;
+        self
+    }
+    /// Sets QSTRIP's settings.
+    pub fn qstrip(mut self, qstrip: QuadOptions) -> Self {
+        self.qstrip = qstrip;
+        self
+    }
+    /// The algorithm auto takes on `mesh`: QSTRIP on quad-dominant meshes, else greedy.
+    pub fn resolve(&self, mesh: &Mesh) -> Algorithm {
+        if is_quad_dominant(mesh) {
+            Algorithm::Qstrip(self.qstrip.clone())
+        } else {
+            Algorithm::Greedy(self.greedy)
+        }
+    }
+}
+
 impl Algorithm {
+    /// Every algorithm's name, in the order of the variants.
+    pub const NAMES: &'static [&'static str] =
+        &["auto", "greedy", "qstrip", "quad-single", "cache", "balanced", "batch", "single"];
+
+    /// The default bound of [`Algorithm::Balanced`]: 0.8 misses per triangle.
+    pub const DEFAULT_MAX_ACMR: f64 = 0.8;
+
+    /// Auto with its default settings (the default algorithm).
+    pub fn auto() -> Self {
+        Algorithm::default()
+    }
     /// Greedy with its default settings (fewest indices, tunnelling of one cut).
     pub fn greedy() -> Self {
         Algorithm::Greedy(GreedyOptions::default())
     }
     /// QSTRIP with its default settings.
     pub fn qstrip() -> Self {
-        Algorithm::Qstrip(quad::QuadOptions::default())
+        Algorithm::Qstrip(QuadOptions::default())
     }
     /// The cache-aware stripifier without refinement.
     pub fn cache() -> Self {
         Algorithm::Cache { refine: false }
     }
-    /// Balanced at the given bound on misses per triangle (0.8 in the CLI).
+    /// Balanced at the given bound on misses per triangle (default
+    /// [`Algorithm::DEFAULT_MAX_ACMR`]).
     pub fn balanced(max_acmr: f64) -> Self {
         Algorithm::Balanced { max_acmr }
     }
     /// Batch strips for the batch model fitted to an NVIDIA H100, planned with shorter
-    /// reuse windows than fitted ([`BatchModel::NVIDIA_H100_PLANNING`]: the fewest
-    /// vertices measured on an H200).
+    /// reuse windows than fitted ([`BatchModel::NVIDIA_H100_PLANNING`]).
     pub fn batch() -> Self {
         Algorithm::Batch(BatchModel::NVIDIA_H100_PLANNING)
     }
-    /// The lowercase name the CLI uses for this algorithm.
+    /// The lowercase name of this algorithm (one of [`Algorithm::NAMES`]).
     pub fn name(&self) -> &'static str {
         match self {
-            Algorithm::Auto => "auto",
+            Algorithm::Auto(_) => "auto",
             Algorithm::Greedy(_) => "greedy",
             Algorithm::Qstrip(_) => "qstrip",
             Algorithm::QuadSingle => "quad-single",
@@ -106,31 +168,21 @@ impl Algorithm {
     }
 }
 
-/// How faces of more than three corners become triangles before stripping.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
-#[non_exhaustive]
-pub enum Split {
-    /// The algorithm's own choice: the fan for greedy; QSTRIP's diagonals for QSTRIP
-    /// and quad-single; for cache and balanced, on quad-dominant meshes both the fan
-    /// and QSTRIP's diagonals, keeping the cheaper strips, else the fan.
-    #[default]
-    Auto,
-    /// Every face fanned from its first corner (the triangles other tools get).
-    Fan,
-    /// Quads along QSTRIP's diagonals (rows of quads run without swaps), other faces
-    /// fanned. Quad-level verification.
-    Qstrip,
-}
-
-impl Split {
-    /// The lowercase name the CLI uses.
-    pub fn name(self) -> &'static str {
-        match self {
-            Split::Auto => "auto",
-            Split::Fan => "fan",
-            Split::Qstrip => "qstrip",
-        }
+impl std::str::FromStr for Algorithm {
+    type Err = Error;
+    /// The algorithm of this name ([`Algorithm::NAMES`]) with its default settings.
+    fn from_str(s: &str) -> Result<Self> {
+        Ok(match s {
+            "auto" => Algorithm::auto(),
+            "greedy" => Algorithm::greedy(),
+            "qstrip" => Algorithm::qstrip(),
+            "quad-single" => Algorithm::QuadSingle,
+            "cache" => Algorithm::cache(),
+            "balanced" => Algorithm::balanced(Algorithm::DEFAULT_MAX_ACMR),
+            "batch" => Algorithm::batch(),
+            "single" => Algorithm::Single(SingleOptions::default()),
+            _ => return Err(crate::error::unknown("algorithm", s, Algorithm::NAMES)),
+        })
     }
 }
 
@@ -139,7 +191,8 @@ impl Split {
 #[serde(rename_all = "lowercase")]
 #[non_exhaustive]
 pub enum Join {
-    /// One index buffer, strips separated by the primitive-restart index.
+    /// One index buffer, strips separated by the primitive-restart index (the
+    /// default).
     #[default]
     Restart,
     /// One strip, strips stitched by degenerate triangles (winding kept).
@@ -148,16 +201,7 @@ pub enum Join {
     Separate,
 }
 
-impl Join {
-    /// The lowercase name the CLI uses.
-    pub fn name(self) -> &'static str {
-        match self {
-            Join::Restart => "restart",
-            Join::Degenerate => "degenerate",
-            Join::Separate => "separate",
-        }
-    }
-}
+named_enum!(Join, "join", Restart => "restart", Degenerate => "degenerate", Separate => "separate");
 
 /// Largest vertex cache [`StripOptions`] accepts: 65,536 entries (hardware caches hold
 /// 16 to 128). The cache-aware stripifiers keep a ring of this many entries and tune
@@ -205,7 +249,7 @@ pub struct StripOptions {
 impl Default for StripOptions {
     fn default() -> Self {
         StripOptions {
-            algorithm: Algorithm::Auto,
+            algorithm: Algorithm::default(),
             cache: CacheModel::fifo(16),
             split: Split::Auto,
             join: Join::Restart,
@@ -249,43 +293,59 @@ impl StripOptions {
 
     /// Checks the options on their own (not against a mesh).
     pub(super) fn check(&self) -> Result<()> {
-        let bad = |m: String| Err(Error::Invalid(m));
+        use OptionName as O;
+        let bad = |option, m: String| Err(Error::option(option, m));
         if self.cache.size == 0 {
-            return bad("the cache size must be at least 1 (a cache of 0 entries misses every vertex)".into());
+            return bad(O::CacheSize, "must be at least 1 (a cache of 0 entries misses every vertex)".into());
         }
         if self.cache.size > MAX_CACHE_SIZE {
-            return bad(format!("the cache size {} is too large (at most {MAX_CACHE_SIZE} entries)", self.cache.size));
+            return bad(O::CacheSize, format!("{} is too large (at most {MAX_CACHE_SIZE} entries)", self.cache.size));
         }
+        let fan_only = |name: &str| {
+            bad(O::Split, format!("qstrip applies to qstrip, quad-single, cache and balanced; {name} strips the fan of every face"))
+        };
         match &self.algorithm {
+            Algorithm::Auto(auto) => check_greedy(&auto.greedy).and_then(|()| check_quad(&auto.qstrip)),
             Algorithm::Balanced { max_acmr } if !(max_acmr.is_finite() && *max_acmr > 0.0) => {
-                bad(format!("balanced needs a positive number of misses per triangle as its bound (got {max_acmr})"))
+                bad(O::MaxAcmr, format!("must be a positive number of misses per triangle (got {max_acmr})"))
             }
-            Algorithm::Greedy(g) if g.tunnel_cuts.is_some_and(|n| n > MAX_TUNNEL_CUTS) => bad(format!(
-                "greedy's tunnels may cut at most {MAX_TUNNEL_CUTS} strip links (got {})",
-                g.tunnel_cuts.unwrap_or(0)
-            )),
-            Algorithm::Greedy(_) if self.split == Split::Qstrip => bad(
-                "greedy strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced"
-                    .into(),
-            ),
-            Algorithm::Single(_) if self.split == Split::Qstrip => bad(
-                "single strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced"
-                    .into(),
-            ),
+            Algorithm::Greedy(_) | Algorithm::Single(_) | Algorithm::Batch(_) if self.split == Split::Qstrip => {
+                fan_only(self.algorithm.name())
+            }
+            Algorithm::Greedy(g) => check_greedy(g),
             Algorithm::Single(o) => o.check(),
-            Algorithm::Batch(_) if self.split == Split::Qstrip => bad(
-                "batch strips the fan of every face; split qstrip applies to qstrip, quad-single, cache and balanced"
-                    .into(),
+            Algorithm::Batch(m) if m.max_triangles == 0 || m.max_vertices < 3 || m.strip_window == 0 => bad(
+                O::BatchModel,
+                format!("needs at least one triangle, three vertices and a window of one per batch (got {m:?})"),
             ),
-            Algorithm::Batch(m) if m.max_triangles == 0 || m.max_vertices < 3 || m.strip_window == 0 => bad(format!(
-                "a batch model needs at least one triangle, three vertices and a window of one per batch (got {m:?})"
-            )),
-            Algorithm::Qstrip(_) | Algorithm::QuadSingle if self.split == Split::Fan => bad(format!(
-                "{} chooses each quad's diagonal itself; split fan applies to greedy, cache and balanced",
-                self.algorithm.name()
-            )),
-            Algorithm::Qstrip(q) if q.policies.is_empty() => bad("qstrip needs at least one walk policy".into()),
+            Algorithm::Qstrip(_) | Algorithm::QuadSingle if self.split == Split::Fan => bad(
+                O::Split,
+                format!(
+                    "fan applies to greedy, cache and balanced; {} chooses each quad's diagonal itself",
+                    self.algorithm.name()
+                ),
+            ),
+            Algorithm::Qstrip(q) => check_quad(q),
             _ => Ok(()),
         }
     }
+}
+
+/// Greedy's settings on their own.
+fn check_greedy(g: &GreedyOptions) -> Result<()> {
+    match g.tunnel_cuts {
+        Some(n) if n > MAX_TUNNEL_CUTS => Err(Error::option(
+            OptionName::TunnelCuts,
+            format!("{n} is too many: greedy's tunnels may cut at most {MAX_TUNNEL_CUTS} strip links"),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// QSTRIP's settings on their own.
+fn check_quad(q: &QuadOptions) -> Result<()> {
+    if q.policies.is_empty() {
+        return Err(Error::option(OptionName::QuadPolicies, "must hold at least one walk policy"));
+    }
+    Ok(())
 }

@@ -6,7 +6,7 @@ use super::{fail, Algorithm, Join, Split};
 use crate::error::{Error, Result};
 use crate::mesh::io::{self, Format, WriteOptions};
 use crate::mesh::Mesh;
-use crate::metrics::Figures;
+use crate::metrics::{self, CacheKind, Figures};
 use crate::strip::{self, StripSet};
 use crate::stripify::single::SingleReport;
 use std::borrow::Cow;
@@ -30,7 +30,7 @@ pub struct Strips {
     pub split: Split,
     /// QSTRIP and quad-single: quads stripped as quads.
     pub quads: Option<usize>,
-    /// Every figure of METRICS.md, measured against [`Strips::triangles`].
+    /// Every figure of docs/metrics.md, measured against [`Strips::triangles`].
     pub figures: Figures,
     /// The join used.
     pub join: Join,
@@ -98,9 +98,27 @@ impl Strips {
     pub fn group_of_strip(&self, s: usize) -> usize {
         self.group_ranges.iter().position(|r| r.contains(&s)).unwrap_or(0)
     }
-    /// `indices_restart / quads` of METRICS.md, for QSTRIP and quad-single.
+    /// `indices_restart / quads` of docs/metrics.md, for QSTRIP and quad-single.
     pub fn indices_per_quad(&self) -> Option<f64> {
         self.quads.filter(|&q| q > 0).map(|q| self.figures.indices_restart as f64 / q as f64)
+    }
+
+    /// [`Algorithm::Balanced`] whose bound was out of reach on this mesh: the misses
+    /// per triangle its strips have (FIFO of [`Figures::cache`]'s size, the cache it
+    /// was tuned for), which exceed `max_acmr`. `None` for other algorithms and for a
+    /// bound met.
+    pub fn max_acmr_unreached(&self) -> Option<f64> {
+        let Algorithm::Balanced { max_acmr } = self.algorithm else { return None };
+        let cache = self.figures.cache;
+        let reached = if cache.kind == CacheKind::Fifo {
+            self.figures.acmr
+        } else {
+            let order = strip::decode(&self.strips);
+            let vertices = order.iter().flatten().map(|&v| v as usize + 1).max().unwrap_or(0);
+            metrics::acmr(&order, vertices, cache.size, CacheKind::Fifo)
+        };
+        // A relative slack for the float sums behind the two figures.
+        (reached > max_acmr * (1.0 + 1e-9)).then_some(reached)
     }
 
     /// The strips a file of `format` holds: PLY's `tristrips` ends each strip with -1

@@ -112,7 +112,7 @@ pub struct PrimitiveReport {
     pub indices_restart: Option<usize>,
     /// The algorithm that ran.
     pub algorithm: &'static str,
-    /// The figures of the strips (METRICS.md).
+    /// The figures of the strips (docs/metrics.md).
     pub figures: Figures,
 }
 

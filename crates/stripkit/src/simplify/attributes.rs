@@ -6,7 +6,7 @@
 
 use super::quadric::{dot, sub, V3};
 use crate::mesh::Mesh;
-use crate::Attribute;
+use crate::mesh::Attribute;
 use std::collections::HashMap;
 
 /// The seam vertices of `mesh` (kept in place by the collapses): used vertices at the same

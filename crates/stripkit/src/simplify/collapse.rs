@@ -840,7 +840,7 @@ fn round(p: V3) -> V3 {
     p.map(|x| x as f32 as f64)
 }
 
-pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64)) -> crate::Result<Simplified> {
+pub(super) fn run(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64)) -> crate::error::Result<Simplified> {
     let n = mesh.positions.len();
     let crate::mesh::Triangles { tris: all, face_of } = mesh.triangulate();
     // The survivors' attributes, updated collapse by collapse.
@@ -1230,7 +1230,7 @@ const PAIR_ALLOWANCE: usize = 1 << 20;
 /// QSlim's pair contraction: vertex pairs closer than `d` that share no edge become
 /// candidates too (found through a uniform grid of cell size `d`).; more than
 /// [`PAIRS_PER_VERTEX`] per used vertex plus [`PAIR_ALLOWANCE`] is an error.
-fn push_close_pairs(st: &mut State, d: f64) -> crate::Result<()> {
+fn push_close_pairs(st: &mut State, d: f64) -> crate::error::Result<()> {
     if !(d > 0.0 && d.is_finite()) {
         return Ok(());
     }
@@ -1253,7 +1253,7 @@ fn push_close_pairs(st: &mut State, d: f64) -> crate::Result<()> {
                         i += 1;
                         if u > v && norm(sub(st.pos[u as usize], st.pos[v as usize])) < d {
                             if pairs.len() == limit {
-                                return Err(crate::Error::Invalid(format!(
+                                return Err(crate::error::Error::Invalid(format!(
                                     "pair distance {d} finds more than {limit} vertex pairs \
                                      ({PAIRS_PER_VERTEX} per each of the {} used vertices + {PAIR_ALLOWANCE}); \
                                      choose a smaller distance",

@@ -62,6 +62,8 @@ pub enum Placement {
     Optimal,
 }
 
+crate::error::named_enum!(Placement, "placement", Endpoint => "endpoint", Optimal => "optimal");
+
 /// When to stop collapsing.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Target {

@@ -2,6 +2,7 @@
 //! that rebuilds the simplifier's mesh after any prefix of it.
 
 use crate::error::{Error, Result};
+use crate::mesh::io::{encode_checked, write_checked};
 use crate::mesh::Mesh;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -157,20 +158,39 @@ impl CollapseSequence {
     }
 
     /// Writes the sequence: JSON for a `.json` path, a compact little-endian binary
-    /// otherwise (see [`CollapseSequence::read`]). The file is replaced atomically
-    /// ([`crate::io::write_atomic`]): never left half-written.
+    /// otherwise (see [`CollapseSequence::read`]). The bytes are read back and compared
+    /// with the sequence before the file is replaced, atomically
+    /// ([`crate::io::write_encoded`]): never left half-written, nothing written when the
+    /// check fails ([`Error::Verification`]).
     pub fn write(&self, path: &Path) -> Result<()> {
-        crate::io::write_atomic(path, &self.encode(path)?)
+        write_checked(path, || self.encode_unchecked(path), |bytes| self.check_written(path, bytes)).map(drop)
     }
 
     /// The bytes [`CollapseSequence::write`] would write to `path` (JSON for a `.json`
-    /// path, binary otherwise), for callers that encode every output before writing any.
+    /// path, binary otherwise), read back and checked the same way, for callers that
+    /// encode every output before writing any.
     pub fn encode(&self, path: &Path) -> Result<Vec<u8>> {
+        encode_checked(|| self.encode_unchecked(path), |bytes| self.check_written(path, bytes))
+    }
+
+    fn encode_unchecked(&self, path: &Path) -> Result<Vec<u8>> {
         if is_json(path) {
             serde_json::to_vec(self).map_err(|e| Error::Invalid(format!("{}: {e}", path.display())))
         } else {
             Ok(self.to_bytes())
         }
+    }
+
+    /// Decodes `bytes` as [`CollapseSequence::read_bytes`] does and compares the result
+    /// with this sequence.
+    fn check_written(&self, path: &Path, bytes: &[u8]) -> Result<()> {
+        if Self::read_bytes(path, bytes)? != *self {
+            return Err(Error::Verification(format!(
+                "{}, read back: the collapse sequence differs from the one encoded",
+                path.display()
+            )));
+        }
+        Ok(())
     }
 
     /// Reads a sequence written by [`CollapseSequence::write`]: JSON for a `.json`
@@ -309,4 +329,32 @@ impl CollapseSequence {
 
 fn is_json(path: &Path) -> bool {
     path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sequence(error: f64) -> CollapseSequence {
+        let mut seq = CollapseSequence::new(4, 2);
+        seq.push(Collapse { removed: 3, kept: 1, position: [0.5, -0.0, 1e-7], error }, &[1]);
+        seq
+    }
+
+    #[test]
+    fn write_reads_back_in_both_layouts_and_writes_nothing_it_cannot_read() {
+        let dir = std::env::temp_dir().join(format!("stripkit-sequence-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        for name in ["s.seq", "s.json"] {
+            let path = dir.join(name);
+            sequence(0.25).write(&path).unwrap();
+            assert_eq!(CollapseSequence::read(&path).unwrap(), sequence(0.25));
+            std::fs::remove_file(&path).unwrap();
+            // An infinite error would make a file no reader accepts: refused, nothing written.
+            assert!(sequence(f64::INFINITY).write(&path).is_err());
+            assert!(sequence(f64::INFINITY).encode(&path).is_err());
+            assert!(!path.exists());
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

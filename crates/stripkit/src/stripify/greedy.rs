@@ -37,42 +37,38 @@ use super::buckets::Buckets;
 use crate::strip::StripSet;
 use crate::topology::{DualGraph, Walks, NO_NEIGHBOR};
 
-/// What the greedy choice optimises.
+/// What the greedy choice optimises (names `strips` and `indices`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Heuristic {
     /// Fewest strips (for hardware where a swap is free).
     Strips,
-    /// Fewest indices when a swap costs one repeated index (the default, as in the CLI).
+    /// Fewest indices when a swap costs one repeated index (the default).
     #[default]
     Indices,
 }
 
-impl std::str::FromStr for Heuristic {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s {
-            "strips" => Ok(Heuristic::Strips),
-            "indices" => Ok(Heuristic::Indices),
-            _ => Err(format!(
-                "unknown heuristic `{s}` (expected `strips` or `indices`)"
-            )),
-        }
-    }
-}
+crate::error::named_enum!(Heuristic, "heuristic", Strips => "strips", Indices => "indices");
 
 /// Options of the greedy stripifier ([`Algorithm::Greedy`](crate::Algorithm::Greedy)).
+/// Build it from [`GreedyOptions::default`] with the builder methods.
+///
+/// ```
+/// use stripkit::{GreedyOptions, Heuristic};
+/// let plain = GreedyOptions::default().heuristic(Heuristic::Strips).tunnel_cuts(None);
+/// assert_eq!(plain.tunnel_cuts, None);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct GreedyOptions {
-    /// What to optimise.
+    /// What to optimise. Default [`Heuristic::Indices`].
     pub heuristic: Heuristic,
     /// Tunnelling after the greedy pass (strips relinked along alternating paths
     /// through the dual graph, where that saves indices): the most strip links one
-    /// relinking may cut, or `None` for the plain greedy of the paper. Default 1 (on
-    /// bunny about 2% fewer indices for a few ms; 2 cuts save a little more for twice
-    /// that). At most [`crate::MAX_TUNNEL_CUTS`] (the door refuses more); each search
-    /// does bounded work (`SEARCH_BUDGET` of `improve/tunnel.rs`, never reached at
-    /// three cuts or fewer), so depth costs little time, but past about eight cuts the
-    /// strips get more indices, not fewer.
+    /// relinking may cut, or `None` for the plain greedy of the paper. Default 1. At
+    /// most [`crate::MAX_TUNNEL_CUTS`] (the door refuses more); each search does
+    /// bounded work (`SEARCH_BUDGET` of `improve/tunnel.rs`, never reached at three
+    /// cuts or fewer), so depth costs little time, but deep searches find worse
+    /// strips, not better (docs/experiments/greedy-tunnelling.md).
     pub tunnel_cuts: Option<usize>,
 }
 
@@ -86,12 +82,15 @@ impl Default for GreedyOptions {
 }
 
 impl GreedyOptions {
-    /// The defaults with heuristic `heuristic`.
-    pub fn with_heuristic(heuristic: Heuristic) -> Self {
-        GreedyOptions {
-            heuristic,
-            ..Self::default()
-        }
+    /// Sets [`GreedyOptions::heuristic`].
+    pub fn heuristic(mut self, heuristic: Heuristic) -> Self {
+        self.heuristic = heuristic;
+        self
+    }
+    /// Sets [`GreedyOptions::tunnel_cuts`].
+    pub fn tunnel_cuts(mut self, cuts: Option<usize>) -> Self {
+        self.tunnel_cuts = cuts;
+        self
     }
 }
 
@@ -213,7 +212,7 @@ impl Greedy<'_> {
 ///
 /// `tris` are oriented triangles over vertices `0..vertex_count` (every index must be
 /// below `vertex_count`); degenerate ones are dropped. The result, decoded by the
-/// METRICS.md rule, gives every other triangle exactly once with its winding.
+/// strip reading rule (docs/metrics.md), gives every other triangle exactly once with its winding.
 /// O(triangles + vertices) time and memory.
 pub fn stripify(tris: &[[u32; 3]], vertex_count: usize, options: &GreedyOptions) -> StripSet {
     let graph = DualGraph::from_triangles(tris, vertex_count);

@@ -24,8 +24,8 @@
 //!   one quad's diagonal is forced so that no coincident triangle can appear; the
 //!   programme above respects forced diagonals.
 //!
-//! Every output triangle keeps its quad's orientation, so the strips decode (by the
-//! METRICS.md rule) to exactly two triangles per quad that together form it; see
+//! Every output triangle keeps its quad's orientation, so the strips decode (by the reading
+//! rule of docs/metrics.md) to exactly two triangles per quad that together form it; see
 //! [`verify_quads`](super::quad_verify::verify_quads).
 //!
 //! Cost: O(faces + vertices) time and memory, dominated by [`EdgeMap::build`].
@@ -54,8 +54,16 @@ pub enum Policy {
 pub const SWAP_WORTH: i64 = 4;
 const RUN_CAP: u32 = 32;
 
-/// Options of QSTRIP ([`Algorithm::Qstrip`](crate::Algorithm::Qstrip)).
+/// Options of QSTRIP ([`Algorithm::Qstrip`](crate::Algorithm::Qstrip)). Build it from
+/// [`QuadOptions::default`] (or [`QuadOptions::paper`]) with the builder methods.
+///
+/// ```
+/// use stripkit::{Policy, QuadOptions};
+/// let one_pass = QuadOptions::default().policies(vec![Policy::LongRuns]);
+/// assert!(one_pass.extend_backward);
+/// ```
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct QuadOptions {
     /// After a sequence's forward end is stuck, extend it backwards from its first
     /// quad too (default `true`; the paper extends forwards only).
@@ -82,6 +90,21 @@ impl Default for QuadOptions {
 }
 
 impl QuadOptions {
+    /// Sets [`QuadOptions::extend_backward`].
+    pub fn extend_backward(mut self, on: bool) -> Self {
+        self.extend_backward = on;
+        self
+    }
+    /// Sets [`QuadOptions::policies`] (at least one: the door refuses none).
+    pub fn policies(mut self, policies: Vec<Policy>) -> Self {
+        self.policies = policies;
+        self
+    }
+    /// Sets [`QuadOptions::retry_above_swaps_per_quad`].
+    pub fn retry_above_swaps_per_quad(mut self, swaps_per_quad: f64) -> Self {
+        self.retry_above_swaps_per_quad = swaps_per_quad;
+        self
+    }
     /// The paper's algorithm alone: one pass, [`Policy::FewestSwaps`], forward only.
     pub fn paper() -> Self {
         QuadOptions {
@@ -210,7 +233,7 @@ pub fn qstrip_mixed(
 /// mesh. Returns the quad part and the combined strips.
 pub fn qstrip_mesh(mesh: &Mesh, options: &QuadOptions) -> (QuadStrips, StripSet) {
     qstrip_mixed(mesh, options, |tris, vcount| {
-        let greedy = super::greedy::GreedyOptions::with_heuristic(super::greedy::Heuristic::Indices);
+        let greedy = super::greedy::GreedyOptions::default().heuristic(super::greedy::Heuristic::Indices);
         super::greedy::stripify(tris, vcount, &greedy)
     })
 }

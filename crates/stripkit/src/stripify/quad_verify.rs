@@ -21,7 +21,7 @@
 //!   beyond 2^20 candidate pairs: thousands of quads on the same three vertices;
 //!   QSTRIP solves exactly the same pairs, so the two agree).
 //!
-//! Independent of how the strips were built: it only decodes them by the METRICS.md
+//! Independent of how the strips were built: it only decodes them by the docs/metrics.md
 //! rule. O(T) expected time with hashing.
 
 use super::quad_adjacency::{candidate_pairs, coincide, is_quad, same_quad, solve_diagonals, split, split_sets};

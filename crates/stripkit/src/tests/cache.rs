@@ -208,7 +208,7 @@ fn the_miss_weight_trades_misses_for_indices() {
 #[test]
 fn bunny_figures_beat_meshoptimizer_and_the_old_designs() {
     // meshoptimizer optimize_vertex_cache + stripify on bunny: 120,924 indices at acmr16
-    // 0.711 (METRICS.md); issue #4's cache target: at most 0.711 with at most 100,000
+    // 0.711 (docs/metrics.md); issue #4's cache target: at most 0.711 with at most 100,000
     // indices. The previous design (Forsyth scores with strip bonuses): 112,354 at
     // 0.703 (cache) and 95,591 at 0.798 (balanced). Now about 94,400 at 0.646 and
     // (balanced: the weight search 88,807 at 0.790, refined) 85,540 at 0.800, 1.232
@@ -435,18 +435,18 @@ mod soups {
 #[test]
 fn quads_split_along_qstrip_diagonals_beat_a_random_fan() {
     // A quad torus, shuffled with every face rotated: its fan splits the quads along
-    // random diagonals, so lines break everywhere. `Diagonals::Auto` must take QSTRIP's
+    // random diagonals, so lines break everywhere. `Split::Auto` must take QSTRIP's
     // split, pass the quad-level check, and beat the fan clearly (cache: 8% fewer
     // indices and 0.09 fewer misses per triangle; balanced: 14% fewer indices).
-    use crate::stripify::cache::{stripify_mesh, Diagonals};
+    use crate::stripify::{cache::stripify_mesh, Split};
     use crate::stripify::quad_verify::verify_quads;
     let mesh = crate::gen::shuffle_faces(&crate::gen::torus_quads(96, 48, 3.0, 1.0), 5);
     for (o, bound) in [
         (CacheOptions::cache(16), None),
         (CacheOptions::balanced(16), Some(0.8)),
     ] {
-        let fan = stripify_mesh(&mesh, &o, bound, Diagonals::Fan);
-        let auto = stripify_mesh(&mesh, &o, bound, Diagonals::Auto);
+        let fan = stripify_mesh(&mesh, &o, bound, Split::Fan);
+        let auto = stripify_mesh(&mesh, &o, bound, Split::Auto);
         assert!(!fan.qstrip_diagonals);
         assert!(auto.qstrip_diagonals, "{o:?}");
         verify_quads(&mesh, &auto.strips).expect("quad-level check");
@@ -481,7 +481,7 @@ fn quads_split_along_qstrip_diagonals_beat_a_random_fan() {
     }
     // A mesh without quads: Auto is the fan.
     let tris = crate::gen::icosphere(3);
-    let m = stripify_mesh(&tris, &CacheOptions::cache(16), None, Diagonals::Auto);
+    let m = stripify_mesh(&tris, &CacheOptions::cache(16), None, Split::Auto);
     assert!(!m.qstrip_diagonals);
     // The same triangles (in a canonical order, each possibly rotated).
     let sorted = |t: &[[u32; 3]]| {

@@ -13,7 +13,8 @@ use std::time::Instant;
 use crate::metrics::{self, CacheKind};
 use crate::simplify;
 use crate::strip::StripSet;
-use crate::stripify::cache::{self, CacheOptions, Diagonals};
+use crate::stripify::cache::{self, CacheOptions};
+use crate::stripify::Split;
 use crate::stripify::greedy::{self, GreedyOptions, Heuristic};
 use crate::stripify::{quad, quad_single};
 
@@ -126,7 +127,7 @@ fn strip_hashes() {
             }
         }
         let t = Instant::now();
-        let o = GreedyOptions::with_heuristic(Heuristic::Strips);
+        let o = GreedyOptions::default().heuristic(Heuristic::Strips);
         line("greedy strips", hash(&greedy::stripify(&tris, vc, &o)), t);
         let t = Instant::now();
         let o = GreedyOptions { tunnel_cuts: None, ..GreedyOptions::default() };
@@ -141,8 +142,8 @@ fn strip_hashes() {
             ("cache --refine", CacheOptions { refine: true, ..CacheOptions::cache(16) }, None),
             ("balanced", CacheOptions::balanced(16), Some(0.8)),
         ] {
-            for (dname, d) in [("auto", Diagonals::Auto), ("fan", Diagonals::Fan), ("qstrip", Diagonals::Qstrip)] {
-                if d != Diagonals::Auto && quad::quad_fraction(&mesh) < 0.5 {
+            for (dname, d) in [("auto", Split::Auto), ("fan", Split::Fan), ("qstrip", Split::Qstrip)] {
+                if d != Split::Auto && quad::quad_fraction(&mesh) < 0.5 {
                     continue;
                 }
                 let t = Instant::now();

@@ -4,19 +4,8 @@
 
 use crate::{gen, Mesh};
 
-/// Small deterministic generator (xorshift), so tests need no dependency.
-pub(crate) struct Rng(pub(crate) u64);
-impl Rng {
-    pub(crate) fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    pub(crate) fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-}
+/// The tests' seeded generator (xorshift64), from the shared test kit.
+pub(crate) use stripkit_testkit::XorShift64 as Rng;
 
 /// Triangles and vertex count of a generated mesh.
 pub(crate) fn tris_of(mesh: Mesh) -> (Vec<[u32; 3]>, usize) {

@@ -433,10 +433,7 @@ fn newell_normal(mesh: &Mesh, face: &[u32]) -> [f64; 3] {
         [q[0] as f64, q[1] as f64, q[2] as f64]
     };
     if face.len() == 3 {
-        let (a, b, c) = (p(face[0]), p(face[1]), p(face[2]));
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        return [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+        return crate::vec3::tri_normal(p(face[0]), p(face[1]), p(face[2]));
     }
     let mut n = [0.0f64; 3];
     for i in 0..face.len() {

@@ -24,19 +24,9 @@ pub fn subdivide(mesh: &Mesh) -> Mesh {
     stripkit::gen::subdivide_catmull_clark(mesh, 1).expect("a valid polygon mesh")
 }
 
-/// A small deterministic generator (xorshift).
-pub struct Rng(pub u64);
-impl Rng {
-    pub fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    pub fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-}
+/// The tests' seeded generator (xorshift64), from the shared test kit.
+#[allow(unused_imports)] // not every test binary draws random numbers
+pub use stripkit_testkit::XorShift64 as Rng;
 
 /// Same surface, faces in random order, each face's corners rotated at random, vertex
 /// ids permuted.

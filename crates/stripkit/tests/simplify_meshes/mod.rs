@@ -76,13 +76,8 @@ pub fn bumpy_sphere(levels: u32) -> Mesh {
 
 /// Renumbers vertices, reorders triangles and rotates their corners (a fixed seed).
 pub fn shuffled(mesh: &Mesh, seed: u64) -> Mesh {
-    let mut s = seed.wrapping_mul(0x9E3779B97F4A7C15) | 1;
-    let mut rnd = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        s
-    };
+    let mut rng = stripkit_testkit::XorShift64(seed.wrapping_mul(0x9E3779B97F4A7C15) | 1);
+    let mut rnd = move || rng.next();
     let n = mesh.positions.len();
     let mut perm: Vec<u32> = (0..n as u32).collect();
     for i in (1..n).rev() {
@@ -104,9 +99,7 @@ pub fn shuffled(mesh: &Mesh, seed: u64) -> Mesh {
 
 pub fn normal(m: &Mesh, t: [u32; 3]) -> [f64; 3] {
     let p = t.map(|v| m.positions[v as usize].map(|x| x as f64));
-    let e1 = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
-    let e2 = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
-    [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+    stripkit_testkit::geom::tri_normal(p[0], p[1], p[2])
 }
 
 pub fn area(m: &Mesh) -> f64 {

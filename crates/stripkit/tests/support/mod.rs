@@ -1,23 +1,19 @@
-//! Helpers shared by the integration tests: where the research meshes and the bundled
-//! assets are. Include with `mod support;`.
+//! Helpers shared by the integration tests that need the library's types (the
+//! algorithm list, decoded triangle sets, reading a research mesh); the generators and
+//! folders come from `stripkit-testkit`. Include with `mod support;`.
 #![allow(dead_code)] // each test binary uses a different subset
 
-mod base64;
-mod dirs;
-pub mod gltf_validator;
 #[allow(unused_imports)] // each test binary uses a different subset
-pub use base64::encode_base64;
-#[allow(unused_imports)] // each test binary uses a different subset
-pub use dirs::{assets_dir, models_dir};
+pub use stripkit_testkit::{assets_dir, encode_base64, gltf_validator, models_dir};
 
 /// Every algorithm setting the door offers for triangle input (quad-single needs quads).
 pub fn algorithms() -> Vec<stripkit::Algorithm> {
     use stripkit::{Algorithm, GreedyOptions, Heuristic};
     vec![
-        Algorithm::Auto,
+        Algorithm::auto(),
         Algorithm::greedy(),
-        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Strips, tunnel_cuts: Some(2) }),
-        Algorithm::Greedy(GreedyOptions { heuristic: Heuristic::Indices, tunnel_cuts: None }),
+        Algorithm::Greedy(GreedyOptions::default().heuristic(Heuristic::Strips).tunnel_cuts(Some(2))),
+        Algorithm::Greedy(GreedyOptions::default().heuristic(Heuristic::Indices).tunnel_cuts(None)),
         Algorithm::qstrip(),
         Algorithm::cache(),
         Algorithm::Cache { refine: true },
@@ -46,7 +42,7 @@ pub fn drawn_sets(strips: &stripkit::Strips) -> Vec<[u32; 3]> {
 /// folder or the file is absent or unreadable, so that a test can skip it.
 /// Read as a surface ([`read_surface`]).
 pub fn model(name: &str) -> Option<stripkit::Mesh> {
-    dirs::model_with(name, read_surface)
+    stripkit_testkit::model_with(name, read_surface)
 }
 
 /// A mesh file's positions and faces only (`ReadOptions::positions_only`): the

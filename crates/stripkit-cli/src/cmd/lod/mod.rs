@@ -50,16 +50,6 @@ enum What {
     Bench(bench::BenchArgs),
 }
 
-/// Where a collapse puts the surviving vertex.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum PlacementArg {
-    /// Half-edge collapses: the kept vertex keeps its position; no new vertices.
-    Endpoint,
-    /// A new vertex per collapse at the simplifier's optimal position
-    /// (progressive-mesh style): closer surfaces, one more position per level.
-    Optimal,
-}
-
 /// How much of the model `lod build` checks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum CheckArg {
@@ -78,9 +68,9 @@ struct BuildArgs {
     /// Output model (`.sets`).
     #[arg(short, long)]
     output: PathBuf,
-    /// Survivor placement of the collapses.
-    #[arg(long, value_enum, default_value = "endpoint")]
-    placement: PlacementArg,
+    /// Survivor placement of the collapses: endpoint (half-edge collapses, no new vertices) or optimal (a new vertex per collapse at the simplifier's optimal position). Default endpoint.
+    #[arg(long, value_parser = crate::cmd::named::<Placement>(Placement::NAMES))]
+    placement: Option<Placement>,
     #[command(flatten)]
     common: CommonArgs,
 }
@@ -174,11 +164,8 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
     crate::cmd::check_output_folder(&args.output)?;
     let mesh = args.common.read.read(&args.file)?;
     args.common.strip.check_mesh(&mesh, &args.file)?;
-    let placement = match args.placement {
-        PlacementArg::Endpoint => Placement::Endpoint,
-        PlacementArg::Optimal => Placement::Optimal,
-    };
-    let options = BuildOptions::default().strip(args.common.strip.options(Some(&mesh))).placement(placement);
+    let placement = args.placement.unwrap_or(BuildOptions::default().placement);
+    let options = BuildOptions::default().strip(args.common.strip.options()?).placement(placement);
     let bar = crate::cmd::progress_bar(mesh.triangle_count() > 200_000, "simplify");
     let built = lod::build(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the model of {}", args.file.display()))?;
@@ -190,10 +177,7 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
         input: args.file.display().to_string(),
         output: args.output.display().to_string(),
         report: built.report,
-        placement: match placement {
-            Placement::Endpoint => "endpoint",
-            Placement::Optimal => "optimal",
-        },
+        placement: placement.name(),
         bytes,
         check,
     };
@@ -253,7 +237,7 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
     }
     args.common.strip.check_mesh(&frames.mesh, &args.folder)?;
     let options = SeqOptions::default()
-        .strip(args.common.strip.options(Some(&frames.mesh)))
+        .strip(args.common.strip.options()?)
         .max_sequences(args.max_sequences)
         .tolerance(args.tolerance)
         .samples(args.samples)

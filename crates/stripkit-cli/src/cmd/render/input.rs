@@ -4,15 +4,6 @@
 use super::Args;
 use stripkit::Error;
 
-/// Positions of the vertices some face uses (unreferenced vertices stay out of the frame).
-pub fn used_positions(mesh: &stripkit::Mesh) -> Vec<[f32; 3]> {
-    let mut used = vec![false; mesh.vertex_count()];
-    for &v in &mesh.face_indices {
-        used[v as usize] = true;
-    }
-    mesh.positions.iter().zip(&used).filter(|(_, &u)| u).map(|(p, _)| *p).collect()
-}
-
 /// The strips' triangles in strip order, each with the number of its strip; those with
 /// a repeated index (swaps, stitches) draw nothing and are left out, as the GPU leaves
 /// them out.

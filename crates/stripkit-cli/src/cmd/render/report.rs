@@ -1,6 +1,6 @@
 //! What `stripkit render` reports: one JSON object, or a short summary.
 
-use super::{ColorArg, HeuristicArg, ShadingArg};
+use super::{ColorArg, ShadingArg};
 use serde::Serialize;
 use std::io::Write;
 use std::path::Path;
@@ -15,7 +15,7 @@ pub struct Report<'a> {
     pub output: &'a Path,
     pub algo: &'static str,
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub heuristic: Option<HeuristicArg>,
+    pub heuristic: Option<&'static str>,
     pub color: ColorArg,
     pub shading: ShadingArg,
     pub width: u32,

@@ -270,7 +270,7 @@ pub(crate) fn close_face(mesh: &mut Mesh) -> Result<(), String> {
     Ok(())
 }
 
-/// Pushes the non-degenerate triangles of a strip (METRICS.md rule) as faces.
+/// Pushes the non-degenerate triangles of a strip (the reading rule of docs/metrics.md) as faces.
 pub(crate) fn push_strip_triangles(mesh: &mut Mesh, strip: &[u32]) -> Result<(), String> {
     let mut err = None;
     crate::strip::for_each_triangle(strip, |t| {

@@ -12,9 +12,12 @@
 //! property) and face groups (OBJ `g`/`o`/`usemtl`) come with the mesh; the OBJ and PLY
 //! writers write them back.
 //!
-//! Every writer replaces its file atomically ([`write_atomic`]): a reader, a crash or
-//! a full disk sees the old file or the complete new one, never a partial file;
-//! [`write_atomic_all`] extends this to the several outputs of one run.
+//! Writing: [`write()`] / [`write_with`] write a mesh (with strips where the format
+//! holds them) to a file, [`write_bytes`] encodes one in memory, and
+//! [`write_encoded`] / [`write_encoded_all`] write bytes already encoded (one file, or
+//! the several outputs of one run all or nothing). Every writer replaces its file
+//! atomically: a reader, a crash or a full disk sees the old file or the complete new
+//! one, never a partial file.
 //!
 //! Text is UTF-8 (a byte order mark is skipped; UTF-16 is refused by name) with lines
 //! ending in `\n`, `\r\n` or a lone `\r`. Records after the counts an OFF or PLY
@@ -382,7 +385,7 @@ pub fn write(path: impl AsRef<Path>, mesh: &Mesh, strips: Option<&StripSet>) -> 
 /// [`write()`] with options. The mesh is checked first: [`Error::Invalid`] when a face or
 /// strip index is out of range or a coordinate is NaN or infinite (no reader would
 /// accept the file). A name ending in `.gz` is gzip-compressed. The file is replaced
-/// atomically ([`write_atomic`]).
+/// atomically, as [`write_encoded`] does.
 pub fn write_with(
     path: impl AsRef<Path>,
     mesh: &Mesh,
@@ -390,23 +393,38 @@ pub fn write_with(
     options: &WriteOptions,
 ) -> Result<()> {
     let path = path.as_ref();
-    write_atomic(path, &encode_file(path, mesh, strips, options)?)
-}
-
-/// The exact bytes [`write_with`] would write to `path`: encoded in the format its
-/// extension names, gzip-compressed when it ends in `.gz`. For a caller that encodes
-/// every output of a run before writing any (see [`write_atomic_all`]).
-pub fn encode_file(path: &Path, mesh: &Mesh, strips: Option<&StripSet>, options: &WriteOptions) -> Result<Vec<u8>> {
     let (format, _) = Format::from_path(path).ok_or_else(|| unknown(path))?;
-    let bytes = write_bytes(format, mesh, strips, options)?;
-    Ok(compress_for(path, &bytes)?.into_owned())
+    write_encoded(path, &write_bytes(format, mesh, strips, options)?)
 }
 
-/// Writes bytes already encoded in the format `path` names (e.g. by
-/// [`write_bytes`] or [`crate::Strips::to_file_bytes`]), gzip-compressed when the name
-/// ends in `.gz`. The file is replaced atomically ([`write_atomic`]).
+/// Writes bytes already encoded (a mesh format's bytes from [`write_bytes`] or
+/// [`crate::Strips::to_file_bytes`], or any other file: a table, an image),
+/// gzip-compressed when `path` names a mesh format ending in `.gz`.
+///
+/// The file is replaced atomically: at every moment `path` is its old content (or
+/// absent) or the complete new content, never a partial file. The bytes go to a
+/// temporary file `.NAME.tmp-PID-N` in the destination's folder, which is synced and
+/// then renamed over `path` (on Unix the folder is synced too). On failure the
+/// temporary file is removed, `path` is left as it was, and the error ([`Error::Io`])
+/// names `path`; only a process killed before the rename may leave a `.NAME.tmp-*`
+/// file behind. A symbolic link at `path` is replaced by a regular file; an existing
+/// file's permissions are kept.
 pub fn write_encoded(path: &Path, bytes: &[u8]) -> Result<()> {
     write_atomic(path, &compress_for(path, bytes)?)
+}
+
+/// Writes the several outputs of one run, each as [`write_encoded`] does, all or
+/// nothing as far as the file system allows: every file is written in full to its
+/// temporary file and synced before any is renamed over its destination, in the order
+/// given. A failure while writing (full disk, missing folder, no permission) leaves
+/// every destination as it was; only a failing rename itself (rare) can leave the
+/// earlier files new and the later ones old, never a partial file. Two destinations
+/// that are one file ([`same_destination`]) are refused with [`Error::Invalid`] before
+/// anything is written.
+pub fn write_encoded_all(files: &[(&Path, &[u8])]) -> Result<()> {
+    let packed = files.iter().map(|(path, bytes)| compress_for(path, bytes)).collect::<Result<Vec<_>>>()?;
+    let files: Vec<(&Path, &[u8])> = files.iter().zip(&packed).map(|((path, _), bytes)| (*path, &**bytes)).collect();
+    write_atomic_all(&files)
 }
 
 /// The bytes `encode` makes, once `check` has read them back and found them to be
@@ -422,7 +440,7 @@ pub(crate) fn encode_checked(
 }
 
 /// The one write path of checked outputs (strips in a mesh file, a glTF scene, the
-/// `.sets` and `.lodseq` files of `lod`): `encode` makes the bytes, `check` reads them
+/// `.sets` and `.lodseq` files of `lod`, a collapse sequence): `encode` makes the bytes, `check` reads them
 /// back and compares them with what was meant, and only then are they written to
 /// `path` atomically ([`write_atomic`]: a temporary file beside it, synced, renamed),
 /// gzip-compressed when the name is a mesh format's ending in `.gz`. Nothing is
@@ -463,11 +481,10 @@ fn compress_for<'a>(path: &Path, bytes: &'a [u8]) -> Result<std::borrow::Cow<'a,
 /// the rename (SIGKILL, power loss) cannot clean up: it may leave a `.NAME.tmp-*`
 /// file beside the destination, never a partial file at the destination's name.
 ///
-/// Every writer of this crate ([`write()`], [`write_with`], [`write_encoded`],
-/// [`crate::simplify::CollapseSequence::write`]) goes through it. If `path` is a
-/// symbolic link, the link itself is replaced by a regular file; an existing file's
-/// permissions are kept.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+/// Every writer of this crate goes through it (the public ones through
+/// [`write_encoded`] and [`write_encoded_all`]). If `path` is a symbolic link, the
+/// link itself is replaced by a regular file; an existing file's permissions are kept.
+pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     Staged::new(path, bytes)?.commit()
 }
 
@@ -482,7 +499,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 ///
 /// Two destinations that are the same file ([`same_destination`]) are refused with
 /// [`Error::Invalid`] before anything is written.
-pub fn write_atomic_all(files: &[(&Path, &[u8])]) -> Result<()> {
+pub(crate) fn write_atomic_all(files: &[(&Path, &[u8])]) -> Result<()> {
     for (i, (a, _)) in files.iter().enumerate() {
         if let Some((b, _)) = files[..i].iter().find(|(b, _)| same_destination(a, b)) {
             return Err(Error::Invalid(format!(
@@ -839,6 +856,22 @@ mod tests {
         write(&dest, &mesh, None).unwrap();
         assert_eq!(read(&dest).unwrap().face_count(), 1);
         assert_eq!(entries(&dir), ["m.obj.gz"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn write_encoded_all_compresses_gz_names_and_refuses_one_file_twice() {
+        let dir = scratch("encoded-all");
+        let mesh = Mesh::from_triangles(vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], &[[0, 1, 2]]);
+        let obj = write_bytes(Format::Obj, &mesh, None, &WriteOptions::default()).unwrap();
+        let (packed, table) = (dir.join("m.obj.gz"), dir.join("table.md"));
+        write_encoded_all(&[(&packed, &obj), (&table, b"| a |\n")]).unwrap();
+        assert_eq!(read(&packed).unwrap().face_count(), 1);
+        assert_eq!(std::fs::read(&table).unwrap(), b"| a |\n");
+        let e = write_encoded_all(&[(&table, b"1"), (&dir.join(".").join("table.md"), b"2")]).unwrap_err();
+        assert!(matches!(e, Error::Invalid(_)), "{e:?}");
+        assert_eq!(std::fs::read(&table).unwrap(), b"| a |\n");
+        assert_eq!(entries(&dir), ["m.obj.gz", "table.md"]);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -283,6 +283,31 @@ pub(crate) fn read(path: &Path, data: &[u8], positions_only: bool) -> Result<Mes
     if mesh.positions.is_empty() && mesh.face_count() == 0 {
         refuse_if_not_obj(src, data, recognised)?;
     }
+    let corners =
+        [(&corner_vt[..], max_vt, uvs.len(), "texture coordinate"), (&corner_vn[..], max_vn, normals.len(), "normal")];
+    check_face_ranges(src, data, &mesh, max_index, corners)?;
+    // One group without a name or material says nothing: leave the mesh ungrouped.
+    if positions_only || (mesh.groups.len() == 1 && mesh.groups[0] == Group::default()) {
+        mesh.groups.clear();
+        mesh.face_groups.clear();
+    }
+    if !corner_vt.is_empty() || !corner_vn.is_empty() {
+        weld(&mut mesh, &uvs, &normals, corner_vt, corner_vn);
+    }
+    Ok(mesh)
+}
+
+/// Checks the largest indices the faces gave (`max_index` for vertices; per corner
+/// list of texture coordinates and normals, its largest and the number of records)
+/// against the records of the whole file, faces being allowed to name records defined
+/// later: the first face naming one past the last is the error, with its line.
+fn check_face_ranges(
+    src: Src,
+    data: &[u8],
+    mesh: &Mesh,
+    max_index: u64,
+    corners: [(&[u32], Option<u32>, usize, &str); 2],
+) -> Result<()> {
     let nv = mesh.positions.len();
     if mesh.face_count() > 0 && max_index as usize >= nv {
         // Error path only: find the first offending face and its line.
@@ -291,9 +316,7 @@ pub(crate) fn read(path: &Path, data: &[u8], positions_only: bool) -> Result<Mes
         let line = face_line(data, face);
         return Err(src.err(line_at(line), index_message(face as u64, bad as i64 + 1, nv)));
     }
-    for (corners, max, len, what) in
-        [(&corner_vt, max_vt, uvs.len(), "texture coordinate"), (&corner_vn, max_vn, normals.len(), "normal")]
-    {
+    for (corners, max, len, what) in corners {
         if max.is_some_and(|m| m as usize >= len) {
             let at = corners.iter().position(|&t| t != NONE && t as usize >= len).unwrap_or(0);
             let face = mesh.face_offsets.partition_point(|&o| o as usize <= at).saturating_sub(1);
@@ -304,15 +327,7 @@ pub(crate) fn read(path: &Path, data: &[u8], positions_only: bool) -> Result<Mes
             ));
         }
     }
-    // One group without a name or material says nothing: leave the mesh ungrouped.
-    if positions_only || (mesh.groups.len() == 1 && mesh.groups[0] == Group::default()) {
-        mesh.groups.clear();
-        mesh.face_groups.clear();
-    }
-    if !corner_vt.is_empty() || !corner_vn.is_empty() {
-        weld(&mut mesh, &uvs, &normals, corner_vt, corner_vn);
-    }
-    Ok(mesh)
+    Ok(())
 }
 
 /// Makes GPU vertices of the corners' `(v, vt, vn)` triples: one vertex per distinct

@@ -233,9 +233,7 @@ pub(crate) fn write(mesh: &Mesh) -> Result<Vec<u8>> {
     for f in mesh.faces() {
         for i in 1..f.len() - 1 {
             let [a, b, c] = [f[0], f[i], f[i + 1]].map(|v| mesh.positions[v as usize]);
-            let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-            let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-            let nrm = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+            let nrm = crate::vec3::tri_normal_f32(a, b, c);
             let len = (nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]).sqrt();
             let nrm = if len > 0.0 && len.is_finite() { nrm.map(|x| x / len) } else { [0.0; 3] };
             for x in nrm.iter().chain(a.iter()).chain(b.iter()).chain(c.iter()) {

@@ -20,7 +20,7 @@ pub(super) struct Canonical {
 }
 
 impl Canonical {
-    pub(super) fn of(mesh: &crate::Mesh) -> Canonical {
+    pub(super) fn of(mesh: &crate::mesh::Mesh) -> Canonical {
         // f32 bits in an order that sorts like the numbers (a total order).
         let k = |x: f32| {
             let b = x.to_bits();
@@ -65,7 +65,7 @@ impl Canonical {
     /// The fan of every face (from the face's own first corner), in new ids, each
     /// triangle starting at its lowest id, sorted: the same list for any face order,
     /// any vertex ids and any rotation of a triangle.
-    pub(super) fn fan(&self, mesh: &crate::Mesh) -> Vec<[u32; 3]> {
+    pub(super) fn fan(&self, mesh: &crate::mesh::Mesh) -> Vec<[u32; 3]> {
         let mut tris = mesh.triangulate().tris;
         for t in &mut tris {
             *t = [self.new[t[0] as usize], self.new[t[1] as usize], self.new[t[2] as usize]];
@@ -89,7 +89,7 @@ impl Canonical {
     /// of four corners that repeats a vertex (no quad to QSTRIP or to the quad-level
     /// check, which fan it: `(5, 1, 5, 2)` fans to two degenerate triangles, while
     /// from its lowest corner, `(1, 5, 2, 5)`, it would fan to two real ones).
-    pub(super) fn rotated(&self, mesh: &crate::Mesh) -> crate::Mesh {
+    pub(super) fn rotated(&self, mesh: &crate::mesh::Mesh) -> crate::mesh::Mesh {
         let mut ids: Vec<u32> = mesh.face_indices.iter().map(|&v| self.new[v as usize]).collect();
         let range = |f: usize| mesh.face_offsets[f] as usize..mesh.face_offsets[f + 1] as usize;
         let mut shift = vec![0usize; mesh.face_count()];
@@ -101,9 +101,9 @@ impl Canonical {
         }
         let mut order: Vec<u32> = (0..mesh.face_count() as u32).collect();
         order.sort_unstable_by(|&x, &y| ids[range(x as usize)].cmp(&ids[range(y as usize)]));
-        let mut out = crate::Mesh {
+        let mut out = crate::mesh::Mesh {
             positions: self.old.iter().map(|&v| mesh.positions[v as usize]).collect(),
-            ..crate::Mesh::new()
+            ..crate::mesh::Mesh::new()
         };
         out.face_indices.reserve(ids.len());
         for &f in &order {

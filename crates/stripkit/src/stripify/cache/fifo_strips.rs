@@ -1,5 +1,5 @@
 //! The cache-aware stripifier proper: it grows one strip at a time while it simulates
-//! exactly the FIFO of METRICS.md (a hit does not reorder, a miss evicts the oldest
+//! exactly the FIFO of docs/metrics.md (a hit does not reorder, a miss evicts the oldest
 //! entry):
 //!
 //! * **Candidates.** Every free triangle around one of the oldest `scan_entries`

@@ -12,9 +12,9 @@
 //!
 //! 1. [`stripify_mesh`] puts the mesh in a canonical order (`canonical.rs`: vertices
 //!    by position in Z-order, faces sorted), so that a shuffled input gives the same
-//!    strips, and picks how quads are split ([`Diagonals`]).
+//!    strips, and picks how quads are split ([`Split`]).
 //! 2. The stripifier (`fifo_strips.rs`) grows one strip at a time while it simulates
-//!    exactly the FIFO of METRICS.md ([`crate::metrics`]), choosing among walks from
+//!    exactly the FIFO of docs/metrics.md ([`crate::metrics`]), choosing among walks from
 //!    the free triangles around the cache by their indices and weighed misses per
 //!    triangle; `miss_weight` trades indices for misses ([`CacheOptions::cache`] and
 //!    [`CacheOptions::balanced`] are two points). It records the strips and the walks
@@ -35,6 +35,7 @@
 mod canonical;
 mod fifo_strips;
 
+use super::Split;
 use crate::improve::{refine, Effort};
 use crate::strip::{is_degenerate, join_shared_ends, StripSet};
 use crate::topology::{DualGraph, Walks};
@@ -286,21 +287,6 @@ struct Try {
     walks: Walks,
 }
 
-/// How [`stripify_mesh`] splits a mesh's quads into triangles.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Diagonals {
-    /// Every face fanned from its first corner ([`crate::Mesh::triangulate`]).
-    Fan,
-    /// Quads along the diagonals QSTRIP picks for its quad sequences (a straight run
-    /// of quads then needs no swap, and the rows beside it share its split), other
-    /// faces fanned (on a mesh without quads: the fan).
-    Qstrip,
-    /// On a quad-dominant mesh (at least half the faces quads) both of the above,
-    /// keeping the cheaper strips; the fan on other meshes.
-    #[default]
-    Auto,
-}
-
 /// What [`stripify_mesh`] returns.
 #[derive(Clone, Debug)]
 pub struct MeshStrips {
@@ -324,7 +310,7 @@ pub struct MeshStrips {
 /// [`stripify_within`] (the `balanced` mode); without, those of [`stripify`].
 ///
 /// A quad may be split along either diagonal, and the split decides which rows of
-/// quads become swap-free lines. [`Diagonals::Auto`] tries, on quad-dominant meshes,
+/// quads become swap-free lines. [`Split::Auto`] tries, on quad-dominant meshes,
 /// both the fan and QSTRIP's diagonals and keeps the cheaper result: without a bound
 /// the lower `indices_restart + miss_weight * misses`; with one, the fewer indices
 /// among the results within the bound, else the lower ACMR. Runs the stripifier
@@ -338,16 +324,16 @@ pub struct MeshStrips {
 /// the fan, starts decides its fan, so that stays part of the input; vertices at equal
 /// positions fall back to their ids.) The copy costs little next to the stripifier.
 pub fn stripify_mesh(
-    mesh: &crate::Mesh,
+    mesh: &crate::mesh::Mesh,
     options: &CacheOptions,
     max_acmr: Option<f64>,
-    diagonals: Diagonals,
+    split: Split,
 ) -> MeshStrips {
     let fraction = crate::stripify::quad::quad_fraction(mesh);
-    let (fan, qstrip) = match diagonals {
+    let (fan, qstrip) = match split {
         // Without quads there is nothing to split: the fan it is.
-        Diagonals::Qstrip if fraction > 0.0 => (false, true),
-        Diagonals::Auto if fraction >= 0.5 => (true, true),
+        Split::Qstrip if fraction > 0.0 => (false, true),
+        Split::Auto if fraction >= 0.5 => (true, true),
         _ => (true, false),
     };
     // The same strips whatever the order of the faces, their rotation (but for the

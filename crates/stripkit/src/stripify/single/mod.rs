@@ -28,7 +28,7 @@ pub(crate) mod merge;
 mod weights;
 pub(crate) mod work;
 
-use crate::error::{Error, Result};
+use crate::error::{named_enum, Error, OptionName, Result};
 use crate::strip::{is_degenerate, StripSet};
 use crate::topology::walks::encode_path;
 use crate::topology::DualGraph;
@@ -100,10 +100,13 @@ impl FromStr for Weights {
     /// coefficient.
     fn from_str(s: &str) -> Result<Weights> {
         let bad = |why: &str| {
-            Error::Invalid(format!(
-                "weights '{s}': {why}; expected uniform, cull, cache, direction:X,Y,Z or mix:TERM=C,.. \
-                 (e.g. mix:cull=0.5,cache=0.5, direction in a mix as direction:X:Y:Z)"
-            ))
+            Error::option(
+                OptionName::Weights,
+                format!(
+                    "'{s}': {why}; expected uniform, cull, cache, direction:X,Y,Z or mix:TERM=C,.. \
+                     (e.g. mix:cull=0.5,cache=0.5, direction in a mix as direction:X:Y:Z)"
+                ),
+            )
         };
         let simple = |t: &str, sep: char| -> Option<Weights> {
             match t {
@@ -137,18 +140,16 @@ impl FromStr for Weights {
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct SingleOptions {
-    /// The dual-edge weights.
+    /// The dual-edge weights. Default [`Weights::Uniform`].
     pub weights: Weights,
     /// Edge swaps are allowed on convex quads whose two triangles' normals differ by
-    /// at most this many degrees; `None`: never swap (splits instead). Default 5: on
-    /// the research models it halves to thirds the Steiner vertices of 1 degree
-    /// (dragon, cache weights: 1,212 without swaps, 908 at 1, 378 at 5) and moves the
-    /// surface by at most about 0.1% of the bounding diagonal.
+    /// at most this many degrees (0 to 90); `None`: never swap (splits instead).
+    /// Default 5 (why: docs/experiments/single-strips.md).
     pub swap_angle: Option<f64>,
     /// Normal deviation bound of the culling clusters, in degrees. Default 30.
     pub cull_angle: f64,
     /// Seed of the randomized parts (the cache weights' tree, the clustering's seeds,
-    /// the cull noise).
+    /// the cull noise). Default 1.
     pub seed: u64,
     /// How the matching is found. Default [`MatchingMode::Auto`].
     pub matching: MatchingMode,
@@ -177,6 +178,8 @@ pub enum MatchingMode {
     Greedy,
 }
 
+named_enum!(MatchingMode, "matching mode", Auto => "auto", Exact => "exact", Greedy => "greedy");
+
 /// Greedy matchings tried (different tie-breaking orders) on small meshes.
 const GREEDY_TRIES: usize = 8;
 /// Triangles times tries the greedy matching may spend: 8 tries up to 2^17 triangles.
@@ -203,6 +206,11 @@ impl SingleOptions {
     /// The default settings with these weights.
     pub fn new(weights: Weights) -> Self {
         SingleOptions { weights, ..Default::default() }
+    }
+    /// Sets [`SingleOptions::weights`].
+    pub fn weights(mut self, weights: Weights) -> Self {
+        self.weights = weights;
+        self
     }
     /// Sets [`SingleOptions::swap_angle`].
     pub fn swap_angle(mut self, degrees: Option<f64>) -> Self {
@@ -232,11 +240,14 @@ impl SingleOptions {
     pub(crate) fn check(&self) -> Result<()> {
         if let Some(a) = self.swap_angle {
             if !(a.is_finite() && (0.0..90.0).contains(&a)) {
-                return Err(Error::Invalid(format!("swap angle {a} is not in 0..90 degrees")));
+                return Err(Error::option(OptionName::SwapAngle, format!("{a} is not in 0..90 degrees")));
             }
         }
         if !(self.cull_angle.is_finite() && self.cull_angle > 0.0 && self.cull_angle < 180.0) {
-            return Err(Error::Invalid(format!("cull angle {} is not in (0, 180) degrees", self.cull_angle)));
+            return Err(Error::option(
+                OptionName::CullAngle,
+                format!("{} is not in (0, 180) degrees", self.cull_angle),
+            ));
         }
         Ok(())
     }

@@ -75,6 +75,7 @@ use crate::mesh::Mesh;
 use crate::strip::{self, StripSet};
 use serde_json::{json, Value};
 use std::borrow::Cow;
+use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 
 /// The extension that lets a strip primitive hold restart indices.
@@ -313,250 +314,28 @@ impl Scene {
         })
     }
 
-    /// The JSON and the one binary buffer to write.
+    /// The JSON and the one binary buffer to write: the buffers merged, then the
+    /// stripped primitives' reordered vertex data and new indices appended, their
+    /// restart groups set, `extensionsUsed` brought up to date and the one buffer
+    /// described.
     fn build(&self) -> Result<(Value, Vec<u8>)> {
-        let mut json = self.json.clone();
-        let garbage = self.garbage();
-        let mut bin = Vec::new();
-        if garbage.collect {
-            // Each live view's bytes, one after the other: the old index data of
-            // stripped primitives, and bytes no view covers, are left out.
-            if let Some(Value::Array(views)) = json.get_mut("bufferViews") {
-                for (k, (v, view)) in views.iter_mut().zip(&self.views).enumerate() {
-                    if garbage.dead_views.contains(&k) {
-                        continue;
-                    }
-                    pad4(&mut bin);
-                    let offset = bin.len();
-                    bin.extend_from_slice(&self.buffers[view.buffer][view.offset..view.offset + view.length]);
-                    v["buffer"] = 0.into();
-                    if offset != view.offset {
-                        v["byteOffset"] = offset.into();
-                    }
-                }
-            }
-        } else {
-            let mut base = Vec::with_capacity(self.buffers.len());
-            for b in &self.buffers {
-                pad4(&mut bin);
-                base.push(bin.len());
-                bin.extend_from_slice(b);
-            }
-            if let Some(Value::Array(views)) = json.get_mut("bufferViews") {
-                for (v, view) in views.iter_mut().zip(&self.views) {
-                    let offset = base[view.buffer] + view.offset;
-                    v["buffer"] = 0.into();
-                    if offset != view.offset {
-                        v["byteOffset"] = offset.into();
-                    }
-                }
-            }
-        }
+        let mut out = Build::new(self);
+        out.merge_buffers();
         let stripped: Vec<&ScenePrimitive> = self.primitives.iter().filter(|p| p.strips.is_some()).collect();
-        // (mesh, primitive, restart accessor) of the groups to write.
-        let mut groups: Vec<(usize, usize, usize)> = Vec::new();
         if !stripped.is_empty() {
-            // New views take dead views' numbers first.
-            let mut free_views: std::collections::VecDeque<usize> = garbage.dead_views.iter().copied().collect();
-            let mut accessors = std::mem::take(&mut json["accessors"]);
-            if !accessors.is_array() {
-                accessors = json!([]);
-            }
             // Reordered primitives: their vertex data gathered in the strips' order.
             let mut remapped: Vec<Option<StripSet>> = Vec::with_capacity(stripped.len());
             for sp in &stripped {
-                let Some(order) = &sp.order else {
-                    remapped.push(None);
-                    continue;
-                };
-                let doc = self.doc();
-                for (target, name, a) in vertex_accessors(&self.json, sp) {
-                    let (acc, data) = doc.read_packed(a, &mut |_| Ok(()))?;
-                    let elem = acc.component_size() * acc.components;
-                    let stride = elem.next_multiple_of(4);
-                    pad4(&mut bin);
-                    let start = bin.len();
-                    for &v in order {
-                        bin.extend_from_slice(&data[v as usize * elem..][..elem]);
-                        bin.resize(bin.len() + stride - elem, 0);
-                    }
-                    let mut view =
-                        json!({"buffer": 0, "byteOffset": start, "byteLength": bin.len() - start, "target": 34962});
-                    if stride != elem {
-                        view["byteStride"] = stride.into();
-                    }
-                    let view = match free_views.pop_front() {
-                        Some(v) => {
-                            json["bufferViews"][v] = view;
-                            v
-                        }
-                        None => push_array(&mut json, "bufferViews", view),
-                    };
-                    let list = accessors.as_array_mut().expect("made an array above");
-                    let mut new = list[a].clone();
-                    if let Some(o) = new.as_object_mut() {
-                        o.remove("byteOffset");
-                        o.remove("sparse");
-                    }
-                    new["bufferView"] = view.into();
-                    new["count"] = order.len().into();
-                    if new.get("min").is_some() || new.get("max").is_some() {
-                        let (lo, hi) = bounds(&acc, &data, order);
-                        new["min"] = lo;
-                        new["max"] = hi;
-                    }
-                    let k = if garbage.reused.binary_search(&a).is_ok() {
-                        list[a] = new;
-                        a
-                    } else {
-                        list.push(new);
-                        list.len() - 1
-                    };
-                    let prim = &mut json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
-                    match target {
-                        None => prim["attributes"][name.as_str()] = k.into(),
-                        Some(t) => prim["targets"][t][name.as_str()] = k.into(),
-                    }
-                }
-                let new_id = ids_of(order, sp.mesh.vertex_count());
-                let set = sp.strips.as_ref().expect("filtered above");
-                let strips: Vec<Vec<u32>> =
-                    set.iter().map(|s| s.iter().map(|&v| new_id[v as usize]).collect()).collect();
-                remapped.push(Some(StripSet::from_strips(&strips)));
-            }
-            pad4(&mut bin);
-            let view_start = bin.len();
-            // The new indices go to a dead view's number where there is one.
-            let view = match free_views.pop_front() {
-                Some(v) => v,
-                None => push_array(&mut json, "bufferViews", Value::Null),
-            };
-            // `slot`: an old index accessor to replace (its name kept), else a new one.
-            let mut add = |bin: &mut Vec<u8>, indices: &[u32], wide: bool, slot: Option<usize>| -> usize {
-                pad4(bin);
-                let offset = bin.len() - view_start;
-                for &i in indices {
-                    if wide {
-                        bin.extend_from_slice(&i.to_le_bytes());
-                    } else {
-                        bin.extend_from_slice(&(i as u16).to_le_bytes());
-                    }
-                }
-                let list = accessors.as_array_mut().expect("made an array above");
-                let mut acc = json!({
-                    "bufferView": view, "byteOffset": offset, "componentType": if wide { 5125 } else { 5123 },
-                    "count": indices.len(), "type": "SCALAR",
+                remapped.push(match &sp.order {
+                    Some(order) => Some(out.write_reordered(sp, order)?),
+                    None => None,
                 });
-                match slot {
-                    Some(k) => {
-                        if let Some(name) = list[k].get("name") {
-                            acc["name"] = name.clone();
-                        }
-                        list[k] = acc;
-                        k
-                    }
-                    None => {
-                        list.push(acc);
-                        list.len() - 1
-                    }
-                }
-            };
-            for (sp, remapped) in stripped.iter().zip(&remapped) {
-                let set = remapped.as_ref().or(sp.strips.as_ref()).expect("filtered above");
-                // 65535 is the u16 restart value, never a vertex id.
-                let vertices = sp.order.as_ref().map_or(sp.mesh.vertex_count(), Vec::len);
-                let wide = vertices >= u16::MAX as usize;
-                let old = self.json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index]["indices"].as_u64();
-                let slot = old.map(|a| a as usize).filter(|a| garbage.reused.contains(a));
-                let stitched = add(&mut bin, &strip::encode_stitched(set), wide, slot);
-                let prim = &mut json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
-                prim["indices"] = stitched.into();
-                prim["mode"] = 5.into();
-                if self.restart_groups && sp.targets == 0 {
-                    let restart = if wide { u32::MAX } else { u16::MAX as u32 };
-                    let list: StripSet =
-                        StripSet::from_strips(&set.iter().filter(|s| s.len() >= 3).collect::<Vec<_>>());
-                    let acc = add(&mut bin, &strip::encode_restart(&list, restart), wide, None);
-                    groups.push((sp.mesh_index, sp.primitive_index, acc));
-                }
             }
-            json["accessors"] = accessors;
-            let new_view =
-                json!({"buffer": 0, "byteOffset": view_start, "byteLength": bin.len() - view_start, "target": 34963});
-            // Other dead views keep their numbers, over the new indices (nothing uses them).
-            for &v in &free_views {
-                json["bufferViews"][v] = new_view.clone();
-            }
-            json["bufferViews"][view] = new_view;
-            // Old restart groups naming a rewritten primitive would draw stale indices.
-            let mut meshes: Vec<usize> = stripped.iter().map(|p| p.mesh_index).collect();
-            meshes.dedup();
-            for m in meshes {
-                let rewritten: Vec<usize> =
-                    stripped.iter().filter(|p| p.mesh_index == m).map(|p| p.primitive_index).collect();
-                let mesh = &mut json["meshes"][m];
-                let mut kept: Vec<Value> = mesh
-                    .pointer(&format!("/extensions/{RESTART_EXTENSION}/primitiveGroups"))
-                    .and_then(Value::as_array)
-                    .map(|g| {
-                        g.iter()
-                            .filter(|g| {
-                                !g.get("primitives").and_then(Value::as_array).is_some_and(|ps| {
-                                    ps.iter().any(|p| p.as_u64().is_some_and(|p| rewritten.contains(&(p as usize))))
-                                })
-                            })
-                            .cloned()
-                            .collect()
-                    })
-                    .unwrap_or_default();
-                for &(_, p, acc) in groups.iter().filter(|g| g.0 == m) {
-                    kept.push(json!({"primitives": [p], "indices": acc}));
-                }
-                let has_ext = mesh.pointer(&format!("/extensions/{RESTART_EXTENSION}")).is_some();
-                if kept.is_empty() {
-                    if has_ext {
-                        if let Some(Value::Object(ext)) = mesh.get_mut("extensions") {
-                            ext.remove(RESTART_EXTENSION);
-                            if ext.is_empty() {
-                                mesh.as_object_mut().expect("a mesh is an object").remove("extensions");
-                            }
-                        }
-                    }
-                } else {
-                    if !mesh.get("extensions").is_some_and(Value::is_object) {
-                        mesh["extensions"] = json!({});
-                    }
-                    mesh["extensions"][RESTART_EXTENSION] = json!({"primitiveGroups": kept});
-                }
-            }
+            let groups = out.write_indices(&stripped, &remapped);
+            out.write_restart_groups(&stripped, &groups);
         }
-        let used = json
-            .get("meshes")
-            .and_then(Value::as_array)
-            .is_some_and(|ms| ms.iter().any(|m| m.pointer(&format!("/extensions/{RESTART_EXTENSION}")).is_some()));
-        let listed = json
-            .get("extensionsUsed")
-            .and_then(Value::as_array)
-            .is_some_and(|l| l.iter().any(|e| e == RESTART_EXTENSION));
-        if used && !listed {
-            push_array(&mut json, "extensionsUsed", RESTART_EXTENSION.into());
-        } else if !used && listed {
-            if let Some(Value::Array(l)) = json.get_mut("extensionsUsed") {
-                l.retain(|e| e != RESTART_EXTENSION);
-            }
-        }
-        if bin.is_empty() && self.buffers.is_empty() {
-            return Ok((json, bin));
-        }
-        let mut buffer = match self.json.pointer("/buffers/0") {
-            Some(Value::Object(b)) => b.clone(),
-            _ => serde_json::Map::new(),
-        };
-        buffer.remove("uri");
-        pad4(&mut bin);
-        buffer.insert("byteLength".into(), bin.len().into());
-        json["buffers"] = json!([buffer]);
-        Ok((json, bin))
+        out.list_restart_extension();
+        Ok(out.finish())
     }
 
     /// What writing may drop: the index accessors only stripped primitives use
@@ -777,6 +556,304 @@ struct Garbage {
     reused: Vec<usize>,
     /// Views (sorted) only reused accessors referred to.
     dead_views: Vec<usize>,
+}
+
+/// A document being written by [`Scene::build`]: its JSON and its one binary buffer,
+/// each step of the build one method.
+struct Build<'s> {
+    scene: &'s Scene,
+    garbage: Garbage,
+    json: Value,
+    bin: Vec<u8>,
+    /// Dead views' numbers, which new views take first.
+    free_views: VecDeque<usize>,
+}
+
+impl<'s> Build<'s> {
+    fn new(scene: &'s Scene) -> Build<'s> {
+        let garbage = scene.garbage();
+        let free_views = garbage.dead_views.iter().copied().collect();
+        Build { scene, garbage, json: scene.json.clone(), bin: Vec::new(), free_views }
+    }
+
+    /// Merges the buffers into `bin`, rewriting the views' `buffer` and `byteOffset`:
+    /// when garbage is collected each live view's bytes one after the other (the old
+    /// index data of stripped primitives, and bytes no view covers, are left out),
+    /// else every old buffer whole.
+    fn merge_buffers(&mut self) {
+        let (scene, collect) = (self.scene, self.garbage.collect);
+        let bin = &mut self.bin;
+        // Where each old buffer starts in `bin`, when they are copied whole.
+        let mut base = Vec::new();
+        if !collect {
+            for b in &scene.buffers {
+                pad4(bin);
+                base.push(bin.len());
+                bin.extend_from_slice(b);
+            }
+        }
+        let Some(Value::Array(views)) = self.json.get_mut("bufferViews") else { return };
+        for (k, (v, view)) in views.iter_mut().zip(&scene.views).enumerate() {
+            let offset = if collect {
+                if self.garbage.dead_views.contains(&k) {
+                    continue;
+                }
+                pad4(bin);
+                let offset = bin.len();
+                bin.extend_from_slice(&scene.buffers[view.buffer][view.offset..view.offset + view.length]);
+                offset
+            } else {
+                base[view.buffer] + view.offset
+            };
+            v["buffer"] = 0.into();
+            if offset != view.offset {
+                v["byteOffset"] = offset.into();
+            }
+        }
+    }
+
+    /// The accessor list of the document being written.
+    fn accessors(&mut self) -> &mut Vec<Value> {
+        if !self.json["accessors"].is_array() {
+            self.json["accessors"] = json!([]);
+        }
+        self.json["accessors"].as_array_mut().expect("made an array above")
+    }
+
+    /// Adds `view` to the document, at a dead view's number where there is one.
+    fn add_view(&mut self, view: Value) -> usize {
+        match self.free_views.pop_front() {
+            Some(v) => {
+                self.json["bufferViews"][v] = view;
+                v
+            }
+            None => push_array(&mut self.json, "bufferViews", view),
+        }
+    }
+
+    /// Writes the vertex data of `sp` (its attributes and morph targets) gathered in
+    /// `order` to new views and accessors (`min` / `max` recomputed; an accessor only
+    /// this primitive used keeps its number), points the primitive at them, and returns
+    /// its strips in the new vertex ids.
+    fn write_reordered(&mut self, sp: &ScenePrimitive, order: &[u32]) -> Result<StripSet> {
+        let doc = self.scene.doc();
+        for (target, name, a) in vertex_accessors(&self.scene.json, sp) {
+            let (acc, data) = doc.read_packed(a, &mut |_| Ok(()))?;
+            let elem = acc.component_size() * acc.components;
+            let stride = elem.next_multiple_of(4);
+            pad4(&mut self.bin);
+            let start = self.bin.len();
+            for &v in order {
+                self.bin.extend_from_slice(&data[v as usize * elem..][..elem]);
+                self.bin.resize(self.bin.len() + stride - elem, 0);
+            }
+            let mut view =
+                json!({"buffer": 0, "byteOffset": start, "byteLength": self.bin.len() - start, "target": 34962});
+            if stride != elem {
+                view["byteStride"] = stride.into();
+            }
+            let view = self.add_view(view);
+            let reuse = self.garbage.reused.binary_search(&a).is_ok();
+            let list = self.accessors();
+            let mut new = list[a].clone();
+            if let Some(o) = new.as_object_mut() {
+                o.remove("byteOffset");
+                o.remove("sparse");
+            }
+            new["bufferView"] = view.into();
+            new["count"] = order.len().into();
+            if new.get("min").is_some() || new.get("max").is_some() {
+                let (lo, hi) = bounds(&acc, &data, order);
+                new["min"] = lo;
+                new["max"] = hi;
+            }
+            let k = if reuse {
+                list[a] = new;
+                a
+            } else {
+                list.push(new);
+                list.len() - 1
+            };
+            let prim = &mut self.json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
+            match target {
+                None => prim["attributes"][name.as_str()] = k.into(),
+                Some(t) => prim["targets"][t][name.as_str()] = k.into(),
+            }
+        }
+        let new_id = ids_of(order, sp.mesh.vertex_count());
+        let set = sp.strips.as_ref().expect("only stripped primitives are written");
+        let strips: Vec<Vec<u32>> = set.iter().map(|s| s.iter().map(|&v| new_id[v as usize]).collect()).collect();
+        Ok(StripSet::from_strips(&strips))
+    }
+
+    /// Writes every stripped primitive's stitched indices (mode 5, taking its old index
+    /// accessor's number where garbage is collected) and, where it gets one, its
+    /// restart list, all in one new view (at a dead view's number where there is one;
+    /// the other dead views keep their numbers over it). `remapped`: each primitive's
+    /// strips in its new vertex ids, if reordered. Returns the restart groups to add as
+    /// (mesh, primitive, restart accessor).
+    fn write_indices(&mut self, stripped: &[&ScenePrimitive], remapped: &[Option<StripSet>]) -> Vec<[usize; 3]> {
+        pad4(&mut self.bin);
+        let view_start = self.bin.len();
+        let view = match self.free_views.pop_front() {
+            Some(v) => v,
+            None => push_array(&mut self.json, "bufferViews", Value::Null),
+        };
+        let mut groups = Vec::new();
+        for (sp, remapped) in stripped.iter().zip(remapped) {
+            let set = remapped.as_ref().or(sp.strips.as_ref()).expect("only stripped primitives are written");
+            // 65535 is the u16 restart value, never a vertex id.
+            let vertices = sp.order.as_ref().map_or(sp.mesh.vertex_count(), Vec::len);
+            let wide = vertices >= u16::MAX as usize;
+            let old = self.scene.json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index]["indices"].as_u64();
+            let slot = old.map(|a| a as usize).filter(|a| self.garbage.reused.contains(a));
+            let at = IndexView { view, start: view_start, wide };
+            let stitched = self.add_indices(at, &strip::encode_stitched(set), slot);
+            let prim = &mut self.json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
+            prim["indices"] = stitched.into();
+            prim["mode"] = 5.into();
+            if self.scene.restart_groups && sp.targets == 0 {
+                let restart = if wide { u32::MAX } else { u16::MAX as u32 };
+                let list: StripSet = StripSet::from_strips(&set.iter().filter(|s| s.len() >= 3).collect::<Vec<_>>());
+                let acc = self.add_indices(at, &strip::encode_restart(&list, restart), None);
+                groups.push([sp.mesh_index, sp.primitive_index, acc]);
+            }
+        }
+        let new_view = json!({
+            "buffer": 0, "byteOffset": view_start, "byteLength": self.bin.len() - view_start, "target": 34963,
+        });
+        // Other dead views keep their numbers, over the new indices (nothing uses them).
+        for &v in &self.free_views {
+            self.json["bufferViews"][v] = new_view.clone();
+        }
+        self.json["bufferViews"][view] = new_view;
+        groups
+    }
+
+    /// Appends `indices` to the index view `at` and returns their accessor: `slot`, an
+    /// old index accessor to replace (its name kept), else a new one.
+    fn add_indices(&mut self, at: IndexView, indices: &[u32], slot: Option<usize>) -> usize {
+        pad4(&mut self.bin);
+        let offset = self.bin.len() - at.start;
+        for &i in indices {
+            if at.wide {
+                self.bin.extend_from_slice(&i.to_le_bytes());
+            } else {
+                self.bin.extend_from_slice(&(i as u16).to_le_bytes());
+            }
+        }
+        let mut acc = json!({
+            "bufferView": at.view, "byteOffset": offset, "componentType": if at.wide { 5125 } else { 5123 },
+            "count": indices.len(), "type": "SCALAR",
+        });
+        let list = self.accessors();
+        match slot {
+            Some(k) => {
+                if let Some(name) = list[k].get("name") {
+                    acc["name"] = name.clone();
+                }
+                list[k] = acc;
+                k
+            }
+            None => {
+                list.push(acc);
+                list.len() - 1
+            }
+        }
+    }
+
+    /// Sets the restart groups of every mesh with a stripped primitive: `groups`
+    /// (mesh, primitive, accessor) added, old groups naming a rewritten primitive
+    /// dropped (they would draw stale indices), the extension object removed when no
+    /// group is left.
+    fn write_restart_groups(&mut self, stripped: &[&ScenePrimitive], groups: &[[usize; 3]]) {
+        let mut meshes: Vec<usize> = stripped.iter().map(|p| p.mesh_index).collect();
+        meshes.dedup();
+        for m in meshes {
+            let rewritten: Vec<usize> =
+                stripped.iter().filter(|p| p.mesh_index == m).map(|p| p.primitive_index).collect();
+            let mesh = &mut self.json["meshes"][m];
+            let mut kept: Vec<Value> = mesh
+                .pointer(&format!("/extensions/{RESTART_EXTENSION}/primitiveGroups"))
+                .and_then(Value::as_array)
+                .map(|g| {
+                    g.iter()
+                        .filter(|g| {
+                            !g.get("primitives").and_then(Value::as_array).is_some_and(|ps| {
+                                ps.iter().any(|p| p.as_u64().is_some_and(|p| rewritten.contains(&(p as usize))))
+                            })
+                        })
+                        .cloned()
+                        .collect()
+                })
+                .unwrap_or_default();
+            for &[_, p, acc] in groups.iter().filter(|g| g[0] == m) {
+                kept.push(json!({"primitives": [p], "indices": acc}));
+            }
+            let has_ext = mesh.pointer(&format!("/extensions/{RESTART_EXTENSION}")).is_some();
+            if kept.is_empty() {
+                if has_ext {
+                    if let Some(Value::Object(ext)) = mesh.get_mut("extensions") {
+                        ext.remove(RESTART_EXTENSION);
+                        if ext.is_empty() {
+                            mesh.as_object_mut().expect("a mesh is an object").remove("extensions");
+                        }
+                    }
+                }
+            } else {
+                if !mesh.get("extensions").is_some_and(Value::is_object) {
+                    mesh["extensions"] = json!({});
+                }
+                mesh["extensions"][RESTART_EXTENSION] = json!({"primitiveGroups": kept});
+            }
+        }
+    }
+
+    /// Lists the restart extension in `extensionsUsed` exactly when a mesh uses it.
+    fn list_restart_extension(&mut self) {
+        let json = &mut self.json;
+        let used = json
+            .get("meshes")
+            .and_then(Value::as_array)
+            .is_some_and(|ms| ms.iter().any(|m| m.pointer(&format!("/extensions/{RESTART_EXTENSION}")).is_some()));
+        let listed = json
+            .get("extensionsUsed")
+            .and_then(Value::as_array)
+            .is_some_and(|l| l.iter().any(|e| e == RESTART_EXTENSION));
+        if used && !listed {
+            push_array(json, "extensionsUsed", RESTART_EXTENSION.into());
+        } else if !used && listed {
+            if let Some(Value::Array(l)) = json.get_mut("extensionsUsed") {
+                l.retain(|e| e != RESTART_EXTENSION);
+            }
+        }
+    }
+
+    /// The JSON with its one buffer described (the first buffer's other properties
+    /// kept, its `uri` left for the container to set), and the buffer's bytes.
+    fn finish(mut self) -> (Value, Vec<u8>) {
+        if self.bin.is_empty() && self.scene.buffers.is_empty() {
+            return (self.json, self.bin);
+        }
+        let mut buffer = match self.scene.json.pointer("/buffers/0") {
+            Some(Value::Object(b)) => b.clone(),
+            _ => serde_json::Map::new(),
+        };
+        buffer.remove("uri");
+        pad4(&mut self.bin);
+        buffer.insert("byteLength".into(), self.bin.len().into());
+        self.json["buffers"] = json!([buffer]);
+        (self.json, self.bin)
+    }
+}
+
+/// Where [`Build::add_indices`] appends: the new index view, its start in the buffer,
+/// and the index width (`u32` when wide, else `u16`).
+#[derive(Clone, Copy)]
+struct IndexView {
+    view: usize,
+    start: usize,
+    wide: bool,
 }
 
 /// The scene format a path names.

@@ -1,19 +1,15 @@
 //! The Khronos glTF validator on files the tests wrote: `.ci/validate-gltf.js` over the
 //! npm package `gltf-validator`, which `.ci/run` installs into `.ci/node_modules`.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
-
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 /// Runs the validator on `files` and panics naming the errors if any file has one.
 /// Returns the per-file reports (JSON), or `None` after printing why it skipped (no
 /// `node`, or the package not installed: run `.ci/run` or
 /// `npm install --prefix .ci gltf-validator`).
 pub fn validate(files: &[&Path]) -> Option<Vec<serde_json::Value>> {
-    let root = repo_root();
+    let root = crate::repo_root();
     let script = root.join(".ci/validate-gltf.js");
     if !root.join(".ci/node_modules/gltf-validator/package.json").is_file() {
         eprintln!("skip: gltf-validator is not installed in .ci/node_modules (.ci/run installs it)");

@@ -9,7 +9,7 @@
 //! its own name. List properties of vertices are skipped (not kept). The `face`
 //! element's `vertex_indices` / `vertex_index` list (any count and index types; other
 //! face properties skipped), and the `tristrips` element (one or more int lists in
-//! which `-1` ends a strip, decoded by the METRICS.md rule with degenerate triangles
+//! which `-1` ends a strip, decoded by the strip reading rule (docs/metrics.md) with degenerate triangles
 //! skipped). Other elements are skipped. Before any element is read, its announced
 //! count times its smallest possible record size is checked against the bytes left.
 //!
@@ -22,44 +22,17 @@
 //! 255 vertices), or with strips one `tristrips` record whose int list ends every
 //! strip with `-1`. Face groups are not written (PLY has no materials).
 
+mod body;
+
 use super::common::{
-    capped, close_face, ends_line, index_message, is_space, line_at, line_end, parse_count, parse_f32, parse_i64,
-    push_strip_triangles, show, sniff, tokens, Lines, Src,
+    capped, close_face, index_message, line_at, parse_count, push_strip_triangles, show, sniff, tokens, Lines, Src,
 };
 use super::obj::{push_f32, push_face_lines, push_u64};
 use crate::error::{Error, Result};
 use crate::mesh::{Attribute, Mesh, Scalar};
 use crate::strip::StripSet;
+use body::{parse_type, type_name, Ascii, Binary, Body};
 use std::path::Path;
-
-/// The attribute type of a PLY type name (`uchar`, `float32`, ...).
-fn parse_type(name: &[u8]) -> Option<Scalar> {
-    Some(match name {
-        b"char" | b"int8" => Scalar::I8,
-        b"uchar" | b"uint8" => Scalar::U8,
-        b"short" | b"int16" => Scalar::I16,
-        b"ushort" | b"uint16" => Scalar::U16,
-        b"int" | b"int32" => Scalar::I32,
-        b"uint" | b"uint32" => Scalar::U32,
-        b"float" | b"float32" => Scalar::F32,
-        b"double" | b"float64" => Scalar::F64,
-        _ => return None,
-    })
-}
-
-/// The PLY name of an attribute type.
-fn type_name(s: Scalar) -> &'static str {
-    match s {
-        Scalar::I8 => "char",
-        Scalar::U8 => "uchar",
-        Scalar::I16 => "short",
-        Scalar::U16 => "ushort",
-        Scalar::I32 => "int",
-        Scalar::U32 => "uint",
-        Scalar::F32 => "float",
-        Scalar::F64 => "double",
-    }
-}
 
 #[derive(Clone, Copy, Debug)]
 enum Kind {
@@ -192,254 +165,6 @@ fn parse_header(src: Src, data: &[u8]) -> Result<Header> {
     Ok(Header { encoding, elements, body: lines.offset(), lines: end_line })
 }
 
-/// The body of a PLY file, read value by value.
-trait Body {
-    /// Reads a value as a coordinate.
-    fn real(&mut self, s: Scalar) -> Result<f32, String>;
-    /// Reads an integer value (a list count or an index).
-    fn int(&mut self, s: Scalar) -> Result<i64, String>;
-    /// Skips a value.
-    fn skip(&mut self, s: Scalar) -> Result<(), String>;
-    /// Reads a value as it is, into `out` (`s.size()` bytes, little-endian).
-    fn raw(&mut self, s: Scalar, out: &mut [u8]) -> Result<(), String>;
-    /// Where the reader is, for messages: "line N" or "byte N".
-    fn at(&self) -> String;
-    /// Bytes not yet read.
-    fn remaining(&self) -> usize;
-    /// Checks that `count` values of type `s` can still follow.
-    fn check_list(&self, count: u64, s: Scalar) -> Result<(), String>;
-    /// After the last record: where and what the first extra data is, if anything but
-    /// whitespace follows.
-    fn extra(&mut self) -> Option<(String, String)>;
-}
-
-struct Ascii<'a> {
-    data: &'a [u8],
-    pos: usize,
-    line: usize,
-    /// Line of the last token read.
-    token_line: usize,
-}
-
-impl<'a> Ascii<'a> {
-    fn token(&mut self) -> Result<&'a [u8], String> {
-        let d = self.data;
-        while self.pos < d.len() && (is_space(d[self.pos]) || d[self.pos] == b'\n') {
-            self.line += ends_line(d, self.pos) as usize;
-            self.pos += 1;
-        }
-        let start = self.pos;
-        while self.pos < d.len() && !is_space(d[self.pos]) && d[self.pos] != b'\n' {
-            self.pos += 1;
-        }
-        if start == self.pos {
-            // Reported at the line of the last value read.
-            return Err("the file ends early (truncated)".into());
-        }
-        self.token_line = self.line;
-        Ok(&d[start..self.pos])
-    }
-}
-
-impl Body for Ascii<'_> {
-    fn real(&mut self, _s: Scalar) -> Result<f32, String> {
-        let tok = self.token()?;
-        let v = parse_f32(tok).ok_or_else(|| format!("malformed number '{}'", show(tok)))?;
-        if !v.is_finite() {
-            return Err(format!("coordinate '{}' is NaN or infinite", show(tok)));
-        }
-        Ok(v)
-    }
-    fn int(&mut self, s: Scalar) -> Result<i64, String> {
-        let tok = self.token()?;
-        match parse_i64(tok) {
-            Some(v) => Ok(v),
-            None if s.is_float() => match super::common::parse_f64(tok) {
-                Some(v) if v.fract() == 0.0 && v.abs() < 1e15 => Ok(v as i64),
-                _ => Err(format!("'{}' is not an integer", show(tok))),
-            },
-            None => Err(format!("malformed integer '{}'", show(tok))),
-        }
-    }
-    fn skip(&mut self, _s: Scalar) -> Result<(), String> {
-        self.token().map(|_| ())
-    }
-    fn raw(&mut self, s: Scalar, out: &mut [u8]) -> Result<(), String> {
-        let tok = self.token()?;
-        let bad = || format!("'{}' is not a {} value", show(tok), type_name(s));
-        match s {
-            Scalar::F32 => out.copy_from_slice(&parse_f32(tok).ok_or_else(bad)?.to_le_bytes()),
-            Scalar::F64 => out.copy_from_slice(&super::common::parse_f64(tok).ok_or_else(bad)?.to_le_bytes()),
-            _ => {
-                let v = parse_i64(tok).ok_or_else(bad)?;
-                let (lo, hi) = match s {
-                    Scalar::I8 => (i8::MIN as i64, i8::MAX as i64),
-                    Scalar::U8 => (0, u8::MAX as i64),
-                    Scalar::I16 => (i16::MIN as i64, i16::MAX as i64),
-                    Scalar::U16 => (0, u16::MAX as i64),
-                    Scalar::I32 => (i32::MIN as i64, i32::MAX as i64),
-                    _ => (0, u32::MAX as i64),
-                };
-                if v < lo || v > hi {
-                    return Err(format!("{v} is out of range for a {} property", type_name(s)));
-                }
-                out.copy_from_slice(&v.to_le_bytes()[..s.size()]);
-            }
-        }
-        Ok(())
-    }
-    fn at(&self) -> String {
-        line_at(self.token_line)
-    }
-    fn remaining(&self) -> usize {
-        self.data.len() - self.pos
-    }
-    fn check_list(&self, count: u64, _s: Scalar) -> Result<(), String> {
-        // Every value takes at least one digit and one separator (the last may end the file).
-        if count.saturating_mul(2) > self.remaining() as u64 + 1 {
-            return Err(format!("a list of {count} values cannot fit in the {} bytes left", self.remaining()));
-        }
-        Ok(())
-    }
-    fn extra(&mut self) -> Option<(String, String)> {
-        let tok = self.token().ok()?;
-        let start = tok.as_ptr() as usize - self.data.as_ptr() as usize;
-        let rest = &self.data[start..];
-        let line = &rest[..line_end(rest).map_or(rest.len(), |(i, _)| i)];
-        Some((line_at(self.token_line), format!("'{}'", show(line))))
-    }
-}
-
-struct Binary<'a> {
-    data: &'a [u8],
-    pos: usize,
-    big: bool,
-}
-
-impl<'a> Binary<'a> {
-    #[inline]
-    fn bytes<const N: usize>(&mut self) -> Result<[u8; N], String> {
-        let end = self.pos + N;
-        let b: [u8; N] = self
-            .data
-            .get(self.pos..end)
-            .and_then(|s| s.try_into().ok())
-            .ok_or_else(|| format!("the file ends early (truncated at byte {})", self.data.len()))?;
-        self.pos = end;
-        Ok(b)
-    }
-
-    #[inline]
-    fn value(&mut self, s: Scalar) -> Result<f64, String> {
-        macro_rules! num {
-            ($t:ty, $n:literal) => {{
-                let b = self.bytes::<$n>()?;
-                (if self.big { <$t>::from_be_bytes(b) } else { <$t>::from_le_bytes(b) }) as f64
-            }};
-        }
-        Ok(match s {
-            Scalar::I8 => num!(i8, 1),
-            Scalar::U8 => num!(u8, 1),
-            Scalar::I16 => num!(i16, 2),
-            Scalar::U16 => num!(u16, 2),
-            Scalar::I32 => num!(i32, 4),
-            Scalar::U32 => num!(u32, 4),
-            Scalar::F32 => num!(f32, 4),
-            Scalar::F64 => num!(f64, 8),
-        })
-    }
-}
-
-impl Body for Binary<'_> {
-    #[inline]
-    fn real(&mut self, s: Scalar) -> Result<f32, String> {
-        let v = if s == Scalar::F32 {
-            let b = self.bytes::<4>()?;
-            if self.big {
-                f32::from_be_bytes(b)
-            } else {
-                f32::from_le_bytes(b)
-            }
-        } else {
-            self.value(s)? as f32
-        };
-        if !v.is_finite() {
-            return Err(format!("coordinate {v} is NaN or infinite"));
-        }
-        Ok(v)
-    }
-    #[inline]
-    fn int(&mut self, s: Scalar) -> Result<i64, String> {
-        macro_rules! int {
-            ($t:ty, $n:literal) => {{
-                let b = self.bytes::<$n>()?;
-                Ok((if self.big { <$t>::from_be_bytes(b) } else { <$t>::from_le_bytes(b) }) as i64)
-            }};
-        }
-        match s {
-            Scalar::I8 => int!(i8, 1),
-            Scalar::U8 => int!(u8, 1),
-            Scalar::I16 => int!(i16, 2),
-            Scalar::U16 => int!(u16, 2),
-            Scalar::I32 => int!(i32, 4),
-            Scalar::U32 => int!(u32, 4),
-            Scalar::F32 | Scalar::F64 => {
-                let v = self.value(s)?;
-                if v.fract() != 0.0 || v.abs() >= 1e15 {
-                    return Err(format!("{v} is not an integer"));
-                }
-                Ok(v as i64)
-            }
-        }
-    }
-    #[inline]
-    fn skip(&mut self, s: Scalar) -> Result<(), String> {
-        let end = self.pos + s.size();
-        if end > self.data.len() {
-            return Err(format!("the file ends early (truncated at byte {})", self.data.len()));
-        }
-        self.pos = end;
-        Ok(())
-    }
-    fn raw(&mut self, s: Scalar, out: &mut [u8]) -> Result<(), String> {
-        let n = s.size();
-        let b = self
-            .data
-            .get(self.pos..self.pos + n)
-            .ok_or_else(|| format!("the file ends early (truncated at byte {})", self.data.len()))?;
-        out.copy_from_slice(b);
-        if self.big {
-            out.reverse();
-        }
-        self.pos += n;
-        Ok(())
-    }
-    fn at(&self) -> String {
-        format!("byte {}", self.pos)
-    }
-    fn remaining(&self) -> usize {
-        self.data.len() - self.pos
-    }
-    fn check_list(&self, count: u64, s: Scalar) -> Result<(), String> {
-        let need = count.saturating_mul(s.size() as u64);
-        if need > self.remaining() as u64 {
-            return Err(format!(
-                "a list of {count} values needs {need} bytes but only {} are left (truncated)",
-                self.remaining()
-            ));
-        }
-        Ok(())
-    }
-    fn extra(&mut self) -> Option<(String, String)> {
-        // A trailing line end (some writers add one) is tolerated.
-        let rest = &self.data[self.pos..];
-        if rest.iter().all(|&b| is_space(b) || b == b'\n') {
-            return None;
-        }
-        Some((format!("byte {}", self.pos), format!("{} bytes", rest.len())))
-    }
-}
-
 /// Parses a PLY file held in memory; `positions_only`: vertex properties other than
 /// x, y, z skipped.
 pub(crate) fn read(path: &Path, data: &[u8], positions_only: bool) -> Result<Mesh> {
@@ -460,8 +185,11 @@ pub(crate) fn read(path: &Path, data: &[u8], positions_only: bool) -> Result<Mes
     }
 }
 
+/// Reads the body after the header: each element in the header's order, the first
+/// `vertex` element into positions and attributes, `face` and `tristrips` into faces,
+/// the rest skipped; then checks that the announced vertices were read and nothing
+/// follows the last record.
 fn read_body<B: Body>(src: Src, header: &Header, r: &mut B, positions_only: bool) -> Result<Mesh> {
-    let binary = header.encoding != Encoding::Ascii;
     let vertex_count = header.elements.iter().find(|e| e.name == "vertex").map_or(0, |e| e.count);
     if vertex_count > u32::MAX as u64 {
         return Err(src.err("header", format!("{vertex_count} vertices do not fit 32-bit indices")));
@@ -482,159 +210,18 @@ fn read_body<B: Body>(src: Src, header: &Header, r: &mut B, positions_only: bool
         if element.props.is_empty() || element.count == 0 {
             continue; // records without properties take no bytes
         }
-        let min_record: usize = element.props.iter().map(|p| p.kind.min_size()).sum();
-        // An ASCII value takes at least two bytes (a digit and a separator).
-        let min_record = if binary { min_record } else { 2 * element.props.len() - 1 };
-        let need = (element.count as u128) * (min_record as u128);
-        if need > r.remaining() as u128 + u128::from(!binary) {
-            return Err(src.err(
-                format!("element '{}' ({})", element.name, r.at()),
-                format!(
-                    "the header announces {} '{}' records, at least {need} bytes, but only {} bytes are left",
-                    element.count,
-                    element.name,
-                    r.remaining()
-                ),
-            ));
-        }
-        let at = |r: &B, record: u64| format!("{} {record} ({})", element.name, r.at());
+        let min_record = check_room(src, element, r, header.encoding != Encoding::Ascii)?;
         match element.name.as_str() {
             "vertex" if !vertices_read => {
                 vertices_read = true;
-                let slot = |n: &str| element.props.iter().position(|p| p.name == n);
-                let (Some(x), Some(y), Some(z)) = (slot("x"), slot("y"), slot("z")) else {
-                    return Err(src.err("header", "the vertex element lacks an x, y or z property"));
-                };
-                if element
-                    .props
-                    .iter()
-                    .any(|p| matches!(p.kind, Kind::List { .. }) && ["x", "y", "z"].contains(&p.name.as_str()))
-                {
-                    return Err(src.err("header", "vertex x, y, z must be scalar properties"));
-                }
-                let reserve = capped(element.count, r.remaining() + 1, min_record.max(1));
-                mesh.positions.reserve_exact(reserve);
-                let (mut attributes, slots) = if positions_only {
-                    (Vec::new(), vec![None; element.props.len()])
-                } else {
-                    vertex_attributes(&element.props, [x, y, z], reserve)
-                };
-                for v in 0..element.count {
-                    let mut p = [0.0f32; 3];
-                    for a in &mut attributes {
-                        a.data.resize(a.data.len() + a.stride(), 0);
-                    }
-                    for (k, prop) in element.props.iter().enumerate() {
-                        let res = match (prop.kind, slots[k]) {
-                            (Kind::Scalar(s), _) if k == x => r.real(s).map(|c| p[0] = c),
-                            (Kind::Scalar(s), _) if k == y => r.real(s).map(|c| p[1] = c),
-                            (Kind::Scalar(s), _) if k == z => r.real(s).map(|c| p[2] = c),
-                            (Kind::Scalar(s), Some((a, c))) => {
-                                let at = &mut attributes[a];
-                                let start = v as usize * at.stride() + c * s.size();
-                                r.raw(s, &mut at.data[start..start + s.size()])
-                            }
-                            _ => skip_property(r, prop.kind),
-                        };
-                        res.map_err(|w| src.err(at(r, v), w))?;
-                    }
-                    mesh.positions.push(p);
-                }
-                for a in &mut attributes {
-                    if a.name == "TEXCOORD_0" {
-                        for v in 0..a.len() {
-                            a.set(v, 1, 1.0 - a.get(v, 1));
-                        }
-                    }
-                }
-                mesh.attributes = attributes;
+                read_vertices(src, element, r, min_record, positions_only, &mut mesh)?;
             }
-            "face" => {
-                let list = element
-                    .props
-                    .iter()
-                    .position(|p| {
-                        (p.name == "vertex_indices" || p.name == "vertex_index") && matches!(p.kind, Kind::List { .. })
-                    })
-                    .ok_or_else(|| src.err("header", "the face element has no 'vertex_indices' list"))?;
-                let reserve = capped(element.count, r.remaining() + 1, min_record.max(1));
-                mesh.face_offsets.reserve(reserve);
-                mesh.face_indices.reserve(reserve.saturating_mul(3));
-                for f in 0..element.count {
-                    for (k, prop) in element.props.iter().enumerate() {
-                        match prop.kind {
-                            Kind::List { count, item } if k == list => {
-                                let n = r.int(count).map_err(|w| src.err(at(r, f), w))?;
-                                if n < 3 {
-                                    return Err(
-                                        src.err(at(r, f), format!("face {f} has {n} vertices, needs at least 3"))
-                                    );
-                                }
-                                r.check_list(n as u64, item).map_err(|w| src.err(at(r, f), w))?;
-                                for _ in 0..n {
-                                    let i = r.int(item).map_err(|w| src.err(at(r, f), w))?;
-                                    if i < 0 || i as u64 >= vertex_count {
-                                        return Err(src.err(at(r, f), index_message(f, i, nv)));
-                                    }
-                                    mesh.face_indices.push(i as u32);
-                                }
-                                close_face(&mut mesh).map_err(|w| src.err(at(r, f), w))?;
-                            }
-                            kind => skip_property(r, kind).map_err(|w| src.err(at(r, f), w))?,
-                        }
-                    }
-                }
-            }
-            "tristrips" => {
-                let list = element
-                    .props
-                    .iter()
-                    .position(|p| matches!(p.kind, Kind::List { .. }))
-                    .ok_or_else(|| src.err("header", "the tristrips element has no list property"))?;
-                let mut strip: Vec<u32> = Vec::new();
-                for s in 0..element.count {
-                    for (k, prop) in element.props.iter().enumerate() {
-                        match prop.kind {
-                            Kind::List { count, item } if k == list => {
-                                let n = r.int(count).map_err(|w| src.err(at(r, s), w))?;
-                                if n < 0 {
-                                    return Err(src.err(at(r, s), format!("negative list length {n}")));
-                                }
-                                r.check_list(n as u64, item).map_err(|w| src.err(at(r, s), w))?;
-                                strip.clear();
-                                for _ in 0..n {
-                                    let i = r.int(item).map_err(|w| src.err(at(r, s), w))?;
-                                    // -1 ends a strip (also as all ones in an unsigned type).
-                                    let restart = i == -1
-                                        || (item == Scalar::U32 && i == u32::MAX as i64)
-                                        || (item == Scalar::U16 && i == u16::MAX as i64)
-                                        || (item == Scalar::U8 && i == u8::MAX as i64);
-                                    if restart {
-                                        push_strip_triangles(&mut mesh, &strip).map_err(|w| src.err(at(r, s), w))?;
-                                        strip.clear();
-                                    } else if i < 0 || i as u64 >= vertex_count {
-                                        return Err(src.err(
-                                            at(r, s),
-                                            format!(
-                                                "strip index {i} refers to a vertex but the file has {nv} vertices"
-                                            ),
-                                        ));
-                                    } else {
-                                        strip.push(i as u32);
-                                    }
-                                }
-                                push_strip_triangles(&mut mesh, &strip).map_err(|w| src.err(at(r, s), w))?;
-                                strip.clear();
-                            }
-                            kind => skip_property(r, kind).map_err(|w| src.err(at(r, s), w))?,
-                        }
-                    }
-                }
-            }
+            "face" => read_faces(src, element, r, min_record, vertex_count, &mut mesh)?,
+            "tristrips" => read_tristrips(src, element, r, vertex_count, &mut mesh)?,
             _ => {
                 for e in 0..element.count {
                     for prop in &element.props {
-                        skip_property(r, prop.kind).map_err(|w| src.err(at(r, e), w))?;
+                        skip_property(r, prop.kind).map_err(|w| src.err(record_at(element, r, e), w))?;
                     }
                 }
             }
@@ -651,6 +238,179 @@ fn read_body<B: Body>(src: Src, header: &Header, r: &mut B, positions_only: bool
         );
     }
     Ok(mesh)
+}
+
+/// Where record `record` of `element` is, for errors.
+fn record_at<B: Body>(element: &Element, r: &B, record: u64) -> String {
+    format!("{} {record} ({})", element.name, r.at())
+}
+
+/// Checks that the bytes left can hold the records `element` announces, each at its
+/// smallest size, before anything is allocated from the count; returns that size.
+fn check_room<B: Body>(src: Src, element: &Element, r: &B, binary: bool) -> Result<usize> {
+    let min_record: usize = element.props.iter().map(|p| p.kind.min_size()).sum();
+    // An ASCII value takes at least two bytes (a digit and a separator).
+    let min_record = if binary { min_record } else { 2 * element.props.len() - 1 };
+    let need = (element.count as u128) * (min_record as u128);
+    if need > r.remaining() as u128 + u128::from(!binary) {
+        return Err(src.err(
+            format!("element '{}' ({})", element.name, r.at()),
+            format!(
+                "the header announces {} '{}' records, at least {need} bytes, but only {} bytes are left",
+                element.count,
+                element.name,
+                r.remaining()
+            ),
+        ));
+    }
+    Ok(min_record)
+}
+
+/// Reads the vertex element: `x`, `y`, `z` into positions, every other scalar property
+/// into its attribute ([`vertex_attributes`]; none with `positions_only`), texture `v`
+/// flipped to glTF's top-left origin.
+fn read_vertices<B: Body>(
+    src: Src,
+    element: &Element,
+    r: &mut B,
+    min_record: usize,
+    positions_only: bool,
+    mesh: &mut Mesh,
+) -> Result<()> {
+    let slot = |n: &str| element.props.iter().position(|p| p.name == n);
+    let (Some(x), Some(y), Some(z)) = (slot("x"), slot("y"), slot("z")) else {
+        return Err(src.err("header", "the vertex element lacks an x, y or z property"));
+    };
+    if element.props.iter().any(|p| matches!(p.kind, Kind::List { .. }) && ["x", "y", "z"].contains(&p.name.as_str())) {
+        return Err(src.err("header", "vertex x, y, z must be scalar properties"));
+    }
+    let reserve = capped(element.count, r.remaining() + 1, min_record.max(1));
+    mesh.positions.reserve_exact(reserve);
+    let (mut attributes, slots) = if positions_only {
+        (Vec::new(), vec![None; element.props.len()])
+    } else {
+        vertex_attributes(&element.props, [x, y, z], reserve)
+    };
+    for v in 0..element.count {
+        let mut p = [0.0f32; 3];
+        for a in &mut attributes {
+            a.data.resize(a.data.len() + a.stride(), 0);
+        }
+        for (k, prop) in element.props.iter().enumerate() {
+            let res = match (prop.kind, slots[k]) {
+                (Kind::Scalar(s), _) if k == x => r.real(s).map(|c| p[0] = c),
+                (Kind::Scalar(s), _) if k == y => r.real(s).map(|c| p[1] = c),
+                (Kind::Scalar(s), _) if k == z => r.real(s).map(|c| p[2] = c),
+                (Kind::Scalar(s), Some((a, c))) => {
+                    let at = &mut attributes[a];
+                    let start = v as usize * at.stride() + c * s.size();
+                    r.raw(s, &mut at.data[start..start + s.size()])
+                }
+                _ => skip_property(r, prop.kind),
+            };
+            res.map_err(|w| src.err(record_at(element, r, v), w))?;
+        }
+        mesh.positions.push(p);
+    }
+    for a in &mut attributes {
+        if a.name == "TEXCOORD_0" {
+            for v in 0..a.len() {
+                a.set(v, 1, 1.0 - a.get(v, 1));
+            }
+        }
+    }
+    mesh.attributes = attributes;
+    Ok(())
+}
+
+/// Reads the face element's `vertex_indices` (or `vertex_index`) lists as faces of at
+/// least 3 vertices below `vertex_count`; other face properties are skipped.
+fn read_faces<B: Body>(
+    src: Src,
+    element: &Element,
+    r: &mut B,
+    min_record: usize,
+    vertex_count: u64,
+    mesh: &mut Mesh,
+) -> Result<()> {
+    let list = element
+        .props
+        .iter()
+        .position(|p| (p.name == "vertex_indices" || p.name == "vertex_index") && matches!(p.kind, Kind::List { .. }))
+        .ok_or_else(|| src.err("header", "the face element has no 'vertex_indices' list"))?;
+    let reserve = capped(element.count, r.remaining() + 1, min_record.max(1));
+    mesh.face_offsets.reserve(reserve);
+    mesh.face_indices.reserve(reserve.saturating_mul(3));
+    for f in 0..element.count {
+        for (k, prop) in element.props.iter().enumerate() {
+            let err = |r: &B, what: String| src.err(record_at(element, r, f), what);
+            let (Kind::List { count, item }, true) = (prop.kind, k == list) else {
+                skip_property(r, prop.kind).map_err(|w| err(r, w))?;
+                continue;
+            };
+            let n = r.int(count).map_err(|w| err(r, w))?;
+            if n < 3 {
+                return Err(err(r, format!("face {f} has {n} vertices, needs at least 3")));
+            }
+            r.check_list(n as u64, item).map_err(|w| err(r, w))?;
+            for _ in 0..n {
+                let i = r.int(item).map_err(|w| err(r, w))?;
+                if i < 0 || i as u64 >= vertex_count {
+                    return Err(err(r, index_message(f, i, vertex_count as usize)));
+                }
+                mesh.face_indices.push(i as u32);
+            }
+            close_face(mesh).map_err(|w| err(r, w))?;
+        }
+    }
+    Ok(())
+}
+
+/// Reads the tristrips element's first list property: strips of vertex ids below
+/// `vertex_count`, each ended by `-1` (or all ones in an unsigned type), decoded into
+/// triangles with degenerate ones skipped; other properties are skipped.
+fn read_tristrips<B: Body>(src: Src, element: &Element, r: &mut B, vertex_count: u64, mesh: &mut Mesh) -> Result<()> {
+    let list = element
+        .props
+        .iter()
+        .position(|p| matches!(p.kind, Kind::List { .. }))
+        .ok_or_else(|| src.err("header", "the tristrips element has no list property"))?;
+    let mut strip: Vec<u32> = Vec::new();
+    for s in 0..element.count {
+        for (k, prop) in element.props.iter().enumerate() {
+            let err = |r: &B, what: String| src.err(record_at(element, r, s), what);
+            let (Kind::List { count, item }, true) = (prop.kind, k == list) else {
+                skip_property(r, prop.kind).map_err(|w| err(r, w))?;
+                continue;
+            };
+            let n = r.int(count).map_err(|w| err(r, w))?;
+            if n < 0 {
+                return Err(err(r, format!("negative list length {n}")));
+            }
+            r.check_list(n as u64, item).map_err(|w| err(r, w))?;
+            strip.clear();
+            for _ in 0..n {
+                let i = r.int(item).map_err(|w| err(r, w))?;
+                // -1 ends a strip (also as all ones in an unsigned type).
+                let restart = i == -1
+                    || (item == Scalar::U32 && i == u32::MAX as i64)
+                    || (item == Scalar::U16 && i == u16::MAX as i64)
+                    || (item == Scalar::U8 && i == u8::MAX as i64);
+                if restart {
+                    push_strip_triangles(mesh, &strip).map_err(|w| err(r, w))?;
+                    strip.clear();
+                } else if i < 0 || i as u64 >= vertex_count {
+                    let what = format!("strip index {i} refers to a vertex but the file has {vertex_count} vertices");
+                    return Err(err(r, what));
+                } else {
+                    strip.push(i as u32);
+                }
+            }
+            push_strip_triangles(mesh, &strip).map_err(|w| err(r, w))?;
+            strip.clear();
+        }
+    }
+    Ok(())
 }
 
 /// Property names that make one glTF attribute together, tried in this order: the
