@@ -1,7 +1,7 @@
 //! From a mesh to a model: the door's strips, the simplifier's full collapse sequence,
 //! then [`Sets::build`].
 
-use super::check::check_levels;
+use super::check::{check_levels, stride, LevelCheck};
 use super::sets::Sets;
 use crate::error::Result;
 use crate::mesh::Mesh;
@@ -90,6 +90,15 @@ pub struct Built {
     pub sequence: CollapseSequence,
     /// What was done.
     pub report: BuildReport,
+}
+
+impl Built {
+    /// [`check_levels`] on the model: at every level (`max_levels` `None`) or at
+    /// about `max_levels` levels spread over the range, plus the coarsest, 100 of
+    /// them also against [`CollapseSequence::replay`] from scratch.
+    pub fn check(&self, max_levels: Option<usize>) -> Result<LevelCheck> {
+        check_levels(&self.sets, &self.mesh, &self.sequence, stride(self.sets.levels(), max_levels), 100)
+    }
 }
 
 /// Strips `mesh` through the door, simplifies the triangles the strips draw as far

@@ -113,11 +113,69 @@ impl Sets {
     pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Sets> {
         let fmt = |at: usize, what: String| Error::Format { path: path.to_path_buf(), at: format!("byte {at}"), what };
         let mut r = Reader::open(bytes, SETS_MAGIC, 40, ".sets", &fmt)?;
-        let body = r.bytes;
+        let h = SetsHeader::read(&mut r)?;
+        let positions = read_positions(&mut r, if h.positionless { 0 } else { h.position_count })?;
+        let (targets, removed_triangles) = h.read_collapses(&mut r)?;
+        let strip_slots = h.read_strip_lengths(&mut r)?;
+        let labels = h.read_labels(&mut r)?;
+        let (version_offsets, versions) = h.read_versions(&mut r, &labels, &strip_slots, &targets)?;
+        let (begin_offsets, begin_level, begin_slot) = h.read_beginnings(&mut r, &strip_slots)?;
+        let body = r.bytes.len();
+        if r.at != body {
+            return Err(fmt(r.at, format!("{} bytes follow the last strip beginning", body - r.at)));
+        }
+        let mut sets = Sets {
+            placement: h.placement,
+            input_vertices: h.input_vertices,
+            positions,
+            targets,
+            removed_triangles,
+            triangles0: h.triangles0,
+            strip_slots,
+            begin_offsets,
+            begin_level,
+            begin_slot,
+            version_offsets,
+            versions,
+            change_offsets: Vec::new(),
+            change_level: Vec::new(),
+            triangles_at: Vec::new(),
+        };
+        sets.derive().map_err(|e| fmt(body, e.to_string()))?;
+        let decoded = crate::strip::decode(&sets.strips_at(0)).len();
+        if decoded != h.triangles0 as usize {
+            return Err(fmt(
+                44,
+                format!("the header gives {} triangles at level 0, the strips draw {decoded}", h.triangles0),
+            ));
+        }
+        Ok(sets)
+    }
+}
+
+/// The header of a `.sets` file after its format version: the flags and the counts
+/// every later section is checked against.
+struct SetsHeader {
+    placement: Placement,
+    /// No positions section (a model inside a `.lodseq`).
+    positionless: bool,
+    input_vertices: u32,
+    position_count: u32,
+    levels: u32,
+    strips: u32,
+    slots: u32,
+    versions: u32,
+    beginnings: u32,
+    triangles0: u32,
+}
+
+impl SetsHeader {
+    /// Reads and checks the flags and counts (bytes 12 to 48).
+    fn read(r: &mut Reader) -> Result<SetsHeader> {
         let flags = r.u32()?;
         let positionless = flags & FLAG_NO_POSITIONS != 0;
         if flags & !(FLAG_OPTIMAL | FLAG_NO_POSITIONS) != 0 || (positionless && flags & FLAG_OPTIMAL != 0) {
-            return Err(fmt(12, format!("unknown flags {flags:#x}")));
+            return Err(r.fail(12, format!("unknown flags {flags:#x}")));
         }
         let placement = if flags & FLAG_OPTIMAL != 0 { Placement::Optimal } else { Placement::Endpoint };
         let mut h = [0u32; 8];
@@ -130,75 +188,106 @@ impl Sets {
             Placement::Optimal => input_vertices as u64 + levels as u64,
         };
         if position_count as u64 != expected_positions || position_count == END {
-            return Err(fmt(
+            return Err(r.fail(
                 20,
                 format!("{position_count} positions for {input_vertices} vertices and {levels} levels"),
             ));
         }
         if versions < slots || beginnings < strips || slots == END {
-            return Err(fmt(36, "fewer versions than slots or beginnings than strips".into()));
+            return Err(r.fail(36, "fewer versions than slots or beginnings than strips".into()));
         }
-        // Positions: 12 bytes each, all present (none in a positionless model).
-        let stored = if positionless { 0 } else { position_count };
-        r.need(stored as usize * 12, "the positions")?;
-        let mut positions = Vec::with_capacity(stored as usize);
-        for _ in 0..stored {
-            let p = [r.f32()?, r.f32()?, r.f32()?];
-            if !p.iter().all(|c| c.is_finite()) {
-                return Err(fmt(r.at - 12, format!("vertex {} has a NaN or infinite coordinate", positions.len())));
-            }
-            positions.push(p);
-        }
-        // Every record below takes at least one byte: counts are checked against the
-        // bytes left before any allocation.
-        r.need(levels as usize, "the collapses")?;
-        let mut targets = Vec::with_capacity(levels as usize);
-        let mut removed_triangles = Vec::with_capacity(levels as usize);
-        for i in 0..levels {
-            let t = match placement {
-                Placement::Endpoint => r.index(position_count, "a collapse's target vertex")?,
-                Placement::Optimal => input_vertices + i,
+        Ok(SetsHeader {
+            placement,
+            positionless,
+            input_vertices,
+            position_count,
+            levels,
+            strips,
+            slots,
+            versions,
+            beginnings,
+            triangles0,
+        })
+    }
+
+    /// The collapses: each one's target vertex (stored for endpoint placement, the
+    /// next new vertex for optimal) and the triangles it removes.
+    fn read_collapses(&self, r: &mut Reader) -> Result<(Vec<u32>, Vec<u32>)> {
+        // Every record from here on takes at least one byte: counts are checked
+        // against the bytes left before any allocation.
+        r.need(self.levels as usize, "the collapses")?;
+        let mut targets = Vec::with_capacity(self.levels as usize);
+        let mut removed_triangles = Vec::with_capacity(self.levels as usize);
+        for i in 0..self.levels {
+            let t = match self.placement {
+                Placement::Endpoint => r.index(self.position_count, "a collapse's target vertex")?,
+                Placement::Optimal => self.input_vertices + i,
             };
             targets.push(t);
             removed_triangles.push(r.index(u32::MAX, "a collapse's removed triangle count")?);
         }
-        r.need(strips as usize, "the strips")?;
-        let mut strip_slots = Vec::with_capacity(strips as usize + 1);
+        Ok((targets, removed_triangles))
+    }
+
+    /// The strips' lengths, as the offsets of their first slots (and the end), which
+    /// must add up to the header's slots.
+    fn read_strip_lengths(&self, r: &mut Reader) -> Result<Vec<u32>> {
+        let slots = self.slots;
+        r.need(self.strips as usize, "the strips")?;
+        let mut strip_slots = Vec::with_capacity(self.strips as usize + 1);
         strip_slots.push(0u32);
-        for _ in 0..strips {
+        for _ in 0..self.strips {
             let len = r.index(u32::MAX, "a strip length")? as u64;
             let end = *strip_slots.last().expect("holds 0") as u64 + len;
             if end > slots as u64 {
-                return Err(fmt(r.at, format!("the strips hold more than the {slots} slots the header gives")));
+                return Err(r.fail(r.at, format!("the strips hold more than the {slots} slots the header gives")));
             }
             strip_slots.push(end as u32);
         }
         if *strip_slots.last().expect("holds 0") != slots {
-            return Err(fmt(r.at, format!("the strips hold fewer than the {slots} slots the header gives")));
+            return Err(r.fail(r.at, format!("the strips hold fewer than the {slots} slots the header gives")));
         }
-        r.need(slots as usize, "the level-0 strips")?;
-        let mut labels = Vec::with_capacity(slots as usize);
+        Ok(strip_slots)
+    }
+
+    /// The level-0 vertex of every slot (zigzag differences from the previous one).
+    fn read_labels(&self, r: &mut Reader) -> Result<Vec<u32>> {
+        let position_count = self.position_count;
+        r.need(self.slots as usize, "the level-0 strips")?;
+        let mut labels = Vec::with_capacity(self.slots as usize);
         let mut last = 0i64;
-        for _ in 0..slots {
+        for _ in 0..self.slots {
             let d = unzigzag(r.varint("a level-0 vertex")?);
             last = last.checked_add(d).filter(|v| (0..position_count as i64).contains(v)).ok_or_else(|| {
-                fmt(r.at, format!("a level-0 strip names a vertex outside the {position_count} vertices"))
+                r.fail(r.at, format!("a level-0 strip names a vertex outside the {position_count} vertices"))
             })?;
             labels.push(last as u32);
         }
-        // Slot versions.
+        Ok(labels)
+    }
+
+    /// The versions of every slot (its level-0 version implied by `labels` and the
+    /// strips) and their offsets: levels ascend within a slot, successors move
+    /// forward within its strip, a relabel takes the target of its level's collapse.
+    fn read_versions(
+        &self,
+        r: &mut Reader,
+        labels: &[u32],
+        strip_slots: &[u32],
+        targets: &[u32],
+    ) -> Result<(Vec<u32>, Vec<Version>)> {
+        let (levels, versions) = (self.levels, self.versions);
         let strip_of = |x: usize| strip_slots.partition_point(|&o| o as usize <= x) - 1;
-        r.need(slots as usize, "the slot versions")?;
-        let mut version_offsets = Vec::with_capacity(slots as usize + 1);
+        r.need(self.slots as usize, "the slot versions")?;
+        let mut version_offsets = Vec::with_capacity(self.slots as usize + 1);
         version_offsets.push(0u32);
         let cap = (versions as usize).min(r.left());
         let mut all_versions: Vec<Version> = Vec::with_capacity(cap);
         for (x, &label0) in labels.iter().enumerate() {
-            let s = strip_of(x);
-            let strip_end = strip_slots[s + 1] as usize;
+            let strip_end = strip_slots[strip_of(x) + 1] as usize;
             let extra = r.index(u32::MAX, "a slot's version count")? as usize;
             if all_versions.len() + 1 + extra > versions as usize {
-                return Err(fmt(r.at, format!("more slot versions than the {versions} the header gives")));
+                return Err(r.fail(r.at, format!("more slot versions than the {versions} the header gives")));
             }
             r.need(extra * 2, "a slot's versions")?;
             all_versions.push(Version {
@@ -211,7 +300,7 @@ impl Sets {
                 let before = *all_versions.last().expect("pushed above");
                 let level = before.level as u64 + step as u64;
                 if step == 0 || level > levels as u64 {
-                    return Err(fmt(r.at, format!("slot {x}: version levels must ascend within 1..={levels}")));
+                    return Err(r.fail(r.at, format!("slot {x}: version levels must ascend within 1..={levels}")));
                 }
                 let code = r.varint("a version's successor")?;
                 let next = match code >> 1 {
@@ -219,7 +308,7 @@ impl Sets {
                     d => {
                         let y = x as u64 + d;
                         if y >= strip_end as u64 {
-                            return Err(fmt(r.at, format!("slot {x}: its successor leaves its strip")));
+                            return Err(r.fail(r.at, format!("slot {x}: its successor leaves its strip")));
                         }
                         y as u32
                     }
@@ -230,18 +319,25 @@ impl Sets {
             version_offsets.push(all_versions.len() as u32);
         }
         if all_versions.len() != versions as usize {
-            return Err(fmt(r.at, format!("{} slot versions, the header gives {versions}", all_versions.len())));
+            return Err(r.fail(r.at, format!("{} slot versions, the header gives {versions}", all_versions.len())));
         }
-        r.need(strips as usize, "the strip beginnings")?;
-        let mut begin_offsets = Vec::with_capacity(strips as usize + 1);
+        Ok((version_offsets, all_versions))
+    }
+
+    /// The beginnings of every strip (its level-0 one implied): their offsets, levels
+    /// (ascending within a strip) and slots (inside the strip, or [`END`]).
+    fn read_beginnings(&self, r: &mut Reader, strip_slots: &[u32]) -> Result<(Vec<u32>, Vec<u32>, Vec<u32>)> {
+        let (levels, beginnings) = (self.levels, self.beginnings);
+        r.need(self.strips as usize, "the strip beginnings")?;
+        let mut begin_offsets = Vec::with_capacity(self.strips as usize + 1);
         begin_offsets.push(0u32);
         let cap = (beginnings as usize).min(r.left());
         let (mut begin_level, mut begin_slot) = (Vec::with_capacity(cap), Vec::with_capacity(cap));
-        for s in 0..strips as usize {
+        for s in 0..self.strips as usize {
             let (lo, hi) = (strip_slots[s], strip_slots[s + 1]);
             let extra = r.index(u32::MAX, "a strip's beginning count")? as usize;
             if begin_level.len() + 1 + extra > beginnings as usize {
-                return Err(fmt(r.at, format!("more strip beginnings than the {beginnings} the header gives")));
+                return Err(r.fail(r.at, format!("more strip beginnings than the {beginnings} the header gives")));
             }
             r.need(extra * 2, "a strip's beginnings")?;
             begin_level.push(0);
@@ -250,12 +346,12 @@ impl Sets {
                 let step = r.index(u32::MAX, "a beginning's level step")?;
                 let level = begin_level.last().copied().unwrap_or(0) as u64 + step as u64;
                 if step == 0 || level > levels as u64 {
-                    return Err(fmt(r.at, format!("strip {s}: beginning levels must ascend within 1..={levels}")));
+                    return Err(r.fail(r.at, format!("strip {s}: beginning levels must ascend within 1..={levels}")));
                 }
                 let slot = match r.varint("a beginning's slot")? {
                     0 => END,
                     d if d <= (hi - lo) as u64 => lo + d as u32 - 1,
-                    _ => return Err(fmt(r.at, format!("strip {s}: a beginning outside the strip"))),
+                    _ => return Err(r.fail(r.at, format!("strip {s}: a beginning outside the strip"))),
                 };
                 begin_level.push(level as u32);
                 begin_slot.push(slot);
@@ -263,38 +359,24 @@ impl Sets {
             begin_offsets.push(begin_level.len() as u32);
         }
         if begin_level.len() != beginnings as usize {
-            return Err(fmt(r.at, format!("{} beginnings, the header gives {beginnings}", begin_level.len())));
+            return Err(r.fail(r.at, format!("{} beginnings, the header gives {beginnings}", begin_level.len())));
         }
-        if r.at != body.len() {
-            return Err(fmt(r.at, format!("{} bytes follow the last strip beginning", body.len() - r.at)));
-        }
-        let mut sets = Sets {
-            placement,
-            input_vertices,
-            positions,
-            targets,
-            removed_triangles,
-            triangles0,
-            strip_slots,
-            begin_offsets,
-            begin_level,
-            begin_slot,
-            version_offsets,
-            versions: all_versions,
-            change_offsets: Vec::new(),
-            change_level: Vec::new(),
-            triangles_at: Vec::new(),
-        };
-        sets.derive().map_err(|e| fmt(body.len(), e.to_string()))?;
-        let decoded = crate::strip::decode(&sets.strips_at(0)).len();
-        if decoded != triangles0 as usize {
-            return Err(fmt(
-                44,
-                format!("the header gives {triangles0} triangles at level 0, the strips draw {decoded}"),
-            ));
-        }
-        Ok(sets)
+        Ok((begin_offsets, begin_level, begin_slot))
     }
+}
+
+/// `count` positions of 12 bytes each, all finite.
+fn read_positions(r: &mut Reader, count: u32) -> Result<Vec<[f32; 3]>> {
+    r.need(count as usize * 12, "the positions")?;
+    let mut positions = Vec::with_capacity(count as usize);
+    for _ in 0..count {
+        let p = [r.f32()?, r.f32()?, r.f32()?];
+        if !p.iter().all(|c| c.is_finite()) {
+            return Err(r.fail(r.at - 12, format!("vertex {} has a NaN or infinite coordinate", positions.len())));
+        }
+        positions.push(p);
+    }
+    Ok(positions)
 }
 
 struct Reader<'a> {
@@ -336,6 +418,11 @@ impl<'a> Reader<'a> {
 
     fn left(&self) -> usize {
         self.bytes.len() - self.at
+    }
+
+    /// The file's format error at byte `at`.
+    fn fail(&self, at: usize, what: String) -> Error {
+        (self.fmt)(at, what)
     }
 
     /// Fails unless at least `n` bytes are left (for `n` records of one byte or more).
@@ -508,7 +595,6 @@ impl super::seq::LodSeq {
     pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<super::seq::LodSeq> {
         let fmt = |at: usize, what: String| Error::Format { path: path.to_path_buf(), at: format!("byte {at}"), what };
         let mut r = Reader::open(bytes, LODSEQ_MAGIC, 20, ".lodseq", &fmt)?;
-        let body = r.bytes;
         let (frames, vertices, models, bits) = (r.u32()?, r.u32()?, r.u32()?, r.u32()?);
         if frames == 0 || models == 0 {
             return Err(fmt(12, "a sequence needs at least one frame and one model".into()));
@@ -516,118 +602,147 @@ impl super::seq::LodSeq {
         if bits != 0 && !(8..=20).contains(&bits) {
             return Err(fmt(24, format!("{bits} bits per coordinate (0 for exact positions, else 8 to 20)")));
         }
-        r.need(frames as usize * 2, "the frame names")?;
-        let mut names = Vec::with_capacity(frames as usize);
-        let mut frame_model = Vec::with_capacity(frames as usize);
-        for _ in 0..frames {
-            let len = r.varint("a frame name's length")?;
-            if len > MAX_NAME {
-                return Err(fmt(r.at, format!("a frame name of {len} bytes (at most {MAX_NAME})")));
-            }
-            r.need(len as usize, "a frame name")?;
-            let name = String::from_utf8_lossy(&r.bytes[r.at..r.at + len as usize]).into_owned();
-            r.at += len as usize;
-            names.push(name);
-            frame_model.push(r.index(models, "a frame's model")?);
-        }
-        let total = (frames as usize).saturating_mul(vertices as usize);
-        let mut positions = Vec::with_capacity(frames as usize);
-        let mut quantization = None;
-        if bits == 0 {
-            r.need(total.saturating_mul(12), "the frames' positions")?;
-            for f in 0..frames as usize {
-                let mut p = Vec::with_capacity(vertices as usize);
-                for _ in 0..vertices {
-                    let v = [r.f32()?, r.f32()?, r.f32()?];
-                    if !v.iter().all(|c| c.is_finite()) {
-                        return Err(fmt(r.at - 12, format!("frame {f}: a NaN or infinite coordinate")));
-                    }
-                    p.push(v);
-                }
-                positions.push(p);
-            }
+        let (names, frame_model) = read_frame_names(&mut r, frames, models)?;
+        let (positions, quantization) = if bits == 0 {
+            (read_frame_positions(&mut r, frames, vertices)?, None)
         } else {
-            let mut grid = [0f32; 6];
-            for x in &mut grid {
-                *x = r.f32()?;
-            }
-            let q =
-                super::seq::Quantization { bits, lo: [grid[0], grid[1], grid[2]], step: [grid[3], grid[4], grid[5]] };
-            if !grid.iter().all(|x| x.is_finite()) || q.step.iter().any(|&s| s <= 0.0) {
-                return Err(fmt(r.at, "the position grid is not finite and positive".into()));
-            }
-            let len = r.varint("the positions' length")?;
-            r.need(len as usize, "the positions")?;
-            let packed = &r.bytes[r.at..r.at + len as usize];
-            r.at += len as usize;
-            // At most 64 bytes of positions per byte stored (real animations take 3
-            // to 6): a small file cannot claim a huge mesh.
-            if total.saturating_mul(12) > packed.len().saturating_mul(64) + (1 << 20) {
-                return Err(fmt(r.at, format!("{frames} frames of {vertices} vertices cannot come from {len} bytes")));
-            }
-            let mut raw = Vec::new();
-            use std::io::Read;
-            flate2::read::DeflateDecoder::new(packed)
-                .take(total.saturating_mul(15) as u64)
-                .read_to_end(&mut raw)
-                .map_err(|e| fmt(r.at, format!("the positions do not inflate: {e}")))?;
-            let mut v = Reader { bytes: &raw, at: 0, fmt: &fmt };
-            let top = (1i64 << bits) - 1;
-            let mut prev: Vec<[u32; 3]> = Vec::new();
-            for f in 0..frames as usize {
-                let mut cur: Vec<[u32; 3]> = Vec::with_capacity((vertices as usize).min(raw.len() / 3 + 1));
-                for i in 0..vertices as usize {
-                    let mut g = [0u32; 3];
-                    for (d, gd) in g.iter_mut().enumerate() {
-                        let base = match (f, i) {
-                            (0, 0) => 0,
-                            (0, _) => cur[i - 1][d],
-                            _ => prev[i][d],
-                        } as i64;
-                        let x = base + unzigzag(v.varint("a position")?);
-                        if !(0..=top).contains(&x) {
-                            return Err(fmt(r.at, format!("frame {f}: a position off its {bits}-bit grid")));
-                        }
-                        *gd = x as u32;
-                    }
-                    cur.push(g);
-                }
-                positions.push(cur.iter().map(|g| [0, 1, 2].map(|d| q.value(g[d], d))).collect());
-                prev = cur;
-            }
-            if v.at != raw.len() {
-                return Err(fmt(r.at, "bytes follow the last position".into()));
-            }
-            quantization = Some(q);
+            let (positions, q) = read_quantized_positions(&mut r, frames, vertices, bits)?;
+            (positions, Some(q))
+        };
+        let models = read_models(path, &mut r, models, vertices)?;
+        let body = r.bytes.len();
+        if r.at != body {
+            return Err(fmt(r.at, format!("{} bytes follow the last model", body - r.at)));
         }
-        r.need(models as usize, "the models")?;
-        let mut sets: Vec<Sets> = Vec::with_capacity(models as usize);
-        for m in 0..models {
-            let len = r.varint("a model's length")?;
-            r.need(len as usize, "a model")?;
-            let at = r.at;
-            let model = Sets::from_bytes(path, &r.bytes[at..at + len as usize]).map_err(|e| match e {
-                Error::Format { at: inner, what, .. } => fmt(at, format!("model {m}, {inner}: {what}")),
-                e => e,
-            })?;
-            r.at += len as usize;
-            if model.input_vertices != vertices || !model.positions.is_empty() || model.placement != Placement::Endpoint
-            {
-                return Err(fmt(
-                    at,
-                    format!("model {m} is not a positionless endpoint model over {vertices} vertices"),
-                ));
-            }
-            if sets.first().is_some_and(|first| first.strip_slots != model.strip_slots) {
-                return Err(fmt(at, format!("model {m} lays its strips out unlike model 0")));
-            }
-            sets.push(model);
-        }
-        if r.at != body.len() {
-            return Err(fmt(r.at, format!("{} bytes follow the last model", body.len() - r.at)));
-        }
-        Ok(super::seq::LodSeq { names, positions, frame_model, models: sets, quantization })
+        Ok(super::seq::LodSeq { names, positions, frame_model, models, quantization })
     }
+}
+
+/// The frames' names (at most [`MAX_NAME`] bytes each) and models (below `models`).
+fn read_frame_names(r: &mut Reader, frames: u32, models: u32) -> Result<(Vec<String>, Vec<u32>)> {
+    r.need(frames as usize * 2, "the frame names")?;
+    let mut names = Vec::with_capacity(frames as usize);
+    let mut frame_model = Vec::with_capacity(frames as usize);
+    for _ in 0..frames {
+        let len = r.varint("a frame name's length")?;
+        if len > MAX_NAME {
+            return Err(r.fail(r.at, format!("a frame name of {len} bytes (at most {MAX_NAME})")));
+        }
+        r.need(len as usize, "a frame name")?;
+        let name = String::from_utf8_lossy(&r.bytes[r.at..r.at + len as usize]).into_owned();
+        r.at += len as usize;
+        names.push(name);
+        frame_model.push(r.index(models, "a frame's model")?);
+    }
+    Ok((names, frame_model))
+}
+
+/// Every frame's exact positions, all finite.
+fn read_frame_positions(r: &mut Reader, frames: u32, vertices: u32) -> Result<Vec<Vec<[f32; 3]>>> {
+    let total = (frames as usize).saturating_mul(vertices as usize);
+    r.need(total.saturating_mul(12), "the frames' positions")?;
+    let mut positions = Vec::with_capacity(frames as usize);
+    for f in 0..frames as usize {
+        let mut p = Vec::with_capacity(vertices as usize);
+        for _ in 0..vertices {
+            let v = [r.f32()?, r.f32()?, r.f32()?];
+            if !v.iter().all(|c| c.is_finite()) {
+                return Err(r.fail(r.at - 12, format!("frame {f}: a NaN or infinite coordinate")));
+            }
+            p.push(v);
+        }
+        positions.push(p);
+    }
+    Ok(positions)
+}
+
+/// Every frame's positions on a `bits`-bit grid: the grid, then the deflated zigzag
+/// varint differences [`super::seq::LodSeq::to_bytes`] writes, each inside the grid.
+fn read_quantized_positions(
+    r: &mut Reader,
+    frames: u32,
+    vertices: u32,
+    bits: u32,
+) -> Result<(Vec<Vec<[f32; 3]>>, super::seq::Quantization)> {
+    let total = (frames as usize).saturating_mul(vertices as usize);
+    let mut grid = [0f32; 6];
+    for x in &mut grid {
+        *x = r.f32()?;
+    }
+    let q = super::seq::Quantization { bits, lo: [grid[0], grid[1], grid[2]], step: [grid[3], grid[4], grid[5]] };
+    if !grid.iter().all(|x| x.is_finite()) || q.step.iter().any(|&s| s <= 0.0) {
+        return Err(r.fail(r.at, "the position grid is not finite and positive".into()));
+    }
+    let len = r.varint("the positions' length")?;
+    r.need(len as usize, "the positions")?;
+    let packed = &r.bytes[r.at..r.at + len as usize];
+    r.at += len as usize;
+    // At most 64 bytes of positions per byte stored (real animations take 3 to 6): a
+    // small file cannot claim a huge mesh.
+    if total.saturating_mul(12) > packed.len().saturating_mul(64) + (1 << 20) {
+        return Err(r.fail(r.at, format!("{frames} frames of {vertices} vertices cannot come from {len} bytes")));
+    }
+    let mut raw = Vec::new();
+    use std::io::Read;
+    flate2::read::DeflateDecoder::new(packed)
+        .take(total.saturating_mul(15) as u64)
+        .read_to_end(&mut raw)
+        .map_err(|e| r.fail(r.at, format!("the positions do not inflate: {e}")))?;
+    let mut v = Reader { bytes: &raw, at: 0, fmt: r.fmt };
+    let top = (1i64 << bits) - 1;
+    let mut positions = Vec::with_capacity(frames as usize);
+    let mut prev: Vec<[u32; 3]> = Vec::new();
+    for f in 0..frames as usize {
+        let mut cur: Vec<[u32; 3]> = Vec::with_capacity((vertices as usize).min(raw.len() / 3 + 1));
+        for i in 0..vertices as usize {
+            let mut g = [0u32; 3];
+            for (d, gd) in g.iter_mut().enumerate() {
+                let base = match (f, i) {
+                    (0, 0) => 0,
+                    (0, _) => cur[i - 1][d],
+                    _ => prev[i][d],
+                } as i64;
+                let x = base + unzigzag(v.varint("a position")?);
+                if !(0..=top).contains(&x) {
+                    return Err(r.fail(r.at, format!("frame {f}: a position off its {bits}-bit grid")));
+                }
+                *gd = x as u32;
+            }
+            cur.push(g);
+        }
+        positions.push(cur.iter().map(|g| [0, 1, 2].map(|d| q.value(g[d], d))).collect());
+        prev = cur;
+    }
+    if v.at != raw.len() {
+        return Err(r.fail(r.at, "bytes follow the last position".into()));
+    }
+    Ok((positions, q))
+}
+
+/// The models, each a length-prefixed `.sets` checked as [`Sets::from_bytes`] checks
+/// it (its errors placed at the model's offset), positionless endpoint models over
+/// `vertices` vertices with the strip layout of the first.
+fn read_models(path: &Path, r: &mut Reader, models: u32, vertices: u32) -> Result<Vec<Sets>> {
+    r.need(models as usize, "the models")?;
+    let mut sets: Vec<Sets> = Vec::with_capacity(models as usize);
+    for m in 0..models {
+        let len = r.varint("a model's length")?;
+        r.need(len as usize, "a model")?;
+        let at = r.at;
+        let model = Sets::from_bytes(path, &r.bytes[at..at + len as usize]).map_err(|e| match e {
+            Error::Format { at: inner, what, .. } => r.fail(at, format!("model {m}, {inner}: {what}")),
+            e => e,
+        })?;
+        r.at += len as usize;
+        if model.input_vertices != vertices || !model.positions.is_empty() || model.placement != Placement::Endpoint {
+            return Err(r.fail(at, format!("model {m} is not a positionless endpoint model over {vertices} vertices")));
+        }
+        if sets.first().is_some_and(|first| first.strip_slots != model.strip_slots) {
+            return Err(r.fail(at, format!("model {m} lays its strips out unlike model 0")));
+        }
+        sets.push(model);
+    }
+    Ok(sets)
 }
 
 /// The read-back check of a `.EXT` file: the model decoded from its bytes is `model`.

@@ -1,11 +1,15 @@
 //! Either kind of level-of-detail file, told apart by its first bytes, and one level
-//! (and frame) of it with the positions its strips index.
+//! (and frame) of it with the positions its strips index, written to a mesh file
+//! through the checked write path.
 
 use super::file::{LODSEQ_MAGIC, SETS_MAGIC};
 use super::seq::LodSeq;
 use super::sets::{LevelSpec, Sets};
 use crate::error::{Error, Result};
-use crate::strip::StripSet;
+use crate::mesh::io::{self, Format, WriteOptions};
+use crate::mesh::Mesh;
+use crate::strip::{decode, encode_stitched, verify_triangles, StripSet};
+use std::collections::HashMap;
 use std::io::Read;
 use std::path::Path;
 
@@ -36,10 +40,22 @@ pub struct Extracted {
 }
 
 impl Model {
-    /// Reads `path` when it starts with the magic of a `.sets` or a `.lodseq` file
-    /// (checked as [`Sets::from_bytes`] and [`LodSeq::from_bytes`] check them);
-    /// `Ok(None)` for any other file, of which only the first 8 bytes are read.
-    pub fn read(path: &Path) -> Result<Option<Model>> {
+    /// Reads a `.sets` or `.lodseq` file, the kind told by its first 8 bytes (its
+    /// magic) and checked as [`Sets::from_bytes`] and [`LodSeq::from_bytes`] check
+    /// it. Any other file is an [`Error::Format`] at byte 0 saying so.
+    pub fn read(path: impl AsRef<Path>) -> Result<Model> {
+        let path = path.as_ref();
+        Model::try_read(path)?.ok_or_else(|| Error::Format {
+            path: path.to_path_buf(),
+            at: "byte 0".into(),
+            what: "not a stripkit .sets or .lodseq file (bad magic)".into(),
+        })
+    }
+
+    /// [`Model::read`] for a caller that takes meshes too: `Ok(None)` for a file
+    /// without either magic, of which only the first 8 bytes are read.
+    pub fn try_read(path: impl AsRef<Path>) -> Result<Option<Model>> {
+        let path = path.as_ref();
         let io = |source| Error::Io { path: path.to_path_buf(), source };
         let mut file = std::fs::File::open(path).map_err(io)?;
         let mut data = Vec::new();
@@ -98,4 +114,99 @@ impl Model {
             }
         }
     }
+}
+
+impl Extracted {
+    /// The triangles the strips draw, each with its winding, once their number is the
+    /// one the model gives ([`Extracted::triangles`]); [`Error::Verification`]
+    /// naming the level otherwise.
+    pub fn checked_triangles(&self) -> Result<Vec<[u32; 3]>> {
+        let triangles = decode(&self.strips);
+        if triangles.len() != self.triangles as usize {
+            return Err(Error::Verification(format!(
+                "level {}: the strips draw {} triangles, the model says {}",
+                self.level,
+                triangles.len(),
+                self.triangles
+            )));
+        }
+        Ok(triangles)
+    }
+
+    /// Writes the level to `path`, in the mesh format its extension names
+    /// (gzip-compressed for `.gz`): PLY as `tristrips`, one strip per strip; glTF and
+    /// GLB as one stitched `TRIANGLE_STRIP` (core glTF has no restart index); OBJ, OFF
+    /// and STL as the strips' triangles. Through the library's one checked write
+    /// path: the bytes are read back with the library's own reader and must hold
+    /// exactly the strips' triangles ([`Extracted::checked_triangles`]), each with
+    /// its winding (STL, which keeps no indices, by its corners' positions), before
+    /// the file is replaced atomically; nothing is written
+    /// otherwise ([`Error::Verification`]). [`Error::UnknownFormat`] for an
+    /// extension that names no mesh format.
+    pub fn write_file(&self, path: impl AsRef<Path>, options: &WriteOptions) -> Result<()> {
+        let path = path.as_ref();
+        let (format, _) = Format::from_path(path).ok_or_else(|| Error::UnknownFormat {
+            path: path.to_path_buf(),
+            expected: io::SUPPORTED_EXTENSIONS,
+        })?;
+        let triangles = self.checked_triangles()?;
+        let mesh = Mesh::from_triangles(self.positions.clone(), &triangles);
+        let to_write = match format {
+            Format::Ply => Some(self.strips.clone()),
+            Format::Gltf | Format::Glb => Some(StripSet::from_strips(&[encode_stitched(&self.strips)])),
+            Format::Obj | Format::Off | Format::Stl => None,
+        };
+        io::write_checked(
+            path,
+            || io::write_bytes(format, &mesh, to_write.as_ref(), options),
+            |bytes| {
+                let name = format!("the {format:?} bytes of {}", path.display());
+                let back = io::read_bytes(Path::new(&name), format, bytes)?;
+                let back_triangles = back.triangulate().tris;
+                let v = if format == Format::Stl {
+                    // STL keeps no indices: its reader welds equal positions, so the
+                    // triangles are compared by their corners' positions.
+                    let mut ids = HashMap::new();
+                    let expected = by_position(&triangles, &self.positions, &mut ids);
+                    verify_triangles(&expected, &by_position(&back_triangles, &back.positions, &mut ids))
+                } else {
+                    verify_triangles(&triangles, &back_triangles)
+                };
+                if !v.ok() {
+                    return Err(Error::Verification(format!("{name}, read back: {v}")));
+                }
+                Ok(())
+            },
+        )
+        .map(drop)
+    }
+
+    /// The level as JSON, once its strips are checked
+    /// ([`Extracted::checked_triangles`]): `level`, `frame` (the frame asked for, or
+    /// null), `restart_index` (`u32::MAX`) and `strips` (an array of index arrays).
+    pub fn to_json(&self) -> Result<serde_json::Value> {
+        self.checked_triangles()?;
+        Ok(serde_json::json!({
+            "level": self.level,
+            "frame": self.frame.map(|(t, _)| t),
+            "restart_index": u32::MAX,
+            "strips": self.strips.iter().collect::<Vec<_>>(),
+        }))
+    }
+}
+
+/// `triangles` over `positions` renamed by position: every corner gets the id of its
+/// position's bits in `ids` (`-0.0` as `0.0`, as the STL reader welds), a new one
+/// when first met.
+fn by_position(triangles: &[[u32; 3]], positions: &[[f32; 3]], ids: &mut HashMap<[u32; 3], u32>) -> Vec<[u32; 3]> {
+    triangles
+        .iter()
+        .map(|t| {
+            t.map(|v| {
+                let key = positions[v as usize].map(|c| (c + 0.0).to_bits());
+                let next = ids.len() as u32;
+                *ids.entry(key).or_insert(next)
+            })
+        })
+        .collect()
 }

@@ -19,7 +19,7 @@ use super::cursor::Cursor;
 use super::sets::{LevelSpec, Sets};
 use crate::distance::{Distance, Surface};
 use crate::error::{Error, Result};
-use crate::io::{self, Format, ReadOptions};
+use crate::mesh::io::{self, Format, ReadOptions};
 use crate::mesh::Mesh;
 use crate::pipeline::{stripify, StripOptions};
 use crate::simplify::{simplify, CollapseSequence, Options, Placement, Target};
@@ -320,6 +320,28 @@ pub struct BuiltSeq {
     pub sequences: Vec<CollapseSequence>,
     /// What was done.
     pub report: SeqReport,
+}
+
+impl BuiltSeq {
+    /// [`crate::lod::check_levels`] on every kept model over the first frame: at
+    /// every level (`max_levels` `None`) or at about `max_levels` levels of each
+    /// model spread over its range, plus the coarsest, 20 of them also against
+    /// [`CollapseSequence::replay`] from scratch. The counts add up over the models
+    /// (the largest change is the largest of any); the time is the whole check's.
+    pub fn check(&self, max_levels: Option<usize>) -> Result<super::check::LevelCheck> {
+        let start = Instant::now();
+        let mesh = Mesh::from_triangles(self.seq.positions[0].clone(), &self.triangles);
+        let mut all = super::check::LevelCheck::default();
+        for (sets, sequence) in self.seq.models().iter().zip(&self.sequences) {
+            let stride = super::check::stride(sets.levels(), max_levels);
+            let one = super::check::check_levels(sets, &mesh, sequence, stride, 20)?;
+            all.levels_checked += one.levels_checked;
+            all.replays += one.replays;
+            all.max_changed_strips = all.max_changed_strips.max(one.max_changed_strips);
+        }
+        all.ms = start.elapsed().as_secs_f64() * 1e3;
+        Ok(all)
+    }
 }
 
 /// Strips the shared connectivity once, simplifies every frame (and the reference

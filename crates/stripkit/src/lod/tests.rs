@@ -53,3 +53,93 @@ fn empty_model_round_trips() {
     assert_eq!(Sets::from_bytes(std::path::Path::new("empty.sets"), &bytes).unwrap(), sets);
     assert!(sets.strips_at(0).is_empty());
 }
+
+/// A scratch folder of this test process, removed by the caller.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("stripkit-lod-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A file is told apart by its magic: a model reads, anything else is a format error
+/// at byte 0 for [`Model::read`] and `None` for [`Model::try_read`].
+#[test]
+fn model_read_tells_files_by_magic() {
+    let dir = scratch("magic");
+    let sets = build(&crate::gen::icosphere(1), &BuildOptions::default(), &mut |_| {}).unwrap().sets;
+    let model = dir.join("ico.sets");
+    sets.write(&model).unwrap();
+    assert_eq!(Model::read(&model).unwrap(), Model::Sets(sets));
+    for (name, bytes) in [("mesh.off", &b"OFF\n0 0 0\n"[..]), ("short.sets", &b"SKLOD"[..])] {
+        let path = dir.join(name);
+        std::fs::write(&path, bytes).unwrap();
+        assert!(Model::try_read(&path).unwrap().is_none(), "{name}");
+        match Model::read(&path) {
+            Err(crate::Error::Format { at, what, .. }) => {
+                assert_eq!(at, "byte 0");
+                assert!(what.contains("bad magic"), "{what}");
+            }
+            other => panic!("{name}: {other:?}"),
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// One level written in every mesh format reads back to its triangles, each with its
+/// winding; a level whose strips disagree with the model's count is refused before
+/// anything is written.
+#[test]
+fn extracted_level_writes_checked() {
+    let dir = scratch("extract");
+    let sets = build(&crate::gen::icosphere(2), &BuildOptions::default(), &mut |_| {}).unwrap().sets;
+    let level = Model::Sets(sets).extract(LevelSpec::Ratio(0.3), None).unwrap();
+    let triangles = level.checked_triangles().unwrap();
+    assert_eq!(triangles.len(), level.triangles as usize);
+    for ext in ["ply", "glb", "gltf", "obj", "off", "ply.gz", "stl"] {
+        let path = dir.join(format!("level.{ext}"));
+        level.write_file(&path, &crate::mesh::io::WriteOptions::default()).unwrap();
+        let back = crate::mesh::io::read(&path).unwrap();
+        assert_eq!(back.triangulate().tris.len(), triangles.len(), "{ext}");
+        if ext != "stl" {
+            // (STL welds its vertices anew: the check inside compared positions.)
+            assert!(crate::strip::verify_triangles(&triangles, &back.triangulate().tris).ok(), "{ext}");
+        }
+    }
+    let json = level.to_json().unwrap();
+    assert_eq!(json["level"], level.level);
+    assert_eq!(json["strips"].as_array().unwrap().len(), level.strips.len());
+    let mut wrong = level.clone();
+    wrong.triangles += 1;
+    let path = dir.join("wrong.ply");
+    assert!(matches!(wrong.write_file(&path, &Default::default()), Err(crate::Error::Verification(_))));
+    assert!(!path.exists());
+    assert!(matches!(wrong.to_json(), Err(crate::Error::Verification(_))));
+    let unknown = level.write_file(dir.join("level.xyz"), &Default::default());
+    assert!(matches!(unknown, Err(crate::Error::UnknownFormat { .. })));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The check finds a model that draws a triangle the replay does not: one face of
+/// the mesh flipped, caught at level 0.
+#[test]
+fn check_levels_finds_a_flipped_face() {
+    let built = build(&crate::gen::icosphere(1), &BuildOptions::default(), &mut |_| {}).unwrap();
+    check_levels(&built.sets, &built.mesh, &built.sequence, 1, 4).unwrap();
+    let mut flipped = built.mesh.clone();
+    let face = flipped.face_offsets[0] as usize..flipped.face_offsets[1] as usize;
+    flipped.face_indices[face].reverse();
+    match check_levels(&built.sets, &flipped, &built.sequence, 1, 4) {
+        Err(crate::Error::Verification(what)) => assert!(what.starts_with("level 0:"), "{what}"),
+        other => panic!("{other:?}"),
+    }
+}
+
+/// `Built::check` covers every level, or about as many as asked plus the coarsest.
+#[test]
+fn built_check_covers_the_levels_asked() {
+    let built = build(&crate::gen::icosphere(2), &BuildOptions::default(), &mut |_| {}).unwrap();
+    let levels = built.sets.levels() as usize;
+    assert_eq!(built.check(None).unwrap().levels_checked, levels + 1);
+    let sampled = built.check(Some(10)).unwrap().levels_checked;
+    assert!((10..=12).contains(&sampled), "{sampled} of {levels}");
+}

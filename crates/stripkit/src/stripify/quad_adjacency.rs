@@ -43,8 +43,48 @@ pub(super) struct QuadAdjacency<'m> {
 
 impl QuadAdjacency<'_> {
     pub(super) fn build<'m>(mesh: &'m Mesh, edges: &EdgeMap) -> QuadAdjacency<'m> {
-        let fcount = mesh.face_count();
-        let mut quad_of_face = vec![NONE; fcount];
+        let quads = Quads::collect(mesh);
+        let (link, odd_edges) = quads.link(mesh, edges);
+        let mut f = Forcer {
+            verts: &quads.verts,
+            forced: vec![FREE; quads.len()],
+            forced_pairs: 0,
+            pairs: Vec::new(),
+            clash: false,
+            copies: Vec::new(),
+            fixed: Vec::new(),
+            big_cluster: false,
+        };
+        f.across_links(&link);
+        f.on_odd_edges(&odd_edges, |h| quads.local(mesh, edges, h).0, edges);
+        f.settle();
+        let (forced, forced_pairs) = (f.forced, f.forced_pairs);
+        QuadAdjacency {
+            verts: quads.verts,
+            quad_face: quads.quad_face,
+            link,
+            forced,
+            forced_pairs,
+            _mesh: std::marker::PhantomData,
+        }
+    }
+
+    pub(super) fn len(&self) -> usize {
+        self.quad_face.len()
+    }
+}
+
+/// The quads of a mesh, the first step of [`QuadAdjacency::build`].
+struct Quads {
+    /// Quad of each face, or [`NONE`].
+    quad_of_face: Vec<u32>,
+    quad_face: Vec<u32>,
+    verts: Vec<u32>,
+}
+
+impl Quads {
+    fn collect(mesh: &Mesh) -> Quads {
+        let mut quad_of_face = vec![NONE; mesh.face_count()];
         let mut quad_face = Vec::new();
         let mut verts = Vec::new();
         for (f, face) in mesh.faces().enumerate() {
@@ -54,14 +94,24 @@ impl QuadAdjacency<'_> {
                 verts.extend_from_slice(face);
             }
         }
-        let qcount = quad_face.len();
-        let mut link = vec![NONE; 4 * qcount];
-        let local = |h: u32| -> (u32, u32) {
-            let f = edges.halfedge_face[h as usize];
-            (quad_of_face[f as usize], h - mesh.face_offsets[f as usize])
-        };
-        // Edges that are not plain two-quad edges (more faces, a flipped neighbour):
-        // the only places besides `link` where two quads can share an edge.
+        Quads { quad_of_face, quad_face, verts }
+    }
+
+    fn len(&self) -> usize {
+        self.quad_face.len()
+    }
+
+    /// The quad of half-edge `h` (or [`NONE`]) and its local edge there.
+    fn local(&self, mesh: &Mesh, edges: &EdgeMap, h: u32) -> (u32, u32) {
+        let f = edges.halfedge_face[h as usize];
+        (self.quad_of_face[f as usize], h - mesh.face_offsets[f as usize])
+    }
+
+    /// `link` of [`QuadAdjacency`] over the plain two-quad edges, and the edges that
+    /// are not plain two-quad edges (more faces, a flipped neighbour): the only places
+    /// besides `link` where two quads can share an edge.
+    fn link(&self, mesh: &Mesh, edges: &EdgeMap) -> (Vec<u32>, Vec<usize>) {
+        let mut link = vec![NONE; 4 * self.len()];
         let mut odd_edges = Vec::new();
         for e in 0..edges.edge_count() {
             let hs = edges.halfedges(e);
@@ -72,8 +122,8 @@ impl QuadAdjacency<'_> {
                 continue;
             }
             let (h1, h2) = (hs[0], hs[1]);
-            let (q1, k1) = local(h1);
-            let (q2, k2) = local(h2);
+            let (q1, k1) = self.local(mesh, edges, h1);
+            let (q2, k2) = self.local(mesh, edges, h2);
             if q1 == NONE || q2 == NONE || q1 == q2 {
                 continue;
             }
@@ -86,17 +136,43 @@ impl QuadAdjacency<'_> {
             link[(4 * q1 + k1) as usize] = (q2 << 2) | k2;
             link[(4 * q2 + k2) as usize] = (q1 << 2) | k1;
         }
-        // Quads that share three or more vertices share an edge (any three corners of
-        // a quad include two of its edges, and a vertex has one diagonal partner): a
-        // `link` neighbour or a quad on an odd edge. Across a link the two shared
-        // vertices are known, so it takes a third: one of the other quad's far corners.
-        let mut forced = vec![FREE; qcount];
-        let mut forced_pairs = 0;
-        // Every pair that could give coincident triangles, and whether the pairwise
-        // forcing below painted itself into a corner.
-        let mut pairs: Vec<(u32, u32)> = Vec::new();
-        let mut clash = false;
-        for q1 in 0..qcount {
+        (link, odd_edges)
+    }
+}
+
+/// The diagonals [`QuadAdjacency::build`] forces, and what its steps share on the way.
+struct Forcer<'a> {
+    verts: &'a [u32],
+    forced: Vec<u8>,
+    forced_pairs: usize,
+    /// Every pair that could give coincident triangles.
+    pairs: Vec<(u32, u32)>,
+    /// The pairwise forcing painted itself into a corner.
+    clash: bool,
+    /// Copies of a quad in a big cluster that follow their first.
+    copies: Vec<(u32, u32)>,
+    /// Quads of big clusters whose diagonal was set directly: fixed for the solver.
+    fixed: Vec<(u32, u8)>,
+    big_cluster: bool,
+}
+
+impl Forcer<'_> {
+    fn force(&mut self, q1: usize, q2: usize) {
+        self.pairs.push((q1 as u32, q2 as u32));
+        match force_pair(self.verts, &mut self.forced, q1, q2) {
+            Forcing::Forced => self.forced_pairs += 1,
+            Forcing::Clash => self.clash = true,
+            Forcing::Nothing => {}
+        }
+    }
+
+    /// Quads that share three or more vertices share an edge (any three corners of a
+    /// quad include two of its edges, and a vertex has one diagonal partner): a `link`
+    /// neighbour or a quad on an odd edge. Across a link the two shared vertices are
+    /// known, so it takes a third: one of the other quad's far corners.
+    fn across_links(&mut self, link: &[u32]) {
+        let verts = self.verts;
+        for q1 in 0..link.len() / 4 {
             for k in 0..4 {
                 let l = link[4 * q1 + k];
                 if l == NONE || (l >> 2) as usize <= q1 {
@@ -107,30 +183,26 @@ impl QuadAdjacency<'_> {
                 let far = [verts[4 * q2 + (k2 + 2) % 4], verts[4 * q2 + (k2 + 3) % 4]];
                 let mine = &verts[4 * q1..4 * q1 + 4];
                 if mine.contains(&far[0]) || mine.contains(&far[1]) {
-                    pairs.push((q1 as u32, q2 as u32));
-                    match force_pair(&verts, &mut forced, q1, q2) {
-                        Forcing::Forced => forced_pairs += 1,
-                        Forcing::Clash => clash = true,
-                        Forcing::Nothing => {}
-                    }
+                    self.force(q1, q2);
                 }
             }
         }
-        // The quads on each odd edge, in half-edge order (the faces that are not quads
-        // left out first: an edge of k triangles and a quad or two is O(k), not O(k^2)).
-        // Two of them share three vertices when they share one of their two other
-        // corners: bucketing by those corners finds the pairs without trying all k^2.
+    }
+
+    /// The quads on each odd edge (`quad_of(h)` for its half-edges), in half-edge
+    /// order (the faces that are not quads left out first: an edge of k triangles and
+    /// a quad or two is O(k), not O(k^2)). Two of them share three vertices when they
+    /// share one of their two other corners: bucketing by those corners finds the
+    /// pairs without trying all k^2.
+    fn on_odd_edges(&mut self, odd_edges: &[usize], quad_of: impl Fn(u32) -> u32, edges: &EdgeMap) {
+        let verts = self.verts;
         let mut on_edge: Vec<u32> = Vec::new();
         let mut corners: Vec<(u32, u32)> = Vec::new();
         let mut candidates: Vec<(u32, u32)> = Vec::new();
-        let mut copies: Vec<(u32, u32)> = Vec::new();
-        // Quads of big clusters whose diagonal was set directly: fixed for the solver.
-        let mut fixed: Vec<(u32, u8)> = Vec::new();
-        let mut big_cluster = false;
-        for e in odd_edges {
+        for &e in odd_edges {
             let [u, v] = edges.edges[e];
             on_edge.clear();
-            on_edge.extend(edges.halfedges(e).iter().map(|&h| local(h).0).filter(|&q| q != NONE));
+            on_edge.extend(edges.halfedges(e).iter().map(|&h| quad_of(h)).filter(|&q| q != NONE));
             corners.clear();
             for (i, &q) in on_edge.iter().enumerate() {
                 let qv = &verts[4 * q as usize..4 * q as usize + 4];
@@ -140,9 +212,14 @@ impl QuadAdjacency<'_> {
             candidates.clear();
             for group in corners.chunk_by(|a, b| a.0 == b.0) {
                 if group.len() > CLUSTER_CAP {
-                    big_cluster = true;
-                    let found = Cluster { on_edge: &on_edge, candidates: &mut candidates, copies: &mut copies, fixed: &mut fixed };
-                    forced_pairs += found.force(&verts, &mut forced, [u, v, group[0].0], group);
+                    self.big_cluster = true;
+                    let found = Cluster {
+                        on_edge: &on_edge,
+                        candidates: &mut candidates,
+                        copies: &mut self.copies,
+                        fixed: &mut self.fixed,
+                    };
+                    self.forced_pairs += found.force(verts, &mut self.forced, [u, v, group[0].0], group);
                     continue;
                 }
                 for (a, &(_, i)) in group.iter().enumerate() {
@@ -162,54 +239,42 @@ impl QuadAdjacency<'_> {
                 let b = &verts[4 * q2..4 * q2 + 4];
                 let common = a.iter().filter(|v| b.contains(v)).count();
                 if common >= 3 {
-                    pairs.push((q1 as u32, q2 as u32));
-                    match force_pair(&verts, &mut forced, q1, q2) {
-                        Forcing::Forced => forced_pairs += 1,
-                        Forcing::Clash => clash = true,
-                        Forcing::Nothing => {}
-                    }
+                    self.force(q1, q2);
                 }
             }
-            follow_firsts(&verts, &mut forced, &copies, false);
-        }
-        if clash || big_cluster {
-            // Forcing pair by pair chose a diagonal that a later pair could not live
-            // with, or a cluster was too big to pair one by one. Solve every pair of
-            // quads that could coincide at once (the pairs the quad check looks at);
-            // if there is no answer, the input forces a coincidence and the choices
-            // above stand. Past the solver's budget, only the pairs met above.
-            let quads: Vec<&[u32]> = (0..qcount).map(|q| &verts[4 * q..4 * q + 4]).collect();
-            if let Some(all) = candidate_pairs(&quads) {
-                if let Some(d) = solve_diagonals(&quads, &all, &[]) {
-                    for &(a, b) in &all {
-                        forced[a as usize] = d[a as usize];
-                        forced[b as usize] = d[b as usize];
-                    }
-                    forced_pairs = all.len();
-                }
-            } else if clash {
-                if let Some(d) = solve_diagonals(&quads, &pairs, &fixed) {
-                    for &(a, b) in &pairs {
-                        forced[a as usize] = d[a as usize];
-                        forced[b as usize] = d[b as usize];
-                    }
-                    forced_pairs = pairs.len();
-                    follow_firsts(&verts, &mut forced, &copies, true);
-                }
-            }
-        }
-        QuadAdjacency {
-            verts,
-            quad_face,
-            link,
-            forced,
-            forced_pairs,
-            _mesh: std::marker::PhantomData,
+            follow_firsts(verts, &mut self.forced, &self.copies, false);
         }
     }
 
-    pub(super) fn len(&self) -> usize {
-        self.quad_face.len()
+    /// When forcing pair by pair chose a diagonal that a later pair could not live
+    /// with, or a cluster was too big to pair one by one: solves every pair of quads
+    /// that could coincide at once (the pairs the quad check looks at); if there is
+    /// no answer, the input forces a coincidence and the choices above stand. Past
+    /// the solver's budget, only the pairs met above.
+    fn settle(&mut self) {
+        if !(self.clash || self.big_cluster) {
+            return;
+        }
+        let verts = self.verts;
+        let quads: Vec<&[u32]> = verts.chunks_exact(4).collect();
+        if let Some(all) = candidate_pairs(&quads) {
+            if let Some(d) = solve_diagonals(&quads, &all, &[]) {
+                for &(a, b) in &all {
+                    self.forced[a as usize] = d[a as usize];
+                    self.forced[b as usize] = d[b as usize];
+                }
+                self.forced_pairs = all.len();
+            }
+        } else if self.clash {
+            if let Some(d) = solve_diagonals(&quads, &self.pairs, &self.fixed) {
+                for &(a, b) in &self.pairs {
+                    self.forced[a as usize] = d[a as usize];
+                    self.forced[b as usize] = d[b as usize];
+                }
+                self.forced_pairs = self.pairs.len();
+                follow_firsts(verts, &mut self.forced, &self.copies, true);
+            }
+        }
     }
 }
 

@@ -1,6 +1,5 @@
 //! `stripkit lod bench`: the recovery timings of `stripkit::lod::timing`, as a table.
 
-use super::extract::read_model;
 use serde::Serialize;
 use std::io::Write;
 use std::path::PathBuf;
@@ -36,7 +35,7 @@ struct BenchOut {
 }
 
 pub(super) fn bench(args: BenchArgs) -> anyhow::Result<()> {
-    let sets = match read_model(&args.file)? {
+    let sets = match Model::read(&args.file)? {
         Model::Seq(seq) => return bench_seq(&args, &seq),
         Model::Sets(sets) => sets,
     };

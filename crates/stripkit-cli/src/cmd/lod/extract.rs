@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stripkit::io::{self, Format};
 use stripkit::lod::{Extracted, LevelSpec, Model};
-use stripkit::{Error, Mesh, StripSet};
+use stripkit::Error;
 
 #[derive(clap::Args)]
 #[command(group(clap::ArgGroup::new("which").required(true).args(["level", "triangles", "ratio"])))]
@@ -73,7 +73,7 @@ pub(super) fn extract(args: ExtractArgs) -> anyhow::Result<()> {
     }
     let write_options = crate::cmd::write_options(args.ascii, &args.output, crate::cmd::path_format(&args.output))?;
     crate::cmd::check_output_folder(&args.output)?;
-    let model = read_model(&args.file)?;
+    let model = Model::read(&args.file)?;
     let spec = match (args.level, args.triangles, args.ratio) {
         (Some(l), _, _) => LevelSpec::Level(l),
         (_, Some(t), _) => LevelSpec::Triangles(t),
@@ -82,42 +82,26 @@ pub(super) fn extract(args: ExtractArgs) -> anyhow::Result<()> {
     };
     // A .lodseq (by its header) needs --frame; a .sets refuses it.
     let start = Instant::now();
-    let Extracted { positions, strips, level, levels, triangles: expected, frame } =
-        model.extract(spec, args.frame).with_context(|| format!("{} (--frame)", args.file.display()))?;
+    let level = model.extract(spec, args.frame).with_context(|| format!("{} (--frame)", args.file.display()))?;
     let us = start.elapsed().as_secs_f64() * 1e6;
-    let frame = frame.map(|(t, _)| t);
-    let triangles = stripkit::decode(&strips);
-    if triangles.len() != expected as usize {
-        return Err(Error::Verification(format!(
-            "level {level}: the strips draw {} triangles, the model says {expected}",
-            triangles.len()
-        ))
-        .into());
+    // Either output is checked first: the strips draw the model's triangle count,
+    // and a mesh file reads back to those triangles.
+    match format {
+        None => io::write_encoded(&args.output, &serde_json::to_vec(&level.to_json()?)?)?,
+        Some(_) => level.write_file(&args.output, &write_options)?,
     }
-    let bytes = match format {
-        None => {
-            let obj = serde_json::json!({
-                "level": level,
-                "frame": frame,
-                "restart_index": u32::MAX,
-                "strips": strips.iter().collect::<Vec<_>>(),
-            });
-            serde_json::to_vec(&obj)?
-        }
-        Some(format) => encode_level(positions, &strips, &triangles, format, &args.output, &write_options)?,
-    };
-    io::write_encoded(&args.output, &bytes)?;
+    let Extracted { strips, level: number, levels, triangles, frame, .. } = level;
     let indices = strips.index_count();
     let out = ExtractOut {
         input: args.file.display().to_string(),
         output: args.output.display().to_string(),
-        frame,
-        level,
+        frame: frame.map(|(t, _)| t),
+        level: number,
         levels,
-        triangles: triangles.len() as u32,
+        triangles,
         strips: strips.len(),
         indices,
-        indices_per_triangle: (strips.restart_len()) as f64 / triangles.len().max(1) as f64,
+        indices_per_triangle: (strips.restart_len()) as f64 / triangles.max(1) as f64,
         verified: true,
         us,
     };
@@ -127,43 +111,6 @@ pub(super) fn extract(args: ExtractArgs) -> anyhow::Result<()> {
             "{}: level {} of {}: {} triangles in {} strips, {} indices ({:.3} per triangle with restarts), verified -> {}",
             o.input, o.level, o.levels, o.triangles, o.strips, o.indices, o.indices_per_triangle, o.output
         )
-    })
-}
-
-/// The file bytes of one level, read back and compared with the strips' triangles.
-fn encode_level(
-    positions: Vec<[f32; 3]>,
-    strips: &StripSet,
-    triangles: &[[u32; 3]],
-    format: Format,
-    path: &Path,
-    options: &io::WriteOptions,
-) -> anyhow::Result<Vec<u8>> {
-    let mesh = Mesh::from_triangles(positions, triangles);
-    let to_write = match format {
-        Format::Ply => Some(strips.clone()),
-        Format::Gltf | Format::Glb => Some(StripSet::from_strips(&[stripkit::encode_stitched(strips)])),
-        _ => None,
-    };
-    let bytes = io::write_bytes(format, &mesh, to_write.as_ref(), options)?;
-    let name = format!("the {format:?} bytes of {}", path.display());
-    let back = io::read_bytes(Path::new(&name), format, &bytes)?;
-    let v = stripkit::verify_triangles(triangles, &back.triangulate().tris);
-    if !v.ok() {
-        return Err(Error::Verification(format!("{name}, read back: {v}")).into());
-    }
-    Ok(bytes)
-}
-
-/// A `.sets` or `.lodseq` file; anything else is a format error naming it.
-pub(super) fn read_model(path: &Path) -> anyhow::Result<Model> {
-    Model::read(path)?.ok_or_else(|| {
-        Error::Format {
-            path: path.to_path_buf(),
-            at: "byte 0".into(),
-            what: "not a stripkit .sets or .lodseq file (bad magic)".into(),
-        }
-        .into()
     })
 }
 

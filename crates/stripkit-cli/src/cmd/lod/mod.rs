@@ -10,10 +10,8 @@ use clap::{Subcommand, ValueEnum};
 use serde::Serialize;
 use std::io::Write;
 use std::path::PathBuf;
-use std::time::Instant;
 use stripkit::lod::{self, BuildOptions, SeqOptions};
 use stripkit::simplify::Placement;
-use stripkit::Mesh;
 
 /// Arguments of `stripkit lod`.
 #[derive(clap::Args)]
@@ -112,6 +110,18 @@ struct BuildSeqArgs {
     common: CommonArgs,
 }
 
+impl CheckArg {
+    /// The levels to check: `None` for none, `Some(None)` for all, `Some(Some(n))`
+    /// for about `n`.
+    fn max_levels(self) -> Option<Option<usize>> {
+        match self {
+            CheckArg::All => Some(None),
+            CheckArg::Sample => Some(Some(2000)),
+            CheckArg::Off => None,
+        }
+    }
+}
+
 /// What `lod build` and `lod build-seq` share.
 #[derive(clap::Args)]
 struct CommonArgs {
@@ -160,14 +170,7 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
     let built = lod::build(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the model of {}", args.file.display()))?;
     bar.finish_and_clear();
-    let check = match args.common.check {
-        CheckArg::Off => None,
-        CheckArg::All | CheckArg::Sample => {
-            let stride =
-                if args.common.check == CheckArg::All { 1 } else { (built.sets.levels() as usize / 2000).max(1) };
-            Some(lod::check_levels(&built.sets, &built.mesh, &built.sequence, stride, 100)?)
-        }
-    };
+    let check = args.common.check.max_levels().map(|max| built.check(max)).transpose()?;
     // Written once the bytes read back to the model that was checked.
     let bytes = built.sets.write(&args.output)?;
     let out = BuildOut {
@@ -244,16 +247,7 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
     let built = lod::build_seq(&frames, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the level-of-detail strips of {}", args.folder.display()))?;
     bar.finish_and_clear();
-    let t = Instant::now();
-    let mut levels_checked = 0;
-    if args.common.check != CheckArg::Off {
-        let mesh = Mesh::from_triangles(frames.positions[0].clone(), &built.triangles);
-        for (sets, sequence) in built.seq.models().iter().zip(&built.sequences) {
-            let stride = if args.common.check == CheckArg::All { 1 } else { (sets.levels() as usize / 2000).max(1) };
-            levels_checked += lod::check_levels(sets, &mesh, sequence, stride, 20)?.levels_checked;
-        }
-    }
-    let check_ms = t.elapsed().as_secs_f64() * 1e3;
+    let check = args.common.check.max_levels().map(|max| built.check(max)).transpose()?.unwrap_or_default();
     let bytes = built.seq.write(&args.output)?;
     let lod_bytes = built.seq.model_bytes();
     let position_bytes = bytes - lod_bytes;
@@ -264,8 +258,8 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
         bytes,
         position_bytes,
         lod_bytes,
-        levels_checked,
-        check_ms,
+        levels_checked: check.levels_checked,
+        check_ms: check.ms,
     };
     crate::cmd::print_report(args.common.json, &out, |w, o| {
         let r = &o.report;

@@ -24,7 +24,7 @@ pub type Level = (Vec<[f32; 3]>, stripkit::StripSet, String);
 pub fn read_lod(args: &Args) -> anyhow::Result<Option<Level>> {
     use anyhow::Context;
     use stripkit::lod::{LevelSpec, Model};
-    let model = if args.input.as_os_str() == "-" { None } else { Model::read(&args.input)? };
+    let model = if args.input.as_os_str() == "-" { None } else { Model::try_read(&args.input)? };
     let Some(model) = model else {
         if args.level.is_some() || args.ratio.is_some() || args.frame.is_some() {
             return Err(Error::Invalid("--level, --ratio and --frame apply to .sets and .lodseq inputs".into()).into());

@@ -164,78 +164,129 @@ pub(crate) fn merge(w: &mut WorkMesh, settings: &MergeSettings) -> MergeStats {
             stats.initial_paths = p.is_path.iter().filter(|&&x| x).count();
         }
         // Candidate operations on the pieces as they are.
-        let mut ops: Vec<Op> = Vec::new();
-        let mut fans: Vec<u32> = Vec::new(); // (t, slot) pairs, flattened per fan
-        let mut fan_offsets: Vec<u32> = vec![0];
-        let edges: Option<EdgeSet> = settings.swap_angle.map(|_| {
-            let mut s = EdgeSet::with_capacity_and_hasher(w.len() * 3 / 2, Default::default());
-            for t in &w.tris {
-                for j in 0..3 {
-                    let (a, b) = edge(t, j);
-                    s.insert(edge_key(a, b));
-                }
-            }
-            s
-        });
-        for t in 0..w.len() {
-            for j in 0..3 {
-                let u = w.nbr[t][j];
-                if u == NO_NEIGHBOR || (u as usize) < t || w.linked(t, j) {
-                    continue;
-                }
-                let u = u as usize;
-                let (ct, cu) = (p.comp[t], p.comp[u]);
-                if ct == cu {
-                    continue;
-                }
-                let wt = w.weight[t][j];
-                let (et, eu) = (w.degree(t) < 2, w.degree(u) < 2);
-                if et && eu {
-                    ops.push(Op { class: 0, cost: wt, joins: 2, kind: Kind::Join { t: t as u32, j: j as u8 } });
-                    continue;
-                }
-                if et != eu {
-                    let (e, je, l) = if et { (t, j, u) } else { (u, w.twin(t, j), t) };
-                    if !p.is_path[p.comp[l] as usize] {
-                        // Cut the loop at l where the strip loses least.
-                        let (cut, cw) = (0..3)
-                            .filter(|&k| w.linked(l, k))
-                            .map(|k| (k, w.weight[l][k]))
-                            .fold((3, f64::NEG_INFINITY), |b, x| if x.1 > b.1 { x } else { b });
-                        if cut < 3 {
-                            ops.push(Op {
-                                class: 0,
-                                cost: wt - cw,
-                                joins: 2,
-                                kind: Kind::Attach { e: e as u32, j: je as u8, cut: cut as u8 },
-                            });
-                        }
-                    }
-                }
-                if p.is_path[ct as usize] && p.is_path[cu as usize] {
-                    continue;
-                }
-                if let (Some(max), Some(edges)) = (settings.swap_angle, edges.as_ref()) {
-                    if swap_ok(w, t, j, max, edges) {
-                        ops.push(Op { class: 1, cost: 2.0 * wt, joins: 2, kind: Kind::Swap { t: t as u32, j: j as u8 } });
-                    }
-                }
-                let (c, d) = swap_diagonal(w, t, j);
-                if c != d && !is_degenerate(&w.tris[t]) && !is_degenerate(&w.tris[u]) {
-                    // (c == d: the two share every edge, a pillow no split can open.)
-                    ops.push(Op { class: 2, cost: 2.0 * wt, joins: 2, kind: Kind::Split { t: t as u32, j: j as u8 } });
-                }
-            }
-        }
-        nodal_candidates(w, &p, &mut ops, &mut fans, &mut fan_offsets);
+        let edges = settings.swap_angle.map(|_| edge_set(w));
+        let mut ops = pair_candidates(w, &p, settings.swap_angle, edges.as_ref());
+        let mut fans = Fans { store: Vec::new(), offsets: vec![0] };
+        nodal_candidates(w, &p, &mut ops, &mut fans);
         if ops.is_empty() {
             break;
         }
         ops.sort_by(|a, b| a.class.cmp(&b.class).then(a.cost.total_cmp(&b.cost)).then(b.joins.cmp(&a.joins)));
-        let mut uf = Union { sets: UnionFind::new(piece_count), path: p.is_path.clone() };
         stamp.resize(w.len(), 0);
+        let mut run = Pass {
+            w: &mut *w,
+            p: &p,
+            uf: Union { sets: UnionFind::new(piece_count), path: p.is_path.clone() },
+            stamp: &mut stamp,
+            pass,
+            edges,
+            fans: &fans,
+            stats: &mut stats,
+        };
+        if run.apply(ops) == 0 {
+            break;
+        }
+    }
+    stats
+}
+
+/// The undirected edges of `w`'s triangles.
+fn edge_set(w: &WorkMesh) -> EdgeSet {
+    let mut s = EdgeSet::with_capacity_and_hasher(w.len() * 3 / 2, Default::default());
+    for t in &w.tris {
+        for j in 0..3 {
+            let (a, b) = edge(t, j);
+            s.insert(edge_key(a, b));
+        }
+    }
+    s
+}
+
+/// The operations across one unlinked edge between two pieces, for every such edge
+/// in triangle order: joining two path ends, attaching a path end to a loop (cut
+/// where the strip loses least), and unless both pieces are paths, a swap
+/// (`swap_angle` given and [`swap_ok`]) and a split.
+fn pair_candidates(w: &WorkMesh, p: &Pieces, swap_angle: Option<f64>, edges: Option<&EdgeSet>) -> Vec<Op> {
+    let mut ops: Vec<Op> = Vec::new();
+    for t in 0..w.len() {
+        for j in 0..3 {
+            let u = w.nbr[t][j];
+            if u == NO_NEIGHBOR || (u as usize) < t || w.linked(t, j) {
+                continue;
+            }
+            let u = u as usize;
+            let (ct, cu) = (p.comp[t], p.comp[u]);
+            if ct == cu {
+                continue;
+            }
+            let wt = w.weight[t][j];
+            let (et, eu) = (w.degree(t) < 2, w.degree(u) < 2);
+            if et && eu {
+                ops.push(Op { class: 0, cost: wt, joins: 2, kind: Kind::Join { t: t as u32, j: j as u8 } });
+                continue;
+            }
+            if et != eu {
+                let (e, je, l) = if et { (t, j, u) } else { (u, w.twin(t, j), t) };
+                if !p.is_path[p.comp[l] as usize] {
+                    // Cut the loop at l where the strip loses least.
+                    let (cut, cw) = (0..3)
+                        .filter(|&k| w.linked(l, k))
+                        .map(|k| (k, w.weight[l][k]))
+                        .fold((3, f64::NEG_INFINITY), |b, x| if x.1 > b.1 { x } else { b });
+                    if cut < 3 {
+                        ops.push(Op {
+                            class: 0,
+                            cost: wt - cw,
+                            joins: 2,
+                            kind: Kind::Attach { e: e as u32, j: je as u8, cut: cut as u8 },
+                        });
+                    }
+                }
+            }
+            if p.is_path[ct as usize] && p.is_path[cu as usize] {
+                continue;
+            }
+            if let (Some(max), Some(edges)) = (swap_angle, edges) {
+                if swap_ok(w, t, j, max, edges) {
+                    ops.push(Op { class: 1, cost: 2.0 * wt, joins: 2, kind: Kind::Swap { t: t as u32, j: j as u8 } });
+                }
+            }
+            let (c, d) = swap_diagonal(w, t, j);
+            if c != d && !is_degenerate(&w.tris[t]) && !is_degenerate(&w.tris[u]) {
+                // (c == d: the two share every edge, a pillow no split can open.)
+                ops.push(Op { class: 2, cost: 2.0 * wt, joins: 2, kind: Kind::Split { t: t as u32, j: j as u8 } });
+            }
+        }
+    }
+    ops
+}
+
+/// The fans of a pass's nodal operations: (triangle, slot towards the next) pairs,
+/// flattened, fan `i` at `store[offsets[i]..offsets[i + 1]]`.
+struct Fans {
+    store: Vec<u32>,
+    offsets: Vec<u32>,
+}
+
+/// One pass applying its sorted operations: what the steps share.
+struct Pass<'a> {
+    w: &'a mut WorkMesh,
+    p: &'a Pieces,
+    uf: Union,
+    /// `stamp[t] == pass`: triangle `t` took part in an operation of this pass.
+    stamp: &'a mut Vec<u32>,
+    pass: u32,
+    /// The mesh's edges, kept up to date by swaps and splits (with swaps only).
+    edges: Option<EdgeSet>,
+    fans: &'a Fans,
+    stats: &'a mut MergeStats,
+}
+
+impl Pass<'_> {
+    /// Applies `ops` in order while they still join different pieces through
+    /// triangles no earlier operation of the pass touched; returns how many ran.
+    fn apply(&mut self, ops: Vec<Op>) -> usize {
         let mut applied = 0;
-        let mut edges = edges;
         // Only the cheapest class that applies runs in a pass: after free merges, the
         // next pass may find new free ones where a swap or split was queued.
         let mut pass_class = None;
@@ -243,117 +294,145 @@ pub(crate) fn merge(w: &mut WorkMesh, settings: &MergeSettings) -> MergeStats {
             if pass_class.is_some_and(|c| op.class > c) {
                 break;
             }
-            let free = |stamp: &[u32], t: u32| stamp[t as usize] != pass;
-            match op.kind {
-                Kind::Join { t, j } => {
-                    let u = w.nbr[t as usize][j as usize];
-                    if !free(&stamp, t) || !free(&stamp, u) {
-                        continue;
-                    }
-                    let (a, b) = (uf.find(p.comp[t as usize]), uf.find(p.comp[u as usize]));
-                    if a == b {
-                        continue;
-                    }
-                    w.set_link(t as usize, j as usize, true);
-                    uf.union(a, b);
-                    stats.joins += 1;
-                    stamp[t as usize] = pass;
-                    stamp[u as usize] = pass;
-                }
-                Kind::Attach { e, j, cut } => {
-                    let l = w.nbr[e as usize][j as usize];
-                    let x = w.nbr[l as usize][cut as usize];
-                    if !free(&stamp, e) || !free(&stamp, l) || !free(&stamp, x) {
-                        continue;
-                    }
-                    let (a, b) = (uf.find(p.comp[e as usize]), uf.find(p.comp[l as usize]));
-                    if a == b || uf.path[b as usize] {
-                        continue;
-                    }
-                    w.set_link(l as usize, cut as usize, false);
-                    w.set_link(e as usize, j as usize, true);
-                    uf.union(a, b);
-                    stats.attaches += 1;
-                    for s in [e, l, x] {
-                        stamp[s as usize] = pass;
-                    }
-                }
-                Kind::Swap { t, j } | Kind::Split { t, j } => {
-                    let u = w.nbr[t as usize][j as usize];
-                    if !free(&stamp, t) || !free(&stamp, u) {
-                        continue;
-                    }
-                    let (a, b) = (uf.find(p.comp[t as usize]), uf.find(p.comp[u as usize]));
-                    if a == b || (uf.path[a as usize] && uf.path[b as usize]) {
-                        continue;
-                    }
-                    if let Kind::Swap { .. } = op.kind {
-                        let edges = edges.as_mut().expect("swaps only with the edge set");
-                        let (c, d) = swap_diagonal(w, t as usize, j as usize);
-                        if edges.contains(&edge_key(c, d)) {
-                            continue;
-                        }
-                        let (x, y) = edge(&w.tris[t as usize], j as usize);
-                        edges.remove(&edge_key(x, y));
-                        edges.insert(edge_key(c, d));
-                        w.swap(t as usize, j as usize);
-                        stats.swaps += 1;
-                    } else {
-                        let [tb, ub] = w.split(t as usize, j as usize, true);
-                        stamp.resize(w.len(), 0);
-                        stamp[tb as usize] = pass;
-                        stamp[ub as usize] = pass;
-                        if let Some(edges) = edges.as_mut() {
-                            let m = w.tris[tb as usize][0];
-                            let [x, y] = *w.steiner.last().expect("just split");
-                            edges.remove(&edge_key(x, y));
-                            let c = w.tris[tb as usize][2];
-                            let d = w.tris[ub as usize][2];
-                            for q in [x, y, c, d] {
-                                edges.insert(edge_key(q, m));
-                            }
-                        }
-                        stats.splits += 1;
-                    }
-                    uf.union(a, b);
-                    stamp[t as usize] = pass;
-                    stamp[u as usize] = pass;
-                }
-                Kind::Nodal { fan } => {
-                    let f = &fans[fan_offsets[fan as usize] as usize..fan_offsets[fan as usize + 1] as usize];
-                    if f.chunks(2).any(|c| !free(&stamp, c[0])) {
-                        continue;
-                    }
-                    let mut roots: Vec<u32> = f.chunks(2).map(|c| uf.find(p.comp[c[0] as usize])).collect();
-                    roots.sort_unstable();
-                    roots.dedup();
-                    if roots.len() != op.joins as usize || roots.iter().filter(|&&r| uf.path[r as usize]).count() > 1 {
-                        continue;
-                    }
-                    // Toggle the link out of every fan triangle towards the next.
-                    let links: Vec<bool> = f.chunks(2).map(|c| w.linked(c[0] as usize, c[1] as usize)).collect();
-                    for (c, on) in f.chunks(2).zip(links) {
-                        w.set_link(c[0] as usize, c[1] as usize, !on);
-                    }
-                    for &r in &roots[1..] {
-                        uf.union(roots[0], r);
-                    }
-                    for c in f.chunks(2) {
-                        stamp[c[0] as usize] = pass;
-                    }
-                    stats.nodal += 1;
+            let done = match op.kind {
+                Kind::Join { t, j } => self.join(t, j),
+                Kind::Attach { e, j, cut } => self.attach(e, j, cut),
+                Kind::Swap { t, j } => self.swap_or_split(t, j, true),
+                Kind::Split { t, j } => self.swap_or_split(t, j, false),
+                Kind::Nodal { fan } => self.nodal(fan, op.joins),
+            };
+            if done {
+                applied += 1;
+                pass_class = Some(op.class);
+            }
+        }
+        applied
+    }
+
+    fn free(&self, t: u32) -> bool {
+        self.stamp[t as usize] != self.pass
+    }
+
+    fn mark(&mut self, t: u32) {
+        self.stamp[t as usize] = self.pass;
+    }
+
+    /// The roots of the pieces of triangles `t` and `u`.
+    fn roots(&mut self, t: u32, u: u32) -> (u32, u32) {
+        (self.uf.find(self.p.comp[t as usize]), self.uf.find(self.p.comp[u as usize]))
+    }
+
+    fn join(&mut self, t: u32, j: u8) -> bool {
+        let u = self.w.nbr[t as usize][j as usize];
+        if !self.free(t) || !self.free(u) {
+            return false;
+        }
+        let (a, b) = self.roots(t, u);
+        if a == b {
+            return false;
+        }
+        self.w.set_link(t as usize, j as usize, true);
+        self.uf.union(a, b);
+        self.stats.joins += 1;
+        self.mark(t);
+        self.mark(u);
+        true
+    }
+
+    fn attach(&mut self, e: u32, j: u8, cut: u8) -> bool {
+        let l = self.w.nbr[e as usize][j as usize];
+        let x = self.w.nbr[l as usize][cut as usize];
+        if !self.free(e) || !self.free(l) || !self.free(x) {
+            return false;
+        }
+        let (a, b) = self.roots(e, l);
+        if a == b || self.uf.path[b as usize] {
+            return false;
+        }
+        self.w.set_link(l as usize, cut as usize, false);
+        self.w.set_link(e as usize, j as usize, true);
+        self.uf.union(a, b);
+        self.stats.attaches += 1;
+        for s in [e, l, x] {
+            self.mark(s);
+        }
+        true
+    }
+
+    /// A swap (`swap`) or a split of the edge in slot `j` of `t`.
+    fn swap_or_split(&mut self, t: u32, j: u8, swap: bool) -> bool {
+        let u = self.w.nbr[t as usize][j as usize];
+        if !self.free(t) || !self.free(u) {
+            return false;
+        }
+        let (a, b) = self.roots(t, u);
+        if a == b || (self.uf.path[a as usize] && self.uf.path[b as usize]) {
+            return false;
+        }
+        let w = &mut *self.w;
+        if swap {
+            let edges = self.edges.as_mut().expect("swaps only with the edge set");
+            let (c, d) = swap_diagonal(w, t as usize, j as usize);
+            if edges.contains(&edge_key(c, d)) {
+                return false;
+            }
+            let (x, y) = edge(&w.tris[t as usize], j as usize);
+            edges.remove(&edge_key(x, y));
+            edges.insert(edge_key(c, d));
+            w.swap(t as usize, j as usize);
+            self.stats.swaps += 1;
+        } else {
+            let [tb, ub] = w.split(t as usize, j as usize, true);
+            self.stamp.resize(w.len(), 0);
+            if let Some(edges) = self.edges.as_mut() {
+                let m = w.tris[tb as usize][0];
+                let [x, y] = *w.steiner.last().expect("just split");
+                edges.remove(&edge_key(x, y));
+                let c = w.tris[tb as usize][2];
+                let d = w.tris[ub as usize][2];
+                for q in [x, y, c, d] {
+                    edges.insert(edge_key(q, m));
                 }
             }
-            applied += 1;
-            pass_class = Some(op.class);
+            self.mark(tb);
+            self.mark(ub);
+            self.stats.splits += 1;
         }
-        if applied == 0 {
-            break;
-        }
+        self.uf.union(a, b);
+        self.mark(t);
+        self.mark(u);
+        true
     }
-    stats
-}
 
+    /// Toggles the links of fan `fan` when its on links still lie in `joins`
+    /// different pieces, at most one of them a path.
+    fn nodal(&mut self, fan: u32, joins: u8) -> bool {
+        let fans = self.fans;
+        let f = &fans.store[fans.offsets[fan as usize] as usize..fans.offsets[fan as usize + 1] as usize];
+        if f.chunks(2).any(|c| !self.free(c[0])) {
+            return false;
+        }
+        let mut roots: Vec<u32> = f.chunks(2).map(|c| self.uf.find(self.p.comp[c[0] as usize])).collect();
+        roots.sort_unstable();
+        roots.dedup();
+        if roots.len() != joins as usize || roots.iter().filter(|&&r| self.uf.path[r as usize]).count() > 1 {
+            return false;
+        }
+        // Toggle the link out of every fan triangle towards the next.
+        let links: Vec<bool> = f.chunks(2).map(|c| self.w.linked(c[0] as usize, c[1] as usize)).collect();
+        for (c, on) in f.chunks(2).zip(links) {
+            self.w.set_link(c[0] as usize, c[1] as usize, !on);
+        }
+        for &r in &roots[1..] {
+            self.uf.union(roots[0], r);
+        }
+        for c in f.chunks(2) {
+            self.mark(c[0]);
+        }
+        self.stats.nodal += 1;
+        true
+    }
+}
 
 /// The new diagonal `(c, d)` a swap of slot `j` of `t` would make.
 fn swap_diagonal(w: &WorkMesh, t: usize, j: usize) -> (u32, u32) {
@@ -452,13 +531,7 @@ fn joins_all(p: &Pieces, fan: &[u32], on0: bool) -> bool {
 /// triangle alternate on and off, the on links in as many different pieces as there
 /// are on links, at most one of them a path. Toggling every link of the fan joins them.
 /// The fan is stored as (triangle, slot towards the next) pairs.
-fn nodal_candidates(
-    w: &WorkMesh,
-    p: &Pieces,
-    ops: &mut Vec<Op>,
-    fans: &mut Vec<u32>,
-    offsets: &mut Vec<u32>,
-) {
+fn nodal_candidates(w: &WorkMesh, p: &Pieces, ops: &mut Vec<Op>, fans: &mut Fans) {
     let nv = w.pos.len();
     // One triangle and corner per vertex, the first met.
     let mut first = vec![NONE; nv];
@@ -529,8 +602,9 @@ fn nodal_candidates(
         if paths > 1 || (paths == 1 && !strict) || comps.len() < 2 || !(strict || joins_all(p, &fan, on0)) {
             continue;
         }
-        ops.push(Op { class: 0, cost, joins: comps.len().min(255) as u8, kind: Kind::Nodal { fan: (offsets.len() - 1) as u32 } });
-        fans.extend_from_slice(&fan);
-        offsets.push(fans.len() as u32);
+        let fan_id = (fans.offsets.len() - 1) as u32;
+        ops.push(Op { class: 0, cost, joins: comps.len().min(255) as u8, kind: Kind::Nodal { fan: fan_id } });
+        fans.store.extend_from_slice(&fan);
+        fans.offsets.push(fans.store.len() as u32);
     }
 }
