@@ -54,11 +54,11 @@ pub struct Args {
     pub views: usize,
     /// A split node of at most this many triangles is drawn without testing its
     /// children (0: down to the leaves, pairs of triangles).
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(long, value_name = "N", default_value_t = CullOptions::default().min_triangles)]
     pub min_triangles: u32,
     /// Draw two ranges separated by at most N culled (back-facing) triangles as one:
     /// fewer draws for a few more triangles (0: only neighbouring drawn nodes join).
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(long, value_name = "N", default_value_t = CullOptions::default().max_gap)]
     pub max_gap: u32,
     /// Also cull by the view frustum, with the tree's bounding spheres: the path's
     /// camera looks at the mesh's centre, +Y up, square viewport, near 0.01 and far

@@ -53,7 +53,7 @@ enum What {
 /// How much of the model `lod build` checks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum CheckArg {
-    /// Every level (bunny: 34,819 levels in about 1.6 s).
+    /// Every level.
     All,
     /// 2,000 levels spread over the range, plus the coarsest.
     Sample,
@@ -85,24 +85,23 @@ struct BuildSeqArgs {
     /// Most simplification sequences to choose (each is one SETS model, about
     /// 9 bytes per triangle), besides the reference pose's, which is kept too when
     /// a frame falls back to it.
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = SeqOptions::default().max_sequences)]
     max_sequences: usize,
     /// Stop keeping sequences once every frame's Hausdorff distance, at 10% and 2%
     /// of the triangles, is within this factor of its own simplification's.
-    #[arg(long, default_value_t = 1.25)]
+    #[arg(long, default_value_t = SeqOptions::default().tolerance)]
     tolerance: f64,
     /// Samples per surface for the distances that choose the sequences (and the
     /// quality table the report prints).
-    #[arg(long, default_value_t = 4000)]
+    #[arg(long, default_value_t = SeqOptions::default().samples)]
     samples: usize,
     /// Candidate sequences: every frame's when there are at most this many frames,
     /// else this many evenly spaced (the reference pose's is always one).
-    #[arg(long, default_value_t = 24)]
+    #[arg(long, default_value_t = SeqOptions::default().candidates)]
     candidates: usize,
     /// Store positions quantized to this many bits per coordinate (8 to 20) over the
     /// animation's bounding box, as differences from the previous frame, deflated
-    /// (horse-gallop, 12 bits: about 22 KB per frame instead of 99 KB, within
-    /// 7e-5 of the diagonal). The frames are quantized first, so the sequences and
+    /// (sizes and errors: docs/experiments/lod-seq.md). The frames are quantized first, so the sequences and
     /// the quality table see the stored positions. Default: exact f32 positions.
     #[arg(long, value_name = "BITS", value_parser = clap::value_parser!(u32).range(8..=20))]
     position_bits: Option<u32>,
