@@ -202,6 +202,34 @@ pub enum Shading {
     Unlit,
 }
 
+impl Shading {
+    /// Every shading's name, as [`Shading::name`] gives it and `FromStr` reads it.
+    pub const NAMES: &'static [&'static str] = &["flat", "smooth", "unlit"];
+
+    /// The lowercase name (`flat`, `smooth`, `unlit`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Shading::Flat => "flat",
+            Shading::Smooth => "smooth",
+            Shading::Unlit => "unlit",
+        }
+    }
+}
+
+impl std::str::FromStr for Shading {
+    type Err = String;
+
+    /// Reads one of [`Shading::NAMES`].
+    fn from_str(name: &str) -> Result<Self, String> {
+        match name {
+            "flat" => Ok(Shading::Flat),
+            "smooth" => Ok(Shading::Smooth),
+            "unlit" => Ok(Shading::Unlit),
+            _ => Err(format!("`{name}` is not a shading: {}", Shading::NAMES.join(", "))),
+        }
+    }
+}
+
 /// One draw's settings.
 #[derive(Clone, Debug)]
 pub struct DrawParams {

@@ -40,18 +40,6 @@ pub enum ColorArg {
     None,
 }
 
-/// How faces are lit.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ShadingArg {
-    /// Each triangle lit by its own normal: facets and strip colours read clearly.
-    Flat,
-    /// Lit by area-weighted vertex normals: a smooth surface.
-    Smooth,
-    /// No lighting: every pixel is exactly its triangle's colour (for counting colours).
-    Unlit,
-}
-
 /// Arguments of `stripkit render`.
 #[derive(clap::Args, Debug)]
 #[command(
@@ -99,8 +87,8 @@ pub struct Args {
     pub background: [u8; 3],
     /// Lighting: `flat` (each triangle by its own normal), `smooth` (vertex normals) or
     /// `unlit` (exact colours).
-    #[arg(long, value_enum, default_value = "flat")]
-    pub shading: ShadingArg,
+    #[arg(long, default_value = "flat", value_parser = super::named::<Shading>(Shading::NAMES))]
+    pub shading: Shading,
     /// Also draw every edge of the triangles, a dark line about a pixel wide (wider on
     /// large pictures), hidden where a face is in front of it: shows how strips split
     /// quads and where their triangles run.
@@ -171,7 +159,7 @@ fn draw(
     let camera = &scene.framing.camera;
     let positions = exploded.gather(scene.positions);
     let morph_target = scene.target.map(|o| exploded.gather(o));
-    let normals = (args.shading == ShadingArg::Smooth)
+    let normals = (args.shading == Shading::Smooth)
         .then(|| exploded.gather(&stripkit_render::vertex_normals(scene.drawn, &exploded.corners)));
     let geometry = renderer.upload(&Vertices {
         positions: &positions,
@@ -184,11 +172,7 @@ fn draw(
     renderer.clear(args.background.map(|c| c as f32 / 255.0));
     let mut params = DrawParams::new(camera.view_proj(w as f32 / h as f32));
     params.morph = scene.t;
-    params.shading = match args.shading {
-        ShadingArg::Flat => Shading::Flat,
-        ShadingArg::Smooth => Shading::Smooth,
-        ShadingArg::Unlit => Shading::Unlit,
-    };
+    params.shading = args.shading;
     params.light = scene.framing.light();
     renderer.draw(&geometry, &indices, &params);
     let mut edges = None;

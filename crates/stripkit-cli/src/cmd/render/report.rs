@@ -1,6 +1,6 @@
 //! What `stripkit render` reports: one JSON object, or a short summary.
 
-use super::{ColorArg, ShadingArg};
+use super::ColorArg;
 use serde::Serialize;
 use std::io::Write;
 use std::path::Path;
@@ -17,7 +17,8 @@ pub struct Report<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub heuristic: Option<&'static str>,
     pub color: ColorArg,
-    pub shading: ShadingArg,
+    #[serde(serialize_with = "shading_name")]
+    pub shading: stripkit_render::Shading,
     pub width: u32,
     pub height: u32,
     pub strips: usize,
@@ -57,7 +58,7 @@ pub fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
         r.output.display(),
         r.algo,
         name(&r.color),
-        name(&r.shading),
+        r.shading.name(),
         r.width,
         r.height,
         r.t.map(|t| format!(", morph t = {t}")).unwrap_or_default()
@@ -80,4 +81,9 @@ pub fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
     writeln!(out, "  draw ms        {:>10.2}", r.draw_ms)?;
     writeln!(out, "  write ms       {:>10.2}", r.write_ms)?;
     Ok(())
+}
+
+/// The shading as its name in the JSON report (`flat`, `smooth`, `unlit`).
+fn shading_name<S: serde::Serializer>(shading: &stripkit_render::Shading, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(shading.name())
 }
