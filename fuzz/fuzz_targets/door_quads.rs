@@ -10,7 +10,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use stripkit_fuzz::{oriented, rotate_min};
-use stripkit::{stripify, unstripify, Algorithm, Error, Mesh, StripOptions};
+use stripkit::{stripify, unstripify, Algorithm, Mesh, StripOptions};
 
 fuzz_target!(|data: &[u8]| {
     let Some((&first, rest)) = data.split_first() else { return };

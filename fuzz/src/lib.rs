@@ -3,14 +3,14 @@
 
 use std::path::Path;
 use stripkit::io::Format;
-use stripkit::{stripify, Error, StripOptions};
+use stripkit::{stripify, StripOptions};
 
 /// Meshes with at most this many faces are also stripified.
 pub const MAX_FACES: usize = 4000;
 
 /// Reads `data` as `format` (file name `fuzz.EXT`) and, on success with a small mesh,
-/// runs the default stripifier; panics on an [`Error::Verification`] or any error
-/// other than an invalid input ([`Error::is_invalid`]).
+/// runs the default stripifier; panics on an [`stripkit::Error::Verification`] or any error
+/// other than an invalid input ([`stripkit::Error::is_invalid`]).
 pub fn read_and_stripify(ext: &str, format: Format, data: &[u8]) {
     let name = format!("fuzz.{ext}");
     let Ok(mesh) = stripkit::io::read_bytes(Path::new(&name), format, data) else {
