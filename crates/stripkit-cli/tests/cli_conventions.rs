@@ -184,7 +184,7 @@ fn a_folder_in_gives_a_folder_out_and_one_bad_file_does_not_stop_the_rest() {
         std::fs::read_dir(&out_dir).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
     names.sort();
     assert_eq!(names, ["a.glb", "b.glb"]);
-    assert_eq!(stripkit::io::read(&out_dir.join("b.glb")).unwrap().triangle_count(), 80);
+    assert_eq!(stripkit::io::read(out_dir.join("b.glb")).unwrap().triangle_count(), 80);
 
     // One bad file and one with no faces: reported, the others written, exit 2.
     std::fs::write(dir.join("bad.off"), "garbage").unwrap();
@@ -222,8 +222,8 @@ fn a_folder_in_gives_a_folder_out_and_one_bad_file_does_not_stop_the_rest() {
     let (a_out, b_out) = (lines[0]["triangles_out"].as_u64().unwrap(), lines[1]["triangles_out"].as_u64().unwrap());
     assert!((4..=6).contains(&a_out) && (38..=40).contains(&b_out), "{a_out} {b_out}");
     assert!(lines[1]["output"].as_str().unwrap().ends_with("b.ply"));
-    assert_eq!(stripkit::io::read(&simplified.join("a.obj")).unwrap().triangle_count() as u64, a_out);
-    assert_eq!(stripkit::io::read(&simplified.join("b.ply")).unwrap().triangle_count() as u64, b_out);
+    assert_eq!(stripkit::io::read(simplified.join("a.obj")).unwrap().triangle_count() as u64, a_out);
+    assert_eq!(stripkit::io::read(simplified.join("b.ply")).unwrap().triangle_count() as u64, b_out);
     let plys = path("batch_simplified_ply");
     let out = stripkit(&["simplify", s(&dir), "--ratio", "0.5", "-o", s(&plys), "--output-format", "ply", "--ascii"]);
     assert_eq!(out.status.code(), Some(2));

@@ -237,9 +237,9 @@ fn animations_build_extract_and_bench() {
         assert_eq!(back.triangle_count() as u64, e["triangles"].as_u64().unwrap());
     }
     // The morphed frame lies between its key frames.
-    let mid = stripkit::io::read(&tmp("lod", "anim_1.5.ply")).unwrap();
-    let a = stripkit::io::read(&dir.join("anim-01.obj")).unwrap();
-    let b = stripkit::io::read(&dir.join("anim-02.obj")).unwrap();
+    let mid = stripkit::io::read(tmp("lod", "anim_1.5.ply")).unwrap();
+    let a = stripkit::io::read(dir.join("anim-01.obj")).unwrap();
+    let b = stripkit::io::read(dir.join("anim-02.obj")).unwrap();
     for v in 0..a.positions.len() {
         for d in 0..3 {
             let want = 0.5 * (a.positions[v][d] + b.positions[v][d]);

@@ -214,7 +214,7 @@ fn real_meshes_strip_as_well_shuffled() {
     };
     // The goal is 1%; horse's strips heuristic measures 0.9% for this seed.
     for (name, tolerance) in [("bunny.obj", 0.01), ("horse.ply", 0.02)] {
-        let mesh = stripkit::io::read(&dir.join(name)).unwrap();
+        let mesh = stripkit::io::read(dir.join(name)).unwrap();
         let tris = mesh.triangulate().tris;
         let n = mesh.vertex_count();
         for heur in BOTH {
@@ -243,7 +243,7 @@ fn real_meshes_when_present() {
         "fandisk.obj",
         "quads/halftunnel.off",
     ] {
-        let mesh = match stripkit::io::read(&dir.join(name)) {
+        let mesh = match stripkit::io::read(dir.join(name)) {
             Ok(m) => m,
             Err(stripkit::Error::UnknownFormat { .. }) => {
                 eprintln!("skipped {name}: no reader for it yet");
@@ -330,7 +330,7 @@ fn bunny_meets_the_index_goal() {
         eprintln!("skipped: ../shared/models not found");
         return;
     };
-    let mesh = stripkit::io::read(&dir.join("bunny.obj")).unwrap();
+    let mesh = stripkit::io::read(dir.join("bunny.obj")).unwrap();
     let tris = mesh.triangulate().tris;
     let n = mesh.vertex_count();
     let f = run_with(&tris, n, GreedyOptions::default().heuristic(Heuristic::Indices));

@@ -45,7 +45,7 @@ fn every_model_loads_with_its_listed_counts() {
 fn spot_models_weld_one_vertex_per_uv() {
     let Some(dir) = models_dir() else { return };
     for name in ["spot_triangulated.obj", "quads/spot_quadrangulated.obj"] {
-        let mesh = io::read(&dir.join(name)).unwrap();
+        let mesh = io::read(dir.join(name)).unwrap();
         assert_eq!(mesh.vertex_count(), 3225, "{name}");
         assert_eq!(mesh.attribute("TEXCOORD_0").map(|a| a.len()), Some(3225), "{name}");
     }
@@ -57,7 +57,7 @@ fn quad_models_keep_their_polygons() {
     for name in ["quads/fandisk_quads.off", "quads/horse_quad.obj", "quads/spot_quadrangulated.obj"] {
         assert!(support::read_surface(&dir.join(name)).unwrap().is_quad_mesh(), "{name}");
     }
-    let cage = io::read(&dir.join("quads/spot_control_mesh.obj")).unwrap();
+    let cage = io::read(dir.join("quads/spot_control_mesh.obj")).unwrap();
     let mut sizes = [0usize; 8];
     for f in cage.faces() {
         sizes[f.len().min(7)] += 1;
@@ -74,8 +74,8 @@ fn canonical(t: &[u32]) -> [u32; 3] {
 #[test]
 fn cow_strips_decode_to_the_faces_of_cow_obj() {
     let Some(dir) = models_dir() else { return };
-    let strips = io::read(&dir.join("cow_tristrips.ply")).unwrap();
-    let faces = io::read(&dir.join("cow.obj")).unwrap();
+    let strips = io::read(dir.join("cow_tristrips.ply")).unwrap();
+    let faces = io::read(dir.join("cow.obj")).unwrap();
     assert_eq!(strips.positions, faces.positions);
     let mut a: Vec<[u32; 3]> = strips.faces().map(canonical).collect();
     let mut b: Vec<[u32; 3]> = faces.faces().map(canonical).collect();

@@ -30,9 +30,9 @@ fn animation(name: &str, frames: usize) -> PathBuf {
     };
     for f in 0..frames {
         let t = f as f32 / (frames - 1).max(1) as f32;
-        stripkit::io::write(&dir.join(format!("{name}-{f:02}.obj")), &pose(t), None).unwrap();
+        stripkit::io::write(dir.join(format!("{name}-{f:02}.obj")), &pose(t), None).unwrap();
     }
-    stripkit::io::write(&dir.join(format!("{name}-reference.obj")), &pose(0.5), None).unwrap();
+    stripkit::io::write(dir.join(format!("{name}-reference.obj")), &pose(0.5), None).unwrap();
     dir
 }
 
@@ -128,11 +128,11 @@ fn frames_must_share_their_faces() {
     // A frame with other faces: named in the error.
     let mut other = gen::torus(28, 10, 1.0, 0.3);
     other.face_indices.swap(0, 1);
-    stripkit::io::write(&dir.join("faces-02.obj"), &other, None).unwrap();
+    stripkit::io::write(dir.join("faces-02.obj"), &other, None).unwrap();
     let e = lod::read_frames(&dir, &Default::default()).unwrap_err().to_string();
     assert!(e.contains("faces-02.obj") && e.contains("face 0"), "{e}");
     // Another vertex count.
-    stripkit::io::write(&dir.join("faces-02.obj"), &gen::torus(20, 10, 1.0, 0.3), None).unwrap();
+    stripkit::io::write(dir.join("faces-02.obj"), &gen::torus(20, 10, 1.0, 0.3), None).unwrap();
     let e = lod::read_frames(&dir, &Default::default()).unwrap_err().to_string();
     assert!(e.contains("faces-02.obj") && e.contains("vertices"), "{e}");
     // Nothing to read.

@@ -24,7 +24,7 @@ fn unweighted_bunny_dual_reaches_the_odd_component_bound() {
         eprintln!("skipped: ../shared/models not found");
         return;
     };
-    let mesh = stripkit::io::read(&dir.join("bunny.obj")).unwrap();
+    let mesh = stripkit::io::read(dir.join("bunny.obj")).unwrap();
     let g = matching::mesh_dual_graph(&mesh, DualWeights::Uniform).unwrap();
     let mate = matching::maximum_cardinality_matching(&g);
     let exposed = mate.iter().filter(|&&x| x == matching::UNMATCHED).count();

@@ -10,7 +10,7 @@ use stripkit::simplify::{simplify, Options, Placement, Target};
 fn bunny_and_horse_replay_and_stay_valid() {
     let Some(dir) = support::models_dir() else { return };
     for (file, closed) in [("bunny.obj", false), ("horse.ply", true)] {
-        let mesh = match stripkit::io::read(&dir.join(file)) {
+        let mesh = match stripkit::io::read(dir.join(file)) {
             Ok(m) => m,
             Err(e) => {
                 eprintln!("skipped {file}: {e}");

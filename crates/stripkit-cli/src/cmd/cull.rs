@@ -149,7 +149,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         )
     };
     let counter = FacingCounter::new(&strips.strips, &positions);
-    let views = survey::survey(&tree, &counter, &eyes, &cull_at, args.repeat)?;
+    let views = survey::survey(&tree, &counter, &eyes, cull_at, args.repeat)?;
     if let Some(bar) = &args.bar {
         let (v, eye) = (args.view, eyes[args.view]);
         let mut out = Culled::default();

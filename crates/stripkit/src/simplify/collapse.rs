@@ -1077,7 +1077,7 @@ fn collapse_all(
     st: &mut State,
     options: &Options,
     triangles_in: usize,
-    attributes: &mut Vec<crate::mesh::Attribute>,
+    attributes: &mut [crate::mesh::Attribute],
     progress: &mut dyn FnMut(f64),
 ) -> (CollapseSequence, usize, f64) {
     let (n, triangle_count) = (st.pos.len(), st.tris.len());
