@@ -4,7 +4,7 @@
 //! defines [`ScenePrimitive`], which the scene holds, so that the two files do not
 //! import each other.
 
-use super::{uint, Accessor, Budget, Doc};
+use super::{at, uint, Accessor, Budget, Doc};
 use crate::error::Result;
 use crate::mesh::{Attribute, Group, Mesh, Scalar};
 use crate::strip::StripSet;
@@ -97,6 +97,41 @@ fn scalar_of(component: u64) -> Scalar {
     }
 }
 
+/// Checks every morph target of a primitive whose POSITION has `count` elements: each
+/// target an object of accessor indices, each accessor in the file with `count`
+/// elements (glTF requires it), so that nothing later (the vertex reordering gathers
+/// every target's elements by vertex id) reads past a shorter one. Only the accessor's
+/// `count` is read: targets are decoded when written, and a sparse one stays valid.
+fn check_target_counts(doc: &Doc, targets: &[Value], count: usize, place: &dyn Fn() -> String) -> Result<()> {
+    let src = doc.src;
+    for (t, target) in targets.iter().enumerate() {
+        let Value::Object(map) = target else {
+            return Err(src.err(place(), format!("targets[{t}] must be an object")));
+        };
+        for (name, a) in map {
+            let a = a
+                .as_u64()
+                .ok_or_else(|| src.err(place(), format!("targets[{t}].{name} must be an accessor index")))?
+                as usize;
+            let acc = doc.accessors.get(a).ok_or_else(|| {
+                src.err(
+                    place(),
+                    format!("targets[{t}].{name} refers to accessors[{a}] but the file has {}", doc.accessors.len()),
+                )
+            })?;
+            let n = uint(src, acc, "count", &|| at("accessors", a))?;
+            if n != Some(count as u64) {
+                let n = n.map_or("no count".to_string(), |n| format!("{n} values"));
+                return Err(src.err(
+                    place(),
+                    format!("morph target {t} attribute {name} (accessors[{a}]) has {n} but POSITION has {count}"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Decodes primitive `p` of mesh `m`; `None` for points and lines.
 pub(super) fn decode_primitive(
     doc: &Doc,
@@ -166,7 +201,10 @@ pub(super) fn decode_primitive(
     mesh.groups = vec![Group { name: mesh_name, material }];
     let targets = match prim.get("targets") {
         None => 0,
-        Some(Value::Array(t)) => t.len(),
+        Some(Value::Array(t)) => {
+            check_target_counts(doc, t, count, &place)?;
+            t.len()
+        }
         Some(_) => return Err(src.err(place(), "'targets' must be an array")),
     };
     Ok(Some(ScenePrimitive {
