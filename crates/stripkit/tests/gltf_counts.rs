@@ -129,3 +129,43 @@ fn targets_and_skins_of_the_right_count_still_strip() {
     assert_eq!(back.primitives()[0].mode, 5);
     assert_eq!(back.primitives()[0].mesh.triangle_count(), 2);
 }
+
+/// Issue #30, class 2: `n` one-triangle primitives over the same 3 positions and 3
+/// indices (44 buffer bytes): each costs the scene memory its data does not show.
+fn shared_triangles(n: usize) -> Vec<u8> {
+    let mut bin: Vec<u8> = [0f32, 0., 0., 1., 0., 0., 0., 1., 0.].iter().flat_map(|x| x.to_le_bytes()).collect();
+    bin.extend([0u16, 1, 2].iter().flat_map(|i| i.to_le_bytes()));
+    glb(
+        json!({
+            "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+            "accessors": [
+                {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+                {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"},
+            ],
+            "meshes": [{"primitives": vec![json!({"attributes": {"POSITION": 0}, "indices": 1}); n]}],
+        }),
+        &bin,
+    )
+}
+
+#[test]
+fn each_triangle_primitive_is_charged_to_the_decoded_bytes_budget() {
+    use stripkit::io::ReadOptions;
+    let name = std::path::Path::new("many.glb");
+    let read = |n: usize, options: &ReadOptions| Scene::from_bytes(name, Format::Glb, &shared_triangles(n), options);
+    // The default grants 4,096 primitives beyond the buffer-sized budget.
+    assert_eq!(read(4000, &ReadOptions::default()).unwrap().primitives().len(), 4000);
+    let msg = read(20_000, &ReadOptions::default()).unwrap_err().to_string();
+    assert!(msg.contains("many.glb") && msg.contains("triangle primitive") && msg.contains("--max-memory"), "{msg}");
+    assert!(msg.contains("for the scene's primitives"), "{msg}");
+    // An explicit limit counts them too: 10 primitives hold more than 100 KB.
+    let small = ReadOptions::default().max_decoded_bytes(Some(100_000));
+    let msg = read(10, &small).unwrap_err().to_string();
+    assert!(msg.contains("primitives[6]") && msg.contains("the limit of 100000 bytes"), "{msg}");
+    assert_eq!(read(5, &small).unwrap().primitives().len(), 5);
+    // Raised, as the message says, the 20,000 primitives strip and write.
+    let mut scene = read(20_000, &ReadOptions::default().max_decoded_bytes(Some(1 << 30))).unwrap();
+    scene.strip(&StripOptions::default(), &SceneOptions::default()).unwrap();
+    let back = scene.to_bytes(Format::Glb).unwrap();
+    assert!(!back.is_empty());
+}

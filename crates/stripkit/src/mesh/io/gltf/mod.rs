@@ -384,19 +384,33 @@ struct Budget {
 
 impl Budget {
     fn new(options: &ReadOptions, buffer_bytes: u64) -> Budget {
+        Budget::with_scene_allowance(options, buffer_bytes, 0)
+    }
+
+    /// [`Budget::new`] whose default limit (none set in `options`) also grants
+    /// `scene_allowance` bytes, for what a scene holds per primitive
+    /// ([`primitive::PRIMITIVE_BYTES`]).
+    fn with_scene_allowance(options: &ReadOptions, buffer_bytes: u64, scene_allowance: u64) -> Budget {
         use super::{DECODED_BYTES_ALLOWANCE, DECODED_BYTES_PER_BUFFER_BYTE};
         match options.max_decoded_bytes {
             Some(limit) => Budget { used: 0, limit, rule: format!("the limit of {limit} bytes") },
             None => {
-                let limit =
-                    buffer_bytes.saturating_mul(DECODED_BYTES_PER_BUFFER_BYTE).saturating_add(DECODED_BYTES_ALLOWANCE);
+                let limit = buffer_bytes
+                    .saturating_mul(DECODED_BYTES_PER_BUFFER_BYTE)
+                    .saturating_add(DECODED_BYTES_ALLOWANCE)
+                    .saturating_add(scene_allowance);
+                let scene = if scene_allowance > 0 {
+                    format!(" + {scene_allowance} for the scene's primitives")
+                } else {
+                    String::new()
+                };
                 Budget {
                     used: 0,
                     limit,
                     rule: format!(
                         "the limit of {limit} bytes ({DECODED_BYTES_PER_BUFFER_BYTE} x the file's {buffer_bytes} \
-                         buffer bytes + {DECODED_BYTES_ALLOWANCE}: the primitives reuse accessors far beyond \
-                         what the data holds)"
+                         buffer bytes + {DECODED_BYTES_ALLOWANCE}{scene}: the primitives reuse accessors far \
+                         beyond what the data holds)"
                     ),
                 }
             }

@@ -42,6 +42,16 @@ pub struct ScenePrimitive {
     pub(crate) order: Option<Vec<u32>>,
 }
 
+/// The memory a [`Scene`](super::Scene) holds per triangle primitive besides its
+/// decoded vertex and index data, charged to the decoded-bytes budget
+/// ([`ReadOptions::max_decoded_bytes`](crate::io::ReadOptions::max_decoded_bytes))
+/// as each primitive is read: its `Mesh` and the JSON objects stripping and writing it
+/// adds (its new index, restart and reordered vertex accessors and views, its restart
+/// group), in the written document and in the copy read back to check it. Measured at
+/// 9 KB per one-triangle primitive sharing its accessors and 14 KB with accessors and
+/// views of its own (docs/experiments/reliability.md).
+pub(crate) const PRIMITIVE_BYTES: u64 = 16 << 10;
+
 /// The vertex accessors of a primitive: (morph target or `None`, attribute name,
 /// accessor), POSITION and every attribute, then every target's.
 pub(super) fn vertex_accessors(json: &Value, sp: &ScenePrimitive) -> Vec<(Option<usize>, String, usize)> {
@@ -153,6 +163,11 @@ pub(super) fn decode_primitive(
     let Some(Value::Object(attributes)) = prim.get("attributes") else {
         return Err(src.err(place(), "'attributes' must be an object"));
     };
+    // What the scene holds for the primitive beyond its decoded data, charged before
+    // any of it is made (20,000 primitives over a few shared bytes held 180 MB).
+    budget.charge(src, &place(), PRIMITIVE_BYTES, || {
+        format!("one more triangle primitive (counted as {PRIMITIVE_BYTES} bytes each)")
+    })?;
     let pos = attributes
         .get("POSITION")
         .ok_or_else(|| src.err(place(), "the primitive has no POSITION attribute"))?

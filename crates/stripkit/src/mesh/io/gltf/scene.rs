@@ -65,7 +65,7 @@
 //! stored (Draco, meshopt compression, quantization) and `EXT_meshopt_compression`
 //! even where optional (its views name buffers of their own, which merging would break).
 
-use super::primitive::{bounds, decode_primitive, vertex_accessors, ScenePrimitive};
+use super::primitive::{bounds, decode_primitive, vertex_accessors, ScenePrimitive, PRIMITIVE_BYTES};
 use super::{array, at, glb_container, open, parse_glb, parse_json, Budget, Buffer, Doc, View};
 use crate::error::{Error, Result};
 use crate::mesh::io::common::Src;
@@ -80,6 +80,13 @@ use std::path::{Path, PathBuf};
 
 /// The extension that lets a strip primitive hold restart indices.
 pub const RESTART_EXTENSION: &str = "EXT_mesh_primitive_restart";
+
+/// What the default decoded-bytes budget of a scene grants beyond the buffer-sized
+/// one for the memory held per triangle primitive ([`PRIMITIVE_BYTES`] each, charged
+/// as each is read): 4,096 primitives. More must fit the buffer-sized budget, or
+/// `ReadOptions::max_decoded_bytes` (`--max-memory`) be raised; an explicit limit
+/// counts them too.
+pub const PRIMITIVES_ALLOWANCE: u64 = 4096 * PRIMITIVE_BYTES;
 
 /// Required extensions after which the vertex or index bytes cannot be read as plain
 /// accessors.
@@ -183,7 +190,7 @@ impl Scene {
         }
         let (buffers, views, primitives) = {
             let doc = open(src, &json, bin, options)?;
-            let mut budget = Budget::new(options, doc.buffer_bytes());
+            let mut budget = Budget::with_scene_allowance(options, doc.buffer_bytes(), PRIMITIVES_ALLOWANCE);
             let mut primitives = Vec::new();
             for (m, jm) in array(src, &json, "meshes")?.iter().enumerate() {
                 let prims = match jm.get("primitives") {
