@@ -44,7 +44,7 @@ pub struct ScenePrimitive {
 
 /// The memory a [`Scene`](super::Scene) holds per triangle primitive besides its
 /// decoded vertex and index data, charged to the decoded-bytes budget
-/// ([`ReadOptions::max_decoded_bytes`](crate::io::ReadOptions::max_decoded_bytes))
+/// (`ReadOptions::max_decoded_bytes`, `--max-memory`)
 /// as each primitive is read: its `Mesh` and the JSON objects stripping and writing it
 /// adds (its new index, restart and reordered vertex accessors and views, its restart
 /// group), in the written document and in the copy read back to check it. Measured at

@@ -59,7 +59,11 @@
 //!
 //! Reading follows [`ReadOptions`] (external buffers only from the asset's folder or
 //! allowed roots, bounded by `byteLength`; every decoded accessor charged to the
-//! decoded-bytes budget before it is allocated). Sparse accessors and accessors without
+//! decoded-bytes budget before it is allocated, and 16 KiB per triangle primitive for
+//! what the scene holds for it besides its data, of which the default budget grants
+//! 4,096 primitives' worth beyond its buffer-sized part). Every accessor a primitive
+//! uses (attributes, skin joints and weights, morph targets) must have as many
+//! elements as its POSITION. Sparse accessors and accessors without
 //! a buffer view are refused in the primitives' vertex and index data (elsewhere they
 //! pass through untouched), as are the required extensions that change how geometry is
 //! stored (Draco, meshopt compression, quantization) and `EXT_meshopt_compression`
@@ -86,7 +90,7 @@ pub const RESTART_EXTENSION: &str = "EXT_mesh_primitive_restart";
 /// as each is read): 4,096 primitives. More must fit the buffer-sized budget, or
 /// `ReadOptions::max_decoded_bytes` (`--max-memory`) be raised; an explicit limit
 /// counts them too.
-pub const PRIMITIVES_ALLOWANCE: u64 = 4096 * PRIMITIVE_BYTES;
+pub(crate) const PRIMITIVES_ALLOWANCE: u64 = 4096 * PRIMITIVE_BYTES;
 
 /// Required extensions after which the vertex or index bytes cannot be read as plain
 /// accessors.
