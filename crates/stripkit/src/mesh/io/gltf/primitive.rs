@@ -165,7 +165,7 @@ pub(super) fn decode_primitive(
     };
     // What the scene holds for the primitive beyond its decoded data, charged before
     // any of it is made (20,000 primitives over a few shared bytes held 180 MB).
-    budget.charge(src, &place(), PRIMITIVE_BYTES, || {
+    budget.charge_primitive(src, &place(), PRIMITIVE_BYTES, || {
         format!("one more triangle primitive (counted as {PRIMITIVE_BYTES} bytes each)")
     })?;
     let pos = attributes
