@@ -398,3 +398,24 @@ fn counts_that_add_up_but_miss_the_strips_exit_2_naming_the_file_and_level() {
     }
     assert!(!out.exists());
 }
+
+#[test]
+fn a_level_without_triangles_is_refused_not_written() {
+    // One triangle: its last level (1) has none; a degenerate face: level 0 has none.
+    for (name, obj, level) in
+        [("one", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "1"), ("degenerate", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 1 2\n", "0")]
+    {
+        let input = tmp("lod", &format!("{name}.obj"));
+        std::fs::write(&input, obj).unwrap();
+        let (model, _) = build(&input, &format!("{name}.sets"), &[]);
+        for ext in ["ply", "obj", "stl", "glb"] {
+            let out = tmp("lod", &format!("{name}_empty.{ext}"));
+            let _ = std::fs::remove_file(&out);
+            let o = stripkit(&["lod", "extract", model.to_str().unwrap(), "--level", level, "-o", out.to_str().unwrap()]);
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{name} {ext}: {err}");
+            assert!(err.contains(&format!("level {level} has no triangles")), "{name} {ext}: {err}");
+            assert!(!out.exists(), "{name} {ext}: nothing written");
+        }
+    }
+}
