@@ -35,11 +35,14 @@ fn gen_sizes_are_checked_without_overflow() {
     let out = out.to_str().unwrap();
     // 24 * 4^31 wrapped to 0 and got past the size check.
     for levels in ["31", "32", "40", "4294967295"] {
-        refused(&["gen", "cube", "--levels", levels, "-o", out], &["the requested mesh is too large", "limit 1073741824"]);
+        refused(&["gen", "cube", "--levels", levels, "-o", out], &["the requested mesh is too large", "limit 33554432"]);
     }
     refused(&["gen", "cube", "--levels", "31", "-o", out], &["24 face indices x 4^31"]);
     refused(&["gen", "cube", "--levels", "14", "-o", out], &["(6442450944 face indices"]);
     refused(&["gen", "grid", "4294967295", "4294967295", "-o", out], &["the requested mesh is too large"]);
+    // 13000 x 13000 squares: 1,014,000,000 face indices, under the earlier 2^30 limit,
+    // asked for over 10 GB to build and write.
+    refused(&["gen", "grid", "13000", "13000", "-o", out], &["(1014000000 face indices", "limit 33554432"]);
     refused(&["gen", "torus", "--major", "4294967295", "--minor", "4294967295", "-o", out], &["too large"]);
     let sub = tmp("budgets", "tri.obj");
     std::fs::write(&sub, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
