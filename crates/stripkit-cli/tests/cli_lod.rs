@@ -303,6 +303,9 @@ fn animation_misuse_exits_2() {
     let mut bad = std::fs::read(&model).unwrap();
     let mid = bad.len() / 2;
     bad[mid] ^= 8;
+    // build-seq's output must be a .lodseq (a .ply would be refused for its name).
+    let out_seq = tmp("lod", "misuse_out.lodseq");
+    let _ = std::fs::remove_file(&out_seq);
     let damaged = tmp("lod", "damaged.lodseq");
     std::fs::write(&damaged, &bad).unwrap();
     for args in [
@@ -315,16 +318,16 @@ fn animation_misuse_exits_2() {
         vec!["lod", "bench", damaged.to_str().unwrap()],
         // Frames that do not share their faces; bad settings.
         vec!["lod", "build-seq", "/no/such/folder", "-o", model.to_str().unwrap()],
-        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out.to_str().unwrap(), "--position-bits", "4"],
-        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out.to_str().unwrap(), "--tolerance", "0.5"],
-        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out.to_str().unwrap(), "--samples", "0"],
+        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out_seq.to_str().unwrap(), "--position-bits", "4"],
+        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out_seq.to_str().unwrap(), "--tolerance", "0.5"],
+        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out_seq.to_str().unwrap(), "--samples", "0"],
     ] {
         let o = stripkit(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
     }
-    assert!(!out.exists(), "nothing written");
+    assert!(!out.exists() && !out_seq.exists(), "nothing written");
     write_mesh(&dir.join("anim-02.obj"), &stripkit::gen::torus(20, 8, 1.0, 0.3));
-    let o = stripkit(&["lod", "build-seq", dir.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let o = stripkit(&["lod", "build-seq", dir.to_str().unwrap(), "-o", out_seq.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("anim-02.obj"), "names the frame");
 }

@@ -125,6 +125,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         anyhow::bail!("--view {} is past the last view ({})", args.view, args.views - 1);
     }
     if let Some(bar) = &args.bar {
+        super::check_extension("--bar", bar, "an SVG picture", &["svg"])?;
+        super::check_not_inputs(&[("input", &args.file)], &[("--bar", bar)])?;
         super::check_output_folder(bar)?;
     }
     let mesh = args.read.read(&args.file)?;

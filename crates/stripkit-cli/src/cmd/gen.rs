@@ -131,6 +131,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             What::Subdivide { output, file, read, .. } => (output, Some((file.as_path(), read))),
         };
         let format = super::output_format(output, args.output_format, input)?;
+        if let Some((file, _)) = input {
+            super::check_not_inputs(&[("input", file)], &[("-o", output)])?;
+        }
         super::check_output_folder(output)?;
         (format, super::write_options(args.ascii, output, Some(format))?)
     };

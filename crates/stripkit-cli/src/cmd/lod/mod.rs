@@ -160,6 +160,8 @@ struct BuildOut {
 
 fn build(args: BuildArgs) -> anyhow::Result<()> {
     args.common.strip.check()?;
+    crate::cmd::check_extension("-o", &args.output, "a SETS model", &["sets"])?;
+    crate::cmd::check_not_inputs(&[("input", &args.file)], &[("-o", &args.output)])?;
     crate::cmd::check_output_folder(&args.output)?;
     let mesh = args.common.read.read(&args.file)?;
     args.common.strip.check_mesh(&mesh, &args.file)?;
@@ -225,6 +227,9 @@ struct BuildSeqOut {
 
 fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
     args.common.strip.check()?;
+    // Not a mesh name, so never one of the folder's frames.
+    crate::cmd::check_extension("-o", &args.output, "a level-of-detail animation", &["lodseq"])?;
+    crate::cmd::check_not_inputs(&[("input folder", &args.folder)], &[("-o", &args.output)])?;
     crate::cmd::check_output_folder(&args.output)?;
     anyhow::ensure!(args.max_sequences >= 1, "--max-sequences must be at least 1");
     anyhow::ensure!(args.tolerance >= 1.0, "--tolerance {} must be 1 or more", args.tolerance);
