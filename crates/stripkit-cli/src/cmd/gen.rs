@@ -52,7 +52,7 @@ enum What {
     /// A unit sphere from an icosahedron split LEVEL times (20 * 4^LEVEL triangles;
     /// level 8 = 1,310,720).
     Icosphere {
-        /// Subdivision level, 0 to 10.
+        /// Subdivision level, 0 to 9.
         level: u32,
         /// Output file; the extension picks the format.
         #[arg(short, long)]
