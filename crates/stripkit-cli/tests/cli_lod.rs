@@ -341,7 +341,7 @@ fn shift_removed_count(bytes: &[u8]) -> Vec<u8> {
     let endpoint = flags & 1 == 0;
     let positionless = flags & 2 != 0;
     let mut at = 48 + if positionless { 0 } else { 12 * positions };
-    let mut skip = |at: &mut usize| {
+    let skip = |at: &mut usize| {
         while bytes[*at] & 0x80 != 0 {
             *at += 1;
         }
