@@ -59,11 +59,11 @@ fn main() -> ExitCode {
         Command::Cull(a) => cmd::cull::run(a),
         Command::Lod(a) => cmd::lod::run(a),
         Command::Completions { shell } => {
-            use std::io::Write;
-            // Built first, then written: a closed pipe is not an error.
+            // Built first, then written: the script is the command's data, so a
+            // closed standard output (a script cut short) is an error.
             let mut script = Vec::new();
             clap_complete::generate(shell, &mut Cli::command(), "stripkit", &mut script);
-            cmd::ignore_closed_pipe(std::io::stdout().lock().write_all(&script))
+            cmd::write_stdout_data(&script)
         }
     };
     match result {

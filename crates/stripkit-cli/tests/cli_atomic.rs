@@ -71,9 +71,12 @@ fn simplify_refuses_a_sequence_over_its_own_output_before_any_work() {
     assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(!new.exists());
     assert_eq!(names(&dir), ["in.obj", "out.obj", "sub"]);
-    // The input as the output stays allowed (the input is read in full first).
+    // The input as the output is refused too, before any work (issue 30: no command
+    // writes over its own input; tests/cli_inputs_kept.rs covers every spelling).
+    let before = std::fs::read(&input).unwrap();
     let o = stripkit(&["simplify", input.to_str().unwrap(), "--ratio", "0.5", "-o", input.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read(&input).unwrap(), before);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

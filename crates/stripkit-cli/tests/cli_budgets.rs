@@ -35,11 +35,14 @@ fn gen_sizes_are_checked_without_overflow() {
     let out = out.to_str().unwrap();
     // 24 * 4^31 wrapped to 0 and got past the size check.
     for levels in ["31", "32", "40", "4294967295"] {
-        refused(&["gen", "cube", "--levels", levels, "-o", out], &["the requested mesh is too large", "limit 1073741824"]);
+        refused(&["gen", "cube", "--levels", levels, "-o", out], &["the requested mesh is too large", "limit 33554432"]);
     }
     refused(&["gen", "cube", "--levels", "31", "-o", out], &["24 face indices x 4^31"]);
     refused(&["gen", "cube", "--levels", "14", "-o", out], &["(6442450944 face indices"]);
     refused(&["gen", "grid", "4294967295", "4294967295", "-o", out], &["the requested mesh is too large"]);
+    // 13000 x 13000 squares: 1,014,000,000 face indices, under the earlier 2^30 limit,
+    // asked for over 10 GB to build and write.
+    refused(&["gen", "grid", "13000", "13000", "-o", out], &["(1014000000 face indices", "limit 33554432"]);
     refused(&["gen", "torus", "--major", "4294967295", "--minor", "4294967295", "-o", out], &["too large"]);
     let sub = tmp("budgets", "tri.obj");
     std::fs::write(&sub, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
@@ -56,12 +59,29 @@ fn distance_samples_are_range_checked() {
     let f = tmp("budgets", "quad.obj");
     std::fs::write(&f, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
     let f = f.to_str().unwrap();
-    // 10^11 samples asked for 2.4 TB.
-    for n in ["100000000000", "100000001", "0"] {
+    // 10^11 samples asked for 2.4 TB; 10^8 (the earlier bound) 2.4 GB.
+    for n in ["100000000000", "100000000", "10000001", "0"] {
         refused(
             &["distance", f, f, "--samples", n],
-            &[&format!("--samples {n} is out of range: 1 to 100000000")],
+            &[&format!("--samples {n} is out of range: 1 to 10000000")],
         );
+    }
+    // The same bound for the sequences' distances, before the frames are read.
+    let out = tmp("budgets", "never.lodseq");
+    for n in ["100000000", "0"] {
+        refused(
+            &["lod", "build-seq", "no-such-folder", "-o", out.to_str().unwrap(), "--samples", n],
+            &[&format!("--samples {n} is out of range: 1 to 10000000")],
+        );
+    }
+    assert!(!out.exists());
+}
+
+#[test]
+fn cull_views_are_range_checked_before_reading() {
+    // 10^8 views once asked for over 10 GB of eyes and figures; the mesh need not exist.
+    for n in ["100000000", "100001", "0"] {
+        refused(&["cull", "no-such-mesh.obj", "--views", n], &[&format!("--views {n} is out of range: 1 to 100000")]);
     }
 }
 

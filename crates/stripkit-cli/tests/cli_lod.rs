@@ -303,6 +303,9 @@ fn animation_misuse_exits_2() {
     let mut bad = std::fs::read(&model).unwrap();
     let mid = bad.len() / 2;
     bad[mid] ^= 8;
+    // build-seq's output must be a .lodseq (a .ply would be refused for its name).
+    let out_seq = tmp("lod", "misuse_out.lodseq");
+    let _ = std::fs::remove_file(&out_seq);
     let damaged = tmp("lod", "damaged.lodseq");
     std::fs::write(&damaged, &bad).unwrap();
     for args in [
@@ -315,16 +318,107 @@ fn animation_misuse_exits_2() {
         vec!["lod", "bench", damaged.to_str().unwrap()],
         // Frames that do not share their faces; bad settings.
         vec!["lod", "build-seq", "/no/such/folder", "-o", model.to_str().unwrap()],
-        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out.to_str().unwrap(), "--position-bits", "4"],
-        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out.to_str().unwrap(), "--tolerance", "0.5"],
-        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out.to_str().unwrap(), "--samples", "0"],
+        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out_seq.to_str().unwrap(), "--position-bits", "4"],
+        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out_seq.to_str().unwrap(), "--tolerance", "0.5"],
+        vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", out_seq.to_str().unwrap(), "--samples", "0"],
     ] {
         let o = stripkit(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
     }
-    assert!(!out.exists(), "nothing written");
+    assert!(!out.exists() && !out_seq.exists(), "nothing written");
     write_mesh(&dir.join("anim-02.obj"), &stripkit::gen::torus(20, 8, 1.0, 0.3));
-    let o = stripkit(&["lod", "build-seq", dir.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let o = stripkit(&["lod", "build-seq", dir.to_str().unwrap(), "-o", out_seq.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("anim-02.obj"), "names the frame");
+}
+
+/// Moves collapse 1's removed-triangle count onto collapse 2 in a `.sets` file (the
+/// total still adds up) and reseals the checksum: a file whose structure holds but
+/// whose level 2 draws fewer triangles than it says.
+fn shift_removed_count(bytes: &[u8]) -> Vec<u8> {
+    let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
+    let (flags, positions) = (word(12), word(20) as usize);
+    let endpoint = flags & 1 == 0;
+    let positionless = flags & 2 != 0;
+    let mut at = 48 + if positionless { 0 } else { 12 * positions };
+    let skip = |at: &mut usize| {
+        while bytes[*at] & 0x80 != 0 {
+            *at += 1;
+        }
+        *at += 1;
+    };
+    // The removed counts' offsets of collapses 0, 1 and 2 (one byte each: they are small).
+    let mut removed = Vec::new();
+    for _ in 0..3 {
+        if endpoint {
+            skip(&mut at);
+        }
+        removed.push(at);
+        skip(&mut at);
+    }
+    let mut bad = bytes.to_vec();
+    let (one, two) = (removed[1], removed[2]);
+    assert!(
+        bad[one] > 0 && bad[one] < 64 && bad[two] < 64,
+        "small single-byte counts"
+    );
+    bad[two] += bad[one];
+    bad[one] = 0;
+    let n = bad.len() - 4;
+    let mut crc = flate2::Crc::new();
+    crc.update(&bad[..n]);
+    bad[n..].copy_from_slice(&crc.sum().to_le_bytes());
+    bad
+}
+
+#[test]
+fn counts_that_add_up_but_miss_the_strips_exit_2_naming_the_file_and_level() {
+    let (model, _) = build(&torus(), "shifted_good.sets", &[]);
+    let bad = tmp("lod", "shifted.sets");
+    std::fs::write(&bad, shift_removed_count(&std::fs::read(&model).unwrap())).unwrap();
+    let out = tmp("lod", "shifted_never.ply");
+    let _ = std::fs::remove_file(&out);
+    for args in [
+        vec![
+            "lod",
+            "extract",
+            bad.to_str().unwrap(),
+            "--level",
+            "2",
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        vec!["lod", "bench", bad.to_str().unwrap(), "--rounds", "1"],
+    ] {
+        let o = stripkit(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains("shifted.sets") && err.contains("level 2"),
+            "{args:?}: {err}"
+        );
+        assert!(!err.contains("verification failed"), "{args:?}: {err}");
+    }
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_level_without_triangles_is_refused_not_written() {
+    // One triangle: its last level (1) has none; a degenerate face: level 0 has none.
+    for (name, obj, level) in
+        [("one", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "1"), ("degenerate", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 1 2\n", "0")]
+    {
+        let input = tmp("lod", &format!("{name}.obj"));
+        std::fs::write(&input, obj).unwrap();
+        let (model, _) = build(&input, &format!("{name}.sets"), &[]);
+        for ext in ["ply", "obj", "stl", "glb"] {
+            let out = tmp("lod", &format!("{name}_empty.{ext}"));
+            let _ = std::fs::remove_file(&out);
+            let o = stripkit(&["lod", "extract", model.to_str().unwrap(), "--level", level, "-o", out.to_str().unwrap()]);
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{name} {ext}: {err}");
+            assert!(err.contains(&format!("level {level} has no triangles")), "{name} {ext}: {err}");
+            assert!(!out.exists(), "{name} {ext}: nothing written");
+        }
+    }
 }

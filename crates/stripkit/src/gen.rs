@@ -657,14 +657,17 @@ fn check_size(vertices: u64, indices: u64) -> Result<()> {
     Ok(())
 }
 
-/// The largest mesh built on request: 2^30 face indices (4 GiB of `u32` indices) and
-/// as many vertices. The `check_*` functions refuse a request beyond it, so that a
+/// The largest mesh built on request: 2^25 face indices (11,184,810 triangles; 128 MiB
+/// of `u32` indices) and as many vertices. Building and writing a mesh takes about
+/// 18 bytes per face index at its peak (positions, faces, the encoded file and its
+/// read-back check): `gen grid` at 2^26 indices peaked at 0.9 GB (PLY) and 1.2 GB
+/// (OBJ), and the earlier 2^30 let `gen grid 13000 13000` ask for over 10 GB. The `check_*` functions refuse a request beyond it, so that a
 /// typo cannot exhaust memory; the generators themselves only need `u32` indices.
-pub const MAX_INDICES: u64 = 1 << 30;
+pub const MAX_INDICES: u64 = 1 << 25;
 
-/// The highest [`icosphere`] level built on request: 10, 20,971,520 triangles
-/// ([`icosphere`] itself goes to 12).
-pub const MAX_ICOSPHERE_LEVEL: u32 = 10;
+/// The highest [`icosphere`] level built on request: 9, 5,242,880 triangles, inside
+/// [`MAX_INDICES`] ([`icosphere`] itself goes to 12).
+pub const MAX_ICOSPHERE_LEVEL: u32 = 9;
 
 /// Refuses a [`grid`] (`quads == false`) or [`grid_quads`] of `w` by `h` squares
 /// whose face indices or vertices would pass [`MAX_INDICES`]. Checks the size only:
@@ -681,7 +684,7 @@ pub fn check_grid(w: u32, h: u32, quads: bool) -> Result<()> {
 pub fn check_icosphere(level: u32) -> Result<()> {
     if level > MAX_ICOSPHERE_LEVEL {
         return Err(Error::Invalid(format!(
-            "icosphere level {level} is too large (at most {MAX_ICOSPHERE_LEVEL}: 20,971,520 triangles)"
+            "icosphere level {level} is too large (at most {MAX_ICOSPHERE_LEVEL}: 5,242,880 triangles)"
         )));
     }
     Ok(())

@@ -239,7 +239,12 @@ fn requests_beyond_the_size_limit_are_refused_before_building() {
     assert_eq!(gen::grid(3, 2).face_indices.len(), 6 * 3 * 2);
     assert!(gen::check_icosphere(gen::MAX_ICOSPHERE_LEVEL).is_ok());
     assert!(gen::check_torus(200, 100).is_ok());
-    assert!(gen::check_subdivision(gen::cube().face_indices.len(), 12, "cube").is_ok());
+    assert!(gen::check_subdivision(gen::cube().face_indices.len(), 10, "cube").is_ok());
+    assert!(gen::check_subdivision(gen::cube().face_indices.len(), 11, "cube").is_err());
+    // 13000 x 13000 squares (over 10 GB to build and write) once passed the limit.
+    assert!(gen::check_grid(13000, 13000, false).is_err());
+    assert!(gen::check_grid(2364, 2364, false).is_ok());
+    assert!(gen::check_icosphere(gen::MAX_ICOSPHERE_LEVEL + 1).is_err());
     assert!(gen::check_subdivision(24, 13, "cube").is_err());
     // Over the limit, without wrapping: 2^32 - 1 squares each way passes 2^64 indices.
     let e = gen::check_grid(u32::MAX, u32::MAX, false).unwrap_err().to_string();
@@ -247,9 +252,9 @@ fn requests_beyond_the_size_limit_are_refused_before_building() {
     assert!(gen::check_grid(u32::MAX, u32::MAX, true).is_err());
     assert!(gen::check_torus(u32::MAX, u32::MAX).is_err());
     let e = gen::check_icosphere(11).unwrap_err().to_string();
-    assert_eq!(e, "icosphere level 11 is too large (at most 10: 20,971,520 triangles)");
+    assert_eq!(e, "icosphere level 11 is too large (at most 9: 5,242,880 triangles)");
     let e = gen::check_subdivision(24, 14, "cube").unwrap_err().to_string();
-    assert!(e.contains("(6442450944 face indices, 0 vertices; limit 1073741824)"), "{e}");
+    assert!(e.contains("(6442450944 face indices, 0 vertices; limit 33554432)"), "{e}");
     // 24 * 4^31 once wrapped to 0 and got past the check.
     for levels in [31, 32, 40, u32::MAX] {
         let e = gen::check_subdivision(24, levels, "cube").unwrap_err().to_string();

@@ -219,3 +219,48 @@ fn research_sequence_cat() {
         lod::check_levels(sets, &mesh, sequence, 1, 5).unwrap();
     }
 }
+
+/// A quantized file whose grid (origin 3e38, a step of 1e35) runs past the largest
+/// float: refused on reading, naming the file and the grid's offset, before any
+/// position turns infinite (it used to fail later as "vertex 0 has a NaN or infinite
+/// coordinate", naming nothing).
+#[test]
+fn a_grid_past_the_largest_float_names_the_file() {
+    let dir = animation("grid", 2);
+    let frames = lod::read_frames(&dir, &Default::default()).unwrap();
+    let b = lod::build_seq(&frames, &options().position_bits(Some(12)), &mut |_| {}).unwrap();
+    let mut bytes = b.seq.to_bytes();
+    // The grid follows the 28-byte header and the frame names (length, name, model).
+    let mut at = 28;
+    for _ in 0..b.seq.frame_count() {
+        at += 1 + bytes[at] as usize; // names are short: one-byte lengths
+        at += 1; // model index
+    }
+    let path = Path::new("grid.lodseq");
+    let lo = f32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
+    assert!(
+        lo.is_finite() && lo.abs() < 10.0,
+        "the grid's origin is at byte {at}: {lo}"
+    );
+    bytes[at..at + 4].copy_from_slice(&3e38f32.to_le_bytes());
+    bytes[at + 12..at + 16].copy_from_slice(&1e35f32.to_le_bytes());
+    let n = bytes.len() - 4;
+    let mut crc = flate2::Crc::new();
+    crc.update(&bytes[..n]);
+    bytes[n..].copy_from_slice(&crc.sum().to_le_bytes());
+    match LodSeq::from_bytes(path, &bytes) {
+        Err(stripkit::Error::Format {
+            path: p,
+            at: where_,
+            what,
+        }) => {
+            assert_eq!(p, path);
+            assert_eq!(where_, format!("byte {at}"));
+            assert!(
+                what.contains("grid") && what.contains("not finite"),
+                "{what}"
+            );
+        }
+        other => panic!("expected a format error, got {other:?}"),
+    }
+}

@@ -80,6 +80,9 @@ pub fn run_folder(
             twice.1.display()
         );
     }
+    // An output folder that is the input folder (in any spelling) must not write a
+    // file over one of the inputs: refused before any file is read.
+    check_outputs_not_inputs(&files, &outputs)?;
     std::fs::create_dir_all(output).map_err(|source| stripkit::Error::Io { path: output.to_path_buf(), source })?;
     let bar = super::progress_bar(true, what);
     bar.set_length(files.len() as u64);
@@ -106,4 +109,33 @@ pub fn run_folder(
     // The worst failure decides the exit status: a failed verification (1) over bad input (2).
     let verification = failed.iter().any(|(_, e)| super::exit_code(e) == std::process::ExitCode::from(1));
     Err(if verification { stripkit::Error::Verification(message) } else { stripkit::Error::Invalid(message) }.into())
+}
+
+/// Refuses a folder run one of whose outputs is one of its inputs (the output folder
+/// being the input folder, in any spelling, or a link to one of its files): the shared
+/// check ([`super::check_not_inputs`]) for the pair found. Only an output that exists
+/// can be an input; on Unix the inputs are indexed by device and inode, so a folder of
+/// n files costs n look-ups, not n^2.
+fn check_outputs_not_inputs(files: &[PathBuf], outputs: &[PathBuf]) -> anyhow::Result<()> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let id = |p: &Path| std::fs::metadata(p).ok().map(|m| (m.dev(), m.ino()));
+        let index: std::collections::HashMap<(u64, u64), &PathBuf> =
+            files.iter().filter_map(|f| Some((id(f)?, f))).collect();
+        for out in outputs {
+            if let Some(input) = id(out).and_then(|k| index.get(&k)) {
+                super::check_not_inputs(&[("input", input)], &[("output", out)])?;
+            }
+        }
+        Ok(())
+    }
+    #[cfg(not(unix))]
+    {
+        let inputs: Vec<(&str, &Path)> = files.iter().map(|f| ("input", f.as_path())).collect();
+        for out in outputs.iter().filter(|o| o.exists()) {
+            super::check_not_inputs(&inputs, &[("output", out)])?;
+        }
+        Ok(())
+    }
 }

@@ -49,7 +49,7 @@ pub struct Args {
     /// The camera path; `spiral` (the helix) is the only one.
     #[arg(long, value_enum, default_value = "spiral")]
     pub path: PathKind,
-    /// Eyes on the path.
+    /// Eyes on the path: 1 to 100,000 (each keeps a row of figures).
     #[arg(long, value_name = "N", default_value_t = HELIX_VIEWS)]
     pub views: usize,
     /// A split node of at most this many triangles is drawn without testing its
@@ -117,13 +117,16 @@ pub struct Report {
 /// Runs the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let weights: Weights = args.weights.parse().map_err(|e| anyhow::anyhow!("--weights: {e}"))?;
-    if args.views == 0 {
-        anyhow::bail!("--views must be at least 1");
+    let max = stripkit::cull::MAX_VIEWS;
+    if !(1..=max).contains(&args.views) {
+        anyhow::bail!("--views {} is out of range: 1 to {max}", args.views);
     }
     if args.bar.is_some() && args.view >= args.views {
         anyhow::bail!("--view {} is past the last view ({})", args.view, args.views - 1);
     }
     if let Some(bar) = &args.bar {
+        super::check_extension("--bar", bar, "an SVG picture", &["svg"])?;
+        super::check_not_inputs(&[("input", &args.file)], &[("--bar", bar)])?;
         super::check_output_folder(bar)?;
     }
     let mesh = args.read.read(&args.file)?;

@@ -11,7 +11,7 @@ pub struct Args {
     /// Second mesh.
     pub b: PathBuf,
     /// Points sampled on each surface (area-weighted, fixed seed), each measured
-    /// exactly against the other surface. 1 to 100,000,000 (about 2.4 GB).
+    /// exactly against the other surface. 1 to 10,000,000 (about 480 MB).
     #[arg(long, default_value_t = stripkit::distance::DEFAULT_SAMPLES)]
     pub samples: usize,
     /// Print one JSON object (hausdorff, rms, diagonal, relative figures, both

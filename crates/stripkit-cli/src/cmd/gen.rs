@@ -52,7 +52,7 @@ enum What {
     /// A unit sphere from an icosahedron split LEVEL times (20 * 4^LEVEL triangles;
     /// level 8 = 1,310,720).
     Icosphere {
-        /// Subdivision level, 0 to 10.
+        /// Subdivision level, 0 to 9.
         level: u32,
         /// Output file; the extension picks the format.
         #[arg(short, long)]
@@ -131,6 +131,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             What::Subdivide { output, file, read, .. } => (output, Some((file.as_path(), read))),
         };
         let format = super::output_format(output, args.output_format, input)?;
+        if let Some((file, _)) = input {
+            super::check_not_inputs(&[("input", file)], &[("-o", output)])?;
+        }
         super::check_output_folder(output)?;
         (format, super::write_options(args.ascii, output, Some(format))?)
     };

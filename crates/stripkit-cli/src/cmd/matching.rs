@@ -53,6 +53,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         args.dual.is_some() || (args.weights.is_none() && args.seed.is_none()),
         "--weights and --seed apply to --dual (a graph file carries its own weights)"
     );
+    if let Some(out) = &args.output {
+        // A list of matched edges, never a mesh: a mesh name would be read as one.
+        if stripkit::io::Format::from_path(out).is_some() {
+            return Err(stripkit::Error::Invalid(format!(
+                "-o {}: the matched edges (`U V W` lines) are written there, not a mesh; name it .txt",
+                out.display()
+            ))
+            .into());
+        }
+        let inputs: Vec<(&str, &std::path::Path)> = [("graph file", &args.file), ("--dual mesh", &args.dual)]
+            .into_iter()
+            .filter_map(|(name, p)| p.as_deref().map(|p| (name, p)))
+            .collect();
+        super::check_not_inputs(&inputs, &[("-o", out)])?;
+        super::check_output_folder(out)?;
+    }
     let t0 = Instant::now();
     let (graph, source) = if let Some(mesh_path) = &args.dual {
         let mesh = args.read.read_surface(mesh_path)?;

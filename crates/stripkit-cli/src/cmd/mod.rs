@@ -30,6 +30,8 @@ pub fn print_report<R: serde::Serialize>(
 }
 
 /// A write to stdout that failed only because the reader went away is not an error.
+/// For reports only (the figures of a run whose output is already written, `stats`):
+/// data whose reader went away is an error ([`write_stdout_data`]).
 pub fn ignore_closed_pipe(result: std::io::Result<()>) -> anyhow::Result<()> {
     match result {
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
@@ -196,13 +198,29 @@ pub fn output_format(
     })
 }
 
-/// Writes encoded bytes to `output`: standard output for `-`, else atomically to the
-/// file (gzip-compressed for a `.gz` name).
-pub fn write_output(output: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+/// Writes a command's data (a mesh for `-o -`, a completion script) to standard
+/// output. Unlike a report, data the reader did not take in full is a failure: a
+/// closed standard output (EPIPE, `... -o - | head -c 10`) is the error "standard
+/// output closed" (exit 2), never success.
+pub fn write_stdout_data(bytes: &[u8]) -> anyhow::Result<()> {
     use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(bytes).and_then(|()| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Err(anyhow::anyhow!(
+            "standard output closed before the {} bytes of output were written (the reading end went away)",
+            bytes.len()
+        )),
+        Err(e) => Err(anyhow::Error::new(e).context("writing to standard output")),
+        Ok(()) => Ok(()),
+    }
+}
+
+/// Writes encoded bytes to `output`: standard output for `-` ([`write_stdout_data`]:
+/// a closed standard output is an error), else atomically to the file
+/// (gzip-compressed for a `.gz` name).
+pub fn write_output(output: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     if is_dash(output) {
-        let mut out = std::io::stdout().lock();
-        return ignore_closed_pipe(out.write_all(bytes).and_then(|()| out.flush()));
+        return write_stdout_data(bytes);
     }
     stripkit::io::write_encoded(output, bytes)?;
     Ok(())
@@ -267,6 +285,42 @@ pub fn progress_bar(show: bool, what: &str) -> indicatif::ProgressBar {
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     bar
+}
+
+/// Refuses, before any work, an output that is one of the command's own inputs in any
+/// spelling: the same file through a symbolic or hard link, `..`, a relative path
+/// ([`stripkit::io::same_destination`]: device and inode when the output exists, else
+/// its resolved folder and name). `inputs` and `outputs` pair each path with what
+/// names it (`input`, `-o`, `--sequence`, ...); standard input and output (`-`) are
+/// skipped. Every command that writes a file calls it, so none writes over what it reads.
+pub fn check_not_inputs(inputs: &[(&str, &Path)], outputs: &[(&str, &Path)]) -> Result<(), stripkit::Error> {
+    for (out_name, out) in outputs.iter().filter(|(_, p)| !is_dash(p)) {
+        for (in_name, input) in inputs.iter().filter(|(_, p)| !is_dash(p)) {
+            if stripkit::io::same_destination(out, input) {
+                return Err(stripkit::Error::Invalid(format!(
+                    "{out_name} {} is the same file as the {in_name} {}: refusing to write over an input",
+                    out.display(),
+                    input.display()
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Refuses an output whose extension is not one of `expected` (without the dot,
+/// case-insensitive): `flag` names the option, `what` what the command writes there.
+pub fn check_extension(flag: &str, path: &Path, what: &str, expected: &[&str]) -> Result<(), stripkit::Error> {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    if expected.iter().any(|e| ext.eq_ignore_ascii_case(e)) {
+        return Ok(());
+    }
+    let names: Vec<String> = expected.iter().map(|e| format!(".{e}")).collect();
+    Err(stripkit::Error::Invalid(format!(
+        "{flag} {}: {what} is written there; name it {}",
+        path.display(),
+        names.join(" or ")
+    )))
 }
 
 /// Refuses, before any work, an output whose folder does not exist.

@@ -128,6 +128,11 @@ fn check(args: &Args) -> anyhow::Result<()> {
     if !is_png {
         return Err(Error::Invalid(format!("{}: the picture must be a .png file", args.output.display())).into());
     }
+    let mut inputs = vec![("input", args.input.as_path())];
+    if let Some(morph) = &args.morph {
+        inputs.push(("--morph", morph.as_path()));
+    }
+    super::check_not_inputs(&inputs, &[("-o", &args.output)])?;
     super::check_output_folder(&args.output)?;
     if args.cull_view.is_some() && args.color != ColorArg::Cull {
         return Err(Error::Invalid("--cull-view applies to --color cull".into()).into());

@@ -82,7 +82,9 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         _ => anyhow::bail!("give one of --ratio, --triangles, --error"),
     };
     let placement = args.placement.unwrap_or(Options::default().placement);
+    let mut outputs = vec![("-o", args.output.as_path())];
     if let Some(seq) = &args.sequence {
+        outputs.push(("--sequence", seq.as_path()));
         if stripkit::io::same_destination(&args.output, seq) {
             return Err(stripkit::Error::Invalid(format!(
                 "-o/--output and --sequence name the same file ({} and {}): the sequence would overwrite the mesh",
@@ -91,7 +93,16 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
             ))
             .into());
         }
+        // A mesh name would read as a mesh and be taken for one (it holds a sequence).
+        if stripkit::io::Format::from_path(seq).is_some() {
+            return Err(stripkit::Error::Invalid(format!(
+                "--sequence {}: a collapse sequence is written there, not a mesh; name it .json (JSON) or .bin (binary)",
+                seq.display()
+            ))
+            .into());
+        }
     }
+    super::check_not_inputs(&[("input", &args.file)], &outputs)?;
     // Checked before reading the mesh, so a typo fails at once (NaN, negative and
     // infinite distances were silently taken as "no pairs").
     if let Some(d) = args.pair_distance {

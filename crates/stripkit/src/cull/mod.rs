@@ -60,7 +60,7 @@ mod tree;
 pub use bounds::Bounds;
 pub use count::{FacingCounter, FacingCounts};
 pub use frustum::{Frustum, Side};
-pub use path::{bounding_sphere, helix_eyes, HELIX_VIEWS};
+pub use path::{bounding_sphere, helix_eyes, HELIX_VIEWS, MAX_VIEWS};
 pub use traverse::{CullOptions, Culled, RenderFront};
 pub use tree::{Node, SegmentTree};
 

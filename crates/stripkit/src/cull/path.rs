@@ -4,6 +4,12 @@
 /// Views on the helix camera path (the paper's 591 frames).
 pub const HELIX_VIEWS: usize = 591;
 
+/// Most views a path may have: 100,000. Each view keeps its eye (12 bytes) and its
+/// figures in a survey (about 100 bytes, and a JSON row), and costs a cull per
+/// repeat: 10^8 views once asked for over 10 GB. [`crate::cull::survey::survey`]
+/// refuses more, and `stripkit cull --views` before reading the mesh.
+pub const MAX_VIEWS: usize = 100_000;
+
 /// The eye points of the helix camera path: `views` eyes on an ascending helix around
 /// `center` (the centre of the mesh's bounding box), at `3 radius` from the vertical
 /// axis through it (`radius`: half the box's diagonal), three turns starting on +X

@@ -76,7 +76,7 @@ pub struct PathMean {
 /// counts with `counter` (made from the same strips) what each view draws. The two
 /// traversals must give the same ranges ([`Error::Verification`] otherwise). Then
 /// times both traversals over the whole path `repeat` times (at least once), keeping
-/// each view's best.
+/// each view's best. [`Error::Invalid`] for more than [`super::MAX_VIEWS`] eyes.
 pub fn survey(
     tree: &SegmentTree,
     counter: &FacingCounter,
@@ -84,6 +84,9 @@ pub fn survey(
     options: impl Fn([f32; 3]) -> CullOptions,
     repeat: usize,
 ) -> Result<Vec<ViewFigures>> {
+    if eyes.len() > super::MAX_VIEWS {
+        return Err(Error::Invalid(format!("{} views is more than {}", eyes.len(), super::MAX_VIEWS)));
+    }
     let (mut out, mut check) = (Culled::default(), Culled::default());
     let mut front = RenderFront::new(tree);
     let mut views = Vec::with_capacity(eyes.len());

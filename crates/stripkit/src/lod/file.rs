@@ -108,8 +108,10 @@ impl Sets {
     /// first; every count is checked against the bytes left before anything is
     /// allocated for it, every vertex, slot and level against its range, levels
     /// ascend, successors move forward within their strip, and the triangle counts
-    /// agree with the strips, so that no recovery of the result can index out of
-    /// bounds or loop. A failure is [`Error::Format`] with the byte offset.
+    /// agree with the strips at every level, so that no recovery of the result can
+    /// index out of bounds or loop and every level extracts to the triangle count the
+    /// file gives. A failure is [`Error::Format`] with the byte offset (or the level
+    /// whose count the strips do not draw).
     pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Sets> {
         let fmt = |at: usize, what: String| Error::Format { path: path.to_path_buf(), at: format!("byte {at}"), what };
         let mut r = Reader::open(bytes, SETS_MAGIC, 40, ".sets", &fmt)?;
@@ -148,6 +150,18 @@ impl Sets {
                 44,
                 format!("the header gives {} triangles at level 0, the strips draw {decoded}", h.triangles0),
             ));
+        }
+        // Counts that add up can still disagree with the strips at a later level: a bad
+        // file, named with the level, not a verification failure at extraction.
+        if let Err((level, drawn)) = sets.check_triangle_counts() {
+            return Err(Error::Format {
+                path: path.to_path_buf(),
+                at: format!("level {level}"),
+                what: format!(
+                    "the collapses leave {} triangles at level {level}, the strips draw {drawn}",
+                    sets.triangles_at(level)
+                ),
+            });
         }
         Ok(sets)
     }
@@ -672,6 +686,17 @@ fn read_quantized_positions(
     let q = super::seq::Quantization { bits, lo: [grid[0], grid[1], grid[2]], step: [grid[3], grid[4], grid[5]] };
     if !grid.iter().all(|x| x.is_finite()) || q.step.iter().any(|&s| s <= 0.0) {
         return Err(r.fail(r.at, "the position grid is not finite and positive".into()));
+    }
+    // Every grid point must be a finite position: its far corner too.
+    let top = (1u32 << bits) - 1;
+    if let Some(d) = (0..3).find(|&d| !q.value(top, d).is_finite()) {
+        return Err(r.fail(
+            r.at - 24,
+            format!(
+                "the position grid's far corner is not finite (axis {d}: origin {:e} + step {:e} x {top})",
+                q.lo[d], q.step[d]
+            ),
+        ));
     }
     let len = r.varint("the positions' length")?;
     r.need(len as usize, "the positions")?;

@@ -142,7 +142,9 @@ impl Extracted {
     /// its winding (STL, which keeps no indices, by its corners' positions), before
     /// the file is replaced atomically; nothing is written
     /// otherwise ([`Error::Verification`]). [`Error::UnknownFormat`] for an
-    /// extension that names no mesh format.
+    /// extension that names no mesh format; [`Error::Invalid`] for a level without
+    /// triangles (a coarsest level collapsed to nothing, a model of degenerate faces):
+    /// a mesh file of no faces is one no reader takes back, so none is written.
     pub fn write_file(&self, path: impl AsRef<Path>, options: &WriteOptions) -> Result<()> {
         let path = path.as_ref();
         let (format, _) = Format::from_path(path).ok_or_else(|| Error::UnknownFormat {
@@ -150,6 +152,14 @@ impl Extracted {
             expected: io::SUPPORTED_EXTENSIONS,
         })?;
         let triangles = self.checked_triangles()?;
+        if triangles.is_empty() {
+            return Err(Error::Invalid(format!(
+                "{}: level {} has no triangles (the model's last level is {}; choose a finer level)",
+                path.display(),
+                self.level,
+                self.levels
+            )));
+        }
         let mesh = Mesh::from_triangles(self.positions.clone(), &triangles);
         let to_write = match format {
             Format::Ply => Some(self.strips.clone()),

@@ -120,7 +120,9 @@ pub struct SeqOptions {
     /// Stop adding sequences once every frame's Hausdorff distance is within this
     /// factor of its own sequence's, at both [`QUALITY_RATIOS`]. Default 1.25.
     pub tolerance: f64,
-    /// Samples per surface for the distances. Default 4,000.
+    /// Samples per surface for the distances: 1 to
+    /// [`crate::distance::MAX_SAMPLES`] (24 bytes each), checked before any work.
+    /// Default 4,000.
     pub samples: usize,
     /// Candidate sequences: every frame's when there are at most this many frames,
     /// else evenly spaced frames, this many; the reference pose's is always one.
@@ -367,6 +369,13 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
             (&quantized, Some(q))
         }
     };
+    if options.samples == 0 || options.samples > crate::distance::MAX_SAMPLES {
+        return Err(Error::Invalid(format!(
+            "{} samples per surface is out of range: 1 to {}",
+            options.samples,
+            crate::distance::MAX_SAMPLES
+        )));
+    }
     if options.max_sequences == 0 || options.candidates == 0 {
         return Err(Error::Invalid("at least one sequence and one candidate".into()));
     }

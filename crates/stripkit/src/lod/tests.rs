@@ -143,3 +143,31 @@ fn built_check_covers_the_levels_asked() {
     let sampled = built.check(Some(10)).unwrap().levels_checked;
     assert!((10..=12).contains(&sampled), "{sampled} of {levels}");
 }
+
+/// A model whose triangle counts add up but do not match its strips (one collapse's
+/// removed count moved to the next, checksum right): refused on reading, naming the file and
+/// the first level the strips disagree with, not accepted to fail at extraction.
+#[test]
+fn counts_that_add_up_but_do_not_match_the_strips_are_a_bad_file() {
+    let mesh = crate::gen::icosphere(1);
+    let sets = build(&mesh, &BuildOptions::default(), &mut |_| {})
+        .unwrap()
+        .sets;
+    assert!(Sets::from_bytes(std::path::Path::new("good.sets"), &sets.to_bytes()).is_ok());
+    // Collapse 1 said to remove nothing and collapse 2 its triangles too: the total
+    // holds, level 2 (after collapse 1) is off.
+    let i = 1;
+    let mut bad = sets.clone();
+    let moved = std::mem::take(&mut bad.removed_triangles[i]);
+    assert!(moved > 0);
+    bad.removed_triangles[i + 1] += moved;
+    let path = std::path::Path::new("swapped.sets");
+    match Sets::from_bytes(path, &bad.to_bytes()) {
+        Err(crate::Error::Format { path: p, at, what }) => {
+            assert_eq!(p, path);
+            assert_eq!(at, format!("level {}", i + 1), "{what}");
+            assert!(what.contains("the strips draw"), "{what}");
+        }
+        other => panic!("expected a format error, got {other:?}"),
+    }
+}

@@ -325,8 +325,8 @@ fn count_boundary_loops(mesh: &Mesh, map: &EdgeMap) -> usize {
 /// Counts vertices whose incident faces form more than one fan. Corners (half-edges
 /// by their start vertex) are listed per vertex with their outgoing edge, incoming
 /// edge and face; at each vertex a tiny local union-find joins corners that share an
-/// edge (or a face), so the work per vertex stays within its few corners.
-#[allow(clippy::needless_range_loop)] // indices are half-edge and corner ids
+/// edge (or a face), so the work per vertex stays within its few corners; a vertex
+/// with many corners sorts them by edge and face instead.
 fn count_pinch_vertices(mesh: &Mesh, map: &EdgeMap) -> usize {
     let fi = &mesh.face_indices;
     let vcount = mesh.vertex_count();
@@ -349,36 +349,84 @@ fn count_pinch_vertices(mesh: &Mesh, map: &EdgeMap) -> usize {
         if cs.len() < 2 {
             continue;
         }
-        local.clear();
-        local.extend(0..cs.len() as u32);
-        let mut groups = cs.len();
-        // Quadratic in the corners of one vertex (about six): cheaper than sorting.
-        for i in 1..cs.len() {
-            let [out_i, in_i, face_i] = cs[i];
-            for j in 0..i {
-                let [out_j, in_j, face_j] = cs[j];
-                let shared_edge = |e: u32| e != u32::MAX && (e == out_j || e == in_j);
-                if face_i == face_j || shared_edge(out_i) || shared_edge(in_i) {
-                    let mut a = i as u32;
-                    while local[a as usize] != a {
-                        a = local[a as usize];
-                    }
-                    let mut b = j as u32;
-                    while local[b as usize] != b {
-                        b = local[b as usize];
-                    }
-                    if a != b {
-                        local[a.max(b) as usize] = a.min(b);
-                        groups -= 1;
-                    }
-                }
-            }
-        }
-        if groups > 1 {
+        let fans = if cs.len() > SMALL_BUCKET { fans_by_sorting(cs, &mut local) } else { fans_pairwise(cs, &mut local) };
+        if fans > 1 {
             pinches += 1;
         }
     }
     pinches
+}
+
+/// The fans of one vertex's few corners (`[outgoing edge, incoming edge, face]`):
+/// corners sharing an edge or a face are joined, pair by pair.
+#[allow(clippy::needless_range_loop)] // indices are corner ids
+fn fans_pairwise(cs: &[[u32; 3]], local: &mut Vec<u32>) -> usize {
+    local.clear();
+    local.extend(0..cs.len() as u32);
+    let mut groups = cs.len();
+    // Quadratic in the corners of one vertex (about six): cheaper than sorting.
+    for i in 1..cs.len() {
+        let [out_i, in_i, face_i] = cs[i];
+        for j in 0..i {
+            let [out_j, in_j, face_j] = cs[j];
+            let shared_edge = |e: u32| e != u32::MAX && (e == out_j || e == in_j);
+            if face_i == face_j || shared_edge(out_i) || shared_edge(in_i) {
+                let mut a = i as u32;
+                while local[a as usize] != a {
+                    a = local[a as usize];
+                }
+                let mut b = j as u32;
+                while local[b as usize] != b {
+                    b = local[b as usize];
+                }
+                if a != b {
+                    local[a.max(b) as usize] = a.min(b);
+                    groups -= 1;
+                }
+            }
+        }
+    }
+    groups
+}
+
+/// Corners of one vertex (or faces on one edge) beyond which the pairwise tests give
+/// way to sorting: a vertex or edge shared by N faces (a book of N pages, N identical
+/// triangles) made them quadratic (32k pages: 5.5 s).
+const SMALL_BUCKET: usize = 32;
+
+/// The fans of one vertex's corners (`[outgoing edge, incoming edge, face]`, edges
+/// `u32::MAX` where none) when they are many: corners sharing an edge or a face are
+/// joined, as the pairwise test does, through their sorted keys; O(k log k).
+fn fans_by_sorting(cs: &[[u32; 3]], parent: &mut Vec<u32>) -> usize {
+    // (kind, id, corner): kind 0 for an edge, 1 for a face.
+    let mut keys: Vec<(u8, u32, u32)> = Vec::with_capacity(cs.len() * 3);
+    for (i, &[out, inc, face]) in cs.iter().enumerate() {
+        for e in [out, inc].into_iter().filter(|&e| e != u32::MAX) {
+            keys.push((0, e, i as u32));
+        }
+        keys.push((1, face, i as u32));
+    }
+    keys.sort_unstable();
+    parent.clear();
+    parent.extend(0..cs.len() as u32);
+    fn root(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            parent[x as usize] = parent[parent[x as usize] as usize];
+            x = parent[x as usize];
+        }
+        x
+    }
+    let mut groups = cs.len();
+    for w in keys.windows(2) {
+        if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
+            let (a, b) = (root(parent, w[0].2), root(parent, w[1].2));
+            if a != b {
+                parent[a.max(b) as usize] = a.min(b);
+                groups -= 1;
+            }
+        }
+    }
+    groups
 }
 
 /// Counts edge-connected components of faces.
@@ -452,6 +500,10 @@ fn newell_normal(mesh: &Mesh, face: &[u32]) -> [f64; 3] {
 fn count_duplicate_faces(mesh: &Mesh, map: &EdgeMap) -> usize {
     let mut count = 0;
     let mut edgeless: Vec<(u32, u32)> = Vec::new();
+    // For faces whose first edge carries many faces: whether an earlier face on it has
+    // the same cycle, found by sorting that edge's faces once (see `mark_repeats_on_edge`).
+    let mut sorted_edge = vec![false; map.edge_count()];
+    let mut repeat = vec![false; mesh.face_count()];
     for f in 0..mesh.face_count() {
         let (s, t) = (mesh.face_offsets[f], mesh.face_offsets[f + 1]);
         let Some(h) = (s..t).find(|&h| map.halfedge_edge[h as usize] != u32::MAX) else {
@@ -459,16 +511,59 @@ fn count_duplicate_faces(mesh: &Mesh, map: &EdgeMap) -> usize {
             continue;
         };
         let face = mesh.face(f);
-        let is_dup = map.halfedges(map.halfedge_edge[h as usize] as usize).iter().any(|&g| {
-            let gf = map.halfedge_face[g as usize] as usize;
-            gf < f && same_cycle(face, mesh.face(gf))
-        });
+        let e = map.halfedge_edge[h as usize] as usize;
+        let hs = map.halfedges(e);
+        let is_dup = if hs.len() > SMALL_BUCKET {
+            if !sorted_edge[e] {
+                mark_repeats_on_edge(mesh, map, e, &mut repeat);
+                sorted_edge[e] = true;
+            }
+            repeat[f]
+        } else {
+            hs.iter().any(|&g| {
+                let gf = map.halfedge_face[g as usize] as usize;
+                gf < f && same_cycle(face, mesh.face(gf))
+            })
+        };
         if is_dup {
             count += 1;
         }
     }
     edgeless.sort_unstable();
     count + edgeless.windows(2).filter(|w| w[0] == w[1]).count()
+}
+
+/// Sets `repeat[f]` for every face `f` on edge `e` that repeats an earlier face on
+/// `e` (the same cycle up to rotation and orientation): the faces are sorted by their
+/// canonical cycle, then by id, and all but the first of each run repeat. A face's
+/// earlier twin shares all its edges, so the answer does not depend on the edge.
+fn mark_repeats_on_edge(mesh: &Mesh, map: &EdgeMap, e: usize, repeat: &mut [bool]) {
+    let mut faces: Vec<u32> = map.halfedges(e).iter().map(|&h| map.halfedge_face[h as usize]).collect();
+    faces.sort_unstable();
+    faces.dedup();
+    let mut keyed: Vec<(Vec<u32>, u32)> = faces.iter().map(|&f| (canonical_cycle(mesh.face(f as usize)), f)).collect();
+    keyed.sort_unstable();
+    for w in keyed.windows(2) {
+        if w[0].0 == w[1].0 {
+            repeat[w[1].1 as usize] = true;
+        }
+    }
+}
+
+/// The least of a cycle's rotations and reversed rotations: equal for two faces
+/// exactly when [`same_cycle`] holds.
+fn canonical_cycle(a: &[u32]) -> Vec<u32> {
+    let k = a.len();
+    let Some(&low) = a.iter().min() else { return Vec::new() };
+    let mut best: Option<Vec<u32>> = None;
+    for j in (0..k).filter(|&j| a[j] == low) {
+        for c in [(0..k).map(|i| a[(j + i) % k]).collect::<Vec<u32>>(), (0..k).map(|i| a[(j + k - i) % k]).collect()] {
+            if best.as_ref().is_none_or(|b| c < *b) {
+                best = Some(c);
+            }
+        }
+    }
+    best.unwrap_or_default()
 }
 
 /// True when `b` is `a` rotated, possibly reversed.
@@ -509,5 +604,57 @@ impl fmt::Display for MeshFacts {
             if self.consistently_oriented { String::new() } else { format!(" ({} edges disagree)", self.inconsistent_edges) }
         )?;
         write!(f, "closed manifold       {}", if self.closed_manifold { "yes" } else { "no" })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small deterministic generator (xorshift), enough for test corners.
+    fn next(state: &mut u64) -> u64 {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        *state
+    }
+
+    #[test]
+    fn sorted_fans_agree_with_the_pairwise_test() {
+        let mut state = 0x9e37_79b9_7f4a_7c15;
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        for round in 0..2000 {
+            let k = 2 + (next(&mut state) % 40) as usize;
+            let ids = 1 + (next(&mut state) % (round as u64 % 60 + 1)) as u32;
+            let mut pick = |none: bool| {
+                let x = (next(&mut state) % (ids as u64 + 1)) as u32;
+                if none && x == ids {
+                    u32::MAX
+                } else {
+                    x % ids
+                }
+            };
+            let cs: Vec<[u32; 3]> = (0..k).map(|_| [pick(true), pick(true), pick(false)]).collect();
+            assert_eq!(fans_by_sorting(&cs, &mut a), fans_pairwise(&cs, &mut b), "{cs:?}");
+        }
+    }
+
+    #[test]
+    fn canonical_cycles_are_equal_exactly_for_the_same_cycle() {
+        let mut state = 0x2545_f491_4f6c_dd1d;
+        for _ in 0..5000 {
+            let k = 1 + (next(&mut state) % 6) as usize;
+            let range = 1 + next(&mut state) % 4;
+            let a: Vec<u32> = (0..k).map(|_| (next(&mut state) % range) as u32).collect();
+            let b: Vec<u32> = (0..k).map(|_| (next(&mut state) % range) as u32).collect();
+            assert_eq!(canonical_cycle(&a) == canonical_cycle(&b), same_cycle(&a, &b), "{a:?} {b:?}");
+            // Every rotation and reversal of a face has its canonical cycle.
+            for j in 0..k {
+                let rot: Vec<u32> = (0..k).map(|i| a[(j + i) % k]).collect();
+                let rev: Vec<u32> = (0..k).map(|i| a[(j + k - i) % k]).collect();
+                assert_eq!(canonical_cycle(&rot), canonical_cycle(&a));
+                assert_eq!(canonical_cycle(&rev), canonical_cycle(&a));
+            }
+        }
     }
 }

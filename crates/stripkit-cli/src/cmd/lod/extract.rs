@@ -72,6 +72,7 @@ pub(super) fn extract(args: ExtractArgs) -> anyhow::Result<()> {
         anyhow::ensure!((0.0..=1.0).contains(&r), "--ratio {r} is out of range: 0 to 1");
     }
     let write_options = crate::cmd::write_options(args.ascii, &args.output, crate::cmd::path_format(&args.output))?;
+    crate::cmd::check_not_inputs(&[("input", &args.file)], &[("-o", &args.output)])?;
     crate::cmd::check_output_folder(&args.output)?;
     let model = Model::read(&args.file)?;
     let spec = match (args.level, args.triangles, args.ratio) {

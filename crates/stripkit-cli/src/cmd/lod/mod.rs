@@ -92,7 +92,7 @@ struct BuildSeqArgs {
     #[arg(long, default_value_t = SeqOptions::default().tolerance)]
     tolerance: f64,
     /// Samples per surface for the distances that choose the sequences (and the
-    /// quality table the report prints).
+    /// quality table the report prints). 1 to 10,000,000 (24 bytes each).
     #[arg(long, default_value_t = SeqOptions::default().samples)]
     samples: usize,
     /// Candidate sequences: every frame's when there are at most this many frames,
@@ -160,6 +160,8 @@ struct BuildOut {
 
 fn build(args: BuildArgs) -> anyhow::Result<()> {
     args.common.strip.check()?;
+    crate::cmd::check_extension("-o", &args.output, "a SETS model", &["sets"])?;
+    crate::cmd::check_not_inputs(&[("input", &args.file)], &[("-o", &args.output)])?;
     crate::cmd::check_output_folder(&args.output)?;
     let mesh = args.common.read.read(&args.file)?;
     args.common.strip.check_mesh(&mesh, &args.file)?;
@@ -225,10 +227,18 @@ struct BuildSeqOut {
 
 fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
     args.common.strip.check()?;
+    // Not a mesh name, so never one of the folder's frames.
+    crate::cmd::check_extension("-o", &args.output, "a level-of-detail animation", &["lodseq"])?;
+    crate::cmd::check_not_inputs(&[("input folder", &args.folder)], &[("-o", &args.output)])?;
     crate::cmd::check_output_folder(&args.output)?;
     anyhow::ensure!(args.max_sequences >= 1, "--max-sequences must be at least 1");
     anyhow::ensure!(args.tolerance >= 1.0, "--tolerance {} must be 1 or more", args.tolerance);
-    anyhow::ensure!(args.samples >= 1, "--samples must be at least 1");
+    let max = stripkit::distance::MAX_SAMPLES;
+    anyhow::ensure!(
+        (1..=max).contains(&args.samples),
+        "--samples {} is out of range: 1 to {max} (each sample takes 24 bytes)",
+        args.samples
+    );
     anyhow::ensure!(args.candidates >= 1, "--candidates must be at least 1");
     let frames = lod::read_frames(&args.folder, &args.common.read.options())?;
     if frames.mesh.face_count() == 0 {

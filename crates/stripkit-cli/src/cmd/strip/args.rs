@@ -21,7 +21,7 @@ pub struct StripArgs {
     /// Greedy (and auto): strip links one tunnel may cut after the greedy pass, 0 to 32; 0 is the plain greedy. Default 1.
     #[arg(long, value_name = "N", value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(0..=stripkit::MAX_TUNNEL_CUTS as u64))]
     pub tunnel: Option<usize>,
-    /// Vertex-cache entries (1 to 65,536): the FIFO cache and balanced tune for, and the cache of the acmr figure. Default 16.
+    /// Vertex-cache entries (1 to 65,536): the FIFO cache and balanced tune for, and the cache of the acmr figure; their candidate scan grows with it (O(triangles x cache) at worst). Default 16.
     #[arg(long, value_name = "N")]
     pub cache: Option<usize>,
     /// Balanced: the most cache misses per triangle to accept for fewer indices. Default 0.8.

@@ -58,6 +58,7 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         None
     };
     let kind = output_kind(&args.output, stdout_format)?;
+    cmd::check_not_inputs(&[("input", &args.input)], &[("-o", &args.output)])?;
     // Fail before the work when the output cannot be written at all.
     cmd::check_output_folder(&args.output)?;
     let write_options = cmd::write_options(

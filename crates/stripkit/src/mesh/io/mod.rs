@@ -529,10 +529,19 @@ pub(crate) fn write_atomic_all(files: &[(&Path, &[u8])]) -> Result<()> {
     Ok(())
 }
 
-/// Whether two output paths name the same file: the same path, or the same file once
-/// resolved (symbolic links, `.` and `..`; for a file that does not exist yet, its
-/// folder resolved and its name). Paths that cannot be resolved compare as written.
+/// Whether two paths name the same file: the same path, the same file on disk when
+/// both exist (on Unix the same device and inode, so hard links, symbolic links, `.`
+/// and `..` are all seen through), or the same file once resolved (for a file that
+/// does not exist yet, its folder resolved and its name). Paths that cannot be
+/// resolved compare as written.
 pub fn same_destination(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(x), Ok(y)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+            return a == b || (x.dev() == y.dev() && x.ino() == y.ino());
+        }
+    }
     fn resolved(p: &Path) -> Option<std::path::PathBuf> {
         if let Ok(full) = p.canonicalize() {
             return Some(full);
@@ -825,6 +834,23 @@ mod tests {
         assert_eq!(std::fs::read(&first).unwrap(), b"new mesh");
         assert_eq!(std::fs::read(&second).unwrap(), b"new sequence");
         assert_eq!(entries(&dir), ["mesh.obj", "sequence.bin"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn same_destination_sees_through_hard_and_symbolic_links() {
+        let dir = scratch("links");
+        let a = dir.join("a.obj");
+        std::fs::write(&a, b"v 0 0 0\n").unwrap();
+        let hard = dir.join("hard.obj");
+        std::fs::hard_link(&a, &hard).unwrap();
+        let soft = dir.join("soft.obj");
+        std::os::unix::fs::symlink("a.obj", &soft).unwrap();
+        let other = dir.join("other.obj");
+        std::fs::write(&other, b"v 0 0 0\n").unwrap();
+        assert!(same_destination(&a, &hard) && same_destination(&hard, &soft));
+        assert!(!same_destination(&a, &other) && !same_destination(&hard, &other));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

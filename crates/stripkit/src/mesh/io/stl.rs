@@ -6,7 +6,9 @@
 //! A file is binary when its size is exactly `84 + 50 * n` for the triangle count `n`
 //! stored at byte 80, unless it starts with `solid` and its opening bytes read as
 //! ASCII STL text (some binary exporters also start their header with `solid`). A UTF-8
-//! byte order mark before `solid` is skipped; UTF-16 text is refused by name.
+//! byte order mark before `solid` is skipped; UTF-16 text is refused by name. Keywords
+//! are read without regard to case (`SOLID`, `Facet`, `VERTEX`), as some exporters
+//! write them in upper case.
 
 use super::common::{close_face, finite, is_space, line_at, parse_f32, show, sniff, tokens, utf16_bom, Lines, Src};
 use crate::error::{Error, Result};
@@ -96,7 +98,7 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
     // The size decides for binary; the text checks look past a UTF-8 byte order mark.
     let text = data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data);
     let start = text.iter().position(|&b| !is_space(b) && b != b'\n').unwrap_or(text.len());
-    let starts_solid = text[start..].starts_with(b"solid");
+    let starts_solid = text[start..].get(..5).is_some_and(|w| w.eq_ignore_ascii_case(b"solid"));
     if starts_solid && (!size_matches || looks_ascii(text)) {
         return read_ascii(src, text);
     }
@@ -156,7 +158,8 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<Mesh> {
 fn looks_ascii(data: &[u8]) -> bool {
     let head = &data[..data.len().min(512)];
     head.iter().all(|&b| b.is_ascii_graphic() || b.is_ascii_whitespace())
-        && (head.windows(5).any(|w| w == b"facet") || head.windows(8).any(|w| w == b"endsolid"))
+        && (head.windows(5).any(|w| w.eq_ignore_ascii_case(b"facet"))
+            || head.windows(8).any(|w| w.eq_ignore_ascii_case(b"endsolid")))
 }
 
 fn read_ascii(src: Src, data: &[u8]) -> Result<Mesh> {
@@ -167,7 +170,17 @@ fn read_ascii(src: Src, data: &[u8]) -> Result<Mesh> {
     let mut facets = 0usize;
     for (ln, line) in Lines::new(data) {
         let mut toks = tokens(line);
-        let Some(keyword) = toks.next() else { continue };
+        let Some(word) = toks.next() else { continue };
+        // Keywords are at most 8 bytes ("endsolid", "endfacet"); longer words are unexpected.
+        let mut lower = [0u8; 8];
+        let keyword: &[u8] = match lower.get_mut(..word.len()) {
+            Some(buf) => {
+                buf.copy_from_slice(word);
+                buf.make_ascii_lowercase();
+                buf
+            }
+            None => word,
+        };
         match keyword {
             b"solid" | b"endsolid" | b"outer" | b"endloop" => {
                 if keyword == b"solid" && facet.is_some() {
@@ -209,7 +222,7 @@ fn read_ascii(src: Src, data: &[u8]) -> Result<Mesh> {
                 facets += 1;
             }
             _ => {
-                return Err(src.err(line_at(ln), format!("unexpected '{}' in ASCII STL", show(keyword))));
+                return Err(src.err(line_at(ln), format!("unexpected '{}' in ASCII STL", show(word))));
             }
         }
     }
@@ -285,5 +298,36 @@ mod tests {
         assert!(what.contains("2 vertices"), "{what}");
         let (at, _) = format_error(b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n");
         assert_eq!(at, "line 2");
+    }
+
+    #[test]
+    fn upper_case_ascii_reads_like_lower_case() {
+        let lower: &[u8] = b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid x\n";
+        let upper = String::from_utf8(lower.to_vec()).unwrap().to_uppercase();
+        let mixed = upper.replacen("FACET NORMAL", "Facet Normal", 1);
+        let want = read(Path::new("t.stl"), lower).unwrap();
+        for text in [upper.as_str(), mixed.as_str()] {
+            let got = read(Path::new("t.stl"), text.as_bytes()).unwrap_or_else(|e| panic!("{text}: {e}"));
+            assert_eq!(got.positions, want.positions);
+            assert_eq!(got.face_indices, want.face_indices);
+            assert_eq!(got.face_offsets, want.face_offsets);
+        }
+    }
+
+    #[test]
+    fn binary_header_starting_with_upper_case_solid_stays_binary() {
+        // A binary file whose header reads "SOLID" and whose size matches one triangle.
+        let mut bytes = vec![0u8; 84 + 50];
+        bytes[..5].copy_from_slice(b"SOLID");
+        bytes[80] = 1;
+        for (k, v) in [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]].iter().enumerate() {
+            for (c, x) in v.iter().enumerate() {
+                let o = 84 + 12 + 12 * k + 4 * c;
+                bytes[o..o + 4].copy_from_slice(&x.to_le_bytes());
+            }
+        }
+        let mesh = read(Path::new("t.stl"), &bytes).unwrap();
+        assert_eq!(mesh.positions.len(), 3);
+        assert_eq!(mesh.triangle_count(), 1);
     }
 }
