@@ -378,29 +378,53 @@ fn push_primitive_faces(
 struct Budget {
     used: u64,
     limit: u64,
+    /// Bytes of per-primitive charges ([`Budget::charge_primitive`]) the default limit
+    /// still grants on top of `limit`, for those alone (decoded data never uses them).
+    primitive_grant: u64,
     /// How the limit came about, for the message.
     rule: String,
 }
 
 impl Budget {
     fn new(options: &ReadOptions, buffer_bytes: u64) -> Budget {
+        Budget::with_scene_allowance(options, buffer_bytes, 0)
+    }
+
+    /// [`Budget::new`] whose default limit (none set in `options`) also grants
+    /// `scene_allowance` bytes, for what a scene holds per primitive
+    /// ([`primitive::PRIMITIVE_BYTES`]).
+    fn with_scene_allowance(options: &ReadOptions, buffer_bytes: u64, scene_allowance: u64) -> Budget {
         use super::{DECODED_BYTES_ALLOWANCE, DECODED_BYTES_PER_BUFFER_BYTE};
         match options.max_decoded_bytes {
-            Some(limit) => Budget { used: 0, limit, rule: format!("the limit of {limit} bytes") },
+            Some(limit) => Budget { used: 0, limit, primitive_grant: 0, rule: format!("the limit of {limit} bytes") },
             None => {
                 let limit =
                     buffer_bytes.saturating_mul(DECODED_BYTES_PER_BUFFER_BYTE).saturating_add(DECODED_BYTES_ALLOWANCE);
+                let scene = if scene_allowance > 0 {
+                    format!(", and {scene_allowance} more for the first primitives of a scene")
+                } else {
+                    String::new()
+                };
                 Budget {
                     used: 0,
                     limit,
+                    primitive_grant: scene_allowance,
                     rule: format!(
                         "the limit of {limit} bytes ({DECODED_BYTES_PER_BUFFER_BYTE} x the file's {buffer_bytes} \
-                         buffer bytes + {DECODED_BYTES_ALLOWANCE}: the primitives reuse accessors far beyond \
-                         what the data holds)"
+                         buffer bytes + {DECODED_BYTES_ALLOWANCE}{scene}: the primitives reuse accessors far \
+                         beyond what the data holds)"
                     ),
                 }
             }
         }
+    }
+
+    /// Charges `bytes` held for one primitive, out of the primitives' grant while it
+    /// lasts, then as [`Budget::charge`] does.
+    fn charge_primitive(&mut self, src: Src, place: &str, bytes: u64, what: impl FnOnce() -> String) -> Result<()> {
+        let granted = bytes.min(self.primitive_grant);
+        self.primitive_grant -= granted;
+        self.charge(src, place, bytes - granted, what)
     }
 
     /// Adds `bytes` of mesh to decode, or refuses at `place` when the total would

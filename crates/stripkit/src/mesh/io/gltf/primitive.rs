@@ -4,7 +4,7 @@
 //! defines [`ScenePrimitive`], which the scene holds, so that the two files do not
 //! import each other.
 
-use super::{uint, Accessor, Budget, Doc};
+use super::{at, uint, Accessor, Budget, Doc};
 use crate::error::Result;
 use crate::mesh::{Attribute, Group, Mesh, Scalar};
 use crate::strip::StripSet;
@@ -41,6 +41,16 @@ pub struct ScenePrimitive {
     /// primitive's vertex data as read.
     pub(crate) order: Option<Vec<u32>>,
 }
+
+/// The memory a [`Scene`](super::Scene) holds per triangle primitive besides its
+/// decoded vertex and index data, charged to the decoded-bytes budget
+/// (`ReadOptions::max_decoded_bytes`, `--max-memory`)
+/// as each primitive is read: its `Mesh` and the JSON objects stripping and writing it
+/// adds (its new index, restart and reordered vertex accessors and views, its restart
+/// group), in the written document and in the copy read back to check it. Measured at
+/// 9 KB per one-triangle primitive sharing its accessors and 14 KB with accessors and
+/// views of its own (docs/experiments/reliability.md).
+pub(crate) const PRIMITIVE_BYTES: u64 = 16 << 10;
 
 /// The vertex accessors of a primitive: (morph target or `None`, attribute name,
 /// accessor), POSITION and every attribute, then every target's.
@@ -97,6 +107,41 @@ fn scalar_of(component: u64) -> Scalar {
     }
 }
 
+/// Checks every morph target of a primitive whose POSITION has `count` elements: each
+/// target an object of accessor indices, each accessor in the file with `count`
+/// elements (glTF requires it), so that nothing later (the vertex reordering gathers
+/// every target's elements by vertex id) reads past a shorter one. Only the accessor's
+/// `count` is read: targets are decoded when written, and a sparse one stays valid.
+fn check_target_counts(doc: &Doc, targets: &[Value], count: usize, place: &dyn Fn() -> String) -> Result<()> {
+    let src = doc.src;
+    for (t, target) in targets.iter().enumerate() {
+        let Value::Object(map) = target else {
+            return Err(src.err(place(), format!("targets[{t}] must be an object")));
+        };
+        for (name, a) in map {
+            let a = a
+                .as_u64()
+                .ok_or_else(|| src.err(place(), format!("targets[{t}].{name} must be an accessor index")))?
+                as usize;
+            let acc = doc.accessors.get(a).ok_or_else(|| {
+                src.err(
+                    place(),
+                    format!("targets[{t}].{name} refers to accessors[{a}] but the file has {}", doc.accessors.len()),
+                )
+            })?;
+            let n = uint(src, acc, "count", &|| at("accessors", a))?;
+            if n != Some(count as u64) {
+                let n = n.map_or("no count".to_string(), |n| format!("{n} values"));
+                return Err(src.err(
+                    place(),
+                    format!("morph target {t} attribute {name} (accessors[{a}]) has {n} but POSITION has {count}"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Decodes primitive `p` of mesh `m`; `None` for points and lines.
 pub(super) fn decode_primitive(
     doc: &Doc,
@@ -118,6 +163,11 @@ pub(super) fn decode_primitive(
     let Some(Value::Object(attributes)) = prim.get("attributes") else {
         return Err(src.err(place(), "'attributes' must be an object"));
     };
+    // What the scene holds for the primitive beyond its decoded data, charged before
+    // any of it is made (20,000 primitives over a few shared bytes held 180 MB).
+    budget.charge_primitive(src, &place(), PRIMITIVE_BYTES, || {
+        format!("one more triangle primitive (counted as {PRIMITIVE_BYTES} bytes each)")
+    })?;
     let pos = attributes
         .get("POSITION")
         .ok_or_else(|| src.err(place(), "the primitive has no POSITION attribute"))?
@@ -166,7 +216,10 @@ pub(super) fn decode_primitive(
     mesh.groups = vec![Group { name: mesh_name, material }];
     let targets = match prim.get("targets") {
         None => 0,
-        Some(Value::Array(t)) => t.len(),
+        Some(Value::Array(t)) => {
+            check_target_counts(doc, t, count, &place)?;
+            t.len()
+        }
         Some(_) => return Err(src.err(place(), "'targets' must be an array")),
     };
     Ok(Some(ScenePrimitive {

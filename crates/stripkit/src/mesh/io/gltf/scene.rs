@@ -59,13 +59,17 @@
 //!
 //! Reading follows [`ReadOptions`] (external buffers only from the asset's folder or
 //! allowed roots, bounded by `byteLength`; every decoded accessor charged to the
-//! decoded-bytes budget before it is allocated). Sparse accessors and accessors without
+//! decoded-bytes budget before it is allocated, and 16 KiB per triangle primitive for
+//! what the scene holds for it besides its data, of which the default budget grants
+//! 4,096 primitives' worth beyond its buffer-sized part). Every accessor a primitive
+//! uses (attributes, skin joints and weights, morph targets) must have as many
+//! elements as its POSITION. Sparse accessors and accessors without
 //! a buffer view are refused in the primitives' vertex and index data (elsewhere they
 //! pass through untouched), as are the required extensions that change how geometry is
 //! stored (Draco, meshopt compression, quantization) and `EXT_meshopt_compression`
 //! even where optional (its views name buffers of their own, which merging would break).
 
-use super::primitive::{bounds, decode_primitive, vertex_accessors, ScenePrimitive};
+use super::primitive::{bounds, decode_primitive, vertex_accessors, ScenePrimitive, PRIMITIVE_BYTES};
 use super::{array, at, glb_container, open, parse_glb, parse_json, Budget, Buffer, Doc, View};
 use crate::error::{Error, Result};
 use crate::mesh::io::common::Src;
@@ -75,11 +79,18 @@ use crate::mesh::Mesh;
 use crate::strip::{self, StripSet};
 use serde_json::{json, Value};
 use std::borrow::Cow;
-use std::collections::VecDeque;
+use std::collections::{BTreeMap, HashMap, VecDeque};
 use std::path::{Path, PathBuf};
 
 /// The extension that lets a strip primitive hold restart indices.
 pub const RESTART_EXTENSION: &str = "EXT_mesh_primitive_restart";
+
+/// What the default decoded-bytes budget of a scene grants beyond the buffer-sized
+/// one for the memory held per triangle primitive ([`PRIMITIVE_BYTES`] each, charged
+/// as each is read): 4,096 primitives. More must fit the buffer-sized budget, or
+/// `ReadOptions::max_decoded_bytes` (`--max-memory`) be raised; an explicit limit
+/// counts them too.
+pub(crate) const PRIMITIVES_ALLOWANCE: u64 = 4096 * PRIMITIVE_BYTES;
 
 /// Required extensions after which the vertex or index bytes cannot be read as plain
 /// accessors.
@@ -183,7 +194,7 @@ impl Scene {
         }
         let (buffers, views, primitives) = {
             let doc = open(src, &json, bin, options)?;
-            let mut budget = Budget::new(options, doc.buffer_bytes());
+            let mut budget = Budget::with_scene_allowance(options, doc.buffer_bytes(), PRIMITIVES_ALLOWANCE);
             let mut primitives = Vec::new();
             for (m, jm) in array(src, &json, "meshes")?.iter().enumerate() {
                 let prims = match jm.get("primitives") {
@@ -324,10 +335,12 @@ impl Scene {
         let stripped: Vec<&ScenePrimitive> = self.primitives.iter().filter(|p| p.strips.is_some()).collect();
         if !stripped.is_empty() {
             // Reordered primitives: their vertex data gathered in the strips' order.
+            // One reader for all of them (making one copies the views' list).
+            let doc = self.doc();
             let mut remapped: Vec<Option<StripSet>> = Vec::with_capacity(stripped.len());
             for sp in &stripped {
                 remapped.push(match &sp.order {
-                    Some(order) => Some(out.write_reordered(sp, order)?),
+                    Some(order) => Some(out.write_reordered(&doc, sp, order)?),
                     None => None,
                 });
             }
@@ -467,6 +480,19 @@ impl Scene {
             )));
         }
         let doc = back.doc();
+        // Each primitive's restart group in the written document: the first group of
+        // its mesh naming that primitive alone (looked up once, not per primitive).
+        let mut written_groups: HashMap<(usize, usize), &Value> = HashMap::new();
+        for (m, mesh) in back.json.get("meshes").and_then(Value::as_array).into_iter().flatten().enumerate() {
+            let groups = mesh.pointer(&format!("/extensions/{RESTART_EXTENSION}/primitiveGroups"));
+            for g in groups.and_then(Value::as_array).into_iter().flatten() {
+                if let Some([p]) = g.get("primitives").and_then(Value::as_array).map(Vec::as_slice) {
+                    if let Some(p) = p.as_u64() {
+                        written_groups.entry((m, p as usize)).or_insert(g);
+                    }
+                }
+            }
+        }
         for (a, b) in self.primitives.iter().zip(&back.primitives) {
             if (a.mesh_index, a.primitive_index) != (b.mesh_index, b.primitive_index) {
                 return Err(fail(
@@ -508,10 +534,7 @@ impl Scene {
             if !v.ok() {
                 return Err(fail(a, format!("stitched strip: {v}")));
             }
-            let group = back.json["meshes"][b.mesh_index]
-                .pointer(&format!("/extensions/{RESTART_EXTENSION}/primitiveGroups"))
-                .and_then(Value::as_array)
-                .and_then(|gs| gs.iter().find(|g| g["primitives"] == json!([b.primitive_index])));
+            let group = written_groups.get(&(b.mesh_index, b.primitive_index));
             let expect_group = self.restart_groups && a.targets == 0;
             match (group, expect_group) {
                 (Some(g), true) => {
@@ -595,7 +618,7 @@ impl<'s> Build<'s> {
         let Some(Value::Array(views)) = self.json.get_mut("bufferViews") else { return };
         for (k, (v, view)) in views.iter_mut().zip(&scene.views).enumerate() {
             let offset = if collect {
-                if self.garbage.dead_views.contains(&k) {
+                if self.garbage.dead_views.binary_search(&k).is_ok() {
                     continue;
                 }
                 pad4(bin);
@@ -635,8 +658,7 @@ impl<'s> Build<'s> {
     /// `order` to new views and accessors (`min` / `max` recomputed; an accessor only
     /// this primitive used keeps its number), points the primitive at them, and returns
     /// its strips in the new vertex ids.
-    fn write_reordered(&mut self, sp: &ScenePrimitive, order: &[u32]) -> Result<StripSet> {
-        let doc = self.scene.doc();
+    fn write_reordered(&mut self, doc: &Doc, sp: &ScenePrimitive, order: &[u32]) -> Result<StripSet> {
         for (target, name, a) in vertex_accessors(&self.scene.json, sp) {
             let (acc, data) = doc.read_packed(a, &mut |_| Ok(()))?;
             let elem = acc.component_size() * acc.components;
@@ -706,7 +728,7 @@ impl<'s> Build<'s> {
             let vertices = sp.order.as_ref().map_or(sp.mesh.vertex_count(), Vec::len);
             let wide = vertices >= u16::MAX as usize;
             let old = self.scene.json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index]["indices"].as_u64();
-            let slot = old.map(|a| a as usize).filter(|a| self.garbage.reused.contains(a));
+            let slot = old.map(|a| a as usize).filter(|a| self.garbage.reused.binary_search(a).is_ok());
             let at = IndexView { view, start: view_start, wide };
             let stitched = self.add_indices(at, &strip::encode_stitched(set), slot);
             let prim = &mut self.json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
@@ -767,11 +789,17 @@ impl<'s> Build<'s> {
     /// dropped (they would draw stale indices), the extension object removed when no
     /// group is left.
     fn write_restart_groups(&mut self, stripped: &[&ScenePrimitive], groups: &[[usize; 3]]) {
-        let mut meshes: Vec<usize> = stripped.iter().map(|p| p.mesh_index).collect();
-        meshes.dedup();
-        for m in meshes {
-            let rewritten: Vec<usize> =
-                stripped.iter().filter(|p| p.mesh_index == m).map(|p| p.primitive_index).collect();
+        // Per mesh: its rewritten primitives (sorted) and its new groups, gathered in
+        // one pass (a scan per mesh was quadratic in primitives over many meshes).
+        let mut meshes: BTreeMap<usize, (Vec<usize>, Vec<[usize; 3]>)> = BTreeMap::new();
+        for p in stripped {
+            meshes.entry(p.mesh_index).or_default().0.push(p.primitive_index);
+        }
+        for &g in groups {
+            meshes.entry(g[0]).or_default().1.push(g);
+        }
+        for (m, (mut rewritten, new_groups)) in meshes {
+            rewritten.sort_unstable();
             let mesh = &mut self.json["meshes"][m];
             let mut kept: Vec<Value> = mesh
                 .pointer(&format!("/extensions/{RESTART_EXTENSION}/primitiveGroups"))
@@ -780,14 +808,16 @@ impl<'s> Build<'s> {
                     g.iter()
                         .filter(|g| {
                             !g.get("primitives").and_then(Value::as_array).is_some_and(|ps| {
-                                ps.iter().any(|p| p.as_u64().is_some_and(|p| rewritten.contains(&(p as usize))))
+                                ps.iter().any(|p| {
+                                    p.as_u64().is_some_and(|p| rewritten.binary_search(&(p as usize)).is_ok())
+                                })
                             })
                         })
                         .cloned()
                         .collect()
                 })
                 .unwrap_or_default();
-            for &[_, p, acc] in groups.iter().filter(|g| g[0] == m) {
+            for [_, p, acc] in new_groups {
                 kept.push(json!({"primitives": [p], "indices": acc}));
             }
             let has_ext = mesh.pointer(&format!("/extensions/{RESTART_EXTENSION}")).is_some();
