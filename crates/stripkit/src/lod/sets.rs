@@ -223,7 +223,7 @@ impl Sets {
                 self.walk(s, level, |v| {
                     window = [window[1], window[2], v];
                     k += 1;
-                    if k >= 3 && window[0] != window[1] && window[1] != window[2] && window[0] != window[2] {
+                    if k >= 3 && !crate::strip::is_degenerate(&window) {
                         n += 1;
                     }
                 });

@@ -349,7 +349,7 @@ fn count_pinch_vertices(mesh: &Mesh, map: &EdgeMap) -> usize {
         if cs.len() < 2 {
             continue;
         }
-        let fans = if cs.len() > SMALL_BUCKET { fans_by_sorting(cs, &mut local) } else { fans_pairwise(cs, &mut local) };
+        let fans = if cs.len() > SMALL_BUCKET { fans_by_sorting(cs) } else { fans_pairwise(cs, &mut local) };
         if fans > 1 {
             pinches += 1;
         }
@@ -397,7 +397,7 @@ const SMALL_BUCKET: usize = 32;
 /// The fans of one vertex's corners (`[outgoing edge, incoming edge, face]`, edges
 /// `u32::MAX` where none) when they are many: corners sharing an edge or a face are
 /// joined, as the pairwise test does, through their sorted keys; O(k log k).
-fn fans_by_sorting(cs: &[[u32; 3]], parent: &mut Vec<u32>) -> usize {
+fn fans_by_sorting(cs: &[[u32; 3]]) -> usize {
     // (kind, id, corner): kind 0 for an edge, 1 for a face.
     let mut keys: Vec<(u8, u32, u32)> = Vec::with_capacity(cs.len() * 3);
     for (i, &[out, inc, face]) in cs.iter().enumerate() {
@@ -407,23 +407,11 @@ fn fans_by_sorting(cs: &[[u32; 3]], parent: &mut Vec<u32>) -> usize {
         keys.push((1, face, i as u32));
     }
     keys.sort_unstable();
-    parent.clear();
-    parent.extend(0..cs.len() as u32);
-    fn root(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            parent[x as usize] = parent[parent[x as usize] as usize];
-            x = parent[x as usize];
-        }
-        x
-    }
+    let mut fans = UnionFind::new(cs.len());
     let mut groups = cs.len();
     for w in keys.windows(2) {
-        if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
-            let (a, b) = (root(parent, w[0].2), root(parent, w[1].2));
-            if a != b {
-                parent[a.max(b) as usize] = a.min(b);
-                groups -= 1;
-            }
+        if (w[0].0, w[0].1) == (w[1].0, w[1].1) && fans.union(w[0].2, w[1].2) {
+            groups -= 1;
         }
     }
     groups
@@ -622,7 +610,7 @@ mod tests {
     #[test]
     fn sorted_fans_agree_with_the_pairwise_test() {
         let mut state = 0x9e37_79b9_7f4a_7c15;
-        let (mut a, mut b) = (Vec::new(), Vec::new());
+        let mut b = Vec::new();
         for round in 0..2000 {
             let k = 2 + (next(&mut state) % 40) as usize;
             let ids = 1 + (next(&mut state) % (round as u64 % 60 + 1)) as u32;
@@ -635,7 +623,7 @@ mod tests {
                 }
             };
             let cs: Vec<[u32; 3]> = (0..k).map(|_| [pick(true), pick(true), pick(false)]).collect();
-            assert_eq!(fans_by_sorting(&cs, &mut a), fans_pairwise(&cs, &mut b), "{cs:?}");
+            assert_eq!(fans_by_sorting(&cs), fans_pairwise(&cs, &mut b), "{cs:?}");
         }
     }
 
