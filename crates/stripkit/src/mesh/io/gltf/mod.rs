@@ -34,6 +34,7 @@ use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 
+mod extensions;
 mod from_mesh;
 mod primitive;
 mod scene;
@@ -196,13 +197,15 @@ struct Doc<'a> {
     accessors: &'a [Value],
 }
 
-/// Checks the asset's version and required extensions and loads its buffers and
+/// Checks the asset's version and extensions ([`extensions::check`]) and loads its buffers and
 /// buffer views (every view checked against its buffer).
 fn open<'a>(src: Src<'a>, json: &'a Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Doc<'a>> {
     let version = json.pointer("/asset/version").and_then(Value::as_str).unwrap_or("");
     if !version.starts_with('2') {
         return Err(src.err("asset.version", format!("glTF version '{version}', only 2.x is supported")));
     }
+    // Compressed geometry and unknown required extensions: refused here, for every reader.
+    extensions::check(src, json)?;
     let buffers = load_buffers(src, json, bin, options)?;
     let mut views = Vec::new();
     for (i, v) in array(src, json, "bufferViews")?.iter().enumerate() {
@@ -229,13 +232,6 @@ fn open<'a>(src: Src<'a>, json: &'a Value, bin: Option<&[u8]>, options: &ReadOpt
 }
 
 fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Mesh> {
-    // Required extensions change how data is stored (compression, quantization):
-    // reading past them would give garbage, so name them instead.
-    if let Some(ext) = array(src, json, "extensionsRequired")?.first() {
-        return Err(
-            src.err("extensionsRequired", format!("the file requires extension {ext}, which stripkit does not read"))
-        );
-    }
     let doc = open(src, json, bin, options)?;
 
     let mut mesh = Mesh::new();
