@@ -1,7 +1,8 @@
 //! Issue #30, classes 6 and 7, on the command line: glTF extensions are decided in one
 //! place of the reader, so `stats`, `strip -o x.glb` (the scene path) and
 //! `strip -o x.ply` (the mesh path) accept or refuse the same file alike; geometry
-//! stored by Draco or meshopt is refused (exit 2, named), never written back stale.
+//! stored by Draco or meshopt is refused (exit 2, named), never written back stale;
+//! and a mesh with no drawable triangle is written as glTF as it is as PLY.
 
 mod support;
 
@@ -101,4 +102,53 @@ fn a_meshopt_buffer_view_is_refused_naming_the_view() {
         assert_eq!(code, Some(2), "{err}");
         assert!(err.contains("bufferViews[0]") && err.contains("EXT_meshopt_compression"), "{err}");
     }
+}
+
+/// An OBJ whose only face repeats a vertex: every output format writes the vertices
+/// with no triangle (exit 0), and every one reads back alike (`stats`: no faces).
+#[test]
+fn a_mesh_without_a_drawable_triangle_is_written_alike_in_every_format() {
+    let input = tmp("gltf-extensions", "degenerate.obj");
+    std::fs::write(&input, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 1 1\n").unwrap();
+    let mut written = Vec::new();
+    for ext in ["glb", "gltf", "ply", "obj"] {
+        let out = tmp("gltf-extensions", &format!("degenerate-out.{ext}"));
+        let o = stripkit(&["strip", input.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(0), "{ext}: {}", String::from_utf8_lossy(&o.stderr));
+        let s = stripkit(&["stats", out.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&s.stderr);
+        assert_eq!(s.status.code(), Some(2), "{ext}: {err}");
+        assert!(err.contains("no faces"), "{ext}: {err}");
+        written.push(out);
+    }
+    let gltf_files: Vec<&std::path::Path> = written[..2].iter().map(|p| p.as_path()).collect();
+    stripkit_testkit::gltf_validator::validate(&gltf_files);
+}
+
+/// The scene path (glTF to glTF): a primitive whose one triangle is degenerate has
+/// nothing to strip and is written as read (it was written with empty accessors and,
+/// in a GLB, an empty buffer without its binary chunk, which did not read back).
+#[test]
+fn a_scene_left_without_triangles_is_written_as_a_readable_glb() {
+    let input = gltf("degenerate-scene.gltf", |d| {
+        let bin: Vec<u8> = [0f32, 0., 0., 1., 0., 0., 0., 1., 0.]
+            .iter()
+            .flat_map(|x| x.to_le_bytes())
+            .chain([0u8; 8])
+            .collect();
+        d["buffers"][0] = json!({"byteLength": 44, "uri": format!("data:application/octet-stream;base64,{}",
+            stripkit_testkit::encode_base64(&bin))});
+        d["bufferViews"] = json!([{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}]);
+        d["accessors"].as_array_mut().unwrap().push(json!({"bufferView": 1, "componentType": 5123, "count": 3,
+            "type": "SCALAR"}));
+        d["meshes"][0]["primitives"][0]["indices"] = json!(1);
+    });
+    let out = tmp("gltf-extensions", "degenerate-scene-out.glb");
+    let o = stripkit(&["strip", input.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let s = stripkit(&["stats", out.to_str().unwrap(), "--json"]);
+    assert_eq!(s.status.code(), Some(0), "{}", String::from_utf8_lossy(&s.stderr));
+    let facts = support::json(&s);
+    assert_eq!((facts["faces"].as_u64(), facts["degenerate_faces"].as_u64()), (Some(1), Some(1)), "{facts}");
+    stripkit_testkit::gltf_validator::validate(&[out.as_path()]);
 }
