@@ -22,12 +22,8 @@ use serde_json::Value;
 
 /// Extensions that hold compressed geometry the reader does not decode.
 /// `KHR_mesh_quantization` is among them when required: POSITION must be FLOAT.
-const GEOMETRY: [&str; 4] = [
-    "KHR_draco_mesh_compression",
-    "EXT_meshopt_compression",
-    "KHR_meshopt_compression",
-    "KHR_mesh_quantization",
-];
+const GEOMETRY: [&str; 4] =
+    ["KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_meshopt_compression", "KHR_mesh_quantization"];
 
 /// Required extensions that leave vertex and index data plain accessors: materials,
 /// textures, lights, instancing and metadata, carried through as written (besides
@@ -56,11 +52,7 @@ pub(crate) fn check(src: Src, json: &Value) -> Result<()> {
     let has = |v: &Value, name: &str| v.get("extensions").and_then(|e| e.get(name)).is_some();
     let meshes = array(src, json, "meshes")?;
     for (m, mesh) in meshes.iter().enumerate() {
-        let prims = mesh
-            .get("primitives")
-            .and_then(Value::as_array)
-            .map(Vec::as_slice)
-            .unwrap_or_default();
+        let prims = mesh.get("primitives").and_then(Value::as_array).map(Vec::as_slice).unwrap_or_default();
         for (p, prim) in prims.iter().enumerate() {
             if let Some(ext) = GEOMETRY.into_iter().find(|e| has(prim, e)) {
                 return Err(src.err(
