@@ -503,3 +503,32 @@ fn attribute_sections_are_checked() {
     let short = reseal(good[..at + 40].iter().copied().chain([0; 4]).collect());
     assert!(Sets::from_bytes(path, &short).is_err());
 }
+
+/// The shipped spot (UVs with seams, 13 pieces of GPU vertices): every level's files
+/// hold its own vertices with their UVs, corner by corner, in every mesh format that
+/// keeps UVs.
+#[test]
+fn spot_levels_keep_their_uvs_in_every_format() {
+    let dir = scratch("spot");
+    let mesh = stripkit::io::read(support::assets_dir().join("spot.obj")).unwrap();
+    assert!(mesh.attribute("TEXCOORD_0").is_some());
+    let built = lod::build(&mesh, &BuildOptions::default(), &mut |_| {}).unwrap();
+    let model = Model::Sets(built.sets);
+    for ratio in [1.0, 0.5, 0.1] {
+        let x = model.extract(LevelSpec::Ratio(ratio), None).unwrap();
+        let triangles = x.checked_triangles().unwrap();
+        corners_match(&triangles, &x.attributes, &built.mesh, |v| v);
+        for ext in ["glb", "obj", "ply"] {
+            let out = dir.join(format!("spot-{ratio}.{ext}"));
+            x.write_file(&out, &Default::default()).unwrap();
+            let back = read_back(&out);
+            let scale = if ext == "glb" { None } else { Some(1e5) };
+            same_corners(
+                corners(&back.triangulate().tris, &back.positions, &back.attributes, scale),
+                corners(&triangles, &x.positions, &x.attributes, scale),
+                &format!("spot {ext} at {ratio}"),
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

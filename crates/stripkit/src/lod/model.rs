@@ -146,7 +146,8 @@ impl Extracted {
     /// and STL as the strips' triangles. Through the library's one checked write
     /// path: the bytes are read back with the library's own reader and must hold
     /// exactly the strips' triangles ([`Extracted::checked_triangles`]), each with
-    /// its winding (STL, which keeps no indices, by its corners' positions), before
+    /// its winding (STL, which keeps no indices, and OBJ with attributes, which numbers
+    /// vertices by their corners, by the corners' positions), before
     /// the file is replaced atomically; nothing is written
     /// otherwise ([`Error::Verification`]). [`Error::UnknownFormat`] for an
     /// extension that names no mesh format; [`Error::Invalid`] for a level without
@@ -195,9 +196,11 @@ impl Extracted {
                 let name = format!("the {format:?} bytes of {}", path.display());
                 let back = io::read_bytes(Path::new(&name), format, bytes)?;
                 let back_triangles = back.triangulate().tris;
-                let v = if format == Format::Stl {
-                    // STL keeps no indices: its reader welds equal positions, so the
-                    // triangles are compared by their corners' positions.
+                let renumbered = format == Format::Stl || (format == Format::Obj && !mesh.attributes.is_empty());
+                let v = if renumbered {
+                    // STL keeps no indices: its reader welds equal positions; OBJ
+                    // with `vt`/`vn` numbers its vertices by the corners that name
+                    // them. So the triangles are compared by their corners' positions.
                     let mut ids = HashMap::new();
                     let expected = by_position(&triangles, &mesh.positions, &mut ids);
                     verify_triangles(&expected, &by_position(&back_triangles, &back.positions, &mut ids))
