@@ -160,7 +160,7 @@ pub fn check(data: &[u8]) {
                 .max_decompressed_bytes(n)
                 .max_external_bytes(n)
                 .max_decoded_bytes(Some(n));
-            let (_, glb) = &crate::seeds::scenes()[0];
+            let glb = &crate::seeds::skin_morph_glb();
             let path = std::path::Path::new("/nonexistent-stripkit-fuzz/m.glb");
             match stripkit::scene::Scene::from_bytes(path, Format::Glb, glb, &options) {
                 Ok(_) => {}

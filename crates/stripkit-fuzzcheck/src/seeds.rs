@@ -251,16 +251,26 @@ fn scene(shape: Shape) -> (Value, Vec<u8>) {
     (json, d.bin)
 }
 
+/// The first seed shape: a 2-by-2 grid with a skin and two morph targets.
+const BASE: Shape = Shape {
+    n: 2,
+    mode: 4,
+    indexed: true,
+    skin: true,
+    targets: 2,
+    primitives: 1,
+};
+
+/// The first seed, `skin_morph.glb`: a 2-by-2 grid (9 vertices, 8 triangles) with
+/// normals, texture coordinates, a skin of two joints and two morph targets.
+pub fn skin_morph_glb() -> Vec<u8> {
+    let (json, bin) = scene(BASE);
+    glb(json, &bin)
+}
+
 /// The seed scenes, named: each shape as GLB and as glTF.
 pub fn scenes() -> Vec<(String, Vec<u8>)> {
-    let base = Shape {
-        n: 2,
-        mode: 4,
-        indexed: true,
-        skin: true,
-        targets: 2,
-        primitives: 1,
-    };
+    let base = BASE;
     let shapes = [
         ("skin_morph", base),
         ("skin", Shape { targets: 0, ..base }),
