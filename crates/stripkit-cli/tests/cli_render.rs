@@ -403,3 +403,36 @@ fn levels_of_detail_draw_their_own_strips() {
         assert_eq!(stripkit(&args).status.code(), Some(2), "{bad:?}");
     }
 }
+
+#[test]
+fn any_finite_scale_is_framed() {
+    // A torus drawn at its own size, then scaled by powers of ten far beyond single
+    // precision's comfortable range: every picture holds the model (1e18 and 1e-18
+    // used to come out blank in some shapes, 1e25 always), and about as many pixels
+    // (the scaled positions round differently); scaled by a power of two, exactly as many.
+    let mut torus = stripkit::gen::torus(24, 12, 1.0, 0.3);
+    for p in &mut torus.positions {
+        p[0] += 0.5;
+    }
+    let pixels = |name: &str, scale: f32| -> Option<u64> {
+        let mut mesh = torus.clone();
+        for p in &mut mesh.positions {
+            *p = p.map(|x| (x as f64 * scale as f64) as f32);
+        }
+        let obj = tmp("render", &format!("scaled-{name}.obj"));
+        write_mesh(&obj, &mesh);
+        let png = tmp("render", &format!("scaled-{name}.png"));
+        let j = render(&[obj.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "200x150", "--wireframe"])?;
+        j["pixels"].as_u64()
+    };
+    let Some(plain) = pixels("1", 1.0) else {
+        return;
+    };
+    assert!(plain > 5000, "{plain}");
+    assert_eq!(pixels("2p64", 2f32.powi(64)), Some(plain), "a power of two is exact");
+    assert_eq!(pixels("2p-64", 2f32.powi(-64)), Some(plain), "a power of two is exact");
+    for (name, scale) in [("1e18", 1e18f32), ("1e-18", 1e-18), ("1e25", 1e25), ("1e-25", 1e-25), ("1e36", 1e36)] {
+        let n = pixels(name, scale).unwrap();
+        assert!(n.abs_diff(plain) * 100 <= plain, "{name}: {n} pixels, {plain} at scale 1");
+    }
+}

@@ -226,6 +226,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(other) = &target {
         points.extend(other.used_positions());
     }
+    // Any finite scale is drawn in a frame near unit size (a power of two: exact).
+    let scale = stripkit_render::unit_scale(&points);
+    stripkit_render::scale_points(&mut points, scale);
     let framing = Framing::fit(&points, args.view, args.up, args.fov, args.zoom, w as f32 / h as f32).map_err(|e| {
         Error::Invalid(match e {
             FrameError::ZeroView => "--view must not be 0,0,0".into(),
@@ -257,6 +260,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (None, Some((positions, strips, _))) => (strips.clone(), positions.clone(), None),
         (None, None) => unreachable!("a mesh goes through the door"),
     };
+    let (mut positions, mut target_positions) = (positions, target_positions);
+    stripkit_render::scale_points(&mut positions, scale);
+    if let Some(other) = &mut target_positions {
+        stripkit_render::scale_points(other, scale);
+    }
     let blended = target_positions.as_ref().map(|other| stripkit_render::morph_positions(&positions, other, t));
     let drawn = blended.as_deref().unwrap_or(&positions);
 
