@@ -436,3 +436,19 @@ fn any_finite_scale_is_framed() {
         assert!(n.abs_diff(plain) * 100 <= plain, "{name}: {n} pixels, {plain} at scale 1");
     }
 }
+
+#[test]
+fn a_wireframe_of_many_edges_is_drawn_in_slices() {
+    // 200 x 200 grid: 80,000 triangles, 120,400 edges, more than one slice of 65,536
+    // edges (the slices bound the memory: 1.3 M triangles at 4096 x 4096 took 514 MB
+    // for the wireframe at once, now 60 MB); every edge is drawn.
+    let mesh = grid(200, 200);
+    let png = tmp("render", "grid-wire-slices.png");
+    let Some(j) = render(&[&mesh, "-o", png.to_str().unwrap(), "--wireframe", "--view", "0,0,1", "--size", "400x400"])
+    else {
+        return;
+    };
+    assert_eq!(j["edges"], 200 * 201 * 2 + 200 * 200);
+    let pic = Picture::read(&png);
+    assert!(pic.count(WIRE) > 400 * 400 / 2, "the wire covers the dense grid: {}", pic.count(WIRE));
+}

@@ -248,7 +248,8 @@ mod tests {
         }
         assert_eq!(unit_scale(&[]), 1.0);
         let mut p = cube(1e20);
-        scale_points(&mut p, unit_scale(&p));
+        let k = unit_scale(&p);
+        scale_points(&mut p, k);
         assert!(p[1][0] >= 1.0 && p[1][0] < 2.0);
     }
 
