@@ -9,8 +9,11 @@ KIND:
   stl-same   a binary STL of N identical triangles
   ply-props  an ASCII PLY with one triangle whose vertices carry N extra uchar properties
   grid       an OBJ grid of about N triangles (for `balanced --cache`)
+  star       a DIMACS graph: node 1 joined to N leaves, weight 1 (for `match`)
+  path-mod7  a DIMACS path of N nodes, edge i (0-based) of weight i mod 7 (for `match`)
 
-Used for the growth tables in docs/experiments/reliability.md ("Quadratic inputs").
+Used for the growth tables in docs/experiments/reliability.md ("Quadratic inputs";
+`star` and `path-mod7`: "The matching on stars and tie-heavy paths").
 """
 import math
 import struct
@@ -57,6 +60,14 @@ def main():
             for x in range(k):
                 a = y * (k + 1) + x + 1
                 lines.append(f"f {a} {a + 1} {a + k + 2}\nf {a} {a + k + 2} {a + k + 1}\n")
+        open(out, "w").write("".join(lines))
+    elif kind == "star":
+        lines = [f"p edge {n + 1} {n}\n"]
+        lines += [f"e 1 {i + 2} 1\n" for i in range(n)]
+        open(out, "w").write("".join(lines))
+    elif kind == "path-mod7":
+        lines = [f"p edge {n} {n - 1}\n"]
+        lines += [f"e {i + 1} {i + 2} {i % 7}\n" for i in range(n - 1)]
         open(out, "w").write("".join(lines))
     else:
         sys.exit(f"unknown kind {kind}")

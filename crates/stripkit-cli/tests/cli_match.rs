@@ -190,3 +190,30 @@ fn dual_defaults_and_the_edge_file_are_the_librarys() {
     let r = json(&["match", "--dual", f.to_str().unwrap(), "--weights", "random", "--json"]);
     assert_eq!(r["total_weight"], m.total_weight);
 }
+
+#[test]
+fn the_issue_30_star_and_mod_7_path_are_solved() {
+    // The issue's 229 KB star (node 1 joined to 20,000 leaves, weight 1), which asked
+    // for 2 GiB, and a path with weights i mod 7 (quadratic in the ties before):
+    // both solved and certified (growth: docs/experiments/reliability.md).
+    let star = tmp("star20000.dimacs");
+    let mut text = String::from("p edge 20001 20000\n");
+    for v in 2..=20001 {
+        text.push_str(&format!("e 1 {v} 1\n"));
+    }
+    std::fs::write(&star, text).unwrap();
+    let v = json(&["match", star.to_str().unwrap(), "--json"]);
+    assert_eq!((v["perfect"].clone(), v["matched_nodes"].clone()), (false.into(), 2.into()));
+    assert_eq!((v["total_weight"].clone(), v["certified"].clone()), (1.into(), true.into()));
+    let path = tmp("path-mod7.dimacs");
+    let n = 20000;
+    let mut text = format!("p edge {n} {}\n", n - 1);
+    for i in 0..n - 1 {
+        text.push_str(&format!("e {} {} {}\n", i + 1, i + 2, i % 7));
+    }
+    std::fs::write(&path, text).unwrap();
+    let v = json(&["match", path.to_str().unwrap(), "--json"]);
+    let want: i64 = (0..n - 1).step_by(2).map(|i| i % 7).sum();
+    assert_eq!((v["perfect"].clone(), v["certified"].clone()), (true.into(), true.into()));
+    assert_eq!(v["total_weight"], want);
+}

@@ -211,20 +211,14 @@ fn odd_component_gadget(
 /// Uniform weights: every maximum-cardinality matching is optimal, so the unweighted
 /// matcher decides, stopped at the odd-component bound; the certificate is `y = w / 2`
 /// on every vertex (every edge tight), extended to the odd-component gadget by
-/// `y_d = dummy - w / 2`; past the bound, on the k-dummy gadget the same way. `None`
-/// only when that gadget would be too large (then the general path runs).
-fn solve_uniform(g: &Graph, obj: Objective, ends: &[[u32; 2]], ws: &[i64], ids: &[u32], root: &[u32], odd: &[u32]) -> Result<Option<Matching>> {
+/// `y_d = dummy - w / 2`; past the bound, on the k-dummy gadget the same way, whose
+/// k x n dummy edges are checked without being built (see [`check_k_dummy`]).
+fn solve_uniform(g: &Graph, obj: Objective, ends: &[[u32; 2]], ws: &[i64], ids: &[u32], root: &[u32], odd: &[u32]) -> Result<Matching> {
     let n = g.node_count();
     let w = ws[0];
     let plain = Graph::new(n, ends.to_vec(), vec![0; ends.len()])?;
     let mate = unweighted::maximum_cardinality_matching_bounded(&plain, odd.len());
     let exposed = mate.iter().filter(|&&x| x == UNMATCHED).count();
-    let m = ends.len();
-    // Past the odd-component bound the certificate lives on the k-dummy gadget (k
-    // dummies joined to every vertex), which is only built when small.
-    if exposed != odd.len() && (exposed as u64) * (n as u64) > 4 * (n as u64 + m as u64) {
-        return Ok(None);
-    }
     // Matched simple-edge ids (plain has the simplified edges in order).
     let mut matched_simple: Vec<u32> = Vec::with_capacity(n / 2);
     for v in 0..n as u32 {
@@ -248,32 +242,21 @@ fn solve_uniform(g: &Graph, obj: Objective, ends: &[[u32; 2]], ws: &[i64], ids: 
     if exposed == 0 {
         let cert = Certificate { y: vec![w / 2; n], blossoms: Vec::new(), vertex_blossom: vec![NONE; n] };
         verify(g, obj, &matched, &cert)?;
-        return Ok(Some(finish(g, true, matched, Some(cert), true, stats)));
+        return Ok(finish(g, true, matched, Some(cert), true, stats));
     }
     let dummy = dummy_weight(ws);
     if exposed != odd.len() {
         // k = exposed dummies, each joined to every vertex; the i-th exposed vertex
         // takes dummy i. Every edge is tight under y = w/2, y_d = dummy - w/2.
         let k = exposed;
-        let mut dends = ends.to_vec();
-        let mut dws = ws.to_vec();
-        for d in 0..k {
-            for v in 0..n as u32 {
-                dends.push([v, (n + d) as u32]);
-                dws.push(dummy);
-            }
-        }
-        let mut all = matched_simple;
-        for (i, v) in (0..n).filter(|&v| mate[v] == UNMATCHED).enumerate() {
-            all.push((m + i * n + v) as u32);
-        }
+        let exposed_vertices: Vec<u32> = (0..n as u32).filter(|&v| mate[v as usize] == UNMATCHED).collect();
         let mut y = vec![w / 2; n + k];
         for yd in &mut y[n..] {
             *yd = dummy - w / 2;
         }
         let cert = Certificate { y, blossoms: Vec::new(), vertex_blossom: vec![NONE; n + k] };
-        check_certificate(n + k, &dends, &dws, &all, &cert)?;
-        return Ok(Some(finish(g, false, matched, None, true, stats)));
+        check_k_dummy(n, ends, ws, dummy, &matched_simple, &exposed_vertices, &cert)?;
+        return Ok(finish(g, false, matched, None, true, stats));
     }
     let (n2, dends, dws) = odd_component_gadget(n, ends, ws, root, odd, dummy);
     let mut y = vec![w / 2; n2];
@@ -294,7 +277,48 @@ fn solve_uniform(g: &Graph, obj: Objective, ends: &[[u32; 2]], ws: &[i64], ids: 
     }
     let cert = Certificate { y, blossoms: Vec::new(), vertex_blossom: vec![NONE; n2] };
     check_certificate(n2, &dends, &dws, &all, &cert)?;
-    Ok(Some(finish(g, false, matched, None, true, stats)))
+    Ok(finish(g, false, matched, None, true, stats))
+}
+
+/// Checks a certificate of the k-dummy gadget (the graph plus `k` dummy vertices
+/// `n..n+k`, each joined to every vertex by an edge of internal weight `dummy`, no
+/// blossoms) without building its k x n dummy edges: the graph's edges and the `k`
+/// matched dummy edges (the i-th exposed vertex to dummy i) go to
+/// [`check_certificate`], and every other dummy edge's constraint
+/// `y_v + y_d >= dummy` holds for all pairs exactly when it holds for the smallest
+/// `y_v` and the smallest `y_d`. The gadget was built in full before: 20,000 exposed
+/// vertices of a star asked for 2 GiB.
+fn check_k_dummy(
+    n: usize,
+    ends: &[[u32; 2]],
+    ws: &[i64],
+    dummy: i64,
+    matched: &[u32],
+    exposed: &[u32],
+    cert: &Certificate,
+) -> Result<()> {
+    let k = exposed.len();
+    if !cert.blossoms.is_empty() || cert.y.len() != n + k {
+        return Err(Error::Verification("k-dummy certificate: blossoms or wrong dual count (bug)".into()));
+    }
+    let mut dends = ends.to_vec();
+    let mut dws = ws.to_vec();
+    let mut all = matched.to_vec();
+    for (i, &v) in exposed.iter().enumerate() {
+        all.push(dends.len() as u32);
+        dends.push([v, (n + i) as u32]);
+        dws.push(dummy);
+    }
+    check_certificate(n + k, &dends, &dws, &all, cert)?;
+    let (ymin, ydmin) = (cert.y[..n].iter().min(), cert.y[n..].iter().min());
+    if let (Some(&a), Some(&b)) = (ymin, ydmin) {
+        if (a as i128) + (b as i128) < (dummy as i128) {
+            return Err(Error::Verification(format!(
+                "k-dummy certificate: a dummy edge has negative slack ({a} + {b} < {dummy})"
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Solves the matching problem for `obj`: an optimal perfect matching with its
@@ -316,9 +340,7 @@ pub fn solve(g: &Graph, obj: Objective) -> Result<Matching> {
         }
     };
     if uniform {
-        if let Some(m) = solve_uniform(g, obj, &ends, &ws, &ids, &root, &odd)? {
-            return Ok(m);
-        }
+        return solve_uniform(g, obj, &ends, &ws, &ids, &root, &odd);
     }
     // A failing perfect attempt costs far more than a success (the last trees grow
     // over everything before the engine gives up), so on graphs of moderate size the
