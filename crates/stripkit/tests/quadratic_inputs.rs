@@ -162,3 +162,20 @@ fn a_ply_vertex_with_many_properties_keeps_the_first_of_each_name() {
     assert_eq!(mesh.attributes[7].value(1), vec![7.0]);
     assert_eq!(mesh.attributes[n - 11].value(2), vec![((n - 11) % 200) as f64]);
 }
+
+#[test]
+fn many_mtllib_names_keep_the_first_of_each() {
+    // 80,000 `mtllib` names (every tenth line repeats an earlier one): 44 s in the
+    // release CLI when each name searched the list of earlier ones.
+    let n = 80_000;
+    let mut obj = String::new();
+    for i in 0..n {
+        let name = if i % 10 == 9 { i - 5 } else { i };
+        obj += &format!("mtllib lib{name}.mtl\n");
+    }
+    obj += "mtllib lib0.mtl lib80000.mtl lib80000.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let mesh = io::read(temp_file("mtllibs.obj", obj.as_bytes())).unwrap();
+    let expected: Vec<String> =
+        (0..n).filter(|i| i % 10 != 9).chain([80_000]).map(|i| format!("lib{i}.mtl")).collect();
+    assert_eq!(mesh.material_libraries, expected);
+}
