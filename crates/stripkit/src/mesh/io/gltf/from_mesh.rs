@@ -181,8 +181,9 @@ fn part(mesh: &Mesh, g: u32) -> Option<Mesh> {
     Some(out)
 }
 
-/// The vertex accessors of `mesh` (POSITION first), as a primitive's `attributes`.
-fn write_vertices(
+/// The vertex accessors of `mesh` (POSITION first), as a primitive's `attributes`;
+/// attributes that cannot be written are named in `notes`.
+pub(super) fn write_vertices(
     mesh: &Mesh,
     bin: &mut Vec<u8>,
     views: &mut Vec<Value>,
