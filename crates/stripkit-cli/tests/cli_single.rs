@@ -105,6 +105,24 @@ fn seams_are_reported_and_degenerate_join_stitches_the_whole_mesh() {
     assert_eq!(c["triangles"].as_u64().unwrap() as usize, input_triangles + c["triangles_added"].as_u64().unwrap() as usize);
 }
 
+/// `--positions-only` reads the bare shape: spot's 2,930 positions, no seams, so one
+/// piece and one strip (the README's figures are measured so).
+#[test]
+fn positions_only_has_no_seams() {
+    let input = support::assets_dir().join("spot.obj");
+    let out = tmp("single", "spot_bare.ply");
+    let r = json(&stripkit(&[
+        "strip", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--algo", "single", "--weights", "cache",
+        "--positions-only", "--json",
+    ]));
+    let s = &r["single"];
+    assert_eq!((s["components"].as_u64(), s["surfaces"].as_u64()), (Some(1), Some(1)), "{s}");
+    assert!(s["uv_islands"].is_null(), "{s}");
+    assert_eq!(r["strips"], 1, "{r}");
+    let added = s["vertices_added"].as_u64().unwrap();
+    assert_eq!(r["vertices"].as_u64(), Some(2930 + added), "{r}");
+}
+
 #[test]
 fn misused_flags_exit_2() {
     let input = sphere();

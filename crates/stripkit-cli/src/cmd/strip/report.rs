@@ -165,7 +165,12 @@ pub fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
             s.swapped_edges
         )?;
     }
-    writeln!(out, "  strips               {:>10}", f.strips)?;
+    let stitched = if r.join == stripkit::Join::Degenerate && f.strips > 1 {
+        " (written stitched by degenerate triangles: one strip per material group)".to_string()
+    } else {
+        String::new()
+    };
+    writeln!(out, "  strips               {:>10}{stitched}", f.strips)?;
     writeln!(out, "  swaps                {:>10}", f.swaps)?;
     writeln!(out, "  indices_separate     {:>10}", f.indices_separate)?;
     writeln!(out, "  indices_restart      {:>10}", f.indices_restart)?;
@@ -204,6 +209,7 @@ pub fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
             "  pieces               {:>10} (of GPU vertices: one strip each at best; {} surface(s){islands})",
             s.components, s.surfaces
         )?;
+        writeln!(out, "  path ends forced     {:>10} (by boundary and seam triangles; a strip has two)", s.forced_ends)?;
         writeln!(out, "  triangles added      {:>10} (edge splits)", s.triangles_added)?;
         writeln!(out, "  vertices added       {:>10} (Steiner vertices)", s.vertices_added)?;
         if s.clusters > 0 {
