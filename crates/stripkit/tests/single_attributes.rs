@@ -2,7 +2,7 @@
 //! through `Algorithm::Single` to glb (input and first-use vertex order) and OBJ, read
 //! back; every corner of every output triangle carries the attribute values of the
 //! vertex it names (a Steiner vertex: the mean of the edge it splits, normals unit
-//! length again), swapped edges included.
+//! length again, integers the first end's), swapped edges included.
 
 mod support;
 
@@ -13,7 +13,7 @@ use stripkit_testkit::XorShift64;
 
 /// A torus whose grid is cut open along one meridian (UV seam): `(major + 1) * minor`
 /// vertices, the seam's column twice with u = 0 and u = 1; UVs, unit normals and an
-/// RGBA colour of normalized bytes; quads split on alternating diagonals, positions
+/// RGBA colour of normalized bytes and an integer id; quads split on alternating diagonals, positions
 /// jittered so the quads are not planar; faces shuffled.
 fn seamed_torus(major: u32, minor: u32, seed: u64) -> Mesh {
     let mut rng = XorShift64(seed | 1);
@@ -53,6 +53,11 @@ fn seamed_torus(major: u32, minor: u32, seed: u64) -> Mesh {
     rgba.normalized = true;
     rgba.data = colour;
     mesh.attributes.push(rgba);
+    // An integer id per vertex (not normalized): a Steiner vertex takes its first end's.
+    let mut part = Attribute::from_f32("_PART", 1, &vec![0.0; mesh.vertex_count()]);
+    part.scalar = Scalar::U16;
+    part.data = (0..mesh.vertex_count() as u16).flat_map(|v| (v * 7 % 1000).to_le_bytes()).collect();
+    mesh.attributes.push(part);
     mesh
 }
 
@@ -157,7 +162,7 @@ fn single_keeps_every_attribute_corner_by_corner() {
         }
         let corners = 3 * strips.triangles.len();
         let glb = strips.to_file_bytes(&mesh, Format::Glb).unwrap();
-        assert_eq!(check_corners(&mesh, &strips, Format::Glb, &glb, &["TEXCOORD_0", "NORMAL", "COLOR_0"], 1e-6), 3 * corners);
+        assert_eq!(check_corners(&mesh, &strips, Format::Glb, &glb, &["TEXCOORD_0", "NORMAL", "COLOR_0", "_PART"], 1e-6), 4 * corners);
         let obj = strips.to_file_bytes(&mesh, Format::Obj).unwrap();
         // OBJ writes decimals: values within its precision.
         assert_eq!(check_corners(&mesh, &strips, Format::Obj, &obj, &["TEXCOORD_0", "NORMAL"], 1e-5), 2 * corners);
