@@ -39,12 +39,15 @@ pub use crate::mesh::io::{Scene, ScenePrimitive};
 /// mesh, [`Strips::to_file_bytes`](crate::Strips::to_file_bytes)) where a scene cannot
 /// hold what `options` ask for: [`Algorithm::Single`] (it adds vertices),
 /// [`Join::Separate`] (a primitive per strip), a restart index other than
-/// [`DEFAULT_RESTART`], or a mesh without faces.
+/// [`DEFAULT_RESTART`], or a mesh without a drawable triangle (no faces, or only
+/// faces that repeat a vertex: the plain writer keeps the vertices as a `POINTS`
+/// primitive, as the other formats keep them with no faces, where a scene would be
+/// left with empty accessors and an empty buffer).
 pub fn for_gltf_output(mesh: &Mesh, options: &StripOptions) -> Result<Option<Scene>> {
     let plain = options.join == Join::Separate
         || matches!(options.algorithm, Algorithm::Single(_))
         || options.restart_index != DEFAULT_RESTART
-        || mesh.face_count() == 0;
+        || mesh.triangulate().tris.iter().all(strip::is_degenerate);
     if plain {
         return Ok(None);
     }
@@ -194,6 +197,12 @@ impl Scene {
             };
             let strips = stripifier.stripify(&sp.mesh).map_err(name)?;
             stripify_time += strips.stripify_time;
+            if strips.figures.triangles == 0 {
+                // Only degenerate triangles: a strip primitive would hold empty
+                // accessors, which glTF forbids; the primitive is written as read.
+                report.skipped += 1;
+                continue;
+            }
             let set = strips.strips;
             let stitched = strip::stitched_len(&set);
             let restart = (scene_options.restart && sp.targets == 0)

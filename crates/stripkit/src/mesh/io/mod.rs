@@ -87,6 +87,13 @@ impl WriteOptions {
     }
 }
 
+/// The most vertex attributes (besides POSITION) a mesh may carry into glTF: 4,096.
+/// Each becomes an accessor and a buffer view of its own, about 4.4 KB of document
+/// per attribute while the scene is built, written and checked, so a PLY of 300,000
+/// one-byte vertex properties (7.7 MB) would need 1.4 GB; more is refused before any
+/// of it is built. Other formats carry any number.
+pub const MAX_GLTF_VERTEX_ATTRIBUTES: usize = 4096;
+
 /// The default of [`ReadOptions::max_external_bytes`]: 1 GiB.
 pub const DEFAULT_MAX_EXTERNAL_BYTES: u64 = 1 << 30;
 
@@ -115,9 +122,19 @@ pub const DECODED_BYTES_ALLOWANCE: u64 = 1 << 20;
 /// regular file inside the asset's own folder or inside one of
 /// [`allowed_roots`](Self::allowed_roots). Anything else is refused with the same
 /// message whether or not the file exists, so a hostile asset learns nothing about
-/// files outside those folders. Directories, devices and pipes are refused without
-/// being opened for reading; at most the buffer's declared `byteLength` is read, and a
-/// file shorter than that is refused. A file named by several buffers is read once.
+/// files outside those folders. The file is opened once (without waiting on a pipe),
+/// and its place, type and size are checked on what was opened, so that a folder
+/// swapped for a link after the check cannot lead the read elsewhere (on Linux the
+/// opened file's own path is checked; elsewhere its device and inode must match the
+/// path resolved again). Directories, devices and pipes are refused unread; at most
+/// the buffer's declared `byteLength` is read, and a file shorter than that is
+/// refused. A file named by several buffers is read once.
+///
+/// Extensions are decided in one place for every reader: geometry compressed with
+/// Draco or meshopt is refused wherever it appears (naming the primitive or buffer
+/// view), and a required extension must be one that leaves geometry as plain
+/// accessors (materials, textures, lights, instancing, metadata), else it is refused
+/// by name.
 ///
 /// Defaults: no extra roots, 1 GiB of external buffers, 4 GiB decompressed, the
 /// decoded mesh bounded by the input's buffers, attributes and groups read.

@@ -36,6 +36,7 @@ use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 
+mod extensions;
 mod from_mesh;
 mod primitive;
 mod scene;
@@ -198,13 +199,15 @@ struct Doc<'a> {
     accessors: &'a [Value],
 }
 
-/// Checks the asset's version and required extensions and loads its buffers and
+/// Checks the asset's version and extensions ([`extensions::check`]) and loads its buffers and
 /// buffer views (every view checked against its buffer).
 fn open<'a>(src: Src<'a>, json: &'a Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Doc<'a>> {
     let version = json.pointer("/asset/version").and_then(Value::as_str).unwrap_or("");
     if !version.starts_with('2') {
         return Err(src.err("asset.version", format!("glTF version '{version}', only 2.x is supported")));
     }
+    // Compressed geometry and unknown required extensions: refused here, for every reader.
+    extensions::check(src, json)?;
     let buffers = load_buffers(src, json, bin, options)?;
     let mut views = Vec::new();
     for (i, v) in array(src, json, "bufferViews")?.iter().enumerate() {
@@ -231,13 +234,6 @@ fn open<'a>(src: Src<'a>, json: &'a Value, bin: Option<&[u8]>, options: &ReadOpt
 }
 
 fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Mesh> {
-    // Required extensions change how data is stored (compression, quantization):
-    // reading past them would give garbage, so name them instead.
-    if let Some(ext) = array(src, json, "extensionsRequired")?.first() {
-        return Err(
-            src.err("extensionsRequired", format!("the file requires extension {ext}, which stripkit does not read"))
-        );
-    }
     let doc = open(src, json, bin, options)?;
 
     let mut mesh = Mesh::new();
@@ -663,8 +659,10 @@ fn load_buffers(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOption
         ));
     }
     let mut read = Vec::with_capacity(files.len());
-    for f in &files {
-        read.push(read_external(src, f.path.as_path(), f.len, f.buffer, &f.uri)?);
+    if let Some(dirs) = &folders {
+        for f in &files {
+            read.push(read_external(src, dirs, f.path.as_path(), f.len, f.buffer, &f.uri)?);
+        }
     }
     let mut buffers = Vec::with_capacity(sources.len());
     for (i, (source, length)) in sources.into_iter().enumerate() {
@@ -724,15 +722,19 @@ impl Folders {
 
     /// The canonical path of the file `uri` names, or the same refusal whether it is
     /// outside the allowed folders, absent there or a link leading out of them.
+    /// The refusal of `buffers[i]`'s `uri`, the same whether it is outside the allowed
+    /// folders, absent there or a link leading out of them.
+    fn refusal(&self, src: Src, uri: &str, i: usize) -> Error {
+        let roots = if self.roots.len() > 1 { " (or an allowed root)" } else { "" };
+        src.err(
+            format!("buffers[{i}].uri"),
+            format!("must be a relative path inside the asset's folder{roots} or a data: URI, not {uri:?}"),
+        )
+    }
+
     fn resolve(&self, src: Src, uri: &str, i: usize) -> Result<PathBuf> {
         let at = || format!("buffers[{i}].uri");
-        let refuse = || {
-            let roots = if self.roots.len() > 1 { " (or an allowed root)" } else { "" };
-            src.err(
-                at(),
-                format!("must be a relative path inside the asset's folder{roots} or a data: URI, not {uri:?}"),
-            )
-        };
+        let refuse = || self.refusal(src, uri, i);
         // A scheme (`file:`, `http:`, a drive letter `C:`) comes before the first '/'.
         let first = uri.split('/').next().unwrap_or("");
         if first.contains(':') {
@@ -775,22 +777,53 @@ impl Folders {
             }
         }
     }
+
+    /// Checks that the opened `file` (opened by the name `path`) lies inside an allowed
+    /// folder. The path was checked before it was opened, but a folder on the way may
+    /// have been swapped for a link in between, so the check is made again on what was
+    /// opened. On Linux the kernel names the opened file (`/proc/self/fd/N`): no race
+    /// is left. Elsewhere (or without `/proc`) the path is resolved again and must
+    /// still lie inside and name the same file (device and inode): a narrower window,
+    /// not none.
+    fn check_opened(&self, src: Src, file: &std::fs::File, path: &Path, uri: &str, i: usize) -> Result<()> {
+        #[cfg(target_os = "linux")]
+        {
+            use std::os::unix::io::AsRawFd;
+            if let Ok(real) = std::fs::read_link(format!("/proc/self/fd/{}", file.as_raw_fd())) {
+                return match self.root_of(&real) {
+                    Some(_) => Ok(()),
+                    None => Err(self.refusal(src, uri, i)),
+                };
+            }
+        }
+        let real = std::fs::canonicalize(path).map_err(|_| self.refusal(src, uri, i))?;
+        if self.root_of(&real).is_none() {
+            return Err(self.refusal(src, uri, i));
+        }
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::MetadataExt;
+            match (file.metadata(), std::fs::metadata(&real)) {
+                (Ok(a), Ok(b)) if a.dev() == b.dev() && a.ino() == b.ino() => {}
+                _ => return Err(self.refusal(src, uri, i)),
+            }
+        }
+        #[cfg(not(unix))]
+        let _ = file;
+        Ok(())
+    }
 }
 
 /// Reads exactly `len` bytes from the start of the regular file `path` (canonical,
-/// inside an allowed folder), for `buffers[i]` whose URI is `uri`.
-fn read_external(src: Src, path: &Path, len: u64, i: usize, uri: &str) -> Result<Arc<[u8]>> {
+/// inside an allowed folder when it was resolved), for `buffers[i]` whose URI is
+/// `uri`. The file is opened once; its place ([`Folders::check_opened`]), type and
+/// size are checked on the opened file and its bytes read from it, so nothing
+/// swapped in after a check is read.
+fn read_external(src: Src, dirs: &Folders, path: &Path, len: u64, i: usize, uri: &str) -> Result<Arc<[u8]>> {
     let at = || format!("buffers[{i}].uri");
     let fail = |e: std::io::Error| src.err(at(), format!("cannot read {uri:?}: {e}"));
     let not_regular =
         || src.err(at(), format!("{uri:?} is not a regular file (a directory, device or pipe is not read)"));
-    let meta = std::fs::metadata(path).map_err(fail)?;
-    if !meta.is_file() {
-        return Err(not_regular());
-    }
-    if meta.len() < len {
-        return Err(src.err(at(), format!("byteLength is {len} but {uri:?} holds {} bytes (truncated)", meta.len())));
-    }
     let mut open = std::fs::OpenOptions::new();
     open.read(true);
     // Should the file be swapped for a pipe after the check above, opening it must
@@ -810,8 +843,13 @@ fn read_external(src: Src, path: &Path, len: u64, i: usize, uri: &str) -> Result
         open.custom_flags(0o4000);
     }
     let file = open.open(path).map_err(fail)?;
-    if !file.metadata().map_err(fail)?.is_file() {
+    dirs.check_opened(src, &file, path, uri, i)?;
+    let meta = file.metadata().map_err(fail)?;
+    if !meta.is_file() {
         return Err(not_regular());
+    }
+    if meta.len() < len {
+        return Err(src.err(at(), format!("byteLength is {len} but {uri:?} holds {} bytes (truncated)", meta.len())));
     }
     let mut bytes = Vec::with_capacity(len as usize);
     file.take(len).read_to_end(&mut bytes).map_err(fail)?;
@@ -849,6 +887,32 @@ fn percent_decode_bytes(s: &str) -> Vec<u8> {
 mod tests {
     use super::*;
     use serde_json::json;
+
+    /// Issue #30, class 4: the check is made on the opened file, not on a name that
+    /// may lead elsewhere by then. Here the file opened lies outside the asset's
+    /// folder while the name given for it resolves inside (as after a folder was
+    /// swapped back by a race): it is refused. Before, only the name was checked.
+    #[test]
+    fn a_file_opened_outside_the_folder_is_refused_whatever_its_name() {
+        let root = std::env::temp_dir().join(format!("stripkit-gltf-opened-{}", std::process::id()));
+        let (asset, outside) = (root.join("asset"), root.join("outside"));
+        std::fs::create_dir_all(asset.join("sub")).unwrap();
+        std::fs::create_dir_all(&outside).unwrap();
+        std::fs::write(asset.join("sub/mesh.bin"), [1u8; 36]).unwrap();
+        std::fs::write(outside.join("mesh.bin"), [2u8; 36]).unwrap();
+        let gltf = asset.join("scene.gltf");
+        let src = Src { path: &gltf };
+        let dirs = Folders::new(src, &ReadOptions::default(), 0).unwrap();
+        let inside = dirs.resolve(src, "sub/mesh.bin", 0).unwrap();
+        let opened_inside = std::fs::File::open(&inside).unwrap();
+        assert!(dirs.check_opened(src, &opened_inside, &inside, "sub/mesh.bin", 0).is_ok());
+        let opened_outside = std::fs::File::open(outside.join("mesh.bin")).unwrap();
+        let err = dirs.check_opened(src, &opened_outside, &inside, "sub/mesh.bin", 0).unwrap_err().to_string();
+        assert!(err.contains("buffers[0].uri") && err.contains("inside the asset's folder"), "{err}");
+        let bytes = read_external(src, &dirs, &inside, 36, 0, "sub/mesh.bin").unwrap();
+        assert_eq!(&bytes[..], &[1u8; 36]);
+        std::fs::remove_dir_all(&root).unwrap();
+    }
 
     #[test]
     fn base64_round_trips_every_length() {

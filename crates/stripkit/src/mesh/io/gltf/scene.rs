@@ -65,9 +65,9 @@
 //! uses (attributes, skin joints and weights, morph targets) must have as many
 //! elements as its POSITION. Sparse accessors and accessors without
 //! a buffer view are refused in the primitives' vertex and index data (elsewhere they
-//! pass through untouched), as are the required extensions that change how geometry is
-//! stored (Draco, meshopt compression, quantization) and `EXT_meshopt_compression`
-//! even where optional (its views name buffers of their own, which merging would break).
+//! pass through untouched). Extensions are checked as for every reader
+//! (`gltf/extensions.rs`): compressed geometry (Draco, meshopt) wherever it is used,
+//! and required extensions other than those carried through, are refused.
 
 use super::primitive::{bounds, decode_primitive, vertex_accessors, ScenePrimitive, PRIMITIVE_BYTES};
 use super::{array, at, glb_container, open, parse_glb, parse_json, Budget, Buffer, Doc, View};
@@ -91,11 +91,6 @@ pub const RESTART_EXTENSION: &str = "EXT_mesh_primitive_restart";
 /// `ReadOptions::max_decoded_bytes` (`--max-memory`) be raised; an explicit limit
 /// counts them too.
 pub(crate) const PRIMITIVES_ALLOWANCE: u64 = 4096 * PRIMITIVE_BYTES;
-
-/// Required extensions after which the vertex or index bytes cannot be read as plain
-/// accessors.
-const GEOMETRY_EXTENSIONS: [&str; 3] =
-    ["KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_mesh_quantization"];
 
 /// A glTF document with its buffers and its triangle primitives decoded. Writing keeps
 /// the document; only the stripped primitives' indices, modes and (reordered) vertex
@@ -174,24 +169,6 @@ impl Scene {
             Format::Gltf => (parse_json(src, data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data), 0)?, None),
             other => return Err(Error::Invalid(format!("a scene is glTF or GLB, not {other:?}"))),
         };
-        if let Some(ext) = array(src, &json, "extensionsRequired")?
-            .iter()
-            .filter_map(Value::as_str)
-            .find(|e| GEOMETRY_EXTENSIONS.contains(e))
-        {
-            return Err(src.err(
-                "extensionsRequired",
-                format!("the file requires extension {ext}, which stores geometry in a way stripkit does not read"),
-            ));
-        }
-        // Its buffer views name buffers and offsets of their own, which merging the
-        // buffers would break.
-        if array(src, &json, "extensionsUsed")?.iter().any(|e| e == "EXT_meshopt_compression") {
-            return Err(src.err(
-                "extensionsUsed",
-                "the file uses EXT_meshopt_compression, whose compressed buffer views stripkit does not rewrite",
-            ));
-        }
         let (buffers, views, primitives) = {
             let doc = open(src, &json, bin, options)?;
             let mut budget = Budget::with_scene_allowance(options, doc.buffer_bytes(), PRIMITIVES_ALLOWANCE);

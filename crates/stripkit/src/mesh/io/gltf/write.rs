@@ -148,9 +148,12 @@ pub(crate) fn write_glb(mesh: &Mesh, strips: Option<&StripSet>) -> Result<Vec<u8
     glb_container(&json, bin)
 }
 
-/// The GLB container of a JSON document and its binary chunk (none when `bin` is
-/// empty), both padded to 4 bytes as the specification asks.
+/// The GLB container of a JSON document and its binary chunk, both padded to 4 bytes
+/// as the specification asks. The binary chunk is left out when `bin` is empty and no
+/// buffer 0 without a `uri` names it; where one does (a scene whose primitives were
+/// left with no triangle), it is written empty, so that the file reads back.
 pub(super) fn glb_container(json: &Value, mut bin: Vec<u8>) -> Result<Vec<u8>> {
+    let with_bin = !bin.is_empty() || json.pointer("/buffers/0").is_some_and(|b| b.get("uri").is_none());
     let mut text = serde_json::to_vec(json).map_err(|e| Error::Invalid(format!("cannot encode glTF JSON: {e}")))?;
     while text.len() % 4 != 0 {
         text.push(b' ');
@@ -158,7 +161,7 @@ pub(super) fn glb_container(json: &Value, mut bin: Vec<u8>) -> Result<Vec<u8>> {
     while bin.len() % 4 != 0 {
         bin.push(0);
     }
-    let total = 12 + 8 + text.len() + if bin.is_empty() { 0 } else { 8 + bin.len() };
+    let total = 12 + 8 + text.len() + if with_bin { 8 + bin.len() } else { 0 };
     let total32 = u32::try_from(total).map_err(|_| Error::Invalid(format!("{total} bytes do not fit a GLB file")))?;
     let mut out = Vec::with_capacity(total);
     out.extend_from_slice(GLB_MAGIC);
@@ -167,7 +170,7 @@ pub(super) fn glb_container(json: &Value, mut bin: Vec<u8>) -> Result<Vec<u8>> {
     out.extend_from_slice(&(text.len() as u32).to_le_bytes());
     out.extend_from_slice(&CHUNK_JSON.to_le_bytes());
     out.extend_from_slice(&text);
-    if !bin.is_empty() {
+    if with_bin {
         out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
         out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
         out.extend_from_slice(&bin);
