@@ -69,6 +69,7 @@ fn build(mesh: &Mesh, strips: Option<&StripSet>) -> Result<(Value, Vec<u8>)> {
     if nv == 0 {
         return Ok((json, Vec::new()));
     }
+    super::from_mesh::check_attribute_count(mesh)?;
     let wide = nv >= u16::MAX as usize;
     let index_size = if wide { 4 } else { 2 };
     // Index runs: (first index, count) in the concatenated index list.
