@@ -208,6 +208,10 @@ fn glb_output_takes_a_bounded_number_of_attributes_and_other_formats_all() {
     assert!(e.is_invalid(), "{e}");
     let text = e.to_string();
     assert!(text.contains(&format!("{} vertex attributes", limit + 1)) && text.contains(&format!("at most {limit}")), "{text}");
+    // The plain writer (single's changed mesh, separate strips) writes attributes too,
+    // under the same limit.
+    let e = io::write_bytes(io::Format::Glb, &over, None, &io::WriteOptions::default()).unwrap_err();
+    assert!(e.is_invalid() && e.to_string().contains(&format!("at most {limit}")), "{e}");
     let path = temp_file("many_attributes.ply", b"");
     io::write(&path, &over, None).unwrap();
     let back = io::read(&path).unwrap();
