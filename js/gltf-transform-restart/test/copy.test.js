@@ -1,0 +1,103 @@
+// `gltf-transform copy` with the extension registered keeps every restart group of
+// the .glb files named in STRIPKIT_RESTART_GLBS (separated by the path delimiter;
+// the stripkit CLI test crates/stripkit-cli/tests/cli_downstream.rs writes them with
+// `stripkit strip`), index for index; without it the groups are gone; a group whose
+// primitive no longer draws the same triangles is left out with a warning. Each copy
+// is written beside its input as NAME.copy.glb for the validator.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { NodeIO, Logger } from '@gltf-transform/core';
+import { EXTMeshPrimitiveRestart, EXT_MESH_PRIMITIVE_RESTART as NAME } from '../index.js';
+
+const inputs = (process.env.STRIPKIT_RESTART_GLBS || '').split(path.delimiter).filter(Boolean);
+const skip = inputs.length === 0 && 'STRIPKIT_RESTART_GLBS names no .glb (the stripkit CLI test sets it)';
+
+/** The JSON and binary chunk of a .glb. */
+function parseGlb(bytes) {
+    const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+    const jsonLength = view.getUint32(12, true);
+    const json = JSON.parse(new TextDecoder().decode(bytes.subarray(20, 20 + jsonLength)));
+    const binStart = 20 + jsonLength;
+    const bin = binStart < bytes.length ? bytes.subarray(binStart + 8, binStart + 8 + view.getUint32(binStart, true)) : null;
+    return { json, bin };
+}
+
+const ARRAYS = { 5121: Uint8Array, 5123: Uint16Array, 5125: Uint32Array };
+
+/** An index accessor's values as numbers. */
+function indexValues({ json, bin }, a) {
+    const acc = json.accessors[a];
+    const bv = json.bufferViews[acc.bufferView];
+    const Array_ = ARRAYS[acc.componentType];
+    const start = (bv.byteOffset || 0) + (acc.byteOffset || 0);
+    return Array.from(new Array_(bin.slice(start, start + acc.count * Array_.BYTES_PER_ELEMENT).buffer));
+}
+
+/** Every mesh's groups: [{primitives, indices: [values], componentType, target}]. */
+function groups(glb) {
+    return (glb.json.meshes || []).map((mesh) =>
+        ((mesh.extensions && mesh.extensions[NAME]) || { primitiveGroups: [] }).primitiveGroups.map((g) => ({
+            primitives: g.primitives,
+            indices: indexValues(glb, g.indices),
+            componentType: glb.json.accessors[g.indices].componentType,
+        })));
+}
+
+/** A logger that keeps the warnings. */
+function recordingLogger() {
+    const logger = new Logger(Logger.Verbosity.SILENT);
+    logger.warnings = [];
+    logger.warn = (text) => logger.warnings.push(text);
+    return logger;
+}
+
+test('copy keeps every restart group, index for index', { skip }, async () => {
+    for (const file of inputs) {
+        const input = parseGlb(new Uint8Array(fs.readFileSync(file)));
+        const before = groups(input);
+        assert.ok(before.flat().length > 0, `${file} has no restart group`);
+        const logger = recordingLogger();
+        const io = new NodeIO().setLogger(logger).registerExtensions([EXTMeshPrimitiveRestart]);
+        const out = await io.writeBinary(await io.readBinary(new Uint8Array(fs.readFileSync(file))));
+        fs.writeFileSync(file.replace(/\.glb$/, '.copy.glb'), out);
+        const copy = parseGlb(out);
+        assert.ok(copy.json.extensionsUsed.includes(NAME));
+        assert.ok(!(copy.json.extensionsRequired || []).includes(NAME));
+        assert.deepEqual(groups(copy), before, `${file}: groups changed`);
+        assert.deepEqual(logger.warnings, []);
+        // The fallback primitives are unchanged too.
+        copy.json.meshes.forEach((mesh, m) => mesh.primitives.forEach((p, k) => {
+            const q = input.json.meshes[m].primitives[k];
+            assert.equal(p.mode, q.mode);
+            assert.deepEqual(indexValues(copy, p.indices), indexValues(input, q.indices));
+        }));
+        console.log(`${path.basename(file)}: ${before.flat().length} group(s), ${before.flat().reduce((n, g) => n + g.indices.length, 0)} restart indices kept`);
+    }
+});
+
+test('without the extension the groups are lost (why this package exists)', { skip }, async () => {
+    const io = new NodeIO().setLogger(recordingLogger());
+    const out = await io.writeBinary(await io.readBinary(new Uint8Array(fs.readFileSync(inputs[0]))));
+    assert.equal(groups(parseGlb(out)).flat().length, 0);
+});
+
+test('a group whose primitive was renumbered is left out with a warning', { skip }, async () => {
+    const logger = recordingLogger();
+    const io = new NodeIO().setLogger(logger).registerExtensions([EXTMeshPrimitiveRestart]);
+    const doc = await io.readBinary(new Uint8Array(fs.readFileSync(inputs[0])));
+    const prim = doc.getRoot().listMeshes().find((m) => m.getExtension(NAME)).getExtension(NAME)
+        .listGroups()[0].listPrimitives()[0];
+    // A transform that renumbers the primitive's vertices (here: every id + 1, mod the
+    // vertex count) without knowing the group: its restart strips are now stale.
+    const indices = prim.getIndices();
+    const n = prim.getAttribute('POSITION').getCount();
+    const renumbered = indices.getArray().map((v) => (v + 1) % n);
+    prim.setIndices(doc.createAccessor().setType('SCALAR').setArray(renumbered).setBuffer(indices.getBuffer()));
+    const before = groups(parseGlb(new Uint8Array(fs.readFileSync(inputs[0])))).flat().length;
+    const copy = parseGlb(await io.writeBinary(doc));
+    assert.equal(groups(copy).flat().length, before - 1);
+    assert.equal(logger.warnings.length, 1);
+    assert.match(logger.warnings[0], /no longer draw the triangles/);
+});
