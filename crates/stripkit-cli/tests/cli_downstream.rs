@@ -50,14 +50,42 @@ fn package_copy(dir: &Path, modules: &Path) -> PathBuf {
     pkg
 }
 
+/// A 4 x 2 grid of quads whose left half uses material `left` and right half `right`:
+/// one mesh of two primitives, so two restart groups.
+fn two_materials_obj() -> String {
+    let mut text = String::new();
+    for y in 0..3 {
+        for x in 0..5 {
+            text += &format!("v {x} {y} {}\n", (x * y) as f32 * 0.1);
+        }
+    }
+    for (name, xs) in [("left", 0..2), ("right", 2..4)] {
+        text += &format!("usemtl {name}\n");
+        for y in 0..2 {
+            for x in xs.clone() {
+                let v = y * 5 + x + 1;
+                text += &format!("f {} {} {}\nf {} {} {}\n", v, v + 1, v + 6, v, v + 6, v + 5);
+            }
+        }
+    }
+    text
+}
+
 #[test]
 fn gltf_transform_copy_keeps_the_restart_groups() {
     let Some(modules) = node_modules(&["@gltf-transform/core"]) else { return };
     // A sphere (one primitive) and the shipped spot (UVs, seams) stripped with restart groups.
     let sphere_obj = tmp("downstream", "sphere.obj");
     assert!(stripkit(&["gen", "icosphere", "3", "-o", sphere_obj.to_str().unwrap()]).status.success());
+    let two = tmp("downstream", "two.obj");
+    std::fs::write(&two, two_materials_obj()).unwrap();
     let mut glbs = Vec::new();
-    for (src, name) in [(sphere_obj.clone(), "sphere.glb"), (repo_root().join("assets/spot.obj"), "spot.glb")] {
+    let sources = [
+        (sphere_obj.clone(), "sphere.glb"),
+        (repo_root().join("assets/spot.obj"), "spot.glb"),
+        (two, "two.glb"),
+    ];
+    for (src, name) in sources {
         let out = tmp("downstream", name);
         let run = stripkit(&["strip", src.to_str().unwrap(), "-o", out.to_str().unwrap(), "--join", "restart"]);
         assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
@@ -75,7 +103,7 @@ fn gltf_transform_copy_keeps_the_restart_groups() {
     let out = String::from_utf8_lossy(&run.stdout);
     eprintln!("{out}");
     assert!(run.status.success(), "{out}{}", String::from_utf8_lossy(&run.stderr));
-    assert!(out.contains("# pass 3") && out.contains("# skipped 0"), "{out}");
+    assert!(out.contains("# pass 4") && out.contains("# skipped 0"), "{out}");
     let copies: Vec<PathBuf> = glbs.iter().map(|g| g.with_extension("copy.glb")).collect();
     gltf_validator::validate(&copies.iter().map(|p| p.as_path()).collect::<Vec<_>>());
 }

@@ -101,3 +101,30 @@ test('a group whose primitive was renumbered is left out with a warning', { skip
     assert.equal(logger.warnings.length, 1);
     assert.match(logger.warnings[0], /no longer draw the triangles/);
 });
+
+test('removing a primitive renumbers the groups of the others', { skip }, async () => {
+    const file = inputs.find((f) => groups(parseGlb(new Uint8Array(fs.readFileSync(f)))).some((g) => g.length >= 2));
+    assert.ok(file, 'no input has a mesh with two restart groups');
+    const input = parseGlb(new Uint8Array(fs.readFileSync(file)));
+    const m = groups(input).findIndex((g) => g.length >= 2);
+    const logger = recordingLogger();
+    const io = new NodeIO().setLogger(logger).registerExtensions([EXTMeshPrimitiveRestart]);
+    const doc = await io.readBinary(new Uint8Array(fs.readFileSync(file)));
+    const mesh = doc.getRoot().listMeshes()[m];
+    const [first] = mesh.getExtension(NAME).listGroups();
+    // The first primitive goes, with its index accessors and its group: every later
+    // primitive and accessor moves down.
+    const gone = first.listPrimitives()[0];
+    const accessors = [gone.getIndices(), first.getIndices()];
+    gone.dispose();
+    mesh.getExtension(NAME).removeGroup(first);
+    first.dispose();
+    accessors.forEach((a) => a.dispose());
+    const copy = parseGlb(await io.writeBinary(doc));
+    const expected = groups(input)[m].slice(1).map((g) => ({ ...g, primitives: g.primitives.map((p) => p - 1) }));
+    assert.deepEqual(groups(copy)[m], expected);
+    const before = input.json.meshes[m].extensions[NAME].primitiveGroups[1].indices;
+    const after = copy.json.meshes[m].extensions[NAME].primitiveGroups[0].indices;
+    assert.ok(after < before, `the accessor moved down: ${before} -> ${after}`);
+    assert.deepEqual(logger.warnings, []);
+});
