@@ -34,8 +34,9 @@ fn missing() -> Option<String> {
     }
 }
 
-/// One output to draw: the source's file name in assets/, the output's name and the
-/// flags that made it.
+/// One output to draw: the source's file name in assets/ (or `out:NAME`, an earlier
+/// output stripped again and compared with assets/spot.obj), the output's name and
+/// the flags that made it.
 struct Form {
     source: &'static str,
     output: &'static str,
@@ -58,6 +59,10 @@ const FORMS: &[Form] = &[
     Form { source: "spot_quads.obj", output: "quads_list.obj", flags: &["--algo", "greedy", "--split", "fan"] },
     Form { source: "spot_control_mesh.obj", output: "control_restart.glb", flags: &["--algo", "cache", "--split", "fan"] },
     Form { source: "spot_control_mesh.obj", output: "control_degenerate.gltf", flags: &["--algo", "greedy", "--split", "fan", "--join", "degenerate"] },
+    // glTF in, glTF out (the scene path): the degenerate-joined .glb above stripped
+    // again, still compared with the source OBJ.
+    Form { source: "out:spot_degenerate.glb", output: "again_restart.glb", flags: &[] },
+    Form { source: "out:spot_degenerate.glb", output: "again_degenerate.gltf", flags: &["--join", "degenerate"] },
 ];
 
 #[test]
@@ -68,13 +73,16 @@ fn threejs_draws_every_output_like_the_source() {
     }
     let mut pairs = Vec::new();
     for form in FORMS {
-        let source = repo_root().join("assets").join(form.source);
+        let (source, reference) = match form.source.strip_prefix("out:") {
+            Some(output) => (tmp("threejs", output), repo_root().join("assets/spot.obj")),
+            None => (repo_root().join("assets").join(form.source), repo_root().join("assets").join(form.source)),
+        };
         let out = tmp("threejs", form.output);
         let mut args = vec!["strip", source.to_str().unwrap(), "-o", out.to_str().unwrap()];
         args.extend(form.flags);
         let run = stripkit(&args);
         assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
-        pairs.push(format!("{}={}", source.display(), out.display()));
+        pairs.push(format!("{}={}", reference.display(), out.display()));
     }
     let run = Command::new("node")
         .arg(repo_root().join(".ci/threejs-pixels.mjs"))
