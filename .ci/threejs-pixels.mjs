@@ -32,6 +32,8 @@ const page = `<!doctype html><html><body><script type="importmap">
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
+import { DRACOLoader } from 'three/addons/loaders/DRACOLoader.js';
+import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 const SIZE = 256;
 const renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
 renderer.setSize(SIZE, SIZE);
@@ -42,7 +44,10 @@ const uvMaterial = (flip) => new THREE.ShaderMaterial({
     vertexShader: 'uniform int flip; varying vec2 v; void main() { v = flip == 1 ? vec2(uv.x, 1.0 - uv.y) : uv; gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0); }',
     fragmentShader: 'varying vec2 v; void main() { gl_FragColor = vec4(fract(v), 0.5, 1.0); }',
 });
-const gltf = new GLTFLoader(), obj = new OBJLoader();
+// Compressed sources (a corpus of real assets) decode as three.js users decode them.
+const gltf = new GLTFLoader().setMeshoptDecoder(MeshoptDecoder)
+    .setDRACOLoader(new DRACOLoader().setDecoderPath('/three/examples/jsm/libs/draco/gltf/'));
+const obj = new OBJLoader();
 const RESTART = 'EXT_mesh_primitive_restart';
 /** The file's scene, and (glTF with restart groups) a second copy drawn from the
  * groups' restart strips instead of their fallback primitives (three.js does not read
@@ -137,9 +142,19 @@ const server = http.createServer((req, res) => {
     const url = decodeURIComponent(req.url.split('?')[0]);
     let file = null, type = 'application/octet-stream';
     if (url === '/') { res.setHeader('content-type', 'text/html'); return res.end(page); }
-    if (url.startsWith('/three/')) { file = path.join(threeRoot, path.normalize(url.slice(7))); type = 'text/javascript'; }
-    else if (url.startsWith('/f/')) file = files[Number(url.split('/')[2])];
-    if (!file || !file.startsWith(threeRoot) && !files.includes(file) || !fs.existsSync(file)) { res.statusCode = 404; return res.end(); }
+    if (url.startsWith('/three/')) {
+        file = path.join(threeRoot, path.normalize(url.slice(7)));
+        if (!file.startsWith(threeRoot + path.sep)) file = null;
+        type = url.endsWith('.wasm') ? 'application/wasm' : 'text/javascript';
+    }
+    else if (url.startsWith('/f/')) {
+        // /f/K/NAME: file K itself, or a file beside it (a .gltf's buffers and images).
+        const [, , k, ...rest] = url.split('/');
+        const dir = path.dirname(path.resolve(files[Number(k)] || '.'));
+        file = path.resolve(dir, rest.join('/'));
+        if (!file.startsWith(dir + path.sep)) file = null;
+    }
+    if (!file || !fs.existsSync(file) || !fs.statSync(file).isFile()) { res.statusCode = 404; return res.end(); }
     res.setHeader('content-type', type);
     fs.createReadStream(file).pipe(res);
 });
