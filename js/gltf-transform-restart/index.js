@@ -10,12 +10,14 @@
 // Without this module gltf-transform drops the groups on every read/write. With it a
 // group is kept as a property of its mesh that refers to its primitives and its index
 // accessor, so that pruning, merging or reordering accessors and primitives renumbers
-// the group on write like any core reference. Before writing, each group is checked:
-// its primitives must still be in the mesh, share mode, attributes and material, have
-// no morph targets, and its restart strips must draw exactly the triangles (winding
-// included) that its primitives draw. A group that fails (a transform changed the
-// primitives' vertices or indices, e.g. weld or reorder) is left out with a warning
-// rather than written stale.
+// the group on write like any core reference. A transform that renumbers the
+// primitives' vertices (reorder, weld: every index i of the fallback replaced by
+// f(i)) is followed: before writing, a group whose primitives' indices changed one
+// for one from those read gets f applied to its restart indices too. Then each group
+// is checked: its primitives must still be in the mesh, share mode, attributes and
+// material, have no morph targets, and its restart strips must draw exactly the
+// triangles (winding included) that its primitives draw. A group that fails is left
+// out with a warning rather than written stale.
 //
 //   import { NodeIO } from '@gltf-transform/core';
 //   import { EXTMeshPrimitiveRestart } from 'gltf-transform-restart';
@@ -69,7 +71,17 @@ export class PrimitiveRestartGroup extends ExtensionProperty {
     }
 
     getDefaults() {
-        return Object.assign(super.getDefaults(), { indices: null, primitives: new RefList() });
+        return Object.assign(super.getDefaults(), { indices: null, primitives: new RefList(), readIndices: null });
+    }
+
+    /** The primitives' indices (concatenated) when the group was read or last synced. */
+    getReadIndices() {
+        return this.get('readIndices');
+    }
+
+    /** Records the primitives' current indices as those the restart indices match. */
+    setReadIndices(indices) {
+        return this.set('readIndices', indices);
     }
 
     /** The index accessor holding the strips, separated by the restart value. */
@@ -108,6 +120,17 @@ export class EXTMeshPrimitiveRestart extends Extension {
         return new PrimitiveRestartGroup(this.document.getGraph());
     }
 
+    prewriteTypes = [PropertyType.ACCESSOR];
+
+    /** Before the accessors are written: renumbered primitives renumber their groups. */
+    prewrite() {
+        for (const mesh of this.document.getRoot().listMeshes()) {
+            const restart = mesh.getExtension(NAME);
+            for (const group of restart ? restart.listGroups() : []) followRenumbering(group);
+        }
+        return this;
+    }
+
     read(context) {
         const meshDefs = context.jsonDoc.json.meshes || [];
         meshDefs.forEach((meshDef, m) => {
@@ -123,6 +146,7 @@ export class EXTMeshPrimitiveRestart extends Extension {
                 for (const p of groupDef.primitives || []) {
                     if (primitives[p]) group.addPrimitive(primitives[p]);
                 }
+                group.setReadIndices(memberIndices(group));
                 restart.addGroup(group);
             }
             mesh.setExtension(NAME, restart);
@@ -191,6 +215,50 @@ export function groupProblem(group, meshPrimitives) {
         if (n !== 0) return 'its restart strips no longer draw the triangles of its primitives (a transform changed their vertices or indices)';
     }
     return null;
+}
+
+/** The group's primitives' indices, concatenated (a primitive without indices counts
+ * as 0, 1, ..., n - 1), or null when a primitive has no POSITION. */
+function memberIndices(group) {
+    const out = [];
+    for (const p of group.listPrimitives()) {
+        const own = p.getIndices();
+        const position = p.getAttribute('POSITION');
+        if (!own && !position) return null;
+        out.push(...(own ? own.getArray() : sequence(position.getCount())));
+    }
+    return out;
+}
+
+/** Applies to the group's restart indices the renumbering its primitives' indices went
+ * through since they were read: where index k was v and is now w, every v becomes w.
+ * Nothing changes when the indices are as read, or when they changed in any other way
+ * (another count, one v given two w's, a restart index without an image). */
+export function followRenumbering(group) {
+    const before = group.getReadIndices();
+    const now = memberIndices(group);
+    const accessor = group.getIndices();
+    if (!before || !now || !accessor || before.length !== now.length) return false;
+    const image = new Map();
+    let changed = false;
+    for (let k = 0; k < before.length; k++) {
+        const seen = image.get(before[k]);
+        if (seen !== undefined && seen !== now[k]) return false;
+        image.set(before[k], now[k]);
+        changed = changed || before[k] !== now[k];
+    }
+    if (!changed) return false;
+    const restartValue = RESTART_VALUE[accessor.getComponentType()];
+    const old = accessor.getArray();
+    const renumbered = new old.constructor(old.length);
+    for (let k = 0; k < old.length; k++) {
+        const w = old[k] === restartValue ? restartValue : image.get(old[k]);
+        if (w === undefined || (old[k] !== restartValue && w === restartValue)) return false;
+        renumbered[k] = w;
+    }
+    accessor.setArray(renumbered);
+    group.setReadIndices(now);
+    return true;
 }
 
 /** The restart value of each index component type: its largest value. */

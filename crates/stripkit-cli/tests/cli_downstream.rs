@@ -103,7 +103,7 @@ fn gltf_transform_copy_keeps_the_restart_groups() {
     let out = String::from_utf8_lossy(&run.stdout);
     eprintln!("{out}");
     assert!(run.status.success(), "{out}{}", String::from_utf8_lossy(&run.stderr));
-    assert!(out.contains("# pass 4") && out.contains("# skipped 0"), "{out}");
+    assert!(out.contains("# pass 5") && out.contains("# skipped 0"), "{out}");
     let copies: Vec<PathBuf> = glbs.iter().map(|g| g.with_extension("copy.glb")).collect();
     gltf_validator::validate(&copies.iter().map(|p| p.as_path()).collect::<Vec<_>>());
 }
