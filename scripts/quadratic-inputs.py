@@ -5,6 +5,7 @@
 
 KIND:
   usemtl     an OBJ strip of N triangles, one `usemtl` (a material of its own) per face
+  ribbon     the same strip of N triangles without materials (for `lod build`)
   edge       an OBJ of N triangles sharing the edge 1-2 (a book of N pages)
   stl-same   a binary STL of N identical triangles
   ply-props  an ASCII PLY with one triangle whose vertices carry N extra uchar properties
@@ -22,13 +23,14 @@ import sys
 
 def main():
     kind, n, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
-    if kind == "usemtl":
+    if kind in ("usemtl", "ribbon"):
         lines = []
         for i in range(n // 2 + 2):
             lines.append(f"v {i} 0 0\nv {i} 1 0\n")
         for i in range(n):
             a = 2 * (i // 2) + 1
-            lines.append(f"usemtl m{i}\n")
+            if kind == "usemtl":
+                lines.append(f"usemtl m{i}\n")
             if i % 2 == 0:
                 lines.append(f"f {a} {a + 2} {a + 1}\n")
             else:

@@ -5,8 +5,9 @@ use super::sets::Sets;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use super::cursor::Cursor;
+use super::track::Tracker;
 use crate::simplify::{Collapse, CollapseSequence, Placement};
-use crate::strip::{canonical, for_each_triangle, verify_triangles};
+use crate::strip::{canonical, verify_triangles};
 use std::collections::HashMap;
 use std::time::Instant;
 
@@ -33,15 +34,18 @@ pub(super) fn stride(levels: u32, max_levels: Option<usize>) -> usize {
 
 /// Checks `sets` against `sequence` applied to `mesh` (the triangle mesh it was
 /// simplified from, [`crate::lod::Built::mesh`]): at every `stride`-th level (1 for
-/// all) and the coarsest, the strips a [`crate::lod::Cursor`] recovers, moving up
-/// from level 0, decode to exactly the non-degenerate triangles of the replay at that
-/// level, each with its winding (as multisets, so a triangle drawn twice or missing is
+/// all) and the coarsest, the strips of the model, followed up from level 0 one
+/// level at a time (re-walking only what each level changes), decode to exactly the
+/// non-degenerate triangles of the replay at that level, each with its winding (as multisets, so a triangle drawn twice or missing is
 /// caught). The replay is this function's own, one collapse at a time; at `replays`
 /// levels spread over the range it is also compared with
-/// [`CollapseSequence::replay`] from scratch, vertex positions included.
+/// [`CollapseSequence::replay`] from scratch, vertex positions included, through the
+/// strips a [`crate::lod::Cursor`] recovers there.
 ///
-/// O(levels x valence + checked levels x the strips they change). The first
-/// difference is [`Error::Verification`], naming the level and a triangle.
+/// O(levels x valence + the strip stretches the levels change + replays x the
+/// model's size); a long strip that every level changes (a flat ribbon) is not
+/// re-walked whole at every level. The first difference is
+/// [`Error::Verification`], naming the level and a triangle.
 pub fn check_levels(
     sets: &Sets,
     mesh: &Mesh,
@@ -75,6 +79,8 @@ pub fn check_levels(
             report.levels_checked += 1;
             diff.check(level)?;
             if level % replay_every == 0 || level == levels {
+                // The extraction's own walk, a cursor, at these levels.
+                drawn.cursor.set_level(level as u32);
                 compare_with_replay(sets, mesh, sequence, level, &replay.name, &drawn.cursor.strips())?;
                 report.replays += 1;
             }
@@ -168,47 +174,36 @@ impl Replay {
     }
 }
 
-/// The triangles the model's strips draw, per strip, at a [`Cursor`]'s level,
-/// counted into a [`Diff`].
+/// The triangles the model's strips draw at a [`Tracker`]'s level, counted into a
+/// [`Diff`]: each level re-walks only the stretches of strips it changes.
 struct Drawn<'a> {
+    tracker: Tracker<'a>,
+    /// Moved only to the levels compared with a replay from scratch.
     cursor: Cursor<'a>,
-    strip_tris: Vec<Vec<[u32; 3]>>,
+    changed: Vec<u32>,
+    stamp: Vec<u32>,
 }
 
 impl<'a> Drawn<'a> {
     /// Level 0, every strip's triangles counted into `diff`.
     fn new(sets: &'a Sets, diff: &mut Diff) -> Drawn<'a> {
-        let cursor = sets.cursor(0);
-        let strip_tris: Vec<Vec<[u32; 3]>> = (0..sets.strip_count())
-            .map(|s| {
-                let mut v = Vec::new();
-                for_each_triangle(cursor.strip(s), |t| v.push(t));
-                v
-            })
-            .collect();
-        for ts in &strip_tris {
-            for &t in ts {
-                diff.bump(t, 1);
-            }
-        }
-        Drawn { cursor, strip_tris }
+        let tracker = Tracker::new(sets, true, |_, t, by| diff.bump(t, by));
+        Drawn { tracker, cursor: sets.cursor(0), changed: Vec::new(), stamp: vec![u32::MAX; sets.strip_count()] }
     }
 
-    /// Moves to `level`, re-counting the strips that changed; returns how many did.
+    /// Moves up to `level`, one level at a time; returns how many strips changed.
     fn move_to(&mut self, level: u32, diff: &mut Diff) -> usize {
-        let changed = self.cursor.set_level(level).to_vec();
-        for &s in &changed {
-            for t in std::mem::take(&mut self.strip_tris[s as usize]) {
-                diff.bump(t, -1);
+        self.changed.clear();
+        while self.tracker.level() < level {
+            let changed = self.tracker.step(|_, t, by| diff.bump(t, by));
+            for &s in changed {
+                if self.stamp[s as usize] != level {
+                    self.stamp[s as usize] = level;
+                    self.changed.push(s);
+                }
             }
-            let mut v = Vec::new();
-            for_each_triangle(self.cursor.strip(s as usize), |t| v.push(t));
-            for &t in &v {
-                diff.bump(t, 1);
-            }
-            self.strip_tris[s as usize] = v;
         }
-        changed.len()
+        self.changed.len()
     }
 }
 

@@ -31,6 +31,7 @@ mod model;
 mod seq;
 mod sets;
 pub mod timing;
+mod track;
 
 pub use build::{build, BuildOptions, BuildReport, Built};
 pub use check::{check_levels, LevelCheck};

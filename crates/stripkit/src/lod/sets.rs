@@ -203,44 +203,6 @@ impl Sets {
         Ok(())
     }
 
-    /// Checks that the strips draw, at every level, the triangle count the model gives
-    /// ([`Sets::triangles_at`]): a read file whose counts add up but do not match its
-    /// strips is caught here, not when a level is extracted. Each strip is walked once
-    /// per level at which it changes (its versions and beginnings), and the differences
-    /// are summed over the levels: O(levels + the strips' lengths over their changes),
-    /// the work of a [`crate::lod::Cursor`] visiting every change once. Returns the
-    /// first level that disagrees, with what the strips draw there.
-    pub(crate) fn check_triangle_counts(&self) -> std::result::Result<(), (u32, u64)> {
-        let levels = self.levels() as usize;
-        let mut delta = vec![0i64; levels + 1];
-        for s in 0..self.strip_count() {
-            let changes = &self.change_level[self.change_offsets[s] as usize..self.change_offsets[s + 1] as usize];
-            let mut before = 0i64;
-            for &level in changes.iter().take_while(|&&l| l as usize <= levels) {
-                let mut n = 0i64;
-                let mut window = [0u32; 3];
-                let mut k = 0usize;
-                self.walk(s, level, |v| {
-                    window = [window[1], window[2], v];
-                    k += 1;
-                    if k >= 3 && !crate::strip::is_degenerate(&window) {
-                        n += 1;
-                    }
-                });
-                delta[level as usize] += n - before;
-                before = n;
-            }
-        }
-        let mut drawn = 0i64;
-        for (level, d) in delta.into_iter().enumerate() {
-            drawn += d;
-            if drawn != self.triangles_at[level] as i64 {
-                return Err((level as u32, drawn.max(0) as u64));
-            }
-        }
-        Ok(())
-    }
-
     /// Number of levels beyond level 0 (the collapses): levels are `0..=levels()`,
     /// 0 the finest.
     pub fn levels(&self) -> u32 {

@@ -171,3 +171,109 @@ fn counts_that_add_up_but_do_not_match_the_strips_are_a_bad_file() {
         other => panic!("expected a format error, got {other:?}"),
     }
 }
+
+/// A flat ribbon of `n` triangles (a row of quads, each cut the same way): every
+/// collapse of its simplification changes its one long strip.
+pub(crate) fn ribbon(n: u32) -> crate::mesh::Mesh {
+    let positions = (0..n / 2 + 2).flat_map(|i| [[i as f32, 0.0, 0.0], [i as f32, 1.0, 0.0]]).collect();
+    let tris: Vec<[u32; 3]> = (0..n)
+        .map(|i| {
+            let a = 2 * (i / 2);
+            if i % 2 == 0 {
+                [a, a + 2, a + 1]
+            } else {
+                [a + 1, a + 2, a + 3]
+            }
+        })
+        .collect();
+    crate::mesh::Mesh::from_triangles(positions, &tris)
+}
+
+/// The tracker's triangles (kept as a multiset from its signed reports) equal a walk
+/// from scratch at every level, windings included, and its counts the same.
+fn assert_tracker_matches_walks(sets: &Sets) {
+    let canon = |t: [u32; 3]| crate::strip::canonical(t);
+    let mut held: std::collections::HashMap<[u32; 3], i32> = Default::default();
+    let mut bump = |t: [u32; 3], by: i32| *held.entry(canon(t)).or_insert(0) += by;
+    let mut tracker = super::track::Tracker::new(sets, true, |_, t, by| bump(t, by));
+    loop {
+        let level = tracker.level();
+        let mut want: std::collections::HashMap<[u32; 3], i32> = Default::default();
+        for t in crate::strip::decode(&sets.strips_at(level)) {
+            *want.entry(canon(t)).or_insert(0) += 1;
+        }
+        held.retain(|_, n| *n != 0);
+        assert_eq!(held, want, "level {level}");
+        if level == sets.levels() {
+            break;
+        }
+        tracker.step(|_, t, by| *held.entry(canon(t)).or_insert(0) += by);
+    }
+}
+
+#[test]
+fn tracker_follows_every_level() {
+    for mesh in [ribbon(300), crate::gen::icosphere(2), crate::gen::grid(9, 7), crate::gen::torus(12, 8, 2.0, 0.5)] {
+        for placement in [Placement::Endpoint, Placement::Optimal] {
+            let built = build(&mesh, &BuildOptions::default().placement(placement), &mut |_| {}).unwrap();
+            assert_tracker_matches_walks(&built.sets);
+            assert!(built.sets.check_triangle_counts().is_ok());
+        }
+    }
+}
+
+/// Models the builder never makes (one more slot skipped by a successor, a strip
+/// beginning moved one slot on: an odd removal that flips every later triangle, or a
+/// slot brought back): the tracker still follows the walks from scratch.
+#[test]
+fn tracker_follows_odd_removals() {
+    let sets = build(&ribbon(120), &BuildOptions::default(), &mut |_| {}).unwrap().sets;
+    let mut tried = 0;
+    for slot in (0..sets.slot_count()).step_by(7) {
+        let r = sets.version_offsets[slot] as usize..sets.version_offsets[slot + 1] as usize;
+        for i in r.clone().skip(1) {
+            let v = sets.versions[i];
+            if v.next == END {
+                continue;
+            }
+            // Skip one slot more (forward, within the strip), then bring it back.
+            let end = sets.strip_slots[1];
+            for next in [v.next + 1, slot as u32 + 1] {
+                if next <= slot as u32 || next >= end {
+                    continue;
+                }
+                let mut bad = sets.clone();
+                bad.versions[i].next = next;
+                assert_tracker_matches_walks(&bad);
+                tried += 1;
+            }
+        }
+    }
+    let mut bad = sets.clone();
+    for k in 1..bad.begin_slot.len() {
+        if bad.begin_slot[k] != END && bad.begin_slot[k] + 1 < bad.strip_slots[1] {
+            bad.begin_slot[k] += 1;
+        }
+    }
+    assert_tracker_matches_walks(&bad);
+    assert!(tried > 10, "{tried}");
+}
+
+/// `lod build` on a long flat ribbon: every level checked against the replay (the
+/// check the CLI runs by default), the file read back, each level's triangle count
+/// what the strips draw.
+#[test]
+fn ribbon_levels_check() {
+    let built = build(&ribbon(3000), &BuildOptions::default(), &mut |_| {}).unwrap();
+    assert_eq!(built.sets.strip_count(), 1);
+    let levels = built.sets.levels();
+    assert!(levels > 1000, "{levels}");
+    let check = built.check(None).unwrap();
+    assert_eq!(check.levels_checked, levels as usize + 1);
+    let back = Sets::from_bytes(std::path::Path::new("ribbon.sets"), &built.sets.to_bytes()).unwrap();
+    assert_eq!(back, built.sets);
+    for level in (0..=levels).step_by(97).chain([levels]) {
+        let drawn = crate::strip::decode(&back.strips_at(level)).len();
+        assert_eq!(drawn as u32, back.triangles_at(level), "level {level}");
+    }
+}

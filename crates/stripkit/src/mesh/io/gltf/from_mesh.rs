@@ -230,6 +230,14 @@ fn write_vertices(
 /// groups each primitive gets the vertices its faces use, in their order.
 pub(super) fn mesh_document(mesh: &Mesh) -> Result<MeshDocument> {
     mesh.check_faces()?;
+    let limit = crate::mesh::io::MAX_GLTF_VERTEX_ATTRIBUTES;
+    if mesh.attributes.len() > limit {
+        return Err(Error::Invalid(format!(
+            "the mesh has {} vertex attributes besides its positions; glTF output takes at most {limit} \
+             (each is an accessor of its own): write PLY to keep them all",
+            mesh.attributes.len()
+        )));
+    }
     let mut bin = Vec::new();
     let mut views = Vec::new();
     let mut accessors = Vec::new();
