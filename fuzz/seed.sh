@@ -10,7 +10,7 @@ here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/.." && pwd)"
 corpus="$here/corpus"
 cd "$root"
-for t in read_obj read_ply read_off read_stl read_gltf read_glb dimacs door door_quads read_sequence; do
+for t in read_obj read_ply read_off read_stl read_gltf read_glb dimacs door door_quads read_sequence scene options; do
     mkdir -p "$corpus/$t"
 done
 
@@ -107,4 +107,13 @@ done
 "$cli" lod build-seq "$tmp/anim" -o "$tmp/anim_q.lodseq" --samples 200 --position-bits 12 >/dev/null
 head -c -4 "$tmp/anim.lodseq" > "$z/anim"
 head -c -4 "$tmp/anim_q.lodseq" > "$z/anim_q"
+# 10. Scenes with skins, morph targets, strips, fans and unindexed primitives, as
+# GLB and glTF, and the committed regression inputs of every target.
+cargo run --quiet -p stripkit-fuzzcheck --example fuzz_seeds -- "$corpus/scene" >/dev/null
+cp "$corpus"/read_gltf/gen_*.gltf "$corpus"/read_glb/gen_*.glb "$corpus/scene/"
+# 11. Option values: byte 0 picks the option (see crates/stripkit-fuzzcheck/src/options.rs).
+mkdir -p "$corpus/options"
+for t in scene options; do
+    cp "$root/fuzz/regressions/$t"/* "$corpus/$t/"
+done
 echo "seeded: $(find "$corpus" -type f | wc -l) files in $corpus"

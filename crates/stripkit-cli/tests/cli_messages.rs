@@ -66,3 +66,33 @@ fn homogeneous_off_coordinates_that_overflow_are_refused_naming_the_file() {
     );
     assert!(err.contains("NaN or infinite"), "{err}");
 }
+
+#[cfg(unix)]
+#[test]
+fn a_folder_run_skips_links_out_of_the_folder() {
+    // A link in the folder to a text file outside it: the run used to read it and
+    // quote its first line in the error. Now it is skipped, named in a note; a link
+    // to a mesh inside the folder is still taken.
+    let base = tmp("messages", "linkrun");
+    let (dir, out) = (base.join("in"), base.join("out"));
+    std::fs::create_dir_all(&dir).unwrap();
+    let secret = base.join("secret.txt");
+    std::fs::write(&secret, "the-secret-first-line\n").unwrap();
+    std::fs::write(dir.join("a.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    for (name, to) in [("x.obj", secret.clone()), ("y.off", secret.clone()), ("b.obj", dir.join("a.obj"))] {
+        let _ = std::fs::remove_file(dir.join(name));
+        std::os::unix::fs::symlink(to, dir.join(name)).unwrap();
+    }
+    let run = support::stripkit(&["strip", dir.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(0), "{err}");
+    assert!(!err.contains("secret-first"), "{err}");
+    assert!(err.contains("skipped 2 symbolic link(s)") && err.contains("x.obj") && err.contains("y.off"), "{err}");
+    assert!(out.join("a.glb").is_file() && out.join("b.glb").is_file());
+    assert!(!out.join("x.glb").exists());
+    // Only links out of the folder: nothing to do.
+    std::fs::remove_file(dir.join("a.obj")).unwrap();
+    std::fs::remove_file(dir.join("b.obj")).unwrap();
+    let err = refused(&["strip", dir.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(err.contains("no mesh files") && !err.contains("secret-first"), "{err}");
+}

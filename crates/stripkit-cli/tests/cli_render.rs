@@ -403,3 +403,52 @@ fn levels_of_detail_draw_their_own_strips() {
         assert_eq!(stripkit(&args).status.code(), Some(2), "{bad:?}");
     }
 }
+
+#[test]
+fn any_finite_scale_is_framed() {
+    // A torus drawn at its own size, then scaled by powers of ten far beyond single
+    // precision's comfortable range: every picture holds the model (1e18 and 1e-18
+    // used to come out blank in some shapes, 1e25 always), and about as many pixels
+    // (the scaled positions round differently); scaled by a power of two, exactly as many.
+    let mut torus = stripkit::gen::torus(24, 12, 1.0, 0.3);
+    for p in &mut torus.positions {
+        p[0] += 0.5;
+    }
+    let pixels = |name: &str, scale: f32| -> Option<u64> {
+        let mut mesh = torus.clone();
+        for p in &mut mesh.positions {
+            *p = p.map(|x| (x as f64 * scale as f64) as f32);
+        }
+        let obj = tmp("render", &format!("scaled-{name}.obj"));
+        write_mesh(&obj, &mesh);
+        let png = tmp("render", &format!("scaled-{name}.png"));
+        let j = render(&[obj.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "200x150", "--wireframe"])?;
+        j["pixels"].as_u64()
+    };
+    let Some(plain) = pixels("1", 1.0) else {
+        return;
+    };
+    assert!(plain > 5000, "{plain}");
+    assert_eq!(pixels("2p64", 2f32.powi(64)), Some(plain), "a power of two is exact");
+    assert_eq!(pixels("2p-64", 2f32.powi(-64)), Some(plain), "a power of two is exact");
+    for (name, scale) in [("1e18", 1e18f32), ("1e-18", 1e-18), ("1e25", 1e25), ("1e-25", 1e-25), ("1e36", 1e36)] {
+        let n = pixels(name, scale).unwrap();
+        assert!(n.abs_diff(plain) * 100 <= plain, "{name}: {n} pixels, {plain} at scale 1");
+    }
+}
+
+#[test]
+fn a_wireframe_of_many_edges_is_drawn_in_slices() {
+    // 200 x 200 grid: 80,000 triangles, 120,400 edges, more than one slice of 65,536
+    // edges (the slices bound the memory: 1.3 M triangles at 4096 x 4096 took 514 MB
+    // for the wireframe at once, now 60 MB); every edge is drawn.
+    let mesh = grid(200, 200);
+    let png = tmp("render", "grid-wire-slices.png");
+    let Some(j) = render(&[&mesh, "-o", png.to_str().unwrap(), "--wireframe", "--view", "0,0,1", "--size", "400x400"])
+    else {
+        return;
+    };
+    assert_eq!(j["edges"], 200 * 201 * 2 + 200 * 200);
+    let pic = Picture::read(&png);
+    assert!(pic.count(WIRE) > 400 * 400 / 2, "the wire covers the dense grid: {}", pic.count(WIRE));
+}

@@ -704,6 +704,10 @@ pub fn check_torus(major: u32, minor: u32) -> Result<()> {
 /// message, never wrapped. `name` names the input in the message (a file, "cube").
 pub fn check_subdivision(face_indices: usize, levels: u32, name: &str) -> Result<()> {
     let indices = face_indices as u64;
+    // Nothing grows from nothing: 0 x 4^levels is 0 however large the power.
+    if indices == 0 {
+        return check_limit(0, 0);
+    }
     let grown = 4u64.checked_pow(levels).and_then(|f| f.checked_mul(indices)).ok_or_else(|| {
         Error::Invalid(format!(
             "the requested mesh is too large ({name}: {indices} face indices x 4^{levels} is beyond 2^64; limit {MAX_INDICES})"

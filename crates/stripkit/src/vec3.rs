@@ -42,3 +42,28 @@ pub(crate) fn tri_normal_f32(a: [f32; 3], b: [f32; 3], c: [f32; 3]) -> [f32; 3] 
     let (u, v) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
     [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
 }
+
+/// Extents the f32 parts of the geometry code (stored positions, heap keys of squared
+/// distances) hold comfortably: from 2^-16 to 2^16.
+const PLAIN_EXTENT: (f64, f64) = (1.0 / 65536.0, 65536.0);
+
+/// The power of two that brings the largest extent of the finite `positions` near 1
+/// (into 1..2) when it lies outside 2^-16 ..= 2^16, else 1 (and 1 for no extent).
+/// Multiplying by a power of two rounds nothing (short of f32's subnormals), so work
+/// done on scaled positions and scaled back is the work done at any scale.
+pub(crate) fn unit_scale(positions: &[[f32; 3]]) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in positions.iter().filter(|p| p.iter().all(|x| x.is_finite())) {
+        for d in 0..3 {
+            lo[d] = lo[d].min(p[d] as f64);
+            hi[d] = hi[d].max(p[d] as f64);
+        }
+    }
+    let extent = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+    if !extent.is_finite() || extent == 0.0 || (PLAIN_EXTENT.0..=PLAIN_EXTENT.1).contains(&extent) {
+        return 1.0;
+    }
+    // f32 spans 2^-149 ..= 2^127: the scale and its inverse stay normal f32 numbers.
+    2f64.powi(-(extent.log2().floor().clamp(-126.0, 126.0) as i32))
+}

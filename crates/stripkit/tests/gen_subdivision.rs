@@ -255,6 +255,10 @@ fn requests_beyond_the_size_limit_are_refused_before_building() {
     assert_eq!(e, "icosphere level 11 is too large (at most 9: 5,242,880 triangles)");
     let e = gen::check_subdivision(24, 14, "cube").unwrap_err().to_string();
     assert!(e.contains("(6442450944 face indices, 0 vertices; limit 33554432)"), "{e}");
+    // Nothing grows from nothing: 4^36 overflowed before the multiplication by 0 and
+    // refused an empty mesh (found by the `options` fuzz target).
+    assert!(gen::check_subdivision(0, 36, "empty").is_ok());
+    assert!(gen::check_subdivision(0, u32::MAX, "empty").is_ok());
     // 24 * 4^31 once wrapped to 0 and got past the check.
     for levels in [31, 32, 40, u32::MAX] {
         let e = gen::check_subdivision(24, levels, "cube").unwrap_err().to_string();

@@ -11,17 +11,40 @@ use std::path::{Path, PathBuf};
 use stripkit::io::Format;
 
 /// The mesh files directly in `dir` (not its subfolders), by name: every file whose
-/// extension names a format stripkit reads (optionally `.gz`).
+/// extension names a format stripkit reads (optionally `.gz`). A symbolic link is
+/// taken only where it leads to a file inside `dir`: a link out of the folder names a
+/// file the user did not (`d/x.obj -> /etc/passwd` had its first line quoted in the
+/// error), so it is skipped, with a note naming it on standard error.
 pub fn mesh_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     let read = |e: std::io::Error| stripkit::Error::Io { path: dir.to_path_buf(), source: e };
+    let root = dir.canonicalize().map_err(read)?;
     let mut files = Vec::new();
+    let mut outside = Vec::new();
     for entry in std::fs::read_dir(dir).map_err(read)? {
-        let path = entry.map_err(read)?.path();
-        if path.is_file() && Format::from_path(&path).is_some() {
-            files.push(path);
+        let entry = entry.map_err(read)?;
+        let path = entry.path();
+        if !(path.is_file() && Format::from_path(&path).is_some()) {
+            continue;
         }
+        if entry.file_type().map_err(read)?.is_symlink()
+            && !path.canonicalize().is_ok_and(|target| target.parent().is_some_and(|p| p.starts_with(&root)))
+        {
+            outside.push(path);
+            continue;
+        }
+        files.push(path);
     }
     files.sort();
+    if !outside.is_empty() {
+        outside.sort();
+        let names: Vec<String> = outside.iter().map(|p| p.display().to_string()).collect();
+        eprintln!(
+            "stripkit: note: skipped {} symbolic link(s) leading out of {}: {}",
+            names.len(),
+            dir.display(),
+            names.join(", ")
+        );
+    }
     Ok(files)
 }
 

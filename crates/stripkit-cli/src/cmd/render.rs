@@ -182,26 +182,40 @@ fn draw(
     renderer.draw(&geometry, &indices, &params);
     let mut edges = None;
     if args.wireframe {
-        let band = wire::wireframe(scene.drawn, &exploded.corners, camera, args.size);
-        edges = Some(band.len() / 6);
-        let colors = vec![paint::WIRE; band.len()];
-        let lines = renderer.upload(&Vertices {
-            positions: &band,
-            morph_target: None,
-            normals: None,
-            colors: Some(&colors),
-        })?;
-        let order: Vec<u32> = (0..band.len() as u32).collect();
-        let line_indices = renderer.upload_indices(&order, Topology::Triangles, IndexWidth::smallest(order.len()))?;
         let mut line_params = params.clone();
         line_params.morph = 0.0;
         line_params.shading = Shading::Unlit;
-        renderer.draw(&lines, &line_indices, &line_params);
+        edges = Some(draw_wireframe(renderer, args, scene, &line_params)?);
     }
     if let Some(e) = renderer.gl_error() {
         return Err(stripkit_render::RenderError::Gl(format!("drawing failed (GL error {e:#x})")).into());
     }
     Ok((renderer.read_image(), edges))
+}
+
+/// Edges of a wireframe drawn at a time: about 19 MB of bands, colours and indices
+/// (and the driver's copy), where the whole wireframe of 2 million edges took 650 MB
+/// more and aborted under a 1.5 GB address-space limit.
+const WIRE_EDGES_AT_A_TIME: usize = 1 << 16;
+
+/// Draws the wireframe of the scene a slice of edges at a time (the same picture as
+/// all at once: the slices are drawn in order); returns the number of edges drawn.
+fn draw_wireframe(renderer: &mut Renderer, args: &Args, scene: &Scene, params: &DrawParams) -> anyhow::Result<usize> {
+    let all = wire::edges(&scene.exploded.corners);
+    let mut drawn = 0;
+    for slice in all.chunks(WIRE_EDGES_AT_A_TIME) {
+        let band = wire::wireframe_of(scene.drawn, slice, &scene.framing.camera, args.size);
+        drawn += band.len() / 6;
+        let colors = vec![paint::WIRE; band.len()];
+        let lines =
+            renderer.upload(&Vertices { positions: &band, morph_target: None, normals: None, colors: Some(&colors) })?;
+        let order: Vec<u32> = (0..band.len() as u32).collect();
+        let indices = renderer.upload_indices(&order, Topology::Triangles, IndexWidth::smallest(order.len()))?;
+        renderer.draw(&lines, &indices, params);
+        renderer.delete_geometry(lines);
+        renderer.delete_indices(indices);
+    }
+    Ok(drawn)
 }
 
 /// Runs the command: read -> frame -> door -> explode and colour -> draw -> PNG.
@@ -224,6 +238,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(other) = &target {
         points.extend(other.used_positions());
     }
+    // Any finite scale is drawn in a frame near unit size (a power of two: exact).
+    let scale = stripkit_render::unit_scale(&points);
+    stripkit_render::scale_points(&mut points, scale);
     let framing = Framing::fit(&points, args.view, args.up, args.fov, args.zoom, w as f32 / h as f32).map_err(|e| {
         Error::Invalid(match e {
             FrameError::ZeroView => "--view must not be 0,0,0".into(),
@@ -255,6 +272,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (None, Some((mesh, strips, _))) => (strips.clone(), mesh.positions.clone(), None),
         (None, None) => unreachable!("a mesh goes through the door"),
     };
+    let (mut positions, mut target_positions) = (positions, target_positions);
+    stripkit_render::scale_points(&mut positions, scale);
+    if let Some(other) = &mut target_positions {
+        stripkit_render::scale_points(other, scale);
+    }
     let blended = target_positions.as_ref().map(|other| stripkit_render::morph_positions(&positions, other, t));
     let drawn = blended.as_deref().unwrap_or(&positions);
 

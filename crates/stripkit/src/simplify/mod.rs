@@ -212,5 +212,53 @@ pub fn simplify(mesh: &Mesh, options: &Options, progress: &mut dyn FnMut(f64)) -
         return Err(Error::Invalid("a vertex position is not a finite number".into()));
     }
     mesh.check_attributes()?;
-    collapse::run(mesh, options, progress)
+    let scale = crate::vec3::unit_scale(&mesh.positions);
+    if scale == 1.0 {
+        return collapse::run(mesh, options, progress);
+    }
+    scaled(mesh, options, scale, progress)
+}
+
+/// [`simplify`] of a mesh far from unit size (see `vec3::unit_scale`): run on the
+/// positions times `scale`, a power of two, with the distances of the options scaled
+/// alike, then everything measured scaled back to the input's units. The collapse
+/// costs are squared distances, queued as f32: a mesh 1e20 across overflowed them
+/// (`max error inf`, collapses in the wrong order) and one 1e-20 across lost them
+/// in f32's subnormals; scaled, the collapses are those of the same mesh at unit size.
+fn scaled(mesh: &Mesh, options: &Options, scale: f64, progress: &mut dyn FnMut(f64)) -> Result<Simplified> {
+    let mut unit = mesh.clone();
+    for p in &mut unit.positions {
+        *p = p.map(|x| (x as f64 * scale) as f32);
+    }
+    let mut unit_options = options.clone();
+    unit_options.pair_distance = options.pair_distance.map(|d| d * scale);
+    if let Target::Error(e) = options.target {
+        unit_options.target = Target::Error(e * scale * scale);
+    }
+    let mut out = collapse::run(&unit, &unit_options, progress).map_err(|e| match (e, unit_options.pair_distance) {
+        // The refusal names the distance asked for, not the scaled one.
+        (Error::Invalid(text), Some(d)) => Error::Invalid(text.replace(&format!("pair distance {d} "), &format!(
+            "pair distance {} ",
+            options.pair_distance.unwrap_or(d)
+        ))),
+        (e, _) => e,
+    })?;
+    let back = 1.0 / scale;
+    let squared = back * back;
+    // A vertex where the scaled input had it keeps its input position bit for bit
+    // (f32 subnormals would not come back from scaling down and up).
+    for ((p, q), original) in out.mesh.positions.iter_mut().zip(&unit.positions).zip(&mesh.positions) {
+        *p = if p == q { *original } else { p.map(|x| (x as f64 * back) as f32) };
+    }
+    for c in &mut out.sequence.collapses {
+        let kept = c.kept as usize;
+        c.position = if c.position == unit.positions[kept] {
+            mesh.positions[kept]
+        } else {
+            c.position.map(|x| (x as f64 * back) as f32)
+        };
+        c.error *= squared;
+    }
+    out.max_error *= squared;
+    Ok(out)
 }
