@@ -226,9 +226,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     progress.set_message(format!("reading {}", args.input.display()));
     let lod = input::read_lod(&args)?;
     let (mesh, target) = match &lod {
-        Some((positions, strips, _)) => {
-            (stripkit::Mesh::from_triangles(positions.clone(), &stripkit::decode(strips)), None)
-        }
+        Some((mesh, _, _)) => (mesh.clone(), None),
         None => input::read_meshes(&args)?,
     };
     let t = if target.is_some() { args.t.unwrap_or(0.5) } else { 0.0 };
@@ -271,7 +269,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             strips.with_added_vertices(&mesh.positions),
             target.as_ref().map(|o| strips.with_added_vertices(&o.positions)),
         ),
-        (None, Some((positions, strips, _))) => (strips.clone(), positions.clone(), None),
+        (None, Some((mesh, strips, _))) => (strips.clone(), mesh.positions.clone(), None),
         (None, None) => unreachable!("a mesh goes through the door"),
     };
     let (mut positions, mut target_positions) = (positions, target_positions);

@@ -81,8 +81,9 @@ pub struct BuildReport {
 pub struct Built {
     /// The model.
     pub sets: Sets,
-    /// The triangle mesh that was simplified: the input's positions (plus any vertex
-    /// the stripifier added) and the triangles the strips draw, in the door's order.
+    /// The triangle mesh that was simplified: the input's positions and attributes
+    /// (plus any vertex the stripifier added, its attributes the blend of the two it
+    /// splits) and the triangles the strips draw, in the door's order.
     /// For a triangle mesh stripped without changes this is the input itself, so
     /// `stripkit simplify` on the input gives the same levels.
     pub mesh: Mesh,
@@ -112,13 +113,27 @@ pub fn build(mesh: &Mesh, options: &BuildOptions, progress: &mut dyn FnMut(f64))
     let strip_ms = t.elapsed().as_secs_f64() * 1e3;
     let mut positions = mesh.positions.clone();
     positions.extend_from_slice(&strips.added_positions);
-    let simplified_mesh = Mesh::from_triangles(positions, &strips.triangles);
+    let mut simplified_mesh = Mesh::from_triangles(positions, &strips.triangles);
+    // Every attribute comes along (an added vertex blends the two it splits): the
+    // simplifier keeps seam vertices in place and the model stores the values.
+    simplified_mesh.attributes = mesh.attributes.clone();
+    for a in &mut simplified_mesh.attributes {
+        for &[x, y] in &strips.added_from {
+            a.push_lerp(x as usize, y as usize, 0.5);
+        }
+    }
     let t = Instant::now();
     let simplify_options = Options::default().target(Target::Triangles(0)).placement(options.placement);
     let simplified = simplify(&simplified_mesh, &simplify_options, progress)?;
     let simplify_ms = t.elapsed().as_secs_f64() * 1e3;
     let t = Instant::now();
-    let sets = Sets::build(&simplified_mesh.positions, &strips.strips, &simplified.sequence, options.placement)?;
+    let sets = Sets::build_with_attributes(
+        &simplified_mesh.positions,
+        &simplified_mesh.attributes,
+        &strips.strips,
+        &simplified.sequence,
+        options.placement,
+    )?;
     let build_ms = t.elapsed().as_secs_f64() * 1e3;
     // Checked before it is returned, as every output of the library: 17 levels
     // spread over the range (and the coarsest) against the replay, 2 of them

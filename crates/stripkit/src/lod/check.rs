@@ -237,6 +237,20 @@ fn compare_with_replay(
             }
         }
     }
+    // Every attribute, byte for byte, where the model has them.
+    for (a, b) in sets.attributes.iter().zip(&replay.attributes) {
+        for &v in replay.triangles.iter().flatten() {
+            if a.bytes(name[v as usize] as usize) != b.bytes(v as usize) {
+                return Err(Error::Verification(format!(
+                    "level {level}: vertex {v}'s {} is {:?} in the replay but the model's vertex {} has {:?}",
+                    a.name,
+                    b.value(v as usize),
+                    name[v as usize],
+                    a.value(name[v as usize] as usize)
+                )));
+            }
+        }
+    }
     Ok(())
 }
 

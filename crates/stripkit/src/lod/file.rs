@@ -4,12 +4,20 @@
 use super::sets::{Sets, Version, END};
 use crate::error::{Error, Result};
 use crate::mesh::io::write_checked;
+use crate::mesh::{Attribute, Scalar};
 use crate::simplify::Placement;
 use std::path::Path;
 
 /// The first eight bytes of a `.sets` file.
 pub const SETS_MAGIC: &[u8; 8] = b"SKLODSET";
 const FORMAT_VERSION: u32 = 1;
+/// The version of a file that carries vertex attributes (an attributes section after
+/// the positions); files without attributes keep version 1, byte for byte.
+const FORMAT_VERSION_ATTRIBUTES: u32 = 2;
+/// Most attributes a file may declare.
+const MAX_ATTRIBUTES: u32 = 64;
+/// Longest attribute name, in bytes.
+const MAX_ATTRIBUTE_NAME: u64 = 256;
 const FLAG_OPTIMAL: u32 = 1;
 /// The positions section is absent (a model inside a `.lodseq`, whose frames hold
 /// the positions); only with endpoint placement.
@@ -26,8 +34,9 @@ impl Sets {
         let positionless = self.positions.is_empty() && self.input_vertices > 0;
         let flags = if self.placement == Placement::Optimal { FLAG_OPTIMAL } else { 0 }
             | if positionless { FLAG_NO_POSITIONS } else { 0 };
+        let version = if self.attributes.is_empty() { FORMAT_VERSION } else { FORMAT_VERSION_ATTRIBUTES };
         for x in [
-            FORMAT_VERSION,
+            version,
             flags,
             self.input_vertices,
             if positionless { self.input_vertices } else { self.positions.len() as u32 },
@@ -44,6 +53,9 @@ impl Sets {
             for c in p {
                 out.extend_from_slice(&c.to_le_bytes());
             }
+        }
+        if !self.attributes.is_empty() {
+            write_attributes(&mut out, &self.attributes);
         }
         for i in 0..self.targets.len() {
             if self.placement == Placement::Endpoint {
@@ -114,9 +126,13 @@ impl Sets {
     /// whose count the strips do not draw).
     pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Sets> {
         let fmt = |at: usize, what: String| Error::Format { path: path.to_path_buf(), at: format!("byte {at}"), what };
-        let mut r = Reader::open(bytes, SETS_MAGIC, 40, ".sets", &fmt)?;
+        let (mut r, version) = Reader::open(bytes, SETS_MAGIC, 40, ".sets", &fmt)?;
         let h = SetsHeader::read(&mut r)?;
         let positions = read_positions(&mut r, if h.positionless { 0 } else { h.position_count })?;
+        let attributes = match version {
+            FORMAT_VERSION => Vec::new(),
+            _ => read_attributes(&mut r, h.position_count)?,
+        };
         let (targets, removed_triangles) = h.read_collapses(&mut r)?;
         let strip_slots = h.read_strip_lengths(&mut r)?;
         let labels = h.read_labels(&mut r)?;
@@ -130,6 +146,7 @@ impl Sets {
             placement: h.placement,
             input_vertices: h.input_vertices,
             positions,
+            attributes,
             targets,
             removed_triangles,
             triangles0: h.triangles0,
@@ -409,7 +426,7 @@ impl<'a> Reader<'a> {
         header: usize,
         kind: &str,
         fmt: &'a dyn Fn(usize, String) -> Error,
-    ) -> Result<Reader<'a>> {
+    ) -> Result<(Reader<'a>, u32)> {
         if bytes.len() < magic.len() + header + 4 {
             return Err(fmt(0, format!("{} bytes is too short for a {kind} file", bytes.len())));
         }
@@ -424,10 +441,11 @@ impl<'a> Reader<'a> {
         }
         let mut r = Reader { bytes: body, at: 8, fmt };
         let version = r.u32()?;
-        if version != FORMAT_VERSION {
-            return Err(fmt(8, format!("format version {version}; this stripkit reads version {FORMAT_VERSION}")));
+        if version != FORMAT_VERSION && version != FORMAT_VERSION_ATTRIBUTES {
+            let known = format!("versions {FORMAT_VERSION} and {FORMAT_VERSION_ATTRIBUTES}");
+            return Err(fmt(8, format!("format version {version}; this stripkit reads {known}")));
         }
-        Ok(r)
+        Ok((r, version))
     }
 
     fn left(&self) -> usize {
@@ -520,7 +538,8 @@ impl super::seq::LodSeq {
         let mut out = Vec::with_capacity(32 + self.positions.len() * n * 12);
         out.extend_from_slice(LODSEQ_MAGIC);
         let bits = self.quantization.map_or(0, |q| q.bits);
-        for x in [FORMAT_VERSION, self.names.len() as u32, n as u32, self.models.len() as u32, bits] {
+        let version = if self.attributes.is_empty() { FORMAT_VERSION } else { FORMAT_VERSION_ATTRIBUTES };
+        for x in [version, self.names.len() as u32, n as u32, self.models.len() as u32, bits] {
             out.extend_from_slice(&x.to_le_bytes());
         }
         for (name, &m) in self.names.iter().zip(&self.frame_model) {
@@ -565,6 +584,9 @@ impl super::seq::LodSeq {
                 out.extend_from_slice(&packed);
             }
         }
+        if !self.attributes.is_empty() {
+            write_attributes(&mut out, &self.attributes);
+        }
         for model in &self.models {
             let bytes = model.to_bytes();
             varint(&mut out, bytes.len() as u64);
@@ -608,7 +630,7 @@ impl super::seq::LodSeq {
     /// model positionless over the frames' vertex count with the same strip layout.
     pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<super::seq::LodSeq> {
         let fmt = |at: usize, what: String| Error::Format { path: path.to_path_buf(), at: format!("byte {at}"), what };
-        let mut r = Reader::open(bytes, LODSEQ_MAGIC, 20, ".lodseq", &fmt)?;
+        let (mut r, version) = Reader::open(bytes, LODSEQ_MAGIC, 20, ".lodseq", &fmt)?;
         let (frames, vertices, models, bits) = (r.u32()?, r.u32()?, r.u32()?, r.u32()?);
         if frames == 0 || models == 0 {
             return Err(fmt(12, "a sequence needs at least one frame and one model".into()));
@@ -623,12 +645,16 @@ impl super::seq::LodSeq {
             let (positions, q) = read_quantized_positions(&mut r, frames, vertices, bits)?;
             (positions, Some(q))
         };
+        let attributes = match version {
+            FORMAT_VERSION => Vec::new(),
+            _ => read_attributes(&mut r, vertices)?,
+        };
         let models = read_models(path, &mut r, models, vertices)?;
         let body = r.bytes.len();
         if r.at != body {
             return Err(fmt(r.at, format!("{} bytes follow the last model", body - r.at)));
         }
-        Ok(super::seq::LodSeq { names, positions, frame_model, models, quantization })
+        Ok(super::seq::LodSeq { names, positions, frame_model, models, quantization, attributes })
     }
 }
 
@@ -759,7 +785,11 @@ fn read_models(path: &Path, r: &mut Reader, models: u32, vertices: u32) -> Resul
             e => e,
         })?;
         r.at += len as usize;
-        if model.input_vertices != vertices || !model.positions.is_empty() || model.placement != Placement::Endpoint {
+        if model.input_vertices != vertices
+            || !model.positions.is_empty()
+            || !model.attributes.is_empty()
+            || model.placement != Placement::Endpoint
+        {
             return Err(r.fail(at, format!("model {m} is not a positionless endpoint model over {vertices} vertices")));
         }
         if sets.first().is_some_and(|first| first.strip_slots != model.strip_slots) {
@@ -768,6 +798,66 @@ fn read_models(path: &Path, r: &mut Reader, models: u32, vertices: u32) -> Resul
         sets.push(model);
     }
     Ok(sets)
+}
+
+const SCALARS: [Scalar; 8] =
+    [Scalar::I8, Scalar::U8, Scalar::I16, Scalar::U16, Scalar::I32, Scalar::U32, Scalar::F32, Scalar::F64];
+
+/// The attributes section of a version-2 file (docs/sets-format.md): a `u32` count,
+/// then per attribute its name (varint length, UTF-8), scalar type (0 to 7: i8, u8,
+/// i16, u16, i32, u32, f32, f64), components and normalized flag (a byte each);
+/// then each attribute's values, one per vertex, as stored.
+fn write_attributes(out: &mut Vec<u8>, attributes: &[Attribute]) {
+    out.extend_from_slice(&(attributes.len() as u32).to_le_bytes());
+    for a in attributes {
+        varint(out, a.name.len() as u64);
+        out.extend_from_slice(a.name.as_bytes());
+        let scalar = SCALARS.iter().position(|&x| x == a.scalar).unwrap_or(0) as u8;
+        out.extend_from_slice(&[scalar, a.components, a.normalized as u8]);
+    }
+    for a in attributes {
+        out.extend_from_slice(&a.data);
+    }
+}
+
+/// Reads [`write_attributes`]'s section for `vertices` vertices: at most
+/// [`MAX_ATTRIBUTES`] attributes, names of at most [`MAX_ATTRIBUTE_NAME`] bytes, 1 to
+/// 4 components of a known type, and every attribute's values present in the bytes
+/// left before they are copied.
+fn read_attributes(r: &mut Reader, vertices: u32) -> Result<Vec<Attribute>> {
+    let count = r.u32()?;
+    if count == 0 || count > MAX_ATTRIBUTES {
+        return Err(r.fail(r.at - 4, format!("{count} attributes (a version-2 file holds 1 to {MAX_ATTRIBUTES})")));
+    }
+    r.need(count as usize * 4, "the attributes")?;
+    let mut attributes = Vec::with_capacity(count as usize);
+    for i in 0..count {
+        let len = r.varint("an attribute's name length")?;
+        if len > MAX_ATTRIBUTE_NAME {
+            return Err(r.fail(r.at, format!("attribute {i}: a name of {len} bytes (at most {MAX_ATTRIBUTE_NAME})")));
+        }
+        r.need(len as usize + 3, "an attribute")?;
+        let name = std::str::from_utf8(&r.bytes[r.at..r.at + len as usize])
+            .map_err(|_| r.fail(r.at, format!("attribute {i}: its name is not UTF-8")))?
+            .to_string();
+        r.at += len as usize;
+        let (scalar, components, normalized) = (r.bytes[r.at], r.bytes[r.at + 1], r.bytes[r.at + 2]);
+        r.at += 3;
+        let Some(&scalar) = SCALARS.get(scalar as usize) else {
+            return Err(r.fail(r.at - 3, format!("attribute {name}: unknown scalar type {scalar}")));
+        };
+        if !(1..=4).contains(&components) || normalized > 1 || (normalized == 1 && scalar.is_float()) {
+            return Err(r.fail(r.at - 2, format!("attribute {name}: {components} components, normalized {normalized}")));
+        }
+        attributes.push(Attribute { name, scalar, components, normalized: normalized == 1, data: Vec::new() });
+    }
+    for a in &mut attributes {
+        let size = (vertices as usize).saturating_mul(a.stride());
+        r.need(size, "an attribute's values")?;
+        a.data = r.bytes[r.at..r.at + size].to_vec();
+        r.at += size;
+    }
+    Ok(attributes)
 }
 
 /// The read-back check of a `.EXT` file: the model decoded from its bytes is `model`.

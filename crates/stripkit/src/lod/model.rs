@@ -7,7 +7,7 @@ use super::seq::LodSeq;
 use super::sets::{LevelSpec, Sets};
 use crate::error::{Error, Result};
 use crate::mesh::io::{self, Format, WriteOptions};
-use crate::mesh::Mesh;
+use crate::mesh::{Attribute, Mesh};
 use crate::strip::{decode, encode_stitched, verify_triangles, StripSet};
 use std::collections::HashMap;
 use std::io::Read;
@@ -27,6 +27,9 @@ pub enum Model {
 pub struct Extracted {
     /// Positions the strips index (an animation's frame, morphed for a fraction).
     pub positions: Vec<[f32; 3]>,
+    /// The vertex attributes of the same vertices (UVs, normals, ...; an animation's
+    /// are its first frame's); empty when the model has none.
+    pub attributes: Vec<Attribute>,
     /// The non-empty strips of the level.
     pub strips: StripSet,
     /// The level (collapses applied), of the frame's model for an animation.
@@ -83,6 +86,7 @@ impl Model {
                 let level = sets.level_of(spec);
                 Ok(Extracted {
                     positions: sets.positions().to_vec(),
+                    attributes: sets.attributes().to_vec(),
                     strips: sets.cursor(level).strips(),
                     level,
                     levels: sets.levels(),
@@ -105,6 +109,7 @@ impl Model {
                 let level = model.level_of(spec);
                 Ok(Extracted {
                     positions: seq.morph(t),
+                    attributes: seq.attributes().to_vec(),
                     strips: model.cursor(level).strips(),
                     level,
                     levels: model.levels(),
@@ -134,12 +139,15 @@ impl Extracted {
     }
 
     /// Writes the level to `path`, in the mesh format its extension names
-    /// (gzip-compressed for `.gz`): PLY as `tristrips`, one strip per strip; glTF and
+    /// (gzip-compressed for `.gz`), with only the vertices the level uses, numbered
+    /// in the order its strips first name them, each with its attributes (glTF
+    /// through [`io::Scene`], every attribute under its glTF semantic): PLY as `tristrips`, one strip per strip; glTF and
     /// GLB as one stitched `TRIANGLE_STRIP` (core glTF has no restart index); OBJ, OFF
     /// and STL as the strips' triangles. Through the library's one checked write
     /// path: the bytes are read back with the library's own reader and must hold
     /// exactly the strips' triangles ([`Extracted::checked_triangles`]), each with
-    /// its winding (STL, which keeps no indices, by its corners' positions), before
+    /// its winding (STL, which keeps no indices, and OBJ with attributes, which numbers
+    /// vertices by their corners, by the corners' positions), before
     /// the file is replaced atomically; nothing is written
     /// otherwise ([`Error::Verification`]). [`Error::UnknownFormat`] for an
     /// extension that names no mesh format; [`Error::Invalid`] for a level without
@@ -160,24 +168,41 @@ impl Extracted {
                 self.levels
             )));
         }
-        let mesh = Mesh::from_triangles(self.positions.clone(), &triangles);
+        let (mesh, strips, triangles) = self.used_vertices(&triangles);
         let to_write = match format {
-            Format::Ply => Some(self.strips.clone()),
-            Format::Gltf | Format::Glb => Some(StripSet::from_strips(&[encode_stitched(&self.strips)])),
+            Format::Ply => Some(strips.clone()),
+            Format::Gltf | Format::Glb => Some(StripSet::from_strips(&[encode_stitched(&strips)])),
             Format::Obj | Format::Off | Format::Stl => None,
         };
         io::write_checked(
             path,
-            || io::write_bytes(format, &mesh, to_write.as_ref(), options),
+            || match format {
+                // The plain glTF writer holds positions only; a scene of the mesh
+                // takes every attribute (under its glTF semantic), the level's strips
+                // set on its one primitive, stitched.
+                Format::Gltf | Format::Glb if !mesh.attributes.is_empty() => {
+                    let mut scene = io::Scene::from_mesh(&mesh)?;
+                    if let [primitive] = scene.primitives_mut() {
+                        primitive.strips = Some(strips.clone());
+                        primitive.drawn = triangles.clone();
+                        primitive.order = None;
+                    }
+                    scene.set_restart_groups(false);
+                    scene.to_bytes(format)
+                }
+                _ => io::write_bytes(format, &mesh, to_write.as_ref(), options),
+            },
             |bytes| {
                 let name = format!("the {format:?} bytes of {}", path.display());
                 let back = io::read_bytes(Path::new(&name), format, bytes)?;
                 let back_triangles = back.triangulate().tris;
-                let v = if format == Format::Stl {
-                    // STL keeps no indices: its reader welds equal positions, so the
-                    // triangles are compared by their corners' positions.
+                let renumbered = format == Format::Stl || (format == Format::Obj && !mesh.attributes.is_empty());
+                let v = if renumbered {
+                    // STL keeps no indices: its reader welds equal positions; OBJ
+                    // with `vt`/`vn` numbers its vertices by the corners that name
+                    // them. So the triangles are compared by their corners' positions.
                     let mut ids = HashMap::new();
-                    let expected = by_position(&triangles, &self.positions, &mut ids);
+                    let expected = by_position(&triangles, &mesh.positions, &mut ids);
                     verify_triangles(&expected, &by_position(&back_triangles, &back.positions, &mut ids))
                 } else {
                     verify_triangles(&triangles, &back_triangles)
@@ -189,6 +214,26 @@ impl Extracted {
             },
         )
         .map(drop)
+    }
+
+    /// The vertices the level's strips use, renumbered in the order the strips first
+    /// name them (the order glTF asks for), with their positions and attributes, as
+    /// a mesh of `triangles`; and the strips and `triangles` renumbered the same way.
+    pub(crate) fn used_vertices(&self, triangles: &[[u32; 3]]) -> (Mesh, StripSet, Vec<[u32; 3]>) {
+        let mut new_id = vec![u32::MAX; self.positions.len()];
+        let mut order = Vec::new();
+        for &v in &self.strips.indices {
+            if new_id[v as usize] == u32::MAX {
+                new_id[v as usize] = order.len() as u32;
+                order.push(v);
+            }
+        }
+        let renamed: Vec<[u32; 3]> = triangles.iter().map(|t| t.map(|v| new_id[v as usize])).collect();
+        let mut mesh = Mesh::from_triangles(order.iter().map(|&v| self.positions[v as usize]).collect(), &renamed);
+        mesh.attributes = self.attributes.iter().map(|a| a.gather(&order)).collect();
+        let mut strips = self.strips.clone();
+        strips.indices.iter_mut().for_each(|v| *v = new_id[*v as usize]);
+        (mesh, strips, renamed)
     }
 
     /// The level as JSON, once its strips are checked

@@ -267,6 +267,9 @@ pub struct LodSeq {
     pub(crate) models: Vec<Sets>,
     /// How the positions are quantized in the file (they are already on its grid).
     pub(crate) quantization: Option<Quantization>,
+    /// The vertex attributes of the first frame's file (UVs, normals, ...), shared by
+    /// every frame and level; empty when it has none.
+    pub(crate) attributes: Vec<crate::mesh::Attribute>,
 }
 
 /// Positions on a grid: coordinate `d` is `lo[d] + q * step[d]` for an integer
@@ -390,7 +393,13 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
         )));
     }
     let tris = strips.triangles.clone();
-    let frame_mesh = |p: &[[f32; 3]]| Mesh::from_triangles(p.to_vec(), &tris);
+    // With the first frame's attributes: the simplifier then keeps seam vertices in
+    // place, so that seams stay seams at every level of every frame.
+    let frame_mesh = |p: &[[f32; 3]]| {
+        let mut mesh = Mesh::from_triangles(p.to_vec(), &tris);
+        mesh.attributes = frames.mesh.attributes.clone();
+        mesh
+    };
     let f_count = frames.positions.len();
     // Every frame's own sequence, and the reference pose's (or frame 0's).
     let t = Instant::now();
@@ -479,8 +488,14 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
         distance_ms,
         model_ms,
     };
-    let seq =
-        LodSeq { names: frames.names.clone(), positions: frames.positions.clone(), frame_model, models, quantization };
+    let seq = LodSeq {
+        names: frames.names.clone(),
+        positions: frames.positions.clone(),
+        frame_model,
+        models,
+        quantization,
+        attributes: frames.mesh.attributes.clone(),
+    };
     Ok(BuiltSeq { seq, triangles: tris, sequences, report })
 }
 
@@ -556,6 +571,12 @@ impl LodSeq {
     /// Positions of frame `f`.
     pub fn positions(&self, f: usize) -> &[[f32; 3]] {
         &self.positions[f]
+    }
+
+    /// The vertex attributes every frame shares (the first frame file's); empty when
+    /// it has none.
+    pub fn attributes(&self) -> &[crate::mesh::Attribute] {
+        &self.attributes
     }
 
     /// The models (one per kept sequence).

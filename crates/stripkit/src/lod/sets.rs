@@ -20,6 +20,7 @@
 //! * a strip with no non-degenerate triangle left is emptied.
 
 use crate::error::{Error, Result};
+use crate::mesh::Attribute;
 use crate::simplify::{CollapseSequence, Placement};
 use crate::strip::{canonical, StripSet};
 
@@ -66,6 +67,9 @@ pub struct Sets {
     pub(crate) input_vertices: u32,
     /// Positions of every vertex any level names.
     pub(crate) positions: Vec<[f32; 3]>,
+    /// Vertex attributes (UVs, normals, ...) of every vertex any level names, or of
+    /// the input vertices for a positionless model; empty when the mesh has none.
+    pub(crate) attributes: Vec<Attribute>,
     /// Per collapse: the vertex its renamed slots name afterwards.
     pub(crate) targets: Vec<u32>,
     /// Per collapse: the triangles it removed.
@@ -110,7 +114,32 @@ impl Sets {
         sequence: &CollapseSequence,
         placement: Placement,
     ) -> Result<Sets> {
+        Sets::build_with_attributes(positions, &[], strips, sequence, placement)
+    }
+
+    /// [`Sets::build`] for a mesh with vertex attributes (`attributes`, one value per
+    /// vertex of `positions` each, as [`crate::Mesh::attributes`]): every level's
+    /// vertices keep them. With [`Placement::Endpoint`] a level names input vertices
+    /// only, with their own values; with [`Placement::Optimal`] the new vertex of each
+    /// collapse takes the values the simplifier gave its survivor (blended along the
+    /// collapsed edge, see [`crate::simplify`]), so that every level draws exactly
+    /// the attributes of [`CollapseSequence::replay`]. The sequence should come from
+    /// the simplifier run on the mesh with these attributes (it keeps seam vertices
+    /// in place, so that seams stay seams at every level). [`Error::Invalid`] also
+    /// when an attribute does not hold one value per vertex.
+    pub fn build_with_attributes(
+        positions: &[[f32; 3]],
+        attributes: &[Attribute],
+        strips: &StripSet,
+        sequence: &CollapseSequence,
+        placement: Placement,
+    ) -> Result<Sets> {
         let n = positions.len();
+        if let Some(a) = attributes.iter().find(|a| a.stride() == 0 || a.data.len() != n * a.stride()) {
+            let what = format!("attribute {} does not hold one value for each of the {n} vertices", a.name);
+            return Err(Error::Invalid(what));
+        }
+        let mut all_attributes = attributes.to_vec();
         if sequence.vertex_count as usize != n {
             return Err(Error::Invalid(format!(
                 "the collapse sequence is for {} vertices, the strips' mesh has {n}",
@@ -150,6 +179,12 @@ impl Sets {
                 }
                 Placement::Optimal => {
                     let new = (n + i) as u32;
+                    let wide = |v: u32| all_positions[v as usize].map(|x: f32| x as f64);
+                    let ends = [wide(name[k]), wide(name[r])];
+                    let p = c.position.map(|x| x as f64);
+                    for a in &mut all_attributes {
+                        crate::simplify::attributes::push_carried(a, name[r], name[k], ends, p);
+                    }
                     all_positions.push(c.position);
                     b.rename(name[r], new);
                     b.rename(name[k], new);
@@ -163,6 +198,7 @@ impl Sets {
         }
         let triangles0 = strips.iter().map(count_triangles).sum::<usize>() as u32;
         let mut sets = b.finish(placement, n as u32, all_positions, targets, removed_triangles, triangles0);
+        sets.attributes = all_attributes;
         sets.derive()?;
         Ok(sets)
     }
@@ -235,6 +271,13 @@ impl Sets {
         &self.positions
     }
 
+    /// Vertex attributes of every vertex a level may name, as [`Sets::positions`]
+    /// (for a model inside a `.lodseq`, of the input vertices); empty for a mesh
+    /// without attributes.
+    pub fn attributes(&self) -> &[Attribute] {
+        &self.attributes
+    }
+
     /// The survivor placement the model was built for.
     pub fn placement(&self) -> Placement {
         self.placement
@@ -288,6 +331,7 @@ impl Sets {
             + self.change_level.len()
             + self.triangles_at.len())
             + 12 * self.positions.len()
+            + self.attributes.iter().map(|a| a.data.len()).sum::<usize>()
     }
 
     /// The strips at `level`, walked from scratch (no coherence): a binary search for
@@ -626,6 +670,7 @@ impl Builder {
             placement,
             input_vertices,
             positions,
+            attributes: Vec::new(),
             targets,
             removed_triangles,
             triangles0,

@@ -95,6 +95,9 @@ fn extracted_level_writes_checked() {
     let level = Model::Sets(sets).extract(LevelSpec::Ratio(0.3), None).unwrap();
     let triangles = level.checked_triangles().unwrap();
     assert_eq!(triangles.len(), level.triangles as usize);
+    // The files hold the level's vertices only, renumbered by first use.
+    let (used, _, renamed) = level.used_vertices(&triangles);
+    assert!(used.positions.len() < level.positions.len());
     for ext in ["ply", "glb", "gltf", "obj", "off", "ply.gz", "stl"] {
         let path = dir.join(format!("level.{ext}"));
         level.write_file(&path, &crate::mesh::io::WriteOptions::default()).unwrap();
@@ -102,7 +105,8 @@ fn extracted_level_writes_checked() {
         assert_eq!(back.triangulate().tris.len(), triangles.len(), "{ext}");
         if ext != "stl" {
             // (STL welds its vertices anew: the check inside compared positions.)
-            assert!(crate::strip::verify_triangles(&triangles, &back.triangulate().tris).ok(), "{ext}");
+            assert_eq!(back.positions, used.positions, "{ext}");
+            assert!(crate::strip::verify_triangles(&renamed, &back.triangulate().tris).ok(), "{ext}");
         }
     }
     let json = level.to_json().unwrap();

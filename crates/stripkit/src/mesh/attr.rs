@@ -174,6 +174,12 @@ impl Attribute {
         self.data.extend_from_slice(other.bytes(v));
     }
 
+    /// Appends a copy of this attribute's vertex `v`.
+    pub fn push_from_self(&mut self, v: usize) {
+        let s = self.stride();
+        self.data.extend_from_within(v * s..(v + 1) * s);
+    }
+
     /// Appends the blend `(1 - t) * a + t * b` of vertices `a` and `b` of this
     /// attribute. Floats and normalized integers are interpolated; other integers
     /// (joint indices, ids) cannot be, so the nearer vertex's value is copied.

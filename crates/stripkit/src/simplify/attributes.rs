@@ -39,24 +39,45 @@ pub(crate) fn seam_vertices(mesh: &Mesh) -> Vec<bool> {
 /// The attributes of survivor `k` after the collapse r -> k at `p`, where `ends` are
 /// k's and r's positions before it: k's own values when p is k's position (endpoint
 /// placement), else interpolated towards r's by p's projection onto the edge.
-pub(super) fn carry(attributes: &mut [Attribute], r: u32, k: u32, ends: [V3; 2], p: V3) {
+pub(crate) fn carry(attributes: &mut [Attribute], r: u32, k: u32, ends: [V3; 2], p: V3) {
     if p == ends[0] {
+        return;
+    }
+    for a in attributes.iter_mut() {
+        // Appended, read back into k, then dropped.
+        let last = a.len();
+        push_carried(a, r, k, ends, p);
+        let stride = a.stride();
+        let value = a.data[last * stride..].to_vec();
+        a.data[k as usize * stride..(k as usize + 1) * stride].copy_from_slice(&value);
+        a.data.truncate(last * stride);
+    }
+}
+
+/// Appends to `a` the value [`carry`] gives survivor `k` of the collapse r -> k at
+/// `p` (`ends`: k's and r's positions before it): k's own at k's position, else
+/// push_lerp's rule by kind (normalized and float values blend by p's projection
+/// onto the edge, integer ones take the nearer end), `NORMAL` and `TANGENT` made
+/// unit again. The rule every path shares: the simplifier, the replay of its
+/// sequence and the optimal-placement vertices of the level-of-detail models.
+pub(crate) fn push_carried(a: &mut Attribute, r: u32, k: u32, ends: [V3; 2], p: V3) {
+    if p == ends[0] {
+        a.push_from_self(k as usize);
         return;
     }
     let e = sub(ends[1], ends[0]);
     let len2 = dot(e, e);
     let t = if len2 > 0.0 { (dot(sub(p, ends[0]), e) / len2).clamp(0.0, 1.0) } else { 0.5 };
-    for a in attributes.iter_mut() {
-        // Appended, read back into k, then dropped: push_lerp's rule by kind
-        // (normalized and float values blend, integer ones take the nearer end).
-        let last = a.len();
-        a.push_lerp(k as usize, r as usize, t);
-        let stride = a.stride();
-        let value = a.data[last * stride..].to_vec();
-        a.data[k as usize * stride..(k as usize + 1) * stride].copy_from_slice(&value);
-        a.data.truncate(last * stride);
-        unit_directions(a, k as usize..k as usize + 1);
-    }
+    let last = a.len();
+    a.push_lerp(k as usize, r as usize, t);
+    unit_directions(a, last..last + 1);
+}
+
+/// A position as the files and the sequence store it (f32), widened again: the
+/// simplifier carries attributes over these, so that a replay of the recorded
+/// positions gives the same values bit for bit.
+pub(crate) fn stored(p: V3) -> V3 {
+    p.map(|x| x as f32 as f64)
 }
 
 /// Blends of unit vectors are shorter than 1: makes `NORMAL` (x, y, z) and `TANGENT`

@@ -1150,7 +1150,10 @@ fn collapse_all(
             Verdict::Ok => {}
         }
         if !attributes.is_empty() {
-            super::attributes::carry(attributes, r, k, [st.pos[k as usize], st.pos[r as usize]], p);
+            // Over the stored (f32) positions, as the replay sees them.
+            use super::attributes::stored;
+            let ends = [stored(st.pos[k as usize]), stored(st.pos[r as usize])];
+            super::attributes::carry(attributes, r, k, ends, stored(p));
         }
         let removed = st.collapse(r, k, p);
         live -= removed;

@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::io::{encode_checked, write_checked};
-use crate::mesh::Mesh;
+use crate::mesh::{Attribute, Mesh};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -49,12 +49,19 @@ pub struct Replayed {
     pub triangles: Vec<[u32; 3]>,
     /// The input triangle id of each surviving triangle.
     pub triangle_ids: Vec<u32>,
+    /// The input mesh's vertex attributes (UVs, normals, colours, ...) of all input
+    /// vertices, the survivors' as the simplifier left them: unchanged with endpoint
+    /// placement, blended along each collapsed edge otherwise (the rule of
+    /// [`crate::simplify`]'s module documentation).
+    pub attributes: Vec<Attribute>,
 }
 
 impl Replayed {
-    /// The state as a triangle mesh (all vertex ids kept).
+    /// The state as a triangle mesh (all vertex ids kept), with its attributes.
     pub fn to_mesh(&self) -> Mesh {
-        Mesh::from_triangles(self.positions.clone(), &self.triangles)
+        let mut mesh = Mesh::from_triangles(self.positions.clone(), &self.triangles);
+        mesh.attributes = self.attributes.clone();
+        mesh
     }
 }
 
@@ -105,9 +112,10 @@ impl CollapseSequence {
 
     /// Applies the first `k` collapses to `mesh` (the simplifier's input) in
     /// O(vertices + triangles + k): every removed vertex is renamed to its survivor,
-    /// survivors take their recorded positions, and triangles that become degenerate
+    /// survivors take their recorded positions and the attributes the simplifier gave
+    /// them (see [`Replayed::attributes`]), and triangles that become degenerate
     /// (and degenerate input triangles) are dropped. Gives exactly the simplifier's
-    /// mesh after `k` collapses.
+    /// mesh after `k` collapses, attributes included, bit for bit.
     pub fn replay(&self, mesh: &Mesh, k: usize) -> Result<Replayed> {
         let tris = mesh.triangulate().tris;
         if mesh.positions.len() != self.vertex_count as usize || tris.len() != self.triangle_count as usize {
@@ -123,6 +131,8 @@ impl CollapseSequence {
         let n = mesh.positions.len();
         let mut positions = mesh.positions.clone();
         let mut parent: Vec<u32> = (0..n as u32).collect();
+        mesh.check_attributes()?;
+        let mut attributes = mesh.attributes.clone();
         for (i, c) in self.collapses[..k].iter().enumerate() {
             let (r, s) = (c.removed as usize, c.kept as usize);
             if r >= n || s >= n || parent[r] != r as u32 || parent[s] != s as u32 || r == s {
@@ -131,6 +141,11 @@ impl CollapseSequence {
                 )));
             }
             parent[r] = s as u32;
+            if !attributes.is_empty() {
+                let wide = |p: [f32; 3]| p.map(|x| x as f64);
+                let ends = [wide(positions[s]), wide(positions[r])];
+                super::attributes::carry(&mut attributes, r as u32, s as u32, ends, wide(c.position));
+            }
             positions[s] = c.position;
         }
         // Resolve chains with path compression.
@@ -146,7 +161,7 @@ impl CollapseSequence {
                 x = next;
             }
         }
-        let mut out = Replayed { positions, triangles: Vec::new(), triangle_ids: Vec::new() };
+        let mut out = Replayed { positions, triangles: Vec::new(), triangle_ids: Vec::new(), attributes };
         for (t, tri) in tris.iter().enumerate() {
             let m = tri.map(|v| parent[v as usize]);
             if m[0] != m[1] && m[1] != m[2] && m[2] != m[0] {

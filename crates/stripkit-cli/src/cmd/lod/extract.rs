@@ -48,6 +48,10 @@ struct ExtractOut {
     level: u32,
     levels: u32,
     triangles: u32,
+    /// Vertices the level uses (what a mesh output holds).
+    vertices: usize,
+    /// Vertex attributes carried (UVs, normals, ...).
+    attributes: Vec<String>,
     strips: usize,
     indices: usize,
     indices_per_triangle: f64,
@@ -91,8 +95,11 @@ pub(super) fn extract(args: ExtractArgs) -> anyhow::Result<()> {
         None => io::write_encoded(&args.output, &serde_json::to_vec(&level.to_json()?)?)?,
         Some(_) => level.write_file(&args.output, &write_options)?,
     }
-    let Extracted { strips, level: number, levels, triangles, frame, .. } = level;
+    let Extracted { strips, level: number, levels, triangles, frame, attributes, .. } = level;
     let indices = strips.index_count();
+    let mut used = strips.indices.clone();
+    used.sort_unstable();
+    used.dedup();
     let out = ExtractOut {
         input: args.file.display().to_string(),
         output: args.output.display().to_string(),
@@ -100,6 +107,8 @@ pub(super) fn extract(args: ExtractArgs) -> anyhow::Result<()> {
         level: number,
         levels,
         triangles,
+        vertices: used.len(),
+        attributes: attributes.iter().map(|a| a.name.clone()).collect(),
         strips: strips.len(),
         indices,
         indices_per_triangle: (strips.restart_len()) as f64 / triangles.max(1) as f64,
@@ -107,10 +116,21 @@ pub(super) fn extract(args: ExtractArgs) -> anyhow::Result<()> {
         us,
     };
     crate::cmd::print_report(args.json, &out, |w, o| {
+        let carried =
+            if o.attributes.is_empty() { String::new() } else { format!(" ({} and positions)", o.attributes.join(", ")) };
         writeln!(
             w,
-            "{}: level {} of {}: {} triangles in {} strips, {} indices ({:.3} per triangle with restarts), verified -> {}",
-            o.input, o.level, o.levels, o.triangles, o.strips, o.indices, o.indices_per_triangle, o.output
+            "{}: level {} of {}: {} triangles in {} strips over {} vertices{}, {} indices ({:.3} per triangle with restarts), verified -> {}",
+            o.input,
+            o.level,
+            o.levels,
+            o.triangles,
+            o.strips,
+            o.vertices,
+            carried,
+            o.indices,
+            o.indices_per_triangle,
+            o.output
         )
     })
 }

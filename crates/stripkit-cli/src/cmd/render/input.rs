@@ -15,9 +15,10 @@ pub fn strip_triangles(strips: &stripkit::StripSet) -> Vec<(usize, [u32; 3])> {
     triangles
 }
 
-/// A level (and frame) of a `.sets` / `.lodseq` input: the positions its strips
-/// index, its strips, and a description.
-pub type Level = (Vec<[f32; 3]>, stripkit::StripSet, String);
+/// A level (and frame) of a `.sets` / `.lodseq` input: the mesh its strips index
+/// (every vertex of the model, with its attributes, the level's triangles as faces),
+/// its strips, and a description.
+pub type Level = (stripkit::Mesh, stripkit::StripSet, String);
 
 /// The strips of a `.sets` or `.lodseq` input at `--level` / `--ratio` (and
 /// `--frame`, default 0 for an animation); `None` for a mesh (or standard input).
@@ -48,7 +49,12 @@ pub fn read_lod(args: &Args) -> anyhow::Result<Option<Level>> {
         Some((t, key)) => format!("frame {t} (key frame {key}), {level}"),
         None => level,
     };
-    Ok(Some((x.positions, x.strips, what)))
+    // The asset as it is: the level's triangles over the model's vertices, with
+    // every attribute the model carries.
+    let triangles = x.checked_triangles()?;
+    let mut mesh = stripkit::Mesh::from_triangles(x.positions, &triangles);
+    mesh.attributes = x.attributes;
+    Ok(Some((mesh, x.strips, what)))
 }
 
 /// The mesh, and the `--morph` mesh when given (same vertex count).
