@@ -36,6 +36,7 @@ use std::sync::Arc;
 
 mod extensions;
 mod from_mesh;
+pub(crate) mod meshopt;
 mod primitive;
 mod scene;
 mod write;
