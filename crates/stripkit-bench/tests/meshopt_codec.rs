@@ -133,8 +133,7 @@ fn filtered_streams_decode_as_meshoptimizer_decodes_them() {
     let n = 1000;
     let normals: Vec<[f32; 4]> = (0..n).map(|_| unit(&mut rng)).collect();
     let quats: Vec<[f32; 4]> = (0..n).map(|_| unit(&mut rng)).collect();
-    let floats: Vec<[f32; 3]> =
-        (0..n).map(|_| std::array::from_fn(|_| (rng.next() as f32 - 2e9) * 1e-5)).collect();
+    let floats: Vec<[f32; 3]> = (0..n).map(|_| std::array::from_fn(|_| (rng.next() as f32 - 2e9) * 1e-5)).collect();
 
     let oct8: Vec<[i8; 4]> = meshopt::encode_filter_oct(&normals, 8);
     let oct16: Vec<[i16; 4]> = meshopt::encode_filter_oct(&normals, 16);

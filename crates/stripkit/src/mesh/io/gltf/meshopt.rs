@@ -465,6 +465,118 @@ fn filter_exponential(data: &mut [u8]) {
     }
 }
 
+/// Encodes `data` (`count` elements of `stride` bytes, `stride` a multiple of 4 up to
+/// 256) with the vertex codec, version 0 (`ATTRIBUTES`): each group of 16 deltas at the
+/// fewest bits that hold them. Linear in `data.len()`.
+pub(crate) fn encode_vertices(data: &[u8], stride: usize) -> Vec<u8> {
+    let count = data.len() / stride;
+    let mut out = vec![0xA0];
+    let block = ((8192 / stride) & !15).min(256);
+    let mut last: Vec<u8> = data[..stride.min(data.len())].to_vec();
+    last.resize(stride, 0);
+    let first_vertex = last.clone();
+    let mut deltas = [0u8; 256];
+    let mut first = 0;
+    while first < count {
+        let n = block.min(count - first);
+        let aligned = (n + 15) & !15;
+        for (k, prev) in last.iter_mut().enumerate() {
+            let mut p = *prev;
+            for (i, d) in deltas[..aligned].iter_mut().enumerate() {
+                *d = if i < n {
+                    let v = data[(first + i) * stride + k];
+                    let delta = v.wrapping_sub(p) as i8;
+                    p = v;
+                    ((delta as u8) << 1) ^ ((delta >> 7) as u8)
+                } else {
+                    0
+                };
+            }
+            *prev = p;
+            encode_channel(&deltas[..aligned], &mut out);
+        }
+        first += n;
+    }
+    let tail = stride.max(32);
+    out.resize(out.len() + tail - stride, 0);
+    out.extend_from_slice(&first_vertex);
+    out
+}
+
+/// One channel of a block: the 2-bit group modes, then each group at the fewest bytes.
+fn encode_channel(deltas: &[u8], out: &mut Vec<u8>) {
+    let header_at = out.len();
+    out.resize(header_at + (deltas.len() / 16).div_ceil(4), 0);
+    for (g, group) in deltas.chunks_exact(16).enumerate() {
+        let size = |bits: u32| -> usize {
+            match bits {
+                0 if group.iter().all(|&d| d == 0) => 0,
+                0 => usize::MAX,
+                8 => 16,
+                _ => {
+                    let sentinel = (1u8 << bits) - 1;
+                    16 * bits as usize / 8 + group.iter().filter(|&&d| d >= sentinel).count()
+                }
+            }
+        };
+        let mode = (0..4u8).min_by_key(|&m| size([0, 2, 4, 8][m as usize])).unwrap_or(3);
+        out[header_at + g / 4] |= mode << ((g % 4) * 2);
+        match mode {
+            0 => {}
+            3 => out.extend_from_slice(group),
+            _ => {
+                let bits = if mode == 1 { 2 } else { 4 };
+                let per_byte = 8 / bits;
+                let sentinel = (1u8 << bits) - 1;
+                let mut rest = Vec::new();
+                for chunk in group.chunks_exact(per_byte) {
+                    let mut b = 0u8;
+                    for (i, &d) in chunk.iter().enumerate() {
+                        let v = if d >= sentinel {
+                            rest.push(d);
+                            sentinel
+                        } else {
+                            d
+                        };
+                        b |= v << (8 - bits * (i + 1));
+                    }
+                    out.push(b);
+                }
+                out.extend_from_slice(&rest);
+            }
+        }
+    }
+}
+
+/// Encodes `indices` with the index-sequence codec (`INDICES`, the mode meant for
+/// strips): per index a zigzag delta from one of two baselines, switching to the other
+/// when the delta would not fit a byte. Linear in `indices.len()`.
+pub(crate) fn encode_sequence(indices: &[u32]) -> Vec<u8> {
+    let mut out = vec![0xD1];
+    let mut baseline = [0u32; 2];
+    let mut current = 0usize;
+    for &i in indices {
+        let distance = (i.wrapping_sub(baseline[current]) as i32).unsigned_abs();
+        if distance >= 30 {
+            current ^= 1;
+        }
+        let d = i.wrapping_sub(baseline[current]);
+        let zigzag = (d << 1) ^ ((d as i32 >> 31) as u32);
+        let mut v = (zigzag << 1) | current as u32;
+        loop {
+            if v < 0x80 {
+                out.push(v as u8);
+                break;
+            }
+            out.push((v & 0x7f) as u8 | 0x80);
+            v >>= 7;
+        }
+        baseline[current] = i;
+    }
+    out.extend_from_slice(&[0; 4]);
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -504,6 +616,24 @@ mod tests {
         stream[0] = 0xA1;
         assert!(decode(&stream, 2, 4, MeshoptMode::Attributes, MeshoptFilter::None).is_err());
         assert!(decode(&stream, 2, 6, MeshoptMode::Attributes, MeshoptFilter::None).is_err());
+    }
+
+    #[test]
+    fn the_encoders_round_trip() {
+        let mut state = 7u32;
+        let mut next = || {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            state >> 8
+        };
+        for (count, stride, spread) in [(0, 4, 3), (1, 8, 255), (300, 12, 5), (1000, 32, 255), (40, 256, 1)] {
+            let data: Vec<u8> = (0..count * stride).map(|_| (next() % spread) as u8).collect();
+            let stream = encode_vertices(&data, stride);
+            assert_eq!(decode(&stream, count, stride, MeshoptMode::Attributes, MeshoptFilter::None).unwrap(), data);
+        }
+        let strip: Vec<u32> = (0..500).map(|k| if k % 50 == 49 { u32::MAX } else { k * 3 + next() % 7 }).collect();
+        let stream = encode_sequence(&strip);
+        let back = decode(&stream, strip.len(), 4, MeshoptMode::Indices, MeshoptFilter::None).unwrap();
+        assert_eq!(back, strip.iter().flat_map(|i| i.to_le_bytes()).collect::<Vec<_>>());
     }
 
     #[test]

@@ -9,7 +9,8 @@
 //! not applied, except to quantized positions: `KHR_mesh_quantization` integers are
 //! dequantized, then moved by the world transform of the first node drawing their mesh,
 //! which holds the dequantizing scale and offset in the files gltfpack writes).
-//! Buffer views compressed with `EXT_meshopt_compression` are decoded first. Primitives that share a POSITION accessor share vertices, so vertex
+//! Buffer views compressed with `EXT_meshopt_compression` are decoded first.
+//! Primitives that share a POSITION accessor share vertices, so vertex
 //! ids survive a write and read. TRIANGLES (mode 4) give one face per triangle;
 //! TRIANGLE_STRIP (5) and TRIANGLE_FAN (6) are turned into triangles with the
 //! winding the modes define, degenerate ones skipped; points and lines (0 to 3) only
@@ -37,6 +38,7 @@ use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 
+mod compress;
 mod extensions;
 mod from_mesh;
 pub(crate) mod meshopt;
@@ -295,7 +297,8 @@ fn decode_compressed_views(doc: &mut Doc, json: &Value, budget: &mut Budget) -> 
         let bytes = meshopt::decode(data, count, stride, mode, filter)
             .map_err(|(at, what)| src.err(format!("{} {at} of its stream", place()), what))?;
         doc.buffers.push(Buffer { len: bytes.len(), bytes: Arc::from(bytes) });
-        doc.views[i] = View { buffer: doc.buffers.len() - 1, offset: 0, length: view_length, stride: doc.views[i].stride };
+        let stride = doc.views[i].stride;
+        doc.views[i] = View { buffer: doc.buffers.len() - 1, offset: 0, length: view_length, stride };
     }
     Ok(())
 }

@@ -103,9 +103,10 @@ mod tests {
 
     #[test]
     fn the_drawing_node_and_its_parents_are_applied() {
+        let h = std::f64::consts::FRAC_1_SQRT_2;
         let doc = json!({"nodes": [
             {"children": [1], "translation": [10.0, 0.0, 0.0]},
-            {"mesh": 0, "scale": [2.0, 2.0, 2.0], "rotation": [0.0, 0.0, 0.7071067811865476, 0.7071067811865476]}
+            {"mesh": 0, "scale": [2.0, 2.0, 2.0], "rotation": [0.0, 0.0, h, h]}
         ]});
         let m = world_of_mesh(&doc, 0).unwrap();
         // (1, 0, 0) scaled to (2, 0, 0), turned a quarter about z to (0, 2, 0), moved by 10 in x.

@@ -66,8 +66,11 @@
 //! elements as its POSITION. Sparse accessors and accessors without
 //! a buffer view are refused in the primitives' vertex and index data (elsewhere they
 //! pass through untouched). Extensions are checked as for every reader
-//! (`gltf/extensions.rs`): compressed geometry (Draco, meshopt) wherever it is used,
-//! and required extensions other than those carried through, are refused.
+//! (`gltf/extensions.rs`): Draco geometry wherever it is used, and required extensions
+//! other than those read or carried through, are refused. `EXT_meshopt_compression`
+//! views are decoded on reading and written plain (the extension left out), or, with
+//! [`SceneOptions::compress`](crate::scene::SceneOptions::compress), compressed again
+//! (`compress.rs`); `KHR_mesh_quantization` attributes are written as stored.
 
 use super::primitive::{bounds, decode_primitive, vertex_accessors, ScenePrimitive, PRIMITIVE_BYTES};
 use super::{array, at, glb_container, open, parse_glb, parse_json, Buffer, Doc, View};
@@ -131,6 +134,8 @@ pub struct Scene {
     primitives: Vec<ScenePrimitive>,
     /// Whether stripped primitives get restart groups ([`Scene::set_restart_groups`]).
     restart_groups: bool,
+    /// Whether index and vertex views are written compressed ([`Scene::set_compress`]).
+    compress: bool,
     notes: Vec<String>,
 }
 
@@ -196,6 +201,7 @@ impl Scene {
             views,
             primitives,
             restart_groups: true,
+            compress: false,
             notes: Vec::new(),
         })
     }
@@ -264,6 +270,10 @@ impl Scene {
     /// Whether stripped primitives without morph targets get an
     /// `EXT_mesh_primitive_restart` group beside their stitched strip (set by the
     /// stripping above the door; `true` for a scene just read).
+    pub(crate) fn set_compress(&mut self, on: bool) {
+        self.compress = on;
+    }
+
     pub(crate) fn set_restart_groups(&mut self, on: bool) {
         self.restart_groups = on;
     }
@@ -291,7 +301,10 @@ impl Scene {
 
     /// The document as `format` bytes, unchecked.
     fn encode(&self, format: Format) -> Result<Vec<u8>> {
-        let (mut json, bin) = self.build()?;
+        let (mut json, mut bin) = self.build()?;
+        if self.compress {
+            bin = super::compress::compress_views(&mut json, bin);
+        }
         Ok(match format {
             Format::Glb => glb_container(&json, bin)?,
             Format::Gltf => {
