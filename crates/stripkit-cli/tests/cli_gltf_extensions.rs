@@ -1,7 +1,8 @@
 //! Issue #30, classes 6 and 7, on the command line: glTF extensions are decided in one
 //! place of the reader, so `stats`, `strip -o x.glb` (the scene path) and
 //! `strip -o x.ply` (the mesh path) accept or refuse the same file alike; geometry
-//! stored by Draco or meshopt is refused (exit 2, named), never written back stale;
+//! stored by Draco is refused (exit 2, named), never written back stale, meshopt views
+//! are decoded (a broken stream refused, named) and `--compress` writes them again;
 //! and a mesh with no drawable triangle is written as glTF as it is as PLY.
 
 mod support;
@@ -92,8 +93,10 @@ fn a_draco_primitive_is_refused_naming_the_primitive_even_when_only_used() {
     }
 }
 
+/// EXT_meshopt_compression is decoded (issue #31): a view whose compressed bytes are
+/// not a meshopt stream (here plain floats) is refused by every command, naming the view.
 #[test]
-fn a_meshopt_buffer_view_is_refused_naming_the_view() {
+fn a_broken_meshopt_stream_is_refused_naming_the_view() {
     let input = gltf("meshopt-view.gltf", |d| {
         d["bufferViews"][0]["extensions"] = json!({"EXT_meshopt_compression":
             {"buffer": 0, "byteLength": 36, "byteStride": 12, "count": 3, "mode": "ATTRIBUTES"}});
@@ -102,6 +105,31 @@ fn a_meshopt_buffer_view_is_refused_naming_the_view() {
         assert_eq!(code, Some(2), "{err}");
         assert!(err.contains("bufferViews[0]") && err.contains("EXT_meshopt_compression"), "{err}");
     }
+}
+
+/// `--compress`: a glTF output with its views compressed (`EXT_meshopt_compression`
+/// required), which every command reads back; refused (exit 2) for other outputs.
+#[test]
+fn compress_writes_meshopt_views_that_read_back() {
+    let input = stripkit_testkit::assets_dir().join("spot.obj");
+    let i = input.to_str().unwrap();
+    let glb = tmp("gltf-extensions", "spot-compressed.glb");
+    let o = stripkit(&["strip", i, "-o", glb.to_str().unwrap(), "--compress", "--join", "degenerate"]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let data = std::fs::read(&glb).unwrap();
+    let json_len = u32::from_le_bytes(data[12..16].try_into().unwrap()) as usize;
+    let doc: Value = serde_json::from_slice(&data[20..20 + json_len]).unwrap();
+    assert_eq!(doc["extensionsRequired"], json!(["EXT_meshopt_compression"]));
+    for (code, err) in three_commands(&glb) {
+        assert_eq!(code, Some(0), "{err}");
+    }
+    let s = stripkit(&["stats", glb.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&s.stdout).contains("5856 triangles"));
+    stripkit_testkit::gltf_validator::validate(&[&glb]);
+    let ply = tmp("gltf-extensions", "spot-compressed.ply");
+    let o = stripkit(&["strip", i, "-o", ply.to_str().unwrap(), "--compress"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--compress applies to .gltf and .glb outputs"));
 }
 
 /// An OBJ whose only face repeats a vertex: every output format writes the vertices

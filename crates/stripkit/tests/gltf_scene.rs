@@ -473,7 +473,7 @@ fn hostile_references_are_clear_errors() {
             }),
             "ReadOptions::max_decoded_bytes",
         ),
-        ("meshopt", Box::new(|j| j["extensionsUsed"] = json!(["EXT_meshopt_compression"])), "EXT_meshopt_compression"),
+        ("meshopt v1", Box::new(|j| j["extensionsUsed"] = json!(["KHR_meshopt_compression"])), "KHR_meshopt_compression"),
         (
             "index range",
             Box::new(|j| j["meshes"][0]["primitives"][0]["attributes"] = json!({"POSITION": 5})),

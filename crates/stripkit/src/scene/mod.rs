@@ -55,7 +55,7 @@ pub fn for_gltf_output(mesh: &Mesh, options: &StripOptions) -> Result<Option<Sce
 }
 
 /// How [`Scene::strip`] writes the strips. Defaults: restart groups on, vertices
-/// renumbered in first use.
+/// renumbered in first use, buffer views not compressed.
 #[derive(Clone, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct SceneOptions {
@@ -69,11 +69,16 @@ pub struct SceneOptions {
     /// gathered in that order (min / max recomputed). Default `true`. A primitive
     /// whose vertex data cannot be decoded (a sparse accessor) keeps its order.
     pub reorder: bool,
+    /// Write the index and vertex buffer views compressed with
+    /// `EXT_meshopt_compression` (indices with the index-sequence codec, vertex data
+    /// with the vertex codec version 0), listed as required; views that would not get
+    /// smaller stay plain. Default `false`.
+    pub compress: bool,
 }
 
 impl Default for SceneOptions {
     fn default() -> Self {
-        SceneOptions { restart: true, reorder: true }
+        SceneOptions { restart: true, reorder: true, compress: false }
     }
 }
 
@@ -87,6 +92,12 @@ impl SceneOptions {
     /// Sets [`SceneOptions::restart`].
     pub fn restart(mut self, on: bool) -> Self {
         self.restart = on;
+        self
+    }
+
+    /// Sets [`SceneOptions::compress`].
+    pub fn compress(mut self, on: bool) -> Self {
+        self.compress = on;
         self
     }
 
@@ -229,6 +240,7 @@ impl Scene {
             sp.drawn = strips.triangles;
         }
         self.set_restart_groups(scene_options.restart);
+        self.set_compress(scene_options.compress);
         report.stripify_ms = stripify_time.as_secs_f64() * 1e3;
         report.total_ms = start.elapsed().as_secs_f64() * 1e3;
         Ok(report)

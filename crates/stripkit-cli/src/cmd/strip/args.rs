@@ -99,6 +99,9 @@ pub struct Args {
     /// Primitive-restart index for join restart; must not be a vertex id. Default 4294967295.
     #[arg(long, value_name = "N")]
     pub restart_index: Option<u32>,
+    /// glTF output: write index and vertex data compressed with EXT_meshopt_compression (index-sequence codec for the strips), required by the file.
+    #[arg(long)]
+    pub compress: bool,
     /// Print one JSON object with every figure instead of the text summary.
     #[arg(long)]
     pub json: bool,

@@ -84,6 +84,9 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         (None, OutKind::Mesh(Format::Gltf | Format::Glb)) => VertexOrder::FirstUse,
         (None, _) => VertexOrder::Input,
     };
+    if args.compress && !matches!(kind, OutKind::Mesh(Format::Gltf | Format::Glb)) {
+        return Err(Error::Invalid("--compress applies to .gltf and .glb outputs".into()).into());
+    }
     if is_scene(&args.input, &kind) {
         return run_scene(&args, &options, format_of(&kind), vertex_order, batch);
     }
@@ -110,6 +113,12 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
             eprintln!("note: {}: {note}", args.input.display());
         }
         return strip_scene(&args, &options, scene, start.elapsed(), format_of(&kind), vertex_order, batch);
+    }
+    if args.compress {
+        return Err(Error::Invalid(
+            "--compress needs the scene writer, which --join separate, --algo single and --restart-index rule out".into(),
+        )
+        .into());
     }
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
@@ -240,7 +249,8 @@ fn strip_scene(
         Join::Degenerate => stripkit::scene::SceneOptions::stitched(),
         _ => stripkit::scene::SceneOptions::default(),
     }
-    .reorder(vertex_order == VertexOrder::FirstUse);
+    .reorder(vertex_order == VertexOrder::FirstUse)
+    .compress(args.compress);
     let progress = match batch {
         Some(_) => indicatif::ProgressBar::hidden(),
         None => indicatif::ProgressBar::new_spinner(),

@@ -44,6 +44,7 @@ mod off;
 mod ply;
 mod stl;
 
+pub use gltf::meshopt::{decode_meshopt, MeshoptFilter, MeshoptMode};
 pub use gltf::{Scene, ScenePrimitive};
 
 use crate::error::{Error, Result};

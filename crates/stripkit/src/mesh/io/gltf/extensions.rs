@@ -3,12 +3,17 @@
 //! glTF), so that a file is read by all of them or refused by all of them.
 //!
 //! - An extension that stores geometry in a form the reader does not decode
-//!   ([`GEOMETRY`]: Draco, meshopt compression) is refused wherever the file uses it:
-//!   a primitive carrying a Draco block, a buffer view carrying a meshopt block, or
-//!   the extension listed as required (or, for meshopt, as used: its views name
-//!   buffers of their own, which merging the buffers would break). Reading past them
-//!   would decode the uncompressed fallback (often absent or zeros) and write the
-//!   stale block back pointing at old data. Decoding them would replace this refusal.
+//!   ([`GEOMETRY`]: Draco, and `KHR_meshopt_compression`, whose version 1 vertex codec
+//!   is not decoded) is refused wherever the file uses it: a primitive carrying a
+//!   Draco block, a buffer view carrying a compressed block, or the extension listed as
+//!   required (or, for `KHR_meshopt_compression`, as used). Reading past them would
+//!   decode the uncompressed fallback (often absent or zeros) and write the stale
+//!   block back pointing at old data.
+//! - `EXT_meshopt_compression` is decoded: its buffer views are decompressed when the
+//!   file is opened (`decode_compressed_views` in `mod.rs`) and a scene writes them
+//!   back plain, the extension left out. `KHR_mesh_quantization` is read: integer
+//!   positions are dequantized for the mesh, and a scene writes every attribute back
+//!   as stored.
 //! - A required extension must be one the reader knows to leave the geometry as
 //!   plain accessors ([`CARRIED`], and every `KHR_materials_*`): those are carried
 //!   through as written. Any other required extension is refused, named.
@@ -21,14 +26,15 @@ use crate::mesh::io::common::Src;
 use serde_json::Value;
 
 /// Extensions that hold compressed geometry the reader does not decode.
-/// `KHR_mesh_quantization` is among them when required: POSITION must be FLOAT.
-const GEOMETRY: [&str; 4] =
-    ["KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_meshopt_compression", "KHR_mesh_quantization"];
+const GEOMETRY: [&str; 2] = ["KHR_draco_mesh_compression", "KHR_meshopt_compression"];
 
-/// Required extensions that leave vertex and index data plain accessors: materials,
-/// textures, lights, instancing and metadata, carried through as written (besides
-/// every `KHR_materials_*`).
-const CARRIED: [&str; 9] = [
+/// Required extensions the reader honours: quantized attributes and meshopt-compressed
+/// views (decoded), and those that leave vertex and index data plain accessors:
+/// materials, textures, lights, instancing and metadata, carried through as written
+/// (besides every `KHR_materials_*`).
+const CARRIED: [&str; 11] = [
+    "KHR_mesh_quantization",
+    "EXT_meshopt_compression",
     "KHR_texture_transform",
     "KHR_texture_basisu",
     "KHR_lights_punctual",
@@ -88,7 +94,7 @@ pub(crate) fn check(src: Src, json: &Value) -> Result<()> {
     if let Some(ext) = array(src, json, "extensionsUsed")?
         .iter()
         .filter_map(Value::as_str)
-        .find(|e| matches!(*e, "EXT_meshopt_compression" | "KHR_meshopt_compression"))
+        .find(|e| *e == "KHR_meshopt_compression")
     {
         return Err(src.err(
             "extensionsUsed",

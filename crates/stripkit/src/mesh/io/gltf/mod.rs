@@ -6,7 +6,11 @@
 //! budget: see [`ReadOptions`] for the rules.
 //!
 //! Read: every primitive of every mesh is merged into one mesh (node transforms are
-//! not applied). Primitives that share a POSITION accessor share vertices, so vertex
+//! not applied, except to quantized positions: `KHR_mesh_quantization` integers are
+//! dequantized, then moved by the world transform of the first node drawing their mesh,
+//! which holds the dequantizing scale and offset in the files gltfpack writes).
+//! Buffer views compressed with `EXT_meshopt_compression` are decoded first.
+//! Primitives that share a POSITION accessor share vertices, so vertex
 //! ids survive a write and read. TRIANGLES (mode 4) give one face per triangle;
 //! TRIANGLE_STRIP (5) and TRIANGLE_FAN (6) are turned into triangles with the
 //! winding the modes define, degenerate ones skipped; points and lines (0 to 3) only
@@ -36,8 +40,11 @@ use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 
+mod compress;
 mod extensions;
 mod from_mesh;
+pub(crate) mod meshopt;
+mod nodes;
 mod primitive;
 mod scene;
 mod write;
@@ -199,9 +206,18 @@ struct Doc<'a> {
     accessors: &'a [Value],
 }
 
-/// Checks the asset's version and extensions ([`extensions::check`]) and loads its buffers and
-/// buffer views (every view checked against its buffer).
-fn open<'a>(src: Src<'a>, json: &'a Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Doc<'a>> {
+/// Checks the asset's version and extensions ([`extensions::check`]), loads its buffers and
+/// buffer views (every view checked against its buffer) and decodes the views compressed
+/// with `EXT_meshopt_compression` ([`decode_compressed_views`]), each charged to the
+/// decoded-bytes budget returned (which grants `scene_allowance`, see
+/// [`Budget::with_scene_allowance`]) before it is allocated.
+fn open<'a>(
+    src: Src<'a>,
+    json: &'a Value,
+    bin: Option<&[u8]>,
+    options: &ReadOptions,
+    scene_allowance: u64,
+) -> Result<(Doc<'a>, Budget)> {
     let version = json.pointer("/asset/version").and_then(Value::as_str).unwrap_or("");
     if !version.starts_with('2') {
         return Err(src.err("asset.version", format!("glTF version '{version}', only 2.x is supported")));
@@ -216,6 +232,12 @@ fn open<'a>(src: Src<'a>, json: &'a Value, bin: Option<&[u8]>, options: &ReadOpt
         let offset = uint(src, v, "byteOffset", &place)?.unwrap_or(0) as usize;
         let length = required(src, v, "byteLength", &place)? as usize;
         let stride = uint(src, v, "byteStride", &place)?.map(|s| s as usize);
+        if v.pointer("/extensions/EXT_meshopt_compression").is_some() {
+            // Its bytes are decoded below; the buffer it names may be a fallback
+            // buffer without data.
+            views.push(View { buffer: usize::MAX, offset: 0, length, stride });
+            continue;
+        }
         let buf_len = buffers
             .get(buffer)
             .ok_or_else(|| src.err(place(), format!("refers to buffer {buffer} but the file has {}", buffers.len())))?
@@ -230,11 +252,61 @@ fn open<'a>(src: Src<'a>, json: &'a Value, bin: Option<&[u8]>, options: &ReadOpt
         }
         views.push(View { buffer, offset, length, stride });
     }
-    Ok(Doc { src, buffers, views, accessors: array(src, json, "accessors")? })
+    let mut doc = Doc { src, buffers, views, accessors: array(src, json, "accessors")? };
+    let mut budget = Budget::with_scene_allowance(options, doc.buffer_bytes(), scene_allowance);
+    decode_compressed_views(&mut doc, json, &mut budget)?;
+    Ok((doc, budget))
+}
+
+/// Decodes every buffer view compressed with `EXT_meshopt_compression` into a buffer of
+/// its own (the view then reads it from byte 0). Its size is `count` x `byteStride` of
+/// the extension, which must equal the view's `byteLength`, and is charged to `budget`
+/// before anything is allocated; the compressed bytes must lie inside their buffer.
+fn decode_compressed_views(doc: &mut Doc, json: &Value, budget: &mut Budget) -> Result<()> {
+    use meshopt::{MeshoptFilter, MeshoptMode};
+    let src = doc.src;
+    for (i, v) in array(src, json, "bufferViews")?.iter().enumerate() {
+        let Some(ext) = v.pointer("/extensions/EXT_meshopt_compression") else { continue };
+        let place = || format!("bufferViews[{i}].extensions.EXT_meshopt_compression");
+        let buffer = required(src, ext, "buffer", &place)? as usize;
+        let offset = uint(src, ext, "byteOffset", &place)?.unwrap_or(0) as usize;
+        let length = required(src, ext, "byteLength", &place)? as usize;
+        let stride = required(src, ext, "byteStride", &place)? as usize;
+        let count = required(src, ext, "count", &place)? as usize;
+        let name = |key: &str| ext.get(key).and_then(Value::as_str);
+        let mode = name("mode")
+            .and_then(MeshoptMode::from_name)
+            .ok_or_else(|| src.err(place(), "'mode' must be ATTRIBUTES, TRIANGLES or INDICES"))?;
+        let filter = match name("filter") {
+            None => MeshoptFilter::None,
+            Some(f) => MeshoptFilter::from_name(f).ok_or_else(|| {
+                src.err(place(), format!("unknown filter {f:?} (NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL)"))
+            })?,
+        };
+        let view_length = doc.views[i].length;
+        if count.checked_mul(stride) != Some(view_length) {
+            return Err(src.err(
+                place(),
+                format!("count {count} x byteStride {stride} must equal the view's byteLength {view_length}"),
+            ));
+        }
+        let data = doc
+            .buffers
+            .get(buffer)
+            .and_then(|b| b.get(offset..offset.checked_add(length)?))
+            .ok_or_else(|| src.err(place(), format!("bytes {offset}..+{length} lie outside buffer {buffer}")))?;
+        budget.charge(src, &place(), view_length as u64, || format!("bufferViews[{i}]: {view_length} bytes"))?;
+        let bytes = meshopt::decode(data, count, stride, mode, filter)
+            .map_err(|(at, what)| src.err(format!("{} {at} of its stream", place()), what))?;
+        doc.buffers.push(Buffer { len: bytes.len(), bytes: Arc::from(bytes) });
+        let stride = doc.views[i].stride;
+        doc.views[i] = View { buffer: doc.buffers.len() - 1, offset: 0, length: view_length, stride };
+    }
+    Ok(())
 }
 
 fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Mesh> {
-    let doc = open(src, json, bin, options)?;
+    let (doc, mut budget) = open(src, json, bin, options, 0)?;
 
     let mut mesh = Mesh::new();
     // POSITION accessor -> (first vertex id, vertex count).
@@ -243,7 +315,6 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
     // Primitives may reuse accessors, so a small file could describe a huge mesh:
     // every accessor is charged to the budget before it is decoded (see
     // ReadOptions::max_decoded_bytes).
-    let mut budget = Budget::new(options, doc.buffer_bytes());
     for (m, jm) in array(src, json, "meshes")?.iter().enumerate() {
         let prims = match jm.get("primitives") {
             Some(Value::Array(a)) => a.as_slice(),
@@ -268,6 +339,14 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
                             .charge(src, &place(), 12 * count as u64, || format!("accessors[{pos}]: {count} vertices"))
                     };
                     doc.read_positions(pos, &mut mesh.positions, &mut charge)?;
+                    if quantized(&doc, pos) {
+                        // KHR_mesh_quantization: the node drawing the mesh dequantizes.
+                        if let Some(world) = nodes::world_of_mesh(json, m) {
+                            for p in &mut mesh.positions[base..] {
+                                *p = nodes::apply(&world, *p);
+                            }
+                        }
+                    }
                     let count = mesh.positions.len() - base;
                     if mesh.positions.len() > u32::MAX as usize {
                         return Err(src.err(place(), "more than 4294967295 vertices in all"));
@@ -287,6 +366,12 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
         }
     }
     Ok(mesh)
+}
+
+/// Whether accessor `a` (already read as positions) holds integers
+/// (`KHR_mesh_quantization`).
+fn quantized(doc: &Doc, a: usize) -> bool {
+    doc.accessors[a].get("componentType").and_then(Value::as_u64) != Some(5126)
 }
 
 /// The bytes of mesh decoded so far, against [`ReadOptions::max_decoded_bytes`] (or,
@@ -384,10 +469,6 @@ struct Budget {
 }
 
 impl Budget {
-    fn new(options: &ReadOptions, buffer_bytes: u64) -> Budget {
-        Budget::with_scene_allowance(options, buffer_bytes, 0)
-    }
-
     /// [`Budget::new`] whose default limit (none set in `options`) also grants
     /// `scene_allowance` bytes, for what a scene holds per primitive
     /// ([`primitive::PRIMITIVE_BYTES`]).
@@ -513,7 +594,9 @@ impl Doc<'_> {
     }
 
     /// Appends the positions of accessor `i`, calling `charge` with their count
-    /// (checked against the accessor's view) before anything is allocated.
+    /// (checked against the accessor's view) before anything is allocated. FLOAT, or
+    /// (`KHR_mesh_quantization`) BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT, normalized
+    /// (to -1..1 or 0..1 as glTF defines it) or not (the integer as a float).
     fn read_positions(
         &self,
         i: usize,
@@ -521,17 +604,26 @@ impl Doc<'_> {
         charge: &mut dyn FnMut(usize) -> Result<()>,
     ) -> Result<()> {
         let (acc, bytes, stride) = self.accessor(i)?;
-        if acc.component != 5126 || acc.components != 3 {
-            return Err(self.src.err(at("accessors", i), "POSITION must be a VEC3 of FLOAT (componentType 5126)"));
+        if acc.components != 3 || acc.component == 5125 {
+            return Err(self.src.err(
+                at("accessors", i),
+                "POSITION must be a VEC3 of FLOAT, or of BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT \
+                 (KHR_mesh_quantization)",
+            ));
         }
+        let normalized = self.accessors[i].get("normalized").and_then(Value::as_bool).unwrap_or(false);
+        let size = acc.component_size();
         charge(acc.count)?;
         out.reserve(acc.count);
         for k in 0..acc.count {
             let o = acc.offset + k * stride;
             let mut p = [0.0f32; 3];
             for (c, slot) in p.iter_mut().enumerate() {
-                let b = &bytes[o + 4 * c..o + 4 * c + 4];
-                let v = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+                let b = &bytes[o + size * c..o + size * (c + 1)];
+                let v = match acc.component {
+                    5126 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]),
+                    component => dequantize(component, b, normalized),
+                };
                 if !v.is_finite() {
                     return Err(self
                         .src
@@ -583,6 +675,23 @@ impl Doc<'_> {
     }
 }
 
+/// The value of one integer component (`component` a glTF component type of 1 or 2
+/// bytes, `b` its bytes): normalized as glTF defines it (signed types clamped at -1),
+/// else the integer itself.
+fn dequantize(component: u64, b: &[u8], normalized: bool) -> f32 {
+    let (v, max) = match component {
+        5120 => (b[0] as i8 as f32, 127.0),
+        5121 => (b[0] as f32, 255.0),
+        5122 => (i16::from_le_bytes([b[0], b[1]]) as f32, 32767.0),
+        _ => (u16::from_le_bytes([b[0], b[1]]) as f32, 65535.0),
+    };
+    if normalized {
+        (v / max).max(-1.0)
+    } else {
+        v
+    }
+}
+
 /// Reads every buffer of the document: the GLB binary chunk, `data:` URIs, and
 /// external files under the rules of [`ReadOptions`]. External files are resolved
 /// first (every URI checked before anything is read), each distinct file is then read
@@ -610,6 +719,12 @@ fn load_buffers(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOption
         let length = required(src, b, "byteLength", &place)?;
         let source = match b.get("uri") {
             None if i == 0 && bin.is_some() => Source::Bytes(Arc::from(bin.unwrap_or_default())),
+            // A fallback buffer of EXT_meshopt_compression holds no data: only the
+            // compressed views name it, and they are decoded from their own buffers.
+            None if b.pointer("/extensions/EXT_meshopt_compression/fallback") == Some(&Value::Bool(true)) => {
+                sources.push((Source::Bytes(Arc::from(Vec::new())), 0));
+                continue;
+            }
             None => return Err(src.err(place(), "buffer without a 'uri' (only GLB buffer 0 may omit it)")),
             Some(Value::String(uri)) => match uri.strip_prefix("data:") {
                 Some(rest) => Source::Bytes(Arc::from(decode_data_uri(src, rest, &place)?)),

@@ -66,11 +66,14 @@
 //! elements as its POSITION. Sparse accessors and accessors without
 //! a buffer view are refused in the primitives' vertex and index data (elsewhere they
 //! pass through untouched). Extensions are checked as for every reader
-//! (`gltf/extensions.rs`): compressed geometry (Draco, meshopt) wherever it is used,
-//! and required extensions other than those carried through, are refused.
+//! (`gltf/extensions.rs`): Draco geometry wherever it is used, and required extensions
+//! other than those read or carried through, are refused. `EXT_meshopt_compression`
+//! views are decoded on reading and written plain (the extension left out), or, with
+//! [`SceneOptions::compress`](crate::scene::SceneOptions::compress), compressed again
+//! (`compress.rs`); `KHR_mesh_quantization` attributes are written as stored.
 
 use super::primitive::{bounds, decode_primitive, vertex_accessors, ScenePrimitive, PRIMITIVE_BYTES};
-use super::{array, at, glb_container, open, parse_glb, parse_json, Budget, Buffer, Doc, View};
+use super::{array, at, glb_container, open, parse_glb, parse_json, Buffer, Doc, View};
 use crate::error::{Error, Result};
 use crate::mesh::io::common::Src;
 use crate::mesh::io::{encode_checked, write_checked, Format, ReadOptions};
@@ -84,6 +87,10 @@ use std::path::{Path, PathBuf};
 
 /// The extension that lets a strip primitive hold restart indices.
 pub const RESTART_EXTENSION: &str = "EXT_mesh_primitive_restart";
+
+/// The extension whose compressed buffer views are decoded on reading and written
+/// back uncompressed.
+const MESHOPT_EXTENSION: &str = "EXT_meshopt_compression";
 
 /// What the default decoded-bytes budget of a scene grants beyond the buffer-sized
 /// one for the memory held per triangle primitive ([`PRIMITIVE_BYTES`] each, charged
@@ -127,6 +134,8 @@ pub struct Scene {
     primitives: Vec<ScenePrimitive>,
     /// Whether stripped primitives get restart groups ([`Scene::set_restart_groups`]).
     restart_groups: bool,
+    /// Whether index and vertex views are written compressed ([`Scene::set_compress`]).
+    compress: bool,
     notes: Vec<String>,
 }
 
@@ -170,8 +179,7 @@ impl Scene {
             other => return Err(Error::Invalid(format!("a scene is glTF or GLB, not {other:?}"))),
         };
         let (buffers, views, primitives) = {
-            let doc = open(src, &json, bin, options)?;
-            let mut budget = Budget::with_scene_allowance(options, doc.buffer_bytes(), PRIMITIVES_ALLOWANCE);
+            let (doc, mut budget) = open(src, &json, bin, options, PRIMITIVES_ALLOWANCE)?;
             let mut primitives = Vec::new();
             for (m, jm) in array(src, &json, "meshes")?.iter().enumerate() {
                 let prims = match jm.get("primitives") {
@@ -193,6 +201,7 @@ impl Scene {
             views,
             primitives,
             restart_groups: true,
+            compress: false,
             notes: Vec::new(),
         })
     }
@@ -261,6 +270,10 @@ impl Scene {
     /// Whether stripped primitives without morph targets get an
     /// `EXT_mesh_primitive_restart` group beside their stitched strip (set by the
     /// stripping above the door; `true` for a scene just read).
+    pub(crate) fn set_compress(&mut self, on: bool) {
+        self.compress = on;
+    }
+
     pub(crate) fn set_restart_groups(&mut self, on: bool) {
         self.restart_groups = on;
     }
@@ -288,7 +301,10 @@ impl Scene {
 
     /// The document as `format` bytes, unchecked.
     fn encode(&self, format: Format) -> Result<Vec<u8>> {
-        let (mut json, bin) = self.build()?;
+        let (mut json, mut bin) = self.build()?;
+        if self.compress {
+            bin = super::compress::compress_views(&mut json, bin);
+        }
         Ok(match format {
             Format::Glb => glb_container(&json, bin)?,
             Format::Gltf => {
@@ -325,6 +341,7 @@ impl Scene {
             out.write_restart_groups(&stripped, &groups);
         }
         out.list_restart_extension();
+        out.drop_meshopt();
         Ok(out.finish())
     }
 
@@ -345,6 +362,7 @@ impl Scene {
                         | "EXT_texture_webp"
                         | "EXT_texture_avif"
                         | "KHR_mesh_quantization"
+                        | MESHOPT_EXTENSION
                         | "KHR_xmp_json_ld"
                         | "KHR_animation_pointer"
                         | RESTART_EXTENSION
@@ -843,6 +861,32 @@ impl<'s> Build<'s> {
         }
     }
 
+    /// Leaves `EXT_meshopt_compression` out of the document: its views were decoded on
+    /// reading and their bytes are written plain, so their extension objects (and an
+    /// `extensions` left empty), and the extension's entries in `extensionsUsed` and
+    /// `extensionsRequired` (and a list left empty), go.
+    fn drop_meshopt(&mut self) {
+        let strip = |v: &mut Value| {
+            if let Some(Value::Object(ext)) = v.get_mut("extensions") {
+                ext.remove(MESHOPT_EXTENSION);
+                if ext.is_empty() {
+                    v.as_object_mut().map(|o| o.remove("extensions"));
+                }
+            }
+        };
+        if let Some(Value::Array(views)) = self.json.get_mut("bufferViews") {
+            views.iter_mut().for_each(strip);
+        }
+        for key in ["extensionsUsed", "extensionsRequired"] {
+            if let Some(Value::Array(l)) = self.json.get_mut(key) {
+                l.retain(|e| e != MESHOPT_EXTENSION);
+                if l.is_empty() {
+                    self.json.as_object_mut().map(|o| o.remove(key));
+                }
+            }
+        }
+    }
+
     /// The JSON with its one buffer described (the first buffer's other properties
     /// kept, its `uri` left for the container to set), and the buffer's bytes.
     fn finish(mut self) -> (Value, Vec<u8>) {
@@ -854,6 +898,12 @@ impl<'s> Build<'s> {
             _ => serde_json::Map::new(),
         };
         buffer.remove("uri");
+        if let Some(Value::Object(ext)) = buffer.get_mut("extensions") {
+            ext.remove(MESHOPT_EXTENSION);
+            if ext.is_empty() {
+                buffer.remove("extensions");
+            }
+        }
         pad4(&mut self.bin);
         buffer.insert("byteLength".into(), self.bin.len().into());
         self.json["buffers"] = json!([buffer]);
