@@ -96,7 +96,7 @@ pub(crate) mod test_support;
 mod tests;
 
 pub use error::{Error, OptionName, Result};
-pub use mesh::{io, Attribute, Group, Mesh, Scalar, Triangles};
+pub use mesh::{io, weld_map, Attribute, Group, Mesh, Scalar, Triangles};
 pub use metrics::{acmr, cache_misses, figures, swaps, BatchModel, CacheKind, CacheModel, Figures};
 pub use pipeline::{
     is_quad_dominant, stripify, stripify_bound, stripify_indices, unstripify, Algorithm, AutoOptions, Join, Split,

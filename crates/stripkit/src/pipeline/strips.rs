@@ -52,6 +52,10 @@ pub struct Strips {
     /// groups), the range of [`Strips::strips`] drawing its faces. A strip never draws
     /// faces of two groups, and the joined forms never join strips of two groups.
     pub group_ranges: Vec<Range<usize>>,
+    /// Vertices the faces used that [`StripOptions::weld`](super::StripOptions::weld) moved onto a bit-identical
+    /// vertex of lower id (0 with welding off or nothing to weld); they are still in
+    /// the mesh, unused by the strips (a first-use order leaves them out).
+    pub welded: usize,
 }
 
 impl Strips {

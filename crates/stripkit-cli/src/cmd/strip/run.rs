@@ -129,6 +129,7 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         join: strips.join,
         vertex_order,
         vertices: mesh.vertex_count() + strips.added_positions.len(),
+        welded: strips.welded,
         figures,
         ms: strips.stripify_time.as_secs_f64() * 1e3,
         diagonals: matches!(strips.algorithm, Algorithm::Cache { .. } | Algorithm::Balanced { .. })
