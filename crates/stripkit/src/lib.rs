@@ -103,7 +103,7 @@ pub use pipeline::{
     StripOptions, Stripifier, Strips, MAX_CACHE_SIZE, MAX_TUNNEL_CUTS, QUAD_DOMINANT,
 };
 pub use strip::{
-    decode, decode_restart, encode_restart, encode_separate, encode_stitched, for_each_triangle,
+    decode, decode_restart, degenerate_windows, encode_restart, encode_separate, encode_stitched, for_each_triangle,
     is_degenerate, stitched_len, verify, verify_triangles, StripSet, Verification, DEFAULT_RESTART,
 };
 pub use stripify::greedy::{GreedyOptions, Heuristic};

@@ -125,6 +125,20 @@ impl Strips {
         (reached > max_acmr * (1.0 + 1e-9)).then_some(reached)
     }
 
+    /// Where a file of `format` holds stitched strips (glTF unless [`Join::Separate`],
+    /// PLY with [`Join::Degenerate`]; see [`Strips::for_format`]): the zero-area
+    /// triangles (a repeated index: swaps and stitching) they decode to besides the
+    /// mesh's triangles. `None` where the file holds no stitched strip.
+    pub fn stitched_degenerate_in(&self, format: Format) -> Option<usize> {
+        let stitched = match format {
+            Format::Gltf | Format::Glb => self.join != Join::Separate,
+            Format::Ply => self.join == Join::Degenerate,
+            _ => false,
+        };
+        let set = self.for_format(format).filter(|_| stitched)?;
+        Some(set.iter().map(strip::degenerate_windows).sum())
+    }
+
     /// The strips a file of `format` holds: PLY's `tristrips` ends each strip with -1
     /// (its own restart), or holds the one stitched strip of [`Join::Degenerate`]; core
     /// glTF has no restart index, so it gets the one stitched strip as a

@@ -44,6 +44,16 @@ pub use crate::mesh::io::{Scene, ScenePrimitive};
 /// primitive, as the other formats keep them with no faces, where a scene would be
 /// left with empty accessors and an empty buffer).
 pub fn for_gltf_output(mesh: &Mesh, options: &StripOptions) -> Result<Option<Scene>> {
+    for_gltf_output_with(mesh, options, &crate::mesh::io::Materials::default())
+}
+
+/// [`for_gltf_output`] with the materials of the mesh's OBJ libraries
+/// ([`Scene::from_mesh_with`]); the plain writer writes no materials.
+pub fn for_gltf_output_with(
+    mesh: &Mesh,
+    options: &StripOptions,
+    materials: &crate::mesh::io::Materials,
+) -> Result<Option<Scene>> {
     let plain = options.join == Join::Separate
         || matches!(options.algorithm, Algorithm::Single(_))
         || options.restart_index != DEFAULT_RESTART
@@ -51,7 +61,7 @@ pub fn for_gltf_output(mesh: &Mesh, options: &StripOptions) -> Result<Option<Sce
     if plain {
         return Ok(None);
     }
-    Scene::from_mesh(mesh).map(Some)
+    Scene::from_mesh_with(mesh, materials).map(Some)
 }
 
 /// How [`Scene::strip`] writes the strips. Defaults: restart groups on, vertices
@@ -123,6 +133,12 @@ pub struct PrimitiveReport {
     /// or for an unindexed primitive a list of its vertices): the primitive is
     /// written as read, and `indices_stitched` / `indices_restart` are what it keeps.
     pub kept_as_read: bool,
+    /// Zero-area triangles the stitched strip written as the primitive's `indices`
+    /// decodes to besides its triangles (swaps and stitching,
+    /// [`degenerate_windows`](crate::degenerate_windows)): loaders without
+    /// `EXT_mesh_primitive_restart` that keep every triangle (trimesh) count them as
+    /// faces. 0 for a primitive kept as read.
+    pub degenerate_stitched: usize,
     /// The figures of the strips (docs/metrics.md).
     pub figures: Figures,
 }
@@ -142,6 +158,8 @@ pub struct SceneReport {
     pub kept_as_read: usize,
     /// Vertices welded, all primitives together ([`PrimitiveReport::welded`]).
     pub welded: usize,
+    /// [`PrimitiveReport::degenerate_stitched`], all primitives together.
+    pub degenerate_stitched: usize,
     /// Triangles stripped, all primitives together.
     pub triangles: usize,
     /// Indices read, all stripped primitives together.
@@ -183,6 +201,7 @@ impl Scene {
             skipped: self.other_primitives(),
             kept_as_read: 0,
             welded: 0,
+            degenerate_stitched: 0,
             triangles: 0,
             indices_read: 0,
             indices_stitched: 0,
@@ -237,6 +256,8 @@ impl Scene {
             let strip_bytes = stitched.max(restart.unwrap_or(0)) * index_width(vertices);
             let kept = strip_bytes > source_bytes[k];
             let (stitched, restart) = if kept { (sp.indices_read, None) } else { (stitched, restart) };
+            let degenerate_stitched = if kept { 0 } else { strip::degenerate_windows(&strip::encode_stitched(&set)) };
+            report.degenerate_stitched += degenerate_stitched;
             report.triangles += strips.figures.triangles;
             report.indices_read += sp.indices_read;
             report.indices_stitched += stitched;
@@ -253,6 +274,7 @@ impl Scene {
                 algorithm: strips.algorithm.name(),
                 welded: strips.welded,
                 kept_as_read: kept,
+                degenerate_stitched,
                 figures: strips.figures,
             });
             if kept {

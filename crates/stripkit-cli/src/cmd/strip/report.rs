@@ -224,3 +224,25 @@ pub fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
     writeln!(out, "  stripify ms          {:>10.2}", r.ms)?;
     Ok(())
 }
+
+/// One-line notes on standard error about what other loaders make of the written
+/// strips (never in the `--json` data): PLY `tristrips` (`ply`), and the zero-area
+/// triangles a stitched strip decodes to (`degenerate` of `triangles`). `restart`: the
+/// file also holds EXT_mesh_primitive_restart groups.
+pub fn loader_notes(output: &Path, ply: bool, degenerate: usize, triangles: usize, restart: bool) {
+    if ply {
+        eprintln!(
+            "note: {}: PLY `tristrips` element; trimesh and Open3D read it as 0 faces (write .glb or .obj for them)",
+            output.display()
+        );
+    }
+    if degenerate > 0 {
+        eprintln!(
+            "note: {}: the stitched strips add {degenerate} zero-area triangles (swaps and joins) to the {triangles}; \
+             loaders that keep every triangle (trimesh, Open3D) count {} faces{}",
+            output.display(),
+            triangles + degenerate,
+            if restart { "; viewers with EXT_mesh_primitive_restart draw its groups instead" } else { "" }
+        );
+    }
+}
