@@ -4,13 +4,18 @@
 # output through the Khronos validator (.ci/validate-gltf.js, installed by .ci/run) and
 # an independent check (scripts/gltf-check.py for glTF sources, scripts/mesh-check.py
 # for OBJ/PLY; pip install pygltflib trimesh numpy), with the index counts beside
-# gltfpack's output of the same file (GLTFPACK, e.g. node_modules/.bin/gltfpack).
+# gltfpack's output of the same file (GLTFPACK, e.g. node_modules/.bin/gltfpack), the
+# file sizes beside each other, and at the end three.js's pictures of every output
+# against its source (.ci/threejs-pixels.mjs: one headless Chromium for the whole
+# folder; needs chromium and the npm packages three and playwright-core, which .ci/run
+# installs; NO_PIXELS=1 skips it). The public assets to feed it: docs/assets-corpus.md.
 #   scripts/asset-roundtrips.sh DIR [OUT]
 set -u
 dir=$1; out=${2:-roundtrips}; mkdir -p "$out"
 here=$(cd "$(dirname "$0")/.." && pwd)
 sk=${STRIPKIT:-$here/target/release/stripkit}
 gp=${GLTFPACK:-}
+pairs=()
 for src in "$dir"/*.gltf "$dir"/*.glb "$dir"/*.obj "$dir"/*.ply; do
     [ -f "$src" ] || continue
     b=$(basename "${src%.*}")
@@ -26,6 +31,7 @@ for src in "$dir"/*.gltf "$dir"/*.glb "$dir"/*.obj "$dir"/*.ply; do
         *) check=$here/scripts/gltf-check.py ;;
     esac
     for o in "$out/$b.glb" "$out/${b}_plain.gltf"; do printf '%s: ' "$(basename "$o")"; python3 "$check" "$src" "$o" 2>/dev/null | tail -1; done
+    pairs+=("$src=$out/$b.glb" "$src=$out/${b}_plain.gltf")
     [ -n "$gp" ] && "$gp" -i "$src" -o "$out/${b}_gltfpack.glb" -noq -kv -km -kn > /dev/null 2>&1
     python3 - "$src" "$out/$b.glb" "$out/${b}_gltfpack.glb" <<'PY'
 import os, sys, pygltflib
@@ -41,5 +47,14 @@ def count(path):
     return n, r
 src, ours, gp = count(sys.argv[1]), count(sys.argv[2]), count(sys.argv[3])
 print(f"indices: input {src[0]}, stripkit stitched {ours[0]}, with restart {ours[1]}, gltfpack {gp[0]}")
+size = lambda p: os.path.getsize(p) if os.path.exists(p) else '-'
+print(f"bytes: input {size(sys.argv[1])}, stripkit {size(sys.argv[2])}, gltfpack {size(sys.argv[3])}")
 PY
 done
+# three.js pictures: one line per output, 0 differing pixels in every pass expected
+# (OBJ quads: OBJLoader splits them as fans, stripkit may take the other diagonal).
+if [ -z "${NO_PIXELS:-}" ] && [ ${#pairs[@]} -gt 0 ]; then
+    echo "=== three.js pixels (reference = source)"
+    node "$here/.ci/threejs-pixels.mjs" "${pairs[@]}" |
+        python3 -c "import sys,json; [print('pixels', os.path.basename((d:=json.loads(l))['candidate']), 'lit', d['drawn'], 'differing', d['differing']) for l in sys.stdin if (os:=__import__('os'))]"
+fi

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Runs the hostile examples of issue #30 at the sizes the issue gives, through the
-release CLI, each under a 1 GiB address-space limit, and prints one row per example:
-the exit code, the wall seconds, the peak resident memory, and whether it met the
-issue's targets (an expected exit code, no panic or abort, under 1 GiB, under 2 s).
+release CLI, each under the audit's 1.5 GB address-space cap, and prints one row per
+example: the exit code, the wall seconds, the peak resident memory, and whether it
+met the issue's targets (an expected exit code, no panic or abort, a peak under
+1 GiB, under 2 s).
 
     scripts/reproducers30.py [STRIPKIT] [--keep DIR]
 
@@ -24,20 +25,21 @@ import tempfile
 import time
 
 GIB = 1 << 30
+CAP = 1_500_000_000  # the audit's address-space cap
 LIMIT_S = 2.0
 
 
-def limit_1gib():
-    resource.setrlimit(resource.RLIMIT_AS, (GIB, GIB))
+def limit_as():
+    resource.setrlimit(resource.RLIMIT_AS, (CAP, CAP))
 
 
 def run(cmd, cwd):
-    """Runs `cmd` under 1 GiB; returns (exit code, wall seconds, peak RSS bytes, stderr)."""
+    """Runs `cmd` under the cap; returns (exit code, wall seconds, peak RSS bytes, stderr)."""
     with tempfile.TemporaryFile() as err:
         start = time.monotonic()
         out = tempfile.TemporaryFile()
         p = subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=out, stderr=err,
-                             preexec_fn=limit_1gib)
+                             preexec_fn=limit_as)
         while True:
             pid, status, usage = os.wait4(p.pid, os.WNOHANG)
             if pid:
@@ -60,7 +62,7 @@ def run(cmd, cwd):
 def run_piped(cmd, cwd):
     """`cmd | head -c 10`, returning the exit code of `cmd` (the closed pipe case)."""
     start = time.monotonic()
-    p = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=limit_1gib)
+    p = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=limit_as)
     p.stdout.read(10)
     p.stdout.close()
     err = p.stderr.read()
@@ -196,6 +198,21 @@ def glb_extension(required, draco):
     return glb(doc, bin_)
 
 
+def jitter(src, dst):
+    """`src` with every coordinate moved by a deterministic pseudo-random 0.1%."""
+    out, k = [], 1
+    for line in open(src):
+        if line.startswith("v "):
+            xyz = []
+            for t in line.split()[1:4]:
+                k = (k * 1103515245 + 12345) % (1 << 31)
+                xyz.append(float(t) * (1 + 0.002 * (k / (1 << 31) - 0.5)))
+            out.append("v {!r} {!r} {!r}\n".format(*xyz))
+        else:
+            out.append(line)
+    return w(dst, "".join(out))
+
+
 def scaled_obj(src, scale, dst):
     out = []
     for line in open(src):
@@ -213,7 +230,11 @@ def examples(sk, d):
     """(class, name, command, accepted exit codes); inputs written into `d` lazily."""
     p = lambda name: os.path.join(d, name)
     small = p("small.obj")
-    subprocess.run([sk, "gen", "torus", "-o", small], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([sk, "gen", "torus", "-o", p("torus.obj")], check=True, stdout=subprocess.DEVNULL)
+    # Jittered, so that the simplifier meets no exact ties: a symmetric torus scaled by
+    # anything but a power of two rounds its ties differently (x3 changes the result
+    # as much as x1e20), which would hide what the scale itself does.
+    jitter(p("torus.obj"), small)
     big = p("big.ply")
     subprocess.run([sk, "gen", "icosphere", "8", "-o", big], check=True, stdout=subprocess.DEVNULL)
     frames = p("frames")
@@ -282,7 +303,7 @@ def examples(sk, d):
         dist = figure([sk, "distance", p("s20.obj"), p("o10.obj"), "--json"], "hausdorff_relative")
         dist_ref = figure([sk, "distance", small, p("o10r.obj"), "--json"], "hausdorff_relative")
         err = got["max_error"]
-        fine = math.isfinite(err) and abs(dist - dist_ref) <= 0.05 * dist_ref + 1e-9
+        fine = math.isfinite(err) and abs(dist - dist_ref) <= 0.01 * dist_ref + 1e-9
         return fine, f"max error {err:.3g} (unscaled {ref:.3g}), distance {dist:.4f} of the diagonal (unscaled {dist_ref:.4f})"
 
     e.append((6, "render: mesh scaled by 1e18", lambda: scaled_obj(small, 1e18, p("s18.obj")),

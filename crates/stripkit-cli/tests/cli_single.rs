@@ -57,9 +57,70 @@ fn text_report_names_the_changes() {
     let o = stripkit(&["strip", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--algo", "single", "--weights", "cache"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = String::from_utf8_lossy(&o.stdout);
-    for line in ["components", "steiner_vertices", "swapped_edges", "pieces merged", "matching"] {
+    for line in ["pieces", "triangles added", "vertices added", "swapped_edges", "pieces merged", "matching"] {
         assert!(text.contains(line), "{line} missing from:\n{text}");
     }
+}
+
+/// The shipped spot: its UV seams cut it into 13 pieces of GPU vertices (one surface,
+/// 13 UV islands), no strip crosses a seam, and the report says what the edge splits
+/// added; `--join degenerate` writes one stitched strip of the whole mesh; the glb
+/// keeps the UVs.
+#[test]
+fn seams_are_reported_and_degenerate_join_stitches_the_whole_mesh() {
+    let input = support::assets_dir().join("spot.obj");
+    let (input_triangles, input_vertices) = (5856, 3225);
+    let out = tmp("single", "spot.json");
+    let r = json(&stripkit(&[
+        "strip", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--algo", "single", "--join", "degenerate", "--json",
+    ]));
+    let s = &r["single"];
+    assert_eq!((s["components"].as_u64(), s["surfaces"].as_u64(), s["uv_islands"].as_u64()), (Some(13), Some(1), Some(13)), "{s}");
+    let (added_t, added_v) = (s["triangles_added"].as_u64().unwrap() as usize, s["vertices_added"].as_u64().unwrap() as usize);
+    assert_eq!(added_v, s["steiner_vertices"].as_u64().unwrap() as usize);
+    assert_eq!(r["triangles"].as_u64().unwrap() as usize, input_triangles + added_t, "{r}");
+    assert_eq!(r["vertices"].as_u64().unwrap() as usize, input_vertices + added_v, "{r}");
+    assert!(added_t <= 2 * added_v && added_t >= added_v, "{s}");
+    assert!(r["strips"].as_u64().unwrap() >= 13, "at least one strip per piece: {r}");
+    let written: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert_eq!(written["join"], "degenerate");
+    assert_eq!(written["strips"].as_array().unwrap().len(), 1, "one stitched strip");
+
+    // The text report says the same; the glb keeps TEXCOORD_0 for every vertex.
+    let glb = tmp("single", "spot.glb");
+    let o = stripkit(&["strip", input.to_str().unwrap(), "-o", glb.to_str().unwrap(), "--algo", "single"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("13 (of GPU vertices: one strip each at best; 1 surface(s), 13 UV island(s))"), "{text}");
+    assert!(text.contains(&format!("{input_triangles} input triangles + {added_t} from edge splits")), "{text}");
+    let scene = stripkit::io::Scene::read(&glb).unwrap();
+    let mesh = &scene.primitives()[0].mesh;
+    let uv = mesh.attribute("TEXCOORD_0").expect("UVs kept");
+    assert_eq!(uv.len(), mesh.vertex_count());
+    support::gltf_validator::validate(&[&glb]);
+
+    // cull says pieces too.
+    let c = json(&stripkit(&["cull", input.to_str().unwrap(), "--views", "3", "--json"]));
+    assert_eq!((c["pieces"].as_u64(), c["surfaces"].as_u64(), c["uv_islands"].as_u64()), (Some(13), Some(1), Some(13)), "{c}");
+    assert_eq!(c["triangles"].as_u64().unwrap() as usize, input_triangles + c["triangles_added"].as_u64().unwrap() as usize);
+}
+
+/// `--positions-only` reads the bare shape: spot's 2,930 positions, no seams, so one
+/// piece and one strip (the README's figures are measured so).
+#[test]
+fn positions_only_has_no_seams() {
+    let input = support::assets_dir().join("spot.obj");
+    let out = tmp("single", "spot_bare.ply");
+    let r = json(&stripkit(&[
+        "strip", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--algo", "single", "--weights", "cache",
+        "--positions-only", "--json",
+    ]));
+    let s = &r["single"];
+    assert_eq!((s["components"].as_u64(), s["surfaces"].as_u64()), (Some(1), Some(1)), "{s}");
+    assert!(s["uv_islands"].is_null(), "{s}");
+    assert_eq!(r["strips"], 1, "{r}");
+    let added = s["vertices_added"].as_u64().unwrap();
+    assert_eq!(r["vertices"].as_u64(), Some(2930 + added), "{r}");
 }
 
 #[test]

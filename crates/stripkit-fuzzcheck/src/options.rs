@@ -96,9 +96,12 @@ pub fn check(data: &[u8]) {
         // gen ... --subdivide LEVELS (Loop or Catmull-Clark of a mesh of N face indices)
         3 => {
             let (indices, levels) = (value(rest, 0) as usize, value32(rest, 1));
-            let grown = 4u128
-                .checked_pow(levels)
-                .and_then(|f| f.checked_mul(indices as u128));
+            // An empty mesh stays empty at any level (0 x 4^levels is 0).
+            let grown = if indices == 0 {
+                Some(0)
+            } else {
+                4u128.checked_pow(levels).and_then(|f| f.checked_mul(indices as u128))
+            };
             let within = grown.is_some_and(|g| g <= limit);
             agrees(
                 &format!("subdivide {indices} x {levels}"),

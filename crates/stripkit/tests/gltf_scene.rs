@@ -412,6 +412,25 @@ fn a_scene_of_a_restart_output_strips_again_without_stale_groups() {
 }
 
 #[test]
+fn a_restart_output_stripped_without_groups_lists_no_extension() {
+    // Found by three.js round trips of stripkit's own outputs: the extension taken out
+    // of `extensionsUsed` left `"extensionsUsed": []`, which the validator refuses.
+    let mut scene = Scene::from_mesh(&gen::icosphere(2)).unwrap();
+    scene.strip(&StripOptions::default(), &SceneOptions::default()).unwrap();
+    let once = scene.to_bytes(Format::Glb).unwrap();
+    assert_eq!(unglb(&once).0["extensionsUsed"], serde_json::json!(["EXT_mesh_primitive_restart"]));
+    let mut again = Scene::from_bytes(Path::new("b.glb"), Format::Glb, &once, &ReadOptions::default()).unwrap();
+    again.strip(&StripOptions::default(), &SceneOptions::stitched()).unwrap();
+    let twice = again.to_bytes(Format::Glb).unwrap();
+    let (j, _) = unglb(&twice);
+    assert!(j.get("extensionsUsed").is_none(), "{}", j["extensionsUsed"]);
+    assert!(j["meshes"][0].pointer("/extensions/EXT_mesh_primitive_restart").is_none());
+    let path = out_dir("stitched-again").join("twice.glb");
+    std::fs::write(&path, &twice).unwrap();
+    support::gltf_validator::validate(&[&path]);
+}
+
+#[test]
 fn single_is_refused_for_scenes() {
     let (json, bin) = asset();
     let mut scene =

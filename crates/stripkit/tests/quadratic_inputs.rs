@@ -179,3 +179,51 @@ fn many_mtllib_names_keep_the_first_of_each() {
         (0..n).filter(|i| i % 10 != 9).chain([80_000]).map(|i| format!("lib{i}.mtl")).collect();
     assert_eq!(mesh.material_libraries, expected);
 }
+
+/// A triangle whose vertices carry `n` one-byte attributes, vertex `v`'s value of
+/// attribute `i` being `(i + v) % 251`.
+fn many_attributes(n: usize) -> Mesh {
+    let mut mesh = Mesh::from_triangles(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], &[[0, 1, 2]]);
+    for i in 0..n {
+        let data = (0..3).map(|v| ((i + v) % 251) as u8).collect();
+        mesh.attributes.push(Attribute {
+            name: format!("p{i}"),
+            scalar: stripkit::Scalar::U8,
+            components: 1,
+            normalized: false,
+            data,
+        });
+    }
+    mesh
+}
+
+#[test]
+fn glb_output_takes_a_bounded_number_of_attributes_and_other_formats_all() {
+    // Each attribute is an accessor of its own in glTF (about 4.4 KB of document while
+    // the scene is built and checked): 300,000 of them needed 1.4 GB. Past the limit
+    // glTF output is refused before anything is built; PLY keeps them all.
+    let limit = io::MAX_GLTF_VERTEX_ATTRIBUTES;
+    let over = many_attributes(limit + 1);
+    let e = io::Scene::from_mesh(&over).unwrap_err();
+    assert!(e.is_invalid(), "{e}");
+    let text = e.to_string();
+    assert!(text.contains(&format!("{} vertex attributes", limit + 1)) && text.contains(&format!("at most {limit}")), "{text}");
+    // The plain writer (single's changed mesh, separate strips) writes attributes too,
+    // under the same limit.
+    let e = io::write_bytes(io::Format::Glb, &over, None, &io::WriteOptions::default()).unwrap_err();
+    assert!(e.is_invalid() && e.to_string().contains(&format!("at most {limit}")), "{e}");
+    let path = temp_file("many_attributes.ply", b"");
+    io::write(&path, &over, None).unwrap();
+    let back = io::read(&path).unwrap();
+    assert_eq!(back.attributes.len(), limit + 1);
+    assert_eq!(back.attributes[limit].value(2), vec![((limit + 2) % 251) as f64]);
+    // At the limit the scene is built, every attribute in it.
+    let at = many_attributes(limit);
+    let scene = io::Scene::from_mesh(&at).unwrap();
+    let glb = scene.to_bytes(io::Format::Glb).unwrap();
+    let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    let json: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
+    let attributes = json["meshes"][0]["primitives"][0]["attributes"].as_object().unwrap();
+    assert_eq!(attributes.len(), limit + 1, "POSITION and every attribute");
+    assert!(attributes.contains_key("_P4095"));
+}

@@ -101,7 +101,15 @@ pub struct Report {
     pub weights: String,
     pub triangles: usize,
     pub strips: usize,
+    /// Pieces of GPU vertices (the dual graph's components): seams split them, and
+    /// no strip crosses a seam, so this is the fewest strips there can be.
+    pub pieces: usize,
+    /// Connected surfaces with seams closed, and UV islands (`TEXCOORD_0`).
+    pub surfaces: usize,
+    pub uv_islands: Option<usize>,
     pub steiner_vertices: usize,
+    /// Triangles the edge splits added (`triangles` counts them).
+    pub triangles_added: usize,
     pub tree_nodes: usize,
     pub tree_depth: usize,
     pub build_ms: f64,
@@ -160,12 +168,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let svg = bar_svg(&strips.strips, &out, &format!("{} ({weights} weights), view {v}", file_name(&args.file)));
         stripkit::io::write_encoded(bar, svg.as_bytes())?;
     }
+    let single = strips.single.as_ref();
     let report = Report {
         file: args.file.display().to_string(),
         weights: weights.to_string(),
         triangles: counter.len(),
         strips: strips.strips.len(),
+        pieces: single.map_or(0, |s| s.components),
+        surfaces: single.map_or(0, |s| s.surfaces),
+        uv_islands: single.and_then(|s| s.uv_islands),
         steiner_vertices: strips.added_positions.len(),
+        triangles_added: single.map_or(0, |s| s.triangles_added),
         tree_nodes: tree.len(),
         tree_depth: tree.depth(),
         build_ms,
@@ -181,7 +194,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     super::print_report(args.json, &report, |w, r| {
         use std::io::Write;
         let m = &r.mean;
-        writeln!(w, "{} ({} weights): {} triangles, {} strip(s), {} Steiner vertices", r.file, r.weights, r.triangles, r.strips, r.steiner_vertices)?;
+        let islands = r.uv_islands.map(|n| format!(", {n} UV island(s)")).unwrap_or_default();
+        writeln!(
+            w,
+            "{} ({} weights): {} triangles ({} added by edge splits), {} Steiner vertices",
+            r.file, r.weights, r.triangles, r.triangles_added, r.steiner_vertices
+        )?;
+        writeln!(
+            w,
+            "strips        {} over {} piece(s) of GPU vertices ({} surface(s){islands}; no strip crosses a seam)",
+            r.strips, r.pieces, r.surfaces
+        )?;
         writeln!(w, "tree          {} nodes, depth {}, built in {:.1} ms", r.tree_nodes, r.tree_depth, r.build_ms)?;
         writeln!(w, "path          spiral, {} views; per view on average:", r.views)?;
         writeln!(w, "segments      {:.1}", m.segments)?;

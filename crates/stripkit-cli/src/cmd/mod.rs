@@ -54,6 +54,11 @@ pub struct ReadArgs {
     /// Format of a mesh read from standard input (`-`): obj, ply, off, stl, gltf or glb.
     #[arg(long, value_name = "FORMAT", value_parser = parse_format)]
     pub format: Option<stripkit::io::Format>,
+    /// Read vertex positions alone (no UVs, normals or other attributes; OBJ vertices
+    /// stay the file's `v` lines, so seams no longer split them): the bare shape, as
+    /// the figures of README.md and docs/ are measured.
+    #[arg(long)]
+    pub positions_only: bool,
 }
 
 /// Parses a mesh format name (the extensions stripkit reads, without `.gz`).
@@ -79,7 +84,7 @@ impl ReadArgs {
             options.max_external_bytes = n;
             options.max_decoded_bytes = Some(n);
         }
-        options
+        options.positions_only(self.positions_only)
     }
 
     /// Reads a mesh under these limits; `-` reads standard input in `--format`. A mesh

@@ -259,7 +259,7 @@ impl<'a> Tracker<'a> {
             if o == END && n == END {
                 break;
             }
-            if o == n && last.map_or(true, |m| o > m) {
+            if o == n && last.is_none_or(|m| o > m) {
                 // Past every change: the walks agree from here on, windings too unless
                 // the parities differ.
                 let po = odd_old ^ (old_walk.len() % 2 == 1);

@@ -30,6 +30,7 @@ use std::time::{Duration, Instant};
 mod groups;
 mod indices;
 mod options;
+mod seams;
 mod strips;
 use groups::run_groups;
 use strips::joined;
@@ -218,7 +219,10 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
             }
             added_positions = single.work.pos[vertex_count..].iter().map(|p| p.map(|x| x as f32)).collect();
             added_from = single.work.steiner.clone();
-            single_report = Some(single.report);
+            let mut report = single.report;
+            let drawn = single.work.tris.iter().filter(|t| !strip::is_degenerate(t)).count();
+            seams::count(mesh, &input, drawn, &mut report);
+            single_report = Some(report);
             (single.strips, Split::Fan, None, Some(single.work.tris))
         }
         Algorithm::Auto(_) => unreachable!("resolved above"),

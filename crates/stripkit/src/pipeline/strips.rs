@@ -274,8 +274,11 @@ impl Strips {
     /// The mesh the strips draw: `mesh` itself, or, where the algorithm changed it
     /// ([`Algorithm::Single`]), its positions plus [`Strips::added_positions`] and
     /// [`Strips::triangles`] as faces. Attributes follow: an added vertex gets the
-    /// blend of the two it splits ([`Attribute::push_lerp`] at one half); so do the
-    /// mesh's group (single takes one) and material libraries.
+    /// blend of the two it splits ([`Attribute::push_lerp`] at one half: integer kinds
+    /// take the first one's value), a `NORMAL` (and a `TANGENT`'s direction) made unit
+    /// length again, a `TANGENT`'s handedness the first one's; so do the mesh's group
+    /// (single takes one) and material libraries. Swapped edges name input vertices,
+    /// so their corners keep their values.
     ///
     /// [`Attribute::push_lerp`]: crate::Attribute::push_lerp
     pub fn changed_mesh(&self, mesh: &Mesh) -> Mesh {
@@ -289,6 +292,8 @@ impl Strips {
         for a in &mut out.attributes {
             for &[x, y] in &self.added_from {
                 a.push_lerp(x as usize, y as usize, 0.5);
+                let v = a.len() - 1;
+                unit_direction(a, v, x as usize);
             }
         }
         out.groups = mesh.groups.clone();
@@ -328,6 +333,26 @@ impl Strips {
             obj.insert("indices".into(), self.restart_buffer().into());
         }
         obj
+    }
+}
+
+/// Vertex `v` of a `NORMAL` (3 or 4 float components) or `TANGENT` (4) attribute made
+/// a unit vector again after a blend, the fourth component (a tangent's handedness)
+/// taken from vertex `from`; a blend of opposite vectors (length 0) keeps `from`'s.
+fn unit_direction(a: &mut crate::mesh::Attribute, v: usize, from: usize) {
+    let direction = (a.name == "NORMAL" && a.components >= 3) || (a.name == "TANGENT" && a.components == 4);
+    if !direction || !(a.scalar.is_float() || a.normalized) {
+        return;
+    }
+    let x = [a.get(v, 0), a.get(v, 1), a.get(v, 2)];
+    let len = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+    for c in 0..3 {
+        let value = if len > 1e-12 && len.is_finite() { x[c] / len } else { a.get(from, c) };
+        a.set(v, c, value);
+    }
+    if a.components == 4 {
+        let w = a.get(from, 3);
+        a.set(v, 3, w);
     }
 }
 

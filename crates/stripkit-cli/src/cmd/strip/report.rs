@@ -168,8 +168,22 @@ pub fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
             String::new()
         }
     )?;
+    if let Some(s) = r.single.filter(|s| s.triangles_added > 0 || s.swapped_edges > 0) {
+        writeln!(
+            out,
+            "  (against the changed mesh: {} input triangles + {} from edge splits, {} edges swapped)",
+            f.triangles - s.triangles_added,
+            s.triangles_added,
+            s.swapped_edges
+        )?;
+    }
+    let stitched = if r.join == stripkit::Join::Degenerate && f.strips > 1 {
+        " (written stitched by degenerate triangles: one strip per material group)".to_string()
+    } else {
+        String::new()
+    };
     writeln!(out, "  welded vertices      {:>10}", r.welded)?;
-    writeln!(out, "  strips               {:>10}", f.strips)?;
+    writeln!(out, "  strips               {:>10}{stitched}", f.strips)?;
     writeln!(out, "  swaps                {:>10}", f.swaps)?;
     writeln!(out, "  indices_separate     {:>10}", f.indices_separate)?;
     writeln!(out, "  indices_restart      {:>10}", f.indices_restart)?;
@@ -202,8 +216,15 @@ pub fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
         )?;
     }
     if let Some(s) = r.single {
-        writeln!(out, "  components           {:>10}", s.components)?;
-        writeln!(out, "  steiner_vertices     {:>10}", s.steiner_vertices)?;
+        let islands = s.uv_islands.map(|n| format!(", {n} UV island(s)")).unwrap_or_default();
+        writeln!(
+            out,
+            "  pieces               {:>10} (of GPU vertices: one strip each at best; {} surface(s){islands})",
+            s.components, s.surfaces
+        )?;
+        writeln!(out, "  path ends forced     {:>10} (by boundary and seam triangles; a strip has two)", s.forced_ends)?;
+        writeln!(out, "  triangles added      {:>10} (edge splits)", s.triangles_added)?;
+        writeln!(out, "  vertices added       {:>10} (Steiner vertices)", s.vertices_added)?;
         if s.clusters > 0 {
             writeln!(out, "  cull clusters        {:>10} ({} peaks split)", s.clusters, s.cull_peaks)?;
             if s.boundary_edges > 0 {

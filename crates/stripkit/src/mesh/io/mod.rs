@@ -89,6 +89,13 @@ impl WriteOptions {
     }
 }
 
+/// The most vertex attributes (besides POSITION) a mesh may carry into glTF: 4,096.
+/// Each becomes an accessor and a buffer view of its own, about 4.4 KB of document
+/// per attribute while the scene is built, written and checked, so a PLY of 300,000
+/// one-byte vertex properties (7.7 MB) would need 1.4 GB; more is refused before any
+/// of it is built. Other formats carry any number.
+pub const MAX_GLTF_VERTEX_ATTRIBUTES: usize = 4096;
+
 /// The default of [`ReadOptions::max_external_bytes`]: 1 GiB.
 pub const DEFAULT_MAX_EXTERNAL_BYTES: u64 = 1 << 30;
 

@@ -297,6 +297,18 @@ pub struct SingleReport {
     pub components: usize,
     /// Components that are closed (every triangle has three dual neighbours).
     pub closed_components: usize,
+    /// Connected surfaces when vertices at the same position count as one (seams
+    /// closed); [`SingleReport::components`] exceeds it where seams split vertices,
+    /// and no strip crosses a seam.
+    pub surfaces: usize,
+    /// UV islands: surfaces cut along every edge whose `TEXCOORD_0` differs on its two
+    /// sides (`None` without texture coordinates).
+    pub uv_islands: Option<usize>,
+    /// Triangles the changed mesh has beyond the input's (two per interior edge
+    /// split, one per boundary edge split; swaps add none).
+    pub triangles_added: usize,
+    /// Vertices added (the Steiner vertices).
+    pub vertices_added: usize,
     /// Strips made.
     pub strips: usize,
     /// Largest distance between the two diagonals of a swapped quad (0 for a planar

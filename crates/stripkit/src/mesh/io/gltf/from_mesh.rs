@@ -182,8 +182,23 @@ fn part(mesh: &Mesh, g: u32) -> Option<Mesh> {
     Some(out)
 }
 
-/// The vertex accessors of `mesh` (POSITION first), as a primitive's `attributes`.
-fn write_vertices(
+/// Refuses a mesh of more than [`MAX_GLTF_VERTEX_ATTRIBUTES`](crate::mesh::io::MAX_GLTF_VERTEX_ATTRIBUTES)
+/// attributes before any accessor is built (each is an accessor of its own).
+pub(super) fn check_attribute_count(mesh: &Mesh) -> Result<()> {
+    let limit = crate::mesh::io::MAX_GLTF_VERTEX_ATTRIBUTES;
+    if mesh.attributes.len() > limit {
+        return Err(Error::Invalid(format!(
+            "the mesh has {} vertex attributes besides its positions; glTF output takes at most {limit} \
+             (each is an accessor of its own): write PLY to keep them all",
+            mesh.attributes.len()
+        )));
+    }
+    Ok(())
+}
+
+/// The vertex accessors of `mesh` (POSITION first), as a primitive's `attributes`;
+/// attributes that cannot be written are named in `notes`.
+pub(super) fn write_vertices(
     mesh: &Mesh,
     bin: &mut Vec<u8>,
     views: &mut Vec<Value>,
@@ -233,6 +248,7 @@ fn write_vertices(
 /// embedded in the buffer.
 pub(super) fn mesh_document(mesh: &Mesh, library: &Materials) -> Result<MeshDocument> {
     mesh.check_faces()?;
+    check_attribute_count(mesh)?;
     let mut bin = Vec::new();
     let mut views = Vec::new();
     let mut accessors = Vec::new();

@@ -18,7 +18,9 @@
 //! read the same bytes any number of times.
 //!
 //! Write (`write.rs`, the plain form; a scene and a mesh with attributes or groups go
-//! through [`Scene`](scene::Scene), which the library's glTF output uses for every mesh it can): one buffer with the positions (VEC3 float, with min / max) and the indices
+//! through [`Scene`](scene::Scene), which the library's glTF output uses for every mesh it can): one buffer with the positions (VEC3 float, with min / max),
+//! every attribute (as `from_mesh` writes them: glTF semantics where the shape fits,
+//! `_NAME` otherwise) and the indices
 //! (u16 when there are fewer than 65535 vertices, else u32); without strips one
 //! TRIANGLES primitive (polygons fanned), with strips one TRIANGLE_STRIP primitive per
 //! strip of at least three indices. A mesh with vertices but nothing to draw gets a

@@ -826,7 +826,9 @@ impl<'s> Build<'s> {
         }
     }
 
-    /// Lists the restart extension in `extensionsUsed` exactly when a mesh uses it.
+    /// Lists the restart extension in `extensionsUsed` exactly when a mesh uses it. An
+    /// input's listing (in `extensionsRequired` too) goes when no mesh uses it any more,
+    /// and a list left empty goes with it (the validator refuses an empty one).
     fn list_restart_extension(&mut self) {
         let json = &mut self.json;
         let used = json
@@ -840,8 +842,13 @@ impl<'s> Build<'s> {
         if used && !listed {
             push_array(json, "extensionsUsed", RESTART_EXTENSION.into());
         } else if !used && listed {
-            if let Some(Value::Array(l)) = json.get_mut("extensionsUsed") {
-                l.retain(|e| e != RESTART_EXTENSION);
+            for key in ["extensionsUsed", "extensionsRequired"] {
+                if let Some(Value::Array(l)) = json.get_mut(key) {
+                    l.retain(|e| e != RESTART_EXTENSION);
+                    if l.is_empty() {
+                        json.as_object_mut().map(|o| o.remove(key));
+                    }
+                }
             }
         }
     }

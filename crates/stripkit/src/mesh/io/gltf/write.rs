@@ -69,6 +69,7 @@ fn build(mesh: &Mesh, strips: Option<&StripSet>) -> Result<(Value, Vec<u8>)> {
     if nv == 0 {
         return Ok((json, Vec::new()));
     }
+    super::from_mesh::check_attribute_count(mesh)?;
     let wide = nv >= u16::MAX as usize;
     let index_size = if wide { 4 } else { 2 };
     // Index runs: (first index, count) in the concatenated index list.
@@ -90,16 +91,15 @@ fn build(mesh: &Mesh, strips: Option<&StripSet>) -> Result<(Value, Vec<u8>)> {
             }
         }
     }
+    // POSITION and every attribute the mesh carries (the shapes and names of
+    // `from_mesh`); the index list follows, 4-byte aligned.
     let mut bin = Vec::with_capacity(nv * 12 + index_list.len() * index_size + 4);
-    let mut lo = [f32::INFINITY; 3];
-    let mut hi = [f32::NEG_INFINITY; 3];
-    for p in &mesh.positions {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-            bin.extend_from_slice(&p[k].to_le_bytes());
-        }
-    }
+    let mut views = Vec::new();
+    let mut accessors = Vec::new();
+    let mut notes = Vec::new();
+    let attributes = super::from_mesh::write_vertices(mesh, &mut bin, &mut views, &mut accessors, &mut notes);
+    bin.resize(bin.len().next_multiple_of(4), 0);
+    let index_start = bin.len();
     for &i in &index_list {
         if wide {
             bin.extend_from_slice(&i.to_le_bytes());
@@ -107,22 +107,19 @@ fn build(mesh: &Mesh, strips: Option<&StripSet>) -> Result<(Value, Vec<u8>)> {
             bin.extend_from_slice(&(i as u16).to_le_bytes());
         }
     }
-    let mut views = vec![json!({"buffer": 0, "byteOffset": 0, "byteLength": nv * 12, "target": 34962})];
-    let mut accessors = vec![json!({
-        "bufferView": 0, "componentType": 5126, "count": nv, "type": "VEC3", "min": lo, "max": hi,
-    })];
     let mut primitives = Vec::new();
     if runs.is_empty() {
-        primitives.push(json!({"attributes": {"POSITION": 0}, "mode": 0}));
+        primitives.push(json!({"attributes": attributes, "mode": 0}));
     } else {
         views.push(json!({
-            "buffer": 0, "byteOffset": nv * 12, "byteLength": index_list.len() * index_size, "target": 34963,
+            "buffer": 0, "byteOffset": index_start, "byteLength": index_list.len() * index_size, "target": 34963,
         }));
+        let index_view = views.len() - 1;
         let mode = if strips.is_some() { 5 } else { 4 };
         for (first, count) in runs {
-            primitives.push(json!({"attributes": {"POSITION": 0}, "indices": accessors.len(), "mode": mode}));
+            primitives.push(json!({"attributes": attributes, "indices": accessors.len(), "mode": mode}));
             accessors.push(json!({
-                "bufferView": 1, "byteOffset": first * index_size, "componentType": if wide { 5125 } else { 5123 },
+                "bufferView": index_view, "byteOffset": first * index_size, "componentType": if wide { 5125 } else { 5123 },
                 "count": count, "type": "SCALAR",
             }));
         }

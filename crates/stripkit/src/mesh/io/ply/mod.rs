@@ -32,7 +32,7 @@ use crate::error::{Error, Result};
 use crate::mesh::{Attribute, Mesh, Scalar};
 use crate::strip::StripSet;
 use body::{parse_type, type_name, Ascii, Binary, Body};
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
 #[derive(Clone, Copy, Debug)]
@@ -453,13 +453,19 @@ fn vertex_attributes(
         });
         attributes.len() - 1
     };
+    // The first property of each name, looked up once per known name rather than by a
+    // scan of every property (a vertex may have hundreds of thousands).
+    let mut first: HashMap<&str, usize> = HashMap::with_capacity(props.len().min(1 << 16));
+    for (k, p) in props.iter().enumerate().rev() {
+        first.insert(p.name.as_str(), k);
+    }
     for &(name, names) in KNOWN {
         if attributes.iter().any(|a| a.name == name) {
             continue;
         }
         let found: Option<Vec<usize>> = names
             .iter()
-            .map(|n| props.iter().position(|p| p.name == *n).filter(|&k| scalar(k).is_some() && slots[k].is_none()))
+            .map(|n| first.get(n).copied().filter(|&k| scalar(k).is_some() && slots[k].is_none()))
             .collect();
         let Some(found) = found else { continue };
         let s = scalar(found[0]).unwrap_or(Scalar::F32);
@@ -473,10 +479,11 @@ fn vertex_attributes(
     }
     // The names taken so far, in a set: a search of the attribute list per property
     // made a vertex with many properties quadratic (50k properties: 3.3 s).
-    let mut taken: HashSet<String> = attributes.iter().map(|a| a.name.clone()).collect();
+    let known: Vec<String> = attributes.iter().map(|a| a.name.clone()).collect();
+    let mut taken: HashSet<&str> = known.iter().map(String::as_str).collect();
     for k in 0..props.len() {
         if let (Some(s), None) = (scalar(k), slots[k]) {
-            if !taken.insert(props[k].name.clone()) {
+            if !taken.insert(props[k].name.as_str()) {
                 continue; // a repeated name: the first is kept
             }
             let a = add(&mut attributes, props[k].name.clone(), s, 1, false);
