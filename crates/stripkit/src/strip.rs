@@ -322,6 +322,14 @@ pub fn encode_separate(strips: &StripSet) -> Vec<Vec<u32>> {
     strips.iter().map(|s| s.to_vec()).collect()
 }
 
+/// Triangles of `strip` (the windows [`for_each_triangle`] reads, counted before its
+/// dropping) with a repeated index: the swaps of a generalized strip and the
+/// degenerate triangles that stitch strips together. A loader that reads a strip
+/// triangle by triangle and keeps every one (trimesh) counts these as faces.
+pub fn degenerate_windows(strip: &[u32]) -> usize {
+    strip.windows(3).filter(|w| w[0] == w[1] || w[1] == w[2] || w[0] == w[2]).count()
+}
+
 /// True when a triangle repeats an index.
 #[inline]
 pub fn is_degenerate(t: &[u32; 3]) -> bool {

@@ -23,7 +23,8 @@ use std::time::Instant;
 #[non_exhaustive]
 pub struct BuildOptions {
     /// The stripifier of level 0 (any the door runs). Default
-    /// [`StripOptions::default`].
+    /// [`StripOptions::default`]. Its [`StripOptions::weld`] is not used: the levels
+    /// keep the mesh's own faces (the simplifier's collapses weld what they merge).
     pub strip: StripOptions,
     /// Survivor placement of the collapses: [`Placement::Endpoint`] (the default:
     /// half-edge collapses, no new vertices, what `stripkit simplify` does by default)
@@ -109,7 +110,7 @@ impl Built {
 /// the simplifier's fraction done.
 pub fn build(mesh: &Mesh, options: &BuildOptions, progress: &mut dyn FnMut(f64)) -> Result<Built> {
     let t = Instant::now();
-    let strips = stripify(mesh, &options.strip)?;
+    let strips = stripify(mesh, &options.strip.clone().weld(false))?;
     let strip_ms = t.elapsed().as_secs_f64() * 1e3;
     let mut positions = mesh.positions.clone();
     positions.extend_from_slice(&strips.added_positions);

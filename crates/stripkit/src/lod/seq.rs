@@ -112,7 +112,8 @@ pub fn read_frames(folder: &Path, options: &ReadOptions) -> Result<Frames> {
 #[non_exhaustive]
 pub struct SeqOptions {
     /// The stripifier of the shared level-0 strips (one that adds no vertices).
-    /// Default [`StripOptions::default`].
+    /// Default [`StripOptions::default`]. Its [`StripOptions::weld`] is not used:
+    /// vertices equal in the first frame may part in later ones.
     pub strip: StripOptions,
     /// Most sequences to choose (each is one [`Sets`] model), besides the reference
     /// pose's, which is kept too when a frame falls back to it. Default 16.
@@ -385,7 +386,7 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
     if options.tolerance.is_nan() || options.tolerance < 1.0 {
         return Err(Error::Invalid(format!("tolerance {} is not a factor of 1 or more", options.tolerance)));
     }
-    let strips = stripify(&frames.mesh, &options.strip)?;
+    let strips = stripify(&frames.mesh, &options.strip.clone().weld(false))?;
     if strips.changes_mesh() {
         return Err(Error::Invalid(format!(
             "{} strips add vertices or swap edges: frames could not share them; use another stripifier",

@@ -15,8 +15,10 @@
 pub mod attr;
 pub mod io;
 pub(crate) mod order;
+mod weld;
 
 pub use attr::{Attribute, Group, Scalar};
+pub use weld::weld_map;
 
 use crate::error::{Error, Result};
 

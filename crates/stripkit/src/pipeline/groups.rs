@@ -83,5 +83,6 @@ pub(super) fn run_groups(mesh: &Mesh, options: &StripOptions) -> Result<Strips> 
         added_positions: Vec::new(),
         added_from: Vec::new(),
         group_ranges,
+        welded: 0,
     })
 }

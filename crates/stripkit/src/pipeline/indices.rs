@@ -20,7 +20,8 @@ pub fn stripify_bound(index_count: usize) -> usize {
 /// not be below `vertex_count`) or one stitched strip ([`Join::Degenerate`]; the
 /// restart index unused). At most [`stripify_bound`]`(indices.len())` indices, verified like
 /// [`stripify`](super::stripify)'s, which it calls (positions are not needed: vertices are given
-/// coincident positions, and orders that would use them fall back to vertex ids).
+/// coincident positions, and orders that would use them fall back to vertex ids;
+/// [`StripOptions::weld`] does not apply, as there is no vertex data to compare).
 ///
 /// Errors: an empty list, a length that is not a multiple of 3, an index at or past
 /// `vertex_count`, a restart index below `vertex_count`, [`Join::Separate`] (a flat
@@ -82,7 +83,8 @@ pub fn stripify_indices(
     let used = indices.iter().map(|&v| v as usize + 1).max().unwrap_or(0);
     let tris: Vec<[u32; 3]> = indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
     let mesh = Mesh::from_triangles(vec![[0.0; 3]; used], &tris);
-    let strips = run(&mesh, options)?;
+    // No vertex data: the coincident positions say nothing, so nothing is welded.
+    let strips = run(&mesh, &options.clone().weld(false))?;
     let out = match options.join {
         Join::Degenerate => strips.stitched(),
         _ => strips.restart_buffer(),

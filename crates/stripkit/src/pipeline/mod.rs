@@ -111,6 +111,18 @@ fn fail(what: &str, v: &strip::Verification) -> Error {
 /// faces fall in several.
 fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     mesh.check_faces()?;
+    if options.weld {
+        if let Some((welded, moved)) = mesh.welded() {
+            let mut strips = run_welded(&welded, options)?;
+            strips.welded = moved;
+            return Ok(strips);
+        }
+    }
+    run_welded(mesh, options)
+}
+
+/// [`run`] after welding.
+fn run_welded(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     if mesh.has_groups() {
         return run_groups(mesh, options);
     }
@@ -254,5 +266,6 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
         added_positions,
         added_from,
         group_ranges: std::iter::once(0..strips_len).collect(),
+        welded: 0,
     })
 }

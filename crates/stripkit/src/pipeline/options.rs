@@ -244,6 +244,13 @@ pub struct StripOptions {
     /// The primitive-restart index of [`Join::Restart`]: never a vertex id of the
     /// mesh. Default `u32::MAX` (what `GL_PRIMITIVE_RESTART_FIXED_INDEX` uses).
     pub restart_index: u32,
+    /// Weld bit-identical vertices before stripping ([`Mesh::welded`]): faces move onto
+    /// the lowest id of each set of vertices equal in position bits and every attribute,
+    /// so that an unindexed mesh (every triangle its own three vertices) strips as a
+    /// connected surface. Vertex data and ids are kept; the strips and
+    /// [`Strips::triangles`](super::Strips::triangles) use the welded ids and
+    /// [`Strips::welded`](super::Strips::welded) counts the vertices left unused. Default `true`.
+    pub weld: bool,
 }
 
 impl Default for StripOptions {
@@ -254,6 +261,7 @@ impl Default for StripOptions {
             split: Split::Auto,
             join: Join::Restart,
             restart_index: strip::DEFAULT_RESTART,
+            weld: true,
         }
     }
 }
@@ -288,6 +296,11 @@ impl StripOptions {
     /// Sets the primitive-restart index.
     pub fn restart_index(mut self, index: u32) -> Self {
         self.restart_index = index;
+        self
+    }
+    /// Sets [`StripOptions::weld`].
+    pub fn weld(mut self, on: bool) -> Self {
+        self.weld = on;
         self
     }
 

@@ -52,6 +52,10 @@ pub struct Strips {
     /// groups), the range of [`Strips::strips`] drawing its faces. A strip never draws
     /// faces of two groups, and the joined forms never join strips of two groups.
     pub group_ranges: Vec<Range<usize>>,
+    /// Vertices the faces used that [`StripOptions::weld`](super::StripOptions::weld) moved onto a bit-identical
+    /// vertex of lower id (0 with welding off or nothing to weld); they are still in
+    /// the mesh, unused by the strips (a first-use order leaves them out).
+    pub welded: usize,
 }
 
 impl Strips {
@@ -119,6 +123,20 @@ impl Strips {
         };
         // A relative slack for the float sums behind the two figures.
         (reached > max_acmr * (1.0 + 1e-9)).then_some(reached)
+    }
+
+    /// Where a file of `format` holds stitched strips (glTF unless [`Join::Separate`],
+    /// PLY with [`Join::Degenerate`]; see [`Strips::for_format`]): the zero-area
+    /// triangles (a repeated index: swaps and stitching) they decode to besides the
+    /// mesh's triangles. `None` where the file holds no stitched strip.
+    pub fn stitched_degenerate_in(&self, format: Format) -> Option<usize> {
+        let stitched = match format {
+            Format::Gltf | Format::Glb => self.join != Join::Separate,
+            Format::Ply => self.join == Join::Degenerate,
+            _ => false,
+        };
+        let set = self.for_format(format).filter(|_| stitched)?;
+        Some(set.iter().map(strip::degenerate_windows).sum())
     }
 
     /// The strips a file of `format` holds: PLY's `tristrips` ends each strip with -1

@@ -44,6 +44,16 @@ pub use crate::mesh::io::{Scene, ScenePrimitive};
 /// primitive, as the other formats keep them with no faces, where a scene would be
 /// left with empty accessors and an empty buffer).
 pub fn for_gltf_output(mesh: &Mesh, options: &StripOptions) -> Result<Option<Scene>> {
+    for_gltf_output_with(mesh, options, &crate::mesh::io::Materials::default())
+}
+
+/// [`for_gltf_output`] with the materials of the mesh's OBJ libraries
+/// ([`Scene::from_mesh_with`]); the plain writer writes no materials.
+pub fn for_gltf_output_with(
+    mesh: &Mesh,
+    options: &StripOptions,
+    materials: &crate::mesh::io::Materials,
+) -> Result<Option<Scene>> {
     let plain = options.join == Join::Separate
         || matches!(options.algorithm, Algorithm::Single(_))
         || options.restart_index != DEFAULT_RESTART
@@ -51,7 +61,7 @@ pub fn for_gltf_output(mesh: &Mesh, options: &StripOptions) -> Result<Option<Sce
     if plain {
         return Ok(None);
     }
-    Scene::from_mesh(mesh).map(Some)
+    Scene::from_mesh_with(mesh, materials).map(Some)
 }
 
 /// How [`Scene::strip`] writes the strips. Defaults: restart groups on, vertices
@@ -126,6 +136,20 @@ pub struct PrimitiveReport {
     pub indices_restart: Option<usize>,
     /// The algorithm that ran.
     pub algorithm: &'static str,
+    /// Vertices welded onto a bit-identical one ([`StripOptions::weld`]; never for a
+    /// primitive with morph targets, whose target data the weld does not see).
+    pub welded: usize,
+    /// The strips would take more index bytes than the primitive's own indices (the
+    /// larger of the stitched strip and the restart group, against the indices read,
+    /// or for an unindexed primitive a list of its vertices): the primitive is
+    /// written as read, and `indices_stitched` / `indices_restart` are what it keeps.
+    pub kept_as_read: bool,
+    /// Zero-area triangles the stitched strip written as the primitive's `indices`
+    /// decodes to besides its triangles (swaps and stitching,
+    /// [`degenerate_windows`](crate::degenerate_windows)): loaders without
+    /// `EXT_mesh_primitive_restart` that keep every triangle (trimesh) count them as
+    /// faces. 0 for a primitive kept as read.
+    pub degenerate_stitched: usize,
     /// The figures of the strips (docs/metrics.md).
     pub figures: Figures,
 }
@@ -137,8 +161,16 @@ pub struct SceneReport {
     /// One entry per stripped primitive, in document order.
     pub primitives: Vec<PrimitiveReport>,
     /// Primitives left as they were: points and lines, and triangle primitives that
-    /// draw nothing.
+    /// draw nothing (primitives kept because strips would be larger are counted in
+    /// `kept_as_read` instead).
     pub skipped: usize,
+    /// Stripped primitives written as read because their strips would take more index
+    /// bytes than their own indices ([`PrimitiveReport::kept_as_read`]).
+    pub kept_as_read: usize,
+    /// Vertices welded, all primitives together ([`PrimitiveReport::welded`]).
+    pub welded: usize,
+    /// [`PrimitiveReport::degenerate_stitched`], all primitives together.
+    pub degenerate_stitched: usize,
     /// Triangles stripped, all primitives together.
     pub triangles: usize,
     /// Indices read, all stripped primitives together.
@@ -174,10 +206,13 @@ impl Scene {
         }
         let start = Instant::now();
         let options = options.clone().join(Join::Restart).restart_index(u32::MAX);
-        let mut stripifier = Stripifier::new(options)?;
+        let mut stripifier = Stripifier::new(options.clone())?;
         let mut report = SceneReport {
             primitives: Vec::new(),
             skipped: self.other_primitives(),
+            kept_as_read: 0,
+            welded: 0,
+            degenerate_stitched: 0,
             triangles: 0,
             indices_read: 0,
             indices_stitched: 0,
@@ -190,7 +225,9 @@ impl Scene {
         // Whether each primitive's vertex accessors can be read back for reordering.
         let readable = self.renumberable();
         let file = self.name().to_path_buf();
-        for (sp, readable) in self.primitives_mut().iter_mut().zip(readable) {
+        let source_bytes = self.source_index_bytes();
+        let mut no_weld = options.weld.then(|| Stripifier::new(options.clone().weld(false))).transpose()?;
+        for (k, (sp, readable)) in self.primitives_mut().iter_mut().zip(readable).enumerate() {
             sp.strips = None;
             sp.order = None;
             if sp.mesh.face_count() == 0 {
@@ -206,7 +243,13 @@ impl Scene {
                     other => other,
                 }
             };
-            let strips = stripifier.stripify(&sp.mesh).map_err(name)?;
+            // Morph targets are not in the decoded mesh: a weld could merge vertices
+            // that targets move apart.
+            let strips = match (sp.targets > 0 && options.weld, &mut no_weld) {
+                (true, Some(s)) => s.stripify(&sp.mesh),
+                _ => stripifier.stripify(&sp.mesh),
+            }
+            .map_err(name)?;
             stripify_time += strips.stripify_time;
             if strips.figures.triangles == 0 {
                 // Only degenerate triangles: a strip primitive would hold empty
@@ -218,10 +261,20 @@ impl Scene {
             let stitched = strip::stitched_len(&set);
             let restart = (scene_options.restart && sp.targets == 0)
                 .then(|| set.iter().filter(|s| s.len() >= 3).map(|s| s.len() + 1).sum::<usize>().saturating_sub(1));
+            let order = (scene_options.reorder && readable)
+                .then(|| first_use(strip::encode_stitched(&set), sp.mesh.vertex_count()));
+            let vertices = order.as_ref().map_or(sp.mesh.vertex_count(), Vec::len);
+            let strip_bytes = stitched.max(restart.unwrap_or(0)) * index_width(vertices);
+            let kept = strip_bytes > source_bytes[k];
+            let (stitched, restart) = if kept { (sp.indices_read, None) } else { (stitched, restart) };
+            let degenerate_stitched = if kept { 0 } else { strip::degenerate_windows(&strip::encode_stitched(&set)) };
+            report.degenerate_stitched += degenerate_stitched;
             report.triangles += strips.figures.triangles;
             report.indices_read += sp.indices_read;
             report.indices_stitched += stitched;
             report.indices_drawn_restart += restart.unwrap_or(stitched);
+            report.welded += strips.welded;
+            report.kept_as_read += usize::from(kept);
             report.primitives.push(PrimitiveReport {
                 mesh: sp.mesh_index,
                 primitive: sp.primitive_index,
@@ -230,13 +283,18 @@ impl Scene {
                 indices_stitched: stitched,
                 indices_restart: restart,
                 algorithm: strips.algorithm.name(),
+                welded: strips.welded,
+                kept_as_read: kept,
+                degenerate_stitched,
                 figures: strips.figures,
             });
-            if scene_options.reorder && readable {
-                sp.order = Some(first_use(strip::encode_stitched(&set), sp.mesh.vertex_count()));
+            if kept {
+                report.vertices += sp.mesh.vertex_count();
+                continue;
             }
+            sp.order = order;
             sp.strips = Some(set);
-            report.vertices += sp.order.as_ref().map_or(sp.mesh.vertex_count(), Vec::len);
+            report.vertices += vertices;
             sp.drawn = strips.triangles;
         }
         self.set_restart_groups(scene_options.restart);
@@ -244,5 +302,39 @@ impl Scene {
         report.stripify_ms = stripify_time.as_secs_f64() * 1e3;
         report.total_ms = start.elapsed().as_secs_f64() * 1e3;
         Ok(report)
+    }
+}
+
+/// Bytes of one index the writer writes for a primitive of `vertices` vertices (65535
+/// is the 16-bit restart value, never a vertex id).
+fn index_width(vertices: usize) -> usize {
+    if vertices >= u16::MAX as usize {
+        4
+    } else {
+        2
+    }
+}
+
+impl Scene {
+    /// Each triangle primitive's index bytes as read: its index accessor's count times
+    /// its component size, or for a primitive without indices the list of its vertices
+    /// the writer would write ([`index_width`]).
+    fn source_index_bytes(&self) -> Vec<usize> {
+        let json = self.json();
+        self.primitives()
+            .iter()
+            .map(|sp| {
+                let prim = &json["meshes"][sp.mesh_index]["primitives"][sp.primitive_index];
+                let width = prim["indices"]
+                    .as_u64()
+                    .and_then(|a| json["accessors"][a as usize]["componentType"].as_u64())
+                    .map_or(index_width(sp.mesh.vertex_count()), |c| match c {
+                        5121 => 1,
+                        5123 => 2,
+                        _ => 4,
+                    });
+                sp.indices_read * width
+            })
+            .collect()
     }
 }

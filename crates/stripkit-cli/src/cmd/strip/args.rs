@@ -54,6 +54,9 @@ pub struct StripArgs {
     /// Single: how the dual graph is matched (exact, greedy, or auto: exact where affordable). Default auto.
     #[arg(long, value_parser = named::<MatchingMode>(MatchingMode::NAMES), hide_possible_values = true)]
     pub matching: Option<MatchingMode>,
+    /// Keep vertices that are bit-identical in position and every attribute apart (by default faces are moved onto one of them before stripping, as gltfpack welds).
+    #[arg(long)]
+    pub no_weld: bool,
 }
 
 /// The order of the vertices in the output.
@@ -215,6 +218,9 @@ impl StripArgs {
             _ => {}
         }
         let mut options = StripOptions::default().algorithm(algorithm);
+        if self.no_weld {
+            options = options.weld(false);
+        }
         if let Some(split) = self.split {
             options = options.split(split);
         }

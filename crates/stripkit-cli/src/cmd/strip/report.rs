@@ -18,6 +18,8 @@ pub struct Report<'a> {
     pub join: Join,
     pub vertex_order: VertexOrder,
     pub vertices: usize,
+    /// Vertices welded onto a bit-identical one before stripping (0 with --no-weld).
+    pub welded: usize,
     #[serde(flatten)]
     pub figures: &'a Figures,
     /// Milliseconds of the stripify call alone.
@@ -89,6 +91,14 @@ pub fn print_scene(out: &mut impl Write, r: &SceneCliReport, line: bool) -> std:
             }
         )?;
         writeln!(out, "verified: {} triangles, 0 lost, 0 added, 0 flipped; written file read back and checked", s.triangles)?;
+        writeln!(out, "  welded vertices      {:>10}", s.welded)?;
+        if s.kept_as_read > 0 {
+            writeln!(
+                out,
+                "  kept as read         {:>10} (their strips would take more index bytes than their own indices)",
+                s.kept_as_read
+            )?;
+        }
         writeln!(out, "  indices read         {:>10}", s.indices_read)?;
         writeln!(out, "  indices stitched     {:>10}", s.indices_stitched)?;
         if r.join == Join::Restart {
@@ -101,7 +111,7 @@ pub fn print_scene(out: &mut impl Write, r: &SceneCliReport, line: bool) -> std:
         for p in s.primitives.iter().take(SHOWN) {
             writeln!(
                 out,
-                "  meshes[{}].primitives[{}]: {} triangles, {} strips, {} -> {} indices{} ({})",
+                "  meshes[{}].primitives[{}]: {} triangles, {} strips, {} -> {} indices{} ({}{}{})",
                 p.mesh,
                 p.primitive,
                 p.figures.triangles,
@@ -109,7 +119,9 @@ pub fn print_scene(out: &mut impl Write, r: &SceneCliReport, line: bool) -> std:
                 p.indices_read,
                 p.indices_stitched,
                 p.indices_restart.map(|n| format!(" (restart {n})")).unwrap_or_default(),
-                p.algorithm
+                p.algorithm,
+                if p.welded > 0 { format!(", {} welded", p.welded) } else { String::new() },
+                if p.kept_as_read { ", kept as read: strips were larger" } else { "" }
             )?;
         }
         Ok(())
@@ -170,6 +182,7 @@ pub fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
     } else {
         String::new()
     };
+    writeln!(out, "  welded vertices      {:>10}", r.welded)?;
     writeln!(out, "  strips               {:>10}{stitched}", f.strips)?;
     writeln!(out, "  swaps                {:>10}", f.swaps)?;
     writeln!(out, "  indices_separate     {:>10}", f.indices_separate)?;
@@ -231,4 +244,26 @@ pub fn print_summary(out: &mut impl Write, r: &Report) -> std::io::Result<()> {
     }
     writeln!(out, "  stripify ms          {:>10.2}", r.ms)?;
     Ok(())
+}
+
+/// One-line notes on standard error about what other loaders make of the written
+/// strips (never in the `--json` data): PLY `tristrips` (`ply`), and the zero-area
+/// triangles a stitched strip decodes to (`degenerate` of `triangles`). `restart`: the
+/// file also holds EXT_mesh_primitive_restart groups.
+pub fn loader_notes(output: &Path, ply: bool, degenerate: usize, triangles: usize, restart: bool) {
+    if ply {
+        eprintln!(
+            "note: {}: PLY `tristrips` element; trimesh and Open3D read it as 0 faces (write .glb or .obj for them)",
+            output.display()
+        );
+    }
+    if degenerate > 0 {
+        eprintln!(
+            "note: {}: the stitched strips add {degenerate} zero-area triangles (swaps and joins) to the {triangles}; \
+             loaders that keep every triangle (trimesh, Open3D) count {} faces{}",
+            output.display(),
+            triangles + degenerate,
+            if restart { "; viewers with EXT_mesh_primitive_restart draw its groups instead" } else { "" }
+        );
+    }
 }

@@ -103,8 +103,17 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
     // primitive per group, or the plain writer; stripkit::scene::for_gltf_output).
     let start = std::time::Instant::now();
     let scene = match kind {
-        OutKind::Mesh(Format::Gltf | Format::Glb) => stripkit::scene::for_gltf_output(&mesh, &options)
-            .map_err(|e| anyhow::anyhow!(e).context(format!("{}", args.input.display())))?,
+        OutKind::Mesh(Format::Gltf | Format::Glb) => {
+            // An OBJ's material libraries become glTF materials (textures embedded).
+            let materials = match Format::from_path(&args.input) {
+                Some((Format::Obj, _)) => {
+                    stripkit::io::Materials::read_for_obj(&args.input, &mesh.material_libraries, &args.read.options())?
+                }
+                _ => stripkit::io::Materials::default(),
+            };
+            stripkit::scene::for_gltf_output_with(&mesh, &options, &materials)
+                .map_err(|e| anyhow::anyhow!(e).context(format!("{}", args.input.display())))?
+        }
         _ => None,
     };
     if let Some(scene) = scene {
@@ -138,6 +147,7 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         join: strips.join,
         vertex_order,
         vertices: mesh.vertex_count() + strips.added_positions.len(),
+        welded: strips.welded,
         figures,
         ms: strips.stripify_time.as_secs_f64() * 1e3,
         diagonals: matches!(strips.algorithm, Algorithm::Cache { .. } | Algorithm::Balanced { .. })
@@ -167,6 +177,12 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
     };
     cmd::write_output(&args.output, &bytes)?;
     progress.finish_and_clear();
+    // The notes are not data: never where --json data goes to standard error (-o -).
+    let notes = batch.is_none() && !(args.json && cmd::is_dash(&args.output));
+    if let (OutKind::Mesh(format), true) = (&kind, notes) {
+        let degenerate = strips.stitched_degenerate_in(*format).unwrap_or(0);
+        report::loader_notes(&args.output, *format == Format::Ply, degenerate, strips.figures.triangles, false);
+    }
 
     let sink = match batch {
         Some(bar) => cmd::Sink::Batch(bar.clone()),
@@ -269,6 +285,10 @@ fn strip_scene(
     cmd::write_output(&args.output, &bytes)?;
     let write_ms = start.elapsed().as_secs_f64() * 1e3;
     progress.finish_and_clear();
+    if batch.is_none() && !(args.json && cmd::is_dash(&args.output)) {
+        let restart = options.join == Join::Restart;
+        report::loader_notes(&args.output, false, report.degenerate_stitched, report.triangles, restart);
+    }
     let r = SceneCliReport {
         input: &args.input,
         output: &args.output,

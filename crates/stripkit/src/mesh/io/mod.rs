@@ -40,12 +40,14 @@
 mod common;
 mod gltf;
 mod obj;
+mod mtl;
 mod off;
 mod ply;
 mod stl;
 
 pub use gltf::meshopt::{decode_meshopt, MeshoptFilter, MeshoptMode};
 pub use gltf::{Scene, ScenePrimitive};
+pub use mtl::{Material, Materials, Texture};
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;

@@ -16,6 +16,7 @@
 
 use super::glb_container;
 use crate::error::{Error, Result};
+use crate::mesh::io::mtl::{Material, Materials, Texture};
 use crate::mesh::{Attribute, Mesh, Scalar};
 use serde_json::{json, Map, Value};
 
@@ -242,8 +243,10 @@ pub(super) fn write_vertices(
 
 /// The document of `mesh`: one TRIANGLES primitive per group that has faces (faces
 /// fanned). A mesh of one group keeps all its vertices and their ids; with several
-/// groups each primitive gets the vertices its faces use, in their order.
-pub(super) fn mesh_document(mesh: &Mesh) -> Result<MeshDocument> {
+/// groups each primitive gets the vertices its faces use, in their order. A material
+/// `library` defines is written as a metallic-roughness material, its textures
+/// embedded in the buffer.
+pub(super) fn mesh_document(mesh: &Mesh, library: &Materials) -> Result<MeshDocument> {
     mesh.check_faces()?;
     check_attribute_count(mesh)?;
     let mut bin = Vec::new();
@@ -307,11 +310,79 @@ pub(super) fn mesh_document(mesh: &Mesh) -> Result<MeshDocument> {
         "nodes": [{"mesh": 0}],
         "meshes": [{"primitives": primitives}],
         "accessors": accessors,
-        "bufferViews": views,
+        "bufferViews": views.clone(),
         "buffers": [{"byteLength": bin.len()}],
     });
     if !materials.is_empty() {
-        json["materials"] = materials.iter().map(|m| json!({"name": m})).collect();
+        let mut images = Images { uv: mesh.attribute("TEXCOORD_0").is_some(), ..Images::default() };
+        let list: Vec<Value> = materials
+            .iter()
+            .map(|m| match library.get(m) {
+                Some(material) => material_json(material, &mut images, &mut bin, &mut views, &mut notes),
+                None => json!({"name": m}),
+            })
+            .collect();
+        json["materials"] = list.into();
+        json["bufferViews"] = views.into();
+        bin.resize(bin.len().next_multiple_of(4), 0);
+        json["buffers"] = json!([{"byteLength": bin.len()}]);
+        if !images.images.is_empty() {
+            json["images"] = images.images.into();
+            json["textures"] = images.textures.into();
+            json["samplers"] = json!([{}]);
+        }
     }
     Ok(MeshDocument { glb: glb_container(&json, bin)?, group_of_primitive, faces, notes })
+}
+
+/// The images and textures of the materials written so far (each file once).
+#[derive(Default)]
+struct Images {
+    /// Whether the mesh has TEXCOORD_0, without which a texture cannot be mapped.
+    uv: bool,
+    images: Vec<Value>,
+    textures: Vec<Value>,
+    by_uri: Vec<String>,
+}
+
+impl Images {
+    /// The texture of `t`, its image embedded in a buffer view on first use.
+    fn texture(&mut self, t: &Texture, bin: &mut Vec<u8>, views: &mut Vec<Value>) -> usize {
+        if let Some(k) = self.by_uri.iter().position(|u| *u == t.uri) {
+            return k;
+        }
+        bin.resize(bin.len().next_multiple_of(4), 0);
+        views.push(json!({"buffer": 0, "byteOffset": bin.len(), "byteLength": t.bytes.len()}));
+        bin.extend_from_slice(&t.bytes);
+        self.images.push(json!({"bufferView": views.len() - 1, "mimeType": t.mime, "name": t.uri}));
+        self.textures.push(json!({"source": self.images.len() - 1, "sampler": 0}));
+        self.by_uri.push(t.uri.clone());
+        self.textures.len() - 1
+    }
+}
+
+/// A material of an OBJ library as glTF's metallic-roughness material (metallic 0),
+/// alpha blended where its alpha is below 1.
+fn material_json(m: &Material, images: &mut Images, bin: &mut Vec<u8>, views: &mut Vec<Value>, notes: &mut Vec<String>) -> Value {
+    let mut pbr = json!({"baseColorFactor": m.base_color, "metallicFactor": 0.0});
+    if let Some(r) = m.roughness {
+        pbr["roughnessFactor"] = r.into();
+    }
+    let mut out = json!({"name": m.name});
+    let textured = m.base_color_texture.is_some() || m.normal_texture.is_some();
+    if textured && !images.uv {
+        notes.push(format!("material {}: its textures are left out: the mesh has no texture coordinates", m.name));
+    } else {
+        if let Some(t) = &m.base_color_texture {
+            pbr["baseColorTexture"] = json!({"index": images.texture(t, bin, views)});
+        }
+        if let Some(t) = &m.normal_texture {
+            out["normalTexture"] = json!({"index": images.texture(t, bin, views)});
+        }
+    }
+    out["pbrMetallicRoughness"] = pbr;
+    if m.base_color[3] < 1.0 {
+        out["alphaMode"] = "BLEND".into();
+    }
+    out
 }

@@ -214,7 +214,16 @@ impl Scene {
     /// use. Each primitive's [`ScenePrimitive::mesh`] keeps the group's polygons, so
     /// that [`Scene::strip`] may split quads as the algorithm chooses.
     pub fn from_mesh(mesh: &Mesh) -> Result<Scene> {
-        let doc = super::from_mesh::mesh_document(mesh)?;
+        Scene::from_mesh_with(mesh, &crate::mesh::io::Materials::default())
+    }
+
+    /// [`Scene::from_mesh`] with the materials of an OBJ's libraries
+    /// ([`Materials::read_for_obj`](crate::mesh::io::Materials::read_for_obj)): each group's material that
+    /// `materials` defines becomes a metallic-roughness material (base colour and alpha,
+    /// roughness, base colour and normal textures embedded in the buffer); their notes
+    /// join [`Scene::notes`].
+    pub fn from_mesh_with(mesh: &Mesh, materials: &crate::mesh::io::Materials) -> Result<Scene> {
+        let doc = super::from_mesh::mesh_document(mesh, materials)?;
         let options = ReadOptions::default().max_decoded_bytes(Some(u64::MAX));
         let mut scene = Scene::from_bytes(Path::new("<mesh as glTF>"), Format::Glb, &doc.glb, &options)?;
         for ((sp, &g), (offsets, indices)) in scene.primitives.iter_mut().zip(&doc.group_of_primitive).zip(doc.faces) {
@@ -225,6 +234,7 @@ impl Scene {
             }
         }
         scene.notes = doc.notes;
+        scene.notes.extend(materials.notes.iter().cloned());
         Ok(scene)
     }
 
