@@ -97,7 +97,10 @@ fn threejs_draws_every_output_like_the_source() {
         let differing = r["differing"].as_object().unwrap();
         // Normals and UVs from 3 views, and from the restart strips where the glb has them.
         let gltf = form.output.ends_with(".glb") || form.output.ends_with(".gltf");
-        let groups = gltf && !form.flags.contains(&"degenerate") && !form.flags.contains(&"separate");
+        // Strips stripped again are kept as read (their strips would take more index
+        // bytes than the stitched strip they read), so they have no restart groups.
+        let again = form.source.starts_with("out:");
+        let groups = gltf && !again && !form.flags.contains(&"degenerate") && !form.flags.contains(&"separate");
         let passes = if groups { 4 } else { 2 };
         assert_eq!(differing.len(), passes, "{}: {r}", form.output);
         // The cow drawn: about 16% of the pixels lit.
