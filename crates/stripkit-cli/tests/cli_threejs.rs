@@ -7,7 +7,7 @@
 //! Debian's `chromium` as root), node, or the npm packages three and playwright-core.
 //! In the same launch, gltfpack's outputs (its default, KHR_mesh_quantization, and
 //! `-c`, EXT_meshopt_compression) of spot and of a small generated torus are stripped
-//! three ways and drawn against gltfpack's own file (quantization moves positions
+//! four ways and drawn against gltfpack's own file (quantization moves positions
 //! slightly from the OBJ's, so the OBJ is not their reference); skipped with a printed
 //! reason where gltfpack is not installed.
 
