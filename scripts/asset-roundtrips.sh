@@ -16,21 +16,29 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 sk=${STRIPKIT:-$here/target/release/stripkit}
 gp=${GLTFPACK:-}
 pairs=()
+declare -A seen
 for src in "$dir"/*.gltf "$dir"/*.glb "$dir"/*.obj "$dir"/*.ply; do
     [ -f "$src" ] || continue
     b=$(basename "${src%.*}")
+    # Two sources with one name (a.glb, a.obj): the second one's outputs add its extension.
+    [ -n "${seen[$b]:-}" ] && b=${b}_${src##*.}
+    seen[$b]=1
     echo "=== $src"
     if ! "$sk" strip "$src" -o "$out/$b.glb" --json > "$out/$b.json" 2> "$out/$b.err"; then
         echo "strip: $(head -c 300 "$out/$b.err")"; continue
     fi
     "$sk" strip "$src" -o "$out/${b}_plain.gltf" --join degenerate > /dev/null 2>&1 || echo "plain: failed"
+    # Images a .gltf names by URI stay where they are: link them beside the outputs.
+    for f in "$dir"/*.png "$dir"/*.jpg "$dir"/*.jpeg "$dir"/*.ktx2 "$dir"/*.webp; do
+        [ -f "$f" ] && [ ! -e "$out/$(basename "$f")" ] && ln -s "$(cd "$(dirname "$f")" && pwd)/$(basename "$f")" "$out/"
+    done
     node "$here/.ci/validate-gltf.js" "$out/$b.glb" "$out/${b}_plain.gltf" |
         python3 -c "import sys,json; [print('validator', (d:=json.loads(l))['file'], 'errors', d['errors'], 'warnings', d['warnings']) for l in sys.stdin]"
     case $src in
         *.obj|*.ply) check=$here/scripts/mesh-check.py ;;
         *) check=$here/scripts/gltf-check.py ;;
     esac
-    for o in "$out/$b.glb" "$out/${b}_plain.gltf"; do printf '%s: ' "$(basename "$o")"; python3 "$check" "$src" "$o" 2>/dev/null | tail -1; done
+    for o in "$out/$b.glb" "$out/${b}_plain.gltf"; do printf '%s: ' "$(basename "$o")"; python3 "$check" "$src" "$o" 2>&1 | tail -1; done
     pairs+=("$src=$out/$b.glb" "$src=$out/${b}_plain.gltf")
     [ -n "$gp" ] && "$gp" -i "$src" -o "$out/${b}_gltfpack.glb" -noq -kv -km -kn > /dev/null 2>&1
     python3 - "$src" "$out/$b.glb" "$out/${b}_gltfpack.glb" <<'PY'
@@ -47,7 +55,17 @@ def count(path):
     return n, r
 src, ours, gp = count(sys.argv[1]), count(sys.argv[2]), count(sys.argv[3])
 print(f"indices: input {src[0]}, stripkit stitched {ours[0]}, with restart {ours[1]}, gltfpack {gp[0]}")
-size = lambda p: os.path.getsize(p) if os.path.exists(p) else '-'
+def size(p):
+    # A glTF with its .bin and images: every file it names by URI counts.
+    if not os.path.exists(p):
+        return '-'
+    n = os.path.getsize(p)
+    if p.endswith(('.gltf', '.glb')):
+        g = pygltflib.GLTF2().load(p)
+        for item in list(g.buffers) + list(g.images):
+            if item.uri and not item.uri.startswith('data:'):
+                n += os.path.getsize(os.path.join(os.path.dirname(p), item.uri))
+    return n
 print(f"bytes: input {size(sys.argv[1])}, stripkit {size(sys.argv[2])}, gltfpack {size(sys.argv[3])}")
 PY
 done

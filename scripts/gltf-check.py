@@ -12,9 +12,9 @@ What must hold (exit 1 and a line per failure otherwise):
     fallback primitives must draw the same triangles as the group;
   * per primitive: the same material, the same attribute names, the same morph-target
     count, and the same multiset of oriented triangles, each triangle compared by the
-    values of every attribute at its corners (so a renumbering of vertices passes, a
-    lost UV or a flipped triangle does not). Degenerate triangles (a repeated index)
-    are not triangles.
+    values of every attribute and morph-target attribute at its corners (so a
+    renumbering of vertices passes, a lost UV, a moved target delta or a flipped
+    triangle does not). Degenerate triangles (a repeated index) are not triangles.
 
 Needs: pip install pygltflib numpy
 """
@@ -147,6 +147,16 @@ def attribute_table(asset, prim):
     return names, {n: asset.accessor(getattr(prim.attributes, n)) for n in names}
 
 
+def corner_table(asset, prim):
+    """The attributes and every morph target's attributes ("target 0 POSITION"), by name."""
+    names, values = attribute_table(asset, prim)
+    for ti, target in enumerate(prim.targets or []):
+        for attr, acc in sorted(target.items()):
+            names.append(f"target {ti} {attr}")
+            values[names[-1]] = asset.accessor(acc)
+    return names, values
+
+
 def corner_key(values, names, v):
     return tuple(tuple(values[n][v].tolist()) for n in names)
 
@@ -202,8 +212,8 @@ def main():
             where = f"mesh {mi} primitive {pi}"
             if pa.material != pb.material:
                 failures.append(f"{where}: material {pa.material} in, {pb.material} out")
-            na, va = attribute_table(a, pa)
-            nb, vb = attribute_table(b, pb)
+            na, va = corner_table(a, pa)
+            nb, vb = corner_table(b, pb)
             if na != nb:
                 failures.append(f"{where}: attributes {na} in, {nb} out")
                 continue

@@ -8,10 +8,12 @@ materials.
 
     python3 scripts/mesh-check.py SOURCE.obj|ply OUT.glb|gltf
 
-What must hold: one primitive per material of the source (trimesh splits an OBJ by
-material, named by it), each with the source's triangles as oriented triangles compared
-by their corners' values: position, TEXCOORD_0 (glTF's v = 1 - OBJ's v) and NORMAL where
-the source has them, as float32. Exit 1 on a difference.
+What must hold: the source's materials, each named by a primitive or several (one per
+OBJ object, `o`, where the writer keeps them apart), whose triangles together are the
+source's triangles of that material (quads fanned from their first corner), compared as
+oriented triangles by their corners' values: position, TEXCOORD_0 (glTF's v = 1 - OBJ's
+v) and NORMAL where the source has them, as float32. Negative (relative) OBJ indices
+count back from the face's line. Exit 1 on a difference.
 
 Needs: pip install trimesh pygltflib numpy
 """
@@ -32,6 +34,14 @@ def f32(a):
     return np.asarray(a, np.float32)
 
 
+def absolute(text, n):
+    """An OBJ index (1-based, or negative: relative to the n elements read so far), 0-based."""
+    if not text:
+        return None
+    i = int(text)
+    return i - 1 if i > 0 else n + i
+
+
 def obj_parts(path):
     """The OBJ read plainly: per usemtl (in order of first use), its fanned faces."""
     v, vt, vn, faces = [], [], [], collections.OrderedDict()
@@ -49,21 +59,19 @@ def obj_parts(path):
         elif s[0] == "usemtl":
             material = s[1]
         elif s[0] == "f":
-            corners = [(c.split("/") + ["", ""])[:3] for c in s[1:]]
+            # A negative index counts back from the elements read so far (Cornell box).
+            counts = (len(v), len(vt), len(vn))
+            corners = [[absolute(t, n) for t, n in zip((c.split("/") + ["", ""])[:3], counts)] for c in s[1:]]
             faces.setdefault(material, []).append(corners)
     names = ["POSITION"] + (["TEXCOORD_0"] if vt else []) + (["NORMAL"] if vn else [])
 
-    def index(text, n):
-        i = int(text)
-        return i - 1 if i > 0 else n + i
-
     def key(c):
-        out = [tuple(f32(v[index(c[0], len(v))]).tolist())]
+        out = [tuple(f32(v[c[0]]).tolist())]
         if vt:
-            u, w = f32(vt[index(c[1], len(vt))])
+            u, w = f32(vt[c[1]])
             out.append((float(u), float(np.float32(1.0) - w)))
         if vn:
-            out.append(tuple(f32(vn[index(c[2], len(vn))]).tolist()))
+            out.append(tuple(f32(vn[c[2]]).tolist()))
         return tuple(out)
 
     parts = []
@@ -121,25 +129,31 @@ def main():
             sys.exit(1)
         prims += logical
     failures = []
-    if len(prims) != len(parts):
-        failures.append(f"{len(parts)} materials in the source, {len(prims)} primitives written")
-    by_material = {}
+    # An OBJ's objects (o) may each keep their own primitive: a material's triangles are
+    # those of every primitive that names it.
+    by_material = collections.defaultdict(list)
     for desc, p, tris in prims:
         mat = b.g.materials[p.material].name if p.material is not None else None
-        by_material[mat] = (desc, p, tris)
+        by_material[mat].append((desc, p, tris))
+    if len(by_material) != len(parts):
+        failures.append(f"{len(parts)} materials in the source, {len(by_material)} written")
     for name, names, want in parts:
-        got = by_material.get(name) if name is not None else (prims[0] if len(prims) == 1 else None)
-        if got is None:
+        got = by_material.get(name) if name is not None else (prims if len(by_material) == 1 else None)
+        if not got:
             failures.append(f"no primitive with material {name}")
             continue
-        desc, p, tris = got
-        names_out, values = gc.attribute_table(b, p)
-        missing = [n for n in names if n not in names_out]
-        if missing:
-            failures.append(f"material {name}: attributes {missing} lost (written: {names_out})")
+        have = collections.Counter()
+        lost = []
+        for desc, p, tris in got:
+            names_out, values = gc.attribute_table(b, p)
+            lost += [n for n in names if n not in names_out]
+            if not lost:
+                have.update(gc.canonical([tuple(tuple(f32(values[n][v]).tolist()) for n in names) for v in t])
+                            for t in tris)
+        if lost:
+            failures.append(f"material {name}: attributes {sorted(set(lost))} lost")
             continue
-        have = collections.Counter(
-            gc.canonical([tuple(tuple(f32(values[n][v]).tolist()) for n in names) for v in t]) for t in tris)
+        desc = got[0][0] if len(got) == 1 else f"{len(got)} primitives"
         same = have == want
         print(f"material {name}: {sum(want.values())} triangles, attributes {names}, {desc}: "
               f"{'same' if same else 'DIFFERENT'}")
