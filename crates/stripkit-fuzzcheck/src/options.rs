@@ -9,6 +9,10 @@
 //! `MAX_CACHE_SIZE`, `MAX_TUNNEL_CUTS`, the read budgets), so this target checks those
 //! bounds against an exact count in `u128`: accepted exactly when within the limit,
 //! and never a panic or an overflow.
+//!
+//! `check` is one match over the option families, about 170 lines long: each arm is a
+//! few lines reading its values and asking the library, and splitting them apart would
+//! scatter the table of what byte 0 means.
 
 use stripkit::gen::{self, MAX_ICOSPHERE_LEVEL, MAX_INDICES};
 use stripkit::io::{Format, ReadOptions};
