@@ -206,13 +206,8 @@ fn check(src: &Source, out: &Mesh, name: &str, expect: Expect) -> String {
     }
 }
 
-/// Runs one CLI path, reads its output and returns the row. A cell lost where the
-/// command read a glTF file through the mesh reader (`io::read`, which decodes POSITION
-/// only; the scene reader is the glTF-to-glTF path's) is marked as that known loss.
+/// Runs one CLI path, reads its output and returns the row.
 fn row(label: &str, args: &[&str], out: &Path, src: &Source, kinds: &[&str], expect: Expect) -> (String, Vec<String>) {
-    // Every file made from the glb source has `glb` in its name (model_glb.sets, ...).
-    let mesh_reader = args.iter().any(|a| a.contains("glb"))
-        && !(args[0] == "strip" && (out.extension().unwrap() == "glb" || out.extension().unwrap() == "gltf"));
     let _ = std::fs::remove_file(out);
     let mut all: Vec<&str> = args.to_vec();
     all.extend(["-o", out.to_str().unwrap()]);
@@ -222,10 +217,7 @@ fn row(label: &str, args: &[&str], out: &Path, src: &Source, kinds: &[&str], exp
         return (label.into(), vec![format!("FAILED ({why})")]);
     }
     let mesh = read_back(out);
-    let cell = |k: &&str| match check(src, &mesh, k, expect) {
-        c if c == "LOST" && mesh_reader => "LOST (glTF mesh reader)".to_string(),
-        c => c,
-    };
+    let cell = |k: &&str| check(src, &mesh, k, expect);
     let cells = KINDS.iter().map(|k| if kinds.contains(k) { cell(k) } else { "-".into() }).collect();
     (label.into(), cells)
 }
@@ -338,11 +330,10 @@ fn every_path_keeps_every_attribute_kind() {
     }
     let bad: Vec<_> = rows
         .iter()
-        .filter(|(_, cells)| cells.iter().any(|c| c == "LOST" || c.starts_with("WRONG") || c.starts_with("FAILED")))
+        .filter(|(_, cells)| cells.iter().any(|c| c.starts_with("LOST") || c.contains("WRONG") || c.starts_with("FAILED")))
         .collect();
     assert!(bad.is_empty(), "{bad:#?}");
-    let known = rows.iter().filter(|(_, cells)| cells.iter().any(|c| c.starts_with("LOST"))).count();
-    println!("{} paths, {known} lose attributes only through the glTF mesh reader", rows.len());
+    println!("{} paths, none loses an attribute", rows.len());
 }
 
 /// simplify (with `--sequence` and the library's replay), lod build + extract at two
@@ -393,7 +384,6 @@ fn replay_row(input: &Path, seq: &Path, simplified: &Path, src: &Source) -> (Str
             let same = check(&cli, &replayed, k, Expect::Same);
             match same.starts_with("kept") {
                 true => check(src, &replayed, k, Expect::Survivors),
-                false if same == "LOST" && input.extension().unwrap() == "glb" => "LOST (glTF mesh reader)".into(),
                 false => format!("{same} vs simplify -o"),
             }
         })

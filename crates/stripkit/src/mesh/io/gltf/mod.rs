@@ -11,7 +11,10 @@
 //! which holds the dequantizing scale and offset in the files gltfpack writes).
 //! Buffer views compressed with `EXT_meshopt_compression` are decoded first.
 //! Primitives that share a POSITION accessor share vertices, so vertex
-//! ids survive a write and read. TRIANGLES (mode 4) give one face per triangle;
+//! ids survive a write and read. The other vertex attributes come with them (each run
+//! of vertices takes those of the first primitive that names its POSITION); an
+//! attribute is kept where every run has one of its name alike (scalar type,
+//! components, normalization), since a mesh holds one value per vertex. TRIANGLES (mode 4) give one face per triangle;
 //! TRIANGLE_STRIP (5) and TRIANGLE_FAN (6) are turned into triangles with the
 //! winding the modes define, degenerate ones skipped; points and lines (0 to 3) only
 //! contribute their vertices. Primitives without indices use their vertices in order.
@@ -22,7 +25,8 @@
 //! read the same bytes any number of times.
 //!
 //! Write (`write.rs`, the plain form; a scene and a mesh with attributes or groups go
-//! through [`Scene`](scene::Scene), which the library's glTF output uses for every mesh it can): one buffer with the positions (VEC3 float, with min / max),
+//! through [`Scene`](scene::Scene), which the library's glTF output uses for every
+//! mesh it can): one buffer with the positions (VEC3 float, with min / max),
 //! every attribute (as `from_mesh` writes them: glTF semantics where the shape fits,
 //! `_NAME` otherwise) and the indices
 //! (u16 when there are fewer than 65535 vertices, else u32); without strips one
@@ -33,7 +37,7 @@
 use super::common::{close_face, push_fan_triangles, push_strip_triangles, Src};
 use super::ReadOptions;
 use crate::error::{Error, Result};
-use crate::mesh::Mesh;
+use crate::mesh::{Attribute, Mesh};
 use serde_json::Value;
 use std::collections::{HashMap, HashSet};
 use std::io::Read;
@@ -311,6 +315,9 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
     let mut mesh = Mesh::new();
     // POSITION accessor -> (first vertex id, vertex count).
     let mut vertex_base: HashMap<usize, (u32, usize)> = HashMap::new();
+    // Per run of vertices (one per POSITION accessor, in order), the other attributes
+    // of the primitive that brought it: kept where every run has them alike.
+    let mut runs: Vec<Vec<Attribute>> = Vec::new();
     let mut indices: Vec<u32> = Vec::new();
     // Primitives may reuse accessors, so a small file could describe a huge mesh:
     // every accessor is charged to the budget before it is decoded (see
@@ -352,6 +359,7 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
                         return Err(src.err(place(), "more than 4294967295 vertices in all"));
                     }
                     vertex_base.insert(pos, (base as u32, count));
+                    runs.push(primitive::read_attributes(&doc, prim, count, &place, &mut budget)?);
                     (base as u32, count)
                 }
             };
@@ -365,6 +373,7 @@ fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Re
             push_primitive_faces(src, &place, &mut mesh, mode, &indices)?;
         }
     }
+    mesh.attributes = primitive::join_attributes(runs);
     Ok(mesh)
 }
 

@@ -142,6 +142,60 @@ fn check_target_counts(doc: &Doc, targets: &[Value], count: usize, place: &dyn F
     Ok(())
 }
 
+/// The vertex attributes of a primitive other than POSITION, each checked to hold
+/// `count` values and charged to `budget` before it is decoded.
+pub(super) fn read_attributes(
+    doc: &Doc,
+    prim: &Value,
+    count: usize,
+    place: &dyn Fn() -> String,
+    budget: &mut Budget,
+) -> Result<Vec<Attribute>> {
+    let src = doc.src;
+    let Some(Value::Object(attributes)) = prim.get("attributes") else {
+        return Err(src.err(place(), "'attributes' must be an object"));
+    };
+    let mut out = Vec::new();
+    for (name, acc) in attributes.iter().filter(|(name, _)| *name != "POSITION") {
+        let acc = acc.as_u64().ok_or_else(|| src.err(place(), format!("{name} must be an accessor index")))? as usize;
+        let mut charge =
+            |bytes: usize| budget.charge(src, &place(), bytes as u64, || format!("accessors[{acc}]: attribute {name}"));
+        let (a, data) = doc.read_packed(acc, &mut charge)?;
+        if a.count != count {
+            return Err(src.err(
+                place(),
+                format!("attribute {name} (accessors[{acc}]) has {} values but POSITION has {count}", a.count),
+            ));
+        }
+        let normalized = doc.accessors[acc].get("normalized").and_then(Value::as_bool).unwrap_or(false);
+        let (scalar, components) = (scalar_of(a.component), a.components as u8);
+        out.push(Attribute { name: name.clone(), scalar, components, normalized, data });
+    }
+    Ok(out)
+}
+
+/// The attributes of a whole mesh from those of its runs of vertices (in vertex
+/// order): an attribute is kept where every run has one of its name with the same
+/// scalar type, components and normalization (their bytes joined), and left out
+/// otherwise, as a mesh holds one value per vertex.
+pub(super) fn join_attributes(runs: Vec<Vec<Attribute>>) -> Vec<Attribute> {
+    let mut runs = runs.into_iter();
+    let Some(first) = runs.next() else { return Vec::new() };
+    let mut joined: Vec<Option<Attribute>> = first.into_iter().map(Some).collect();
+    for run in runs {
+        for slot in &mut joined {
+            let Some(a) = slot else { continue };
+            match run.iter().find(|b| b.name == a.name) {
+                Some(b) if b.scalar == a.scalar && b.components == a.components && b.normalized == a.normalized => {
+                    a.data.extend_from_slice(&b.data);
+                }
+                _ => *slot = None,
+            }
+        }
+    }
+    joined.into_iter().flatten().collect()
+}
+
 /// Decodes primitive `p` of mesh `m`; `None` for points and lines.
 pub(super) fn decode_primitive(
     doc: &Doc,
@@ -182,26 +236,7 @@ pub(super) fn decode_primitive(
     if count > u32::MAX as usize - 1 {
         return Err(src.err(place(), "more than 4294967294 vertices"));
     }
-    for (name, acc) in attributes.iter().filter(|(name, _)| *name != "POSITION") {
-        let acc = acc.as_u64().ok_or_else(|| src.err(place(), format!("{name} must be an accessor index")))? as usize;
-        let mut charge =
-            |bytes: usize| budget.charge(src, &place(), bytes as u64, || format!("accessors[{acc}]: attribute {name}"));
-        let (a, data) = doc.read_packed(acc, &mut charge)?;
-        if a.count != count {
-            return Err(src.err(
-                place(),
-                format!("attribute {name} (accessors[{acc}]) has {} values but POSITION has {count}", a.count),
-            ));
-        }
-        let normalized = doc.accessors[acc].get("normalized").and_then(Value::as_bool).unwrap_or(false);
-        mesh.attributes.push(Attribute {
-            name: name.clone(),
-            scalar: scalar_of(a.component),
-            components: a.components as u8,
-            normalized,
-            data,
-        });
-    }
+    mesh.attributes = read_attributes(doc, prim, count, &place, budget)?;
     let mut indices = Vec::new();
     super::read_primitive_indices(src, doc, prim, &place, budget, mode, (pos, count), &mut indices)?;
     super::push_primitive_faces(src, &place, &mut mesh, mode, &indices)?;
@@ -233,4 +268,34 @@ pub(super) fn decode_primitive(
         drawn: Vec::new(),
         order: None,
     }))
+}
+
+#[cfg(test)]
+mod join_tests {
+    use super::join_attributes;
+    use crate::mesh::{Attribute, Scalar};
+
+    fn attr(name: &str, scalar: Scalar, components: u8, normalized: bool, data: &[u8]) -> Attribute {
+        Attribute { name: name.into(), scalar, components, normalized, data: data.to_vec() }
+    }
+
+    #[test]
+    fn attributes_every_run_has_alike_are_joined_and_the_rest_left_out() {
+        let runs = vec![
+            vec![
+                attr("COLOR_0", Scalar::U8, 4, true, &[1, 2, 3, 4]),
+                attr("TEXCOORD_0", Scalar::U16, 2, true, &[0; 4]),
+                attr("_ONLY_HERE", Scalar::U8, 1, false, &[9]),
+            ],
+            vec![
+                attr("TEXCOORD_0", Scalar::F32, 2, false, &[0; 8]),
+                attr("COLOR_0", Scalar::U8, 4, true, &[5, 6, 7, 8, 9, 10, 11, 12]),
+            ],
+        ];
+        let joined = join_attributes(runs);
+        assert_eq!(joined.len(), 1, "{joined:?}");
+        assert_eq!(joined[0].name, "COLOR_0");
+        assert_eq!(joined[0].data, vec![1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]);
+        assert!(join_attributes(Vec::new()).is_empty());
+    }
 }
