@@ -98,12 +98,16 @@ fn strip_keeps_the_scene_and_writes_strips() {
     assert!(p["meshes"][0].get("extensions").is_none());
     assert_eq!(p["meshes"][0]["primitives"][1]["mode"], 5);
 
-    // Vertices renumbered by default: each half keeps the 9 vertices it uses, in first use.
+    // The two halves share one 15-vertex array: it is kept as read, even with the
+    // default first-use order (a 9-vertex copy each would leave the shared 15 behind,
+    // unused: 33 vertices in the file for 15).
     let n = |j: &Value, k: usize| {
         let a = j["meshes"][0]["primitives"][k]["attributes"]["POSITION"].as_u64().unwrap() as usize;
         j["accessors"][a]["count"].as_u64().unwrap()
     };
-    assert_eq!((n(&j, 0), n(&j, 1)), (9, 9));
+    assert_eq!((n(&j, 0), n(&j, 1)), (15, 15));
+    assert_eq!(j["accessors"].as_array().unwrap().len(), asset()["accessors"].as_array().unwrap().len() + 2,
+        "the shared POSITION accessor and the two index accessors reused, plus two restart lists");
     let kept = tmp("gltf-scene", "kept.glb");
     let run = stripkit(&["strip", input.to_str().unwrap(), "-o", kept.to_str().unwrap(), "--vertex-order", "input"]);
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));

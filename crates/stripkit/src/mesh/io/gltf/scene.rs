@@ -260,13 +260,26 @@ impl Scene {
         array_len(&self.json, "meshes", "primitives") - self.primitives.len()
     }
 
-    /// For each triangle primitive, whether its vertex accessors can be read back
-    /// (none sparse), which renumbering its vertices needs.
+    /// For each triangle primitive, whether its vertices may be renumbered: its vertex
+    /// accessors can be read back (none sparse) and no other triangle primitive names
+    /// them. A vertex array several primitives share is kept as it is: each would get
+    /// a first-use copy of its own and the shared original would stay behind, unused
+    /// (four primitives over one 508-vertex array grew a file from 25,180 to 41,456
+    /// bytes).
     pub(crate) fn renumberable(&self) -> Vec<bool> {
         let doc = self.doc();
+        let mut users: HashMap<usize, usize> = HashMap::new();
+        for sp in &self.primitives {
+            for (_, _, a) in vertex_accessors(&self.json, sp) {
+                *users.entry(a).or_default() += 1;
+            }
+        }
         self.primitives
             .iter()
-            .map(|sp| vertex_accessors(&self.json, sp).iter().all(|(_, _, a)| doc.read_packed(*a, &mut |_| Ok(())).is_ok()))
+            .map(|sp| {
+                let accessors = vertex_accessors(&self.json, sp);
+                accessors.iter().all(|(_, _, a)| users[a] == 1 && doc.read_packed(*a, &mut |_| Ok(())).is_ok())
+            })
             .collect()
     }
 
