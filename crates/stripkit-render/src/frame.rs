@@ -48,43 +48,6 @@ fn single(v: DVec3) -> [f32; 3] {
     v.to_array().map(|x| x as f32)
 }
 
-/// Extents the GPU's single-precision pipeline draws as they are: from 2^-16 to 2^16.
-const PLAIN_EXTENT: (f64, f64) = (1.0 / 65536.0, 65536.0);
-
-/// The power of two that brings the points' largest extent near 1 when it lies
-/// outside 2^-16 ..= 2^16, else 1. Multiplying positions by a power of two is exact
-/// (no rounding), and the picture does not depend on the model's scale, so drawing
-/// `points x unit_scale(points)` gives the same picture at any scale: without it a
-/// model 1e25 across overflows single precision in the projection (squares of 1e25)
-/// and one 1e-18 across falls under the framing's smallest extents, and both come
-/// out blank. Points that are not finite are skipped; 1 for no finite point.
-pub fn unit_scale(points: &[[f32; 3]]) -> f32 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points.iter().filter(|p| p.iter().all(|x| x.is_finite())) {
-        for d in 0..3 {
-            lo[d] = lo[d].min(p[d] as f64);
-            hi[d] = hi[d].max(p[d] as f64);
-        }
-    }
-    let extent = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
-    if !extent.is_finite() || extent == 0.0 || (PLAIN_EXTENT.0..=PLAIN_EXTENT.1).contains(&extent) {
-        return 1.0;
-    }
-    // 2^-k with 2^k <= extent < 2^(k+1); f32 spans 2^-149 ..= 2^127, so clamp k.
-    let k = extent.log2().floor().clamp(-126.0, 126.0) as i32;
-    2f32.powi(-k)
-}
-
-/// `points` multiplied by `scale` (see [`unit_scale`]), in place.
-pub fn scale_points(points: &mut [[f32; 3]], scale: f32) {
-    if scale != 1.0 {
-        for p in points {
-            *p = p.map(|x| x * scale);
-        }
-    }
-}
-
 impl Framing {
     /// A camera looking from `view` (the direction from the model towards the eye),
     /// `up` pointing up in the picture, `fov_y_degrees` the vertical field of view,
@@ -231,26 +194,6 @@ mod tests {
         assert_eq!(one.camera.eye, three.camera.eye, "the camera stays");
         let (a, b) = (project(&one.camera, 1.0, [0.2, 0.1, 0.0]), project(&three.camera, 1.0, [0.2, 0.1, 0.0]));
         assert!((b[0] - 3.0 * a[0]).abs() < 1e-4 && (b[1] - 3.0 * a[1]).abs() < 1e-4, "{a:?} {b:?}");
-    }
-
-    #[test]
-    fn unit_scale_is_a_power_of_two_outside_the_plain_extents() {
-        let cube = |s: f32| [[0.0, 0.0, 0.0], [s, s, s], [f32::NAN, 0.0, 0.0]];
-        for s in [1.0, 0.001, 1000.0, 60000.0] {
-            assert_eq!(unit_scale(&cube(s)), 1.0, "{s}");
-        }
-        for s in [1e18f32, 1e-18, 1e30, 1e-30, f32::MAX, 1e-44] {
-            let k = unit_scale(&cube(s));
-            assert_eq!(k.log2().fract(), 0.0, "a power of two: {k}");
-            let e = s * k;
-            assert!((1.0..2.0).contains(&e) || s < 1e-37 || s == f32::MAX, "{s} -> {e}");
-            assert!(e.is_finite() && e > 0.0);
-        }
-        assert_eq!(unit_scale(&[]), 1.0);
-        let mut p = cube(1e20);
-        let k = unit_scale(&p);
-        scale_points(&mut p, k);
-        assert!(p[1][0] >= 1.0 && p[1][0] < 2.0);
     }
 
     #[test]

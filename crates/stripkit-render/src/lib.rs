@@ -45,7 +45,7 @@ mod shaders;
 pub mod wire;
 
 pub use camera::Camera;
-pub use frame::{scale_points, unit_scale, FrameError, Framing};
+pub use frame::{FrameError, Framing};
 pub use image::Image;
 pub use morph::morph_positions;
 pub use normals::vertex_normals;

@@ -110,4 +110,5 @@ pub use stripify::greedy::{GreedyOptions, Heuristic};
 pub use stripify::quad::{Policy, QuadOptions};
 pub use stripify::single::{MatchingMode, SingleOptions, SingleReport, Weights, EXACT_MATCHING_NODES};
 pub use topology::{validate, MeshFacts};
+pub use vec3::unit_scale;
 pub use vertex_order::first_use_order;

@@ -51,7 +51,7 @@ const PLAIN_EXTENT: (f64, f64) = (1.0 / 65536.0, 65536.0);
 /// (into 1..2) when it lies outside 2^-16 ..= 2^16, else 1 (and 1 for no extent).
 /// Multiplying by a power of two rounds nothing (short of f32's subnormals), so work
 /// done on scaled positions and scaled back is the work done at any scale.
-pub(crate) fn unit_scale(positions: &[[f32; 3]]) -> f64 {
+pub fn unit_scale(positions: &[[f32; 3]]) -> f64 {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in positions.iter().filter(|p| p.iter().all(|x| x.is_finite())) {
@@ -66,4 +66,27 @@ pub(crate) fn unit_scale(positions: &[[f32; 3]]) -> f64 {
     }
     // f32 spans 2^-149 ..= 2^127: the scale and its inverse stay normal f32 numbers.
     2f64.powi(-(extent.log2().floor().clamp(-126.0, 126.0) as i32))
+}
+
+#[cfg(test)]
+mod unit_scale_tests {
+    use super::unit_scale;
+
+    #[test]
+    fn unit_scale_is_a_power_of_two_outside_the_plain_extents() {
+        let cube = |s: f32| [[0.0, 0.0, 0.0], [s, s, s], [f32::NAN, 0.0, 0.0]];
+        for s in [1.0, 0.001, 1000.0, 60000.0] {
+            assert_eq!(unit_scale(&cube(s)), 1.0, "{s}");
+        }
+        for s in [1e18f32, 1e-18, 1e30, 1e-30, f32::MAX, 1e-44] {
+            let k = unit_scale(&cube(s));
+            assert_eq!(k.log2().fract(), 0.0, "a power of two: {k}");
+            // The scale and its inverse are normal single-precision numbers.
+            assert!((k as f32).is_normal() && (1.0 / k as f32).is_normal(), "{k}");
+            let e = s * k as f32;
+            assert!((1.0..2.0).contains(&e) || s < 1e-37 || s == f32::MAX, "{s} -> {e}");
+            assert!(e.is_finite() && e > 0.0);
+        }
+        assert_eq!(unit_scale(&[]), 1.0);
+    }
 }

@@ -238,9 +238,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(other) = &target {
         points.extend(other.used_positions());
     }
-    // Any finite scale is drawn in a frame near unit size (a power of two: exact).
-    let scale = stripkit_render::unit_scale(&points);
-    stripkit_render::scale_points(&mut points, scale);
+    // Any finite scale is drawn in a frame near unit size (a power of two: exact), so
+    // single precision neither overflows in the projection nor falls under the
+    // framing's smallest extents.
+    let scale = stripkit::unit_scale(&points) as f32;
+    scale_points(&mut points, scale);
     let framing = Framing::fit(&points, args.view, args.up, args.fov, args.zoom, w as f32 / h as f32).map_err(|e| {
         Error::Invalid(match e {
             FrameError::ZeroView => "--view must not be 0,0,0".into(),
@@ -273,9 +275,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (None, None) => unreachable!("a mesh goes through the door"),
     };
     let (mut positions, mut target_positions) = (positions, target_positions);
-    stripkit_render::scale_points(&mut positions, scale);
+    scale_points(&mut positions, scale);
     if let Some(other) = &mut target_positions {
-        stripkit_render::scale_points(other, scale);
+        scale_points(other, scale);
     }
     let blended = target_positions.as_ref().map(|other| stripkit_render::morph_positions(&positions, other, t));
     let drawn = blended.as_deref().unwrap_or(&positions);
@@ -333,4 +335,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         t: target.is_some().then_some(t),
     };
     super::print_report(args.json, &report, |out, r| report::print_summary(out, r))
+}
+
+/// `points` multiplied by `scale` (a power of two from [`stripkit::unit_scale`]: exact).
+fn scale_points(points: &mut [[f32; 3]], scale: f32) {
+    if scale != 1.0 {
+        for p in points {
+            *p = p.map(|x| x * scale);
+        }
+    }
 }
