@@ -63,68 +63,68 @@ pub struct SceneCliReport<'a> {
 
 /// The text summary of a scene run; `line`: one line for a folder run.
 pub fn print_scene(out: &mut impl Write, r: &SceneCliReport, line: bool) -> std::io::Result<()> {
-        let s = r.scene;
-        if line {
-            return writeln!(
-                out,
-                "{} -> {}: {} triangles, {} primitives, {} indices stitched, {} with restart, {:.1} ms",
-                r.input.display(),
-                r.output.display(),
-                s.triangles,
-                s.primitives.len(),
-                s.indices_stitched,
-                s.indices_drawn_restart,
-                s.total_ms
-            );
-        }
-        writeln!(
+    let s = r.scene;
+    if line {
+        return writeln!(
             out,
-            "{} -> {} (scene: {} triangle primitives stripped, {} left as read; {})",
+            "{} -> {}: {} triangles, {} primitives, {} indices stitched, {} with restart, {:.1} ms",
             r.input.display(),
             r.output.display(),
+            s.triangles,
             s.primitives.len(),
-            s.skipped,
-            if r.join == Join::Restart {
-                "EXT_mesh_primitive_restart with stitched fallback"
-            } else {
-                "stitched strips"
-            }
-        )?;
-        writeln!(out, "verified: {} triangles, 0 lost, 0 added, 0 flipped; written file read back and checked", s.triangles)?;
-        writeln!(out, "  welded vertices      {:>10}", s.welded)?;
-        if s.kept_as_read > 0 {
-            writeln!(
-                out,
-                "  kept as read         {:>10} (their strips would take more index bytes than their own indices)",
-                s.kept_as_read
-            )?;
-        }
-        writeln!(out, "  indices read         {:>10}", s.indices_read)?;
-        writeln!(out, "  indices stitched     {:>10}", s.indices_stitched)?;
+            s.indices_stitched,
+            s.indices_drawn_restart,
+            s.total_ms
+        );
+    }
+    writeln!(
+        out,
+        "{} -> {} (scene: {} triangle primitives stripped, {} left as read; {})",
+        r.input.display(),
+        r.output.display(),
+        s.primitives.len(),
+        s.skipped,
         if r.join == Join::Restart {
-            writeln!(out, "  indices restart      {:>10}", s.indices_drawn_restart)?;
+            "EXT_mesh_primitive_restart with stitched fallback"
+        } else {
+            "stitched strips"
         }
-        const SHOWN: usize = 20;
-        if s.primitives.len() > SHOWN {
-            writeln!(out, "  (the first {SHOWN} of {} primitives; --json lists all)", s.primitives.len())?;
-        }
-        for p in s.primitives.iter().take(SHOWN) {
-            writeln!(
-                out,
-                "  meshes[{}].primitives[{}]: {} triangles, {} strips, {} -> {} indices{} ({}{}{})",
-                p.mesh,
-                p.primitive,
-                p.figures.triangles,
-                p.figures.strips,
-                p.indices_read,
-                p.indices_stitched,
-                p.indices_restart.map(|n| format!(" (restart {n})")).unwrap_or_default(),
-                p.algorithm,
-                if p.welded > 0 { format!(", {} welded", p.welded) } else { String::new() },
-                if p.kept_as_read { ", kept as read: strips were larger" } else { "" }
-            )?;
-        }
-        Ok(())
+    )?;
+    writeln!(out, "verified: {} triangles, 0 lost, 0 added, 0 flipped; written file read back and checked", s.triangles)?;
+    writeln!(out, "  welded vertices      {:>10}", s.welded)?;
+    if s.kept_as_read > 0 {
+        writeln!(
+            out,
+            "  kept as read         {:>10} (their strips would take more index bytes than their own indices)",
+            s.kept_as_read
+        )?;
+    }
+    writeln!(out, "  indices read         {:>10}", s.indices_read)?;
+    writeln!(out, "  indices stitched     {:>10}", s.indices_stitched)?;
+    if r.join == Join::Restart {
+        writeln!(out, "  indices restart      {:>10}", s.indices_drawn_restart)?;
+    }
+    const SHOWN: usize = 20;
+    if s.primitives.len() > SHOWN {
+        writeln!(out, "  (the first {SHOWN} of {} primitives; --json lists all)", s.primitives.len())?;
+    }
+    for p in s.primitives.iter().take(SHOWN) {
+        writeln!(
+            out,
+            "  meshes[{}].primitives[{}]: {} triangles, {} strips, {} -> {} indices{} ({}{}{})",
+            p.mesh,
+            p.primitive,
+            p.figures.triangles,
+            p.figures.strips,
+            p.indices_read,
+            p.indices_stitched,
+            p.indices_restart.map(|n| format!(" (restart {n})")).unwrap_or_default(),
+            p.algorithm,
+            if p.welded > 0 { format!(", {} welded", p.welded) } else { String::new() },
+            if p.kept_as_read { ", kept as read: strips were larger" } else { "" }
+        )?;
+    }
+    Ok(())
 }
 
 /// A folder run's line for one file.
