@@ -14,38 +14,9 @@ use std::path::{Path, PathBuf};
 use stripkit::io::{self, Format, ReadOptions};
 use stripkit::scene::{Scene, SceneOptions};
 use stripkit::{Error, StripOptions};
-use stripkit_testkit::Lcg;
+use stripkit_testkit::{glb, unglb, Lcg};
 
-fn glb(json: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut text = serde_json::to_vec(json).unwrap();
-    while text.len() % 4 != 0 {
-        text.push(b' ');
-    }
-    let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
-    let mut out = b"glTF".to_vec();
-    out.extend(2u32.to_le_bytes());
-    out.extend(((28 + text.len() + bin.len()) as u32).to_le_bytes());
-    out.extend((text.len() as u32).to_le_bytes());
-    out.extend(0x4E4F_534Au32.to_le_bytes());
-    out.extend(&text);
-    out.extend((bin.len() as u32).to_le_bytes());
-    out.extend(0x004E_4942u32.to_le_bytes());
-    out.extend(&bin);
-    out
-}
 
-fn unglb(data: &[u8]) -> (Value, Vec<u8>) {
-    let u = |o: usize| u32::from_le_bytes(data[o..o + 4].try_into().unwrap()) as usize;
-    assert_eq!(&data[..4], b"glTF");
-    let json_len = u(12);
-    let json: Value = serde_json::from_slice(&data[20..20 + json_len]).unwrap();
-    let bin_at = 20 + json_len;
-    let bin = if bin_at < data.len() { data[bin_at + 8..bin_at + 8 + u(bin_at)].to_vec() } else { Vec::new() };
-    (json, bin)
-}
 
 fn out_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("stripkit-gltf-compressed-{}-{name}", std::process::id()));

@@ -14,20 +14,7 @@ use stripkit::{Error, StripOptions};
 fn glb(mut json: Value, bin: &[u8]) -> Vec<u8> {
     json["asset"] = json!({"version": "2.0"});
     json["buffers"] = json!([{"byteLength": bin.len()}]);
-    let mut j = serde_json::to_vec(&json).unwrap();
-    j.resize(j.len().next_multiple_of(4), b' ');
-    let mut b = bin.to_vec();
-    b.resize(b.len().next_multiple_of(4), 0);
-    let mut out = b"glTF".to_vec();
-    out.extend(2u32.to_le_bytes());
-    out.extend(((28 + j.len() + b.len()) as u32).to_le_bytes());
-    out.extend((j.len() as u32).to_le_bytes());
-    out.extend(0x4E4F_534Au32.to_le_bytes());
-    out.extend(&j);
-    out.extend((b.len() as u32).to_le_bytes());
-    out.extend(0x004E_4942u32.to_le_bytes());
-    out.extend(&b);
-    out
+    stripkit_testkit::glb(&json, bin)
 }
 
 /// A quad of 4 positions (2 triangles, indexed), with `extra` merged into its

@@ -13,20 +13,7 @@ use stripkit::{Error, Mesh};
 fn glb(mut json: serde_json::Value, bin: &[u8]) -> Vec<u8> {
     json["asset"] = serde_json::json!({"version": "2.0"});
     json["buffers"] = serde_json::json!([{"byteLength": bin.len()}]);
-    let mut j = serde_json::to_vec(&json).unwrap();
-    j.resize(j.len().div_ceil(4) * 4, b' ');
-    let mut b = bin.to_vec();
-    b.resize(b.len().div_ceil(4) * 4, 0);
-    let mut out = b"glTF".to_vec();
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&((12 + 8 + j.len() + 8 + b.len()) as u32).to_le_bytes());
-    out.extend_from_slice(&(j.len() as u32).to_le_bytes());
-    out.extend_from_slice(&0x4E4F_534Au32.to_le_bytes());
-    out.extend_from_slice(&j);
-    out.extend_from_slice(&(b.len() as u32).to_le_bytes());
-    out.extend_from_slice(&0x004E_4942u32.to_le_bytes());
-    out.extend_from_slice(&b);
-    out
+    stripkit_testkit::glb(&json, bin)
 }
 
 /// `accessors` POSITION accessors, all over one view of `vertices` zero positions,

@@ -13,6 +13,7 @@ use serde_json::{json, Value};
 use std::path::Path;
 use stripkit::io::{Format, ReadOptions};
 use stripkit::scene::{Scene, SceneOptions};
+use stripkit_testkit::{glb, unglb};
 use stripkit::{gen, StripOptions};
 
 /// Buffer, views and accessors of an asset under construction.
@@ -161,39 +162,6 @@ fn asset() -> (Value, Vec<u8>) {
         "buffers": [{"byteLength": b.bin.len()}],
     });
     (json, b.bin)
-}
-
-fn glb(json: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut text = serde_json::to_vec(json).unwrap();
-    while text.len() % 4 != 0 {
-        text.push(b' ');
-    }
-    let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
-    let mut out = b"glTF".to_vec();
-    out.extend(2u32.to_le_bytes());
-    out.extend(((28 + text.len() + bin.len()) as u32).to_le_bytes());
-    out.extend((text.len() as u32).to_le_bytes());
-    out.extend(0x4E4F_534Au32.to_le_bytes());
-    out.extend(&text);
-    out.extend((bin.len() as u32).to_le_bytes());
-    out.extend(0x004E_4942u32.to_le_bytes());
-    out.extend(&bin);
-    out
-}
-
-/// An independent GLB reader: (JSON, binary chunk).
-fn unglb(data: &[u8]) -> (Value, Vec<u8>) {
-    let u = |o: usize| u32::from_le_bytes(data[o..o + 4].try_into().unwrap()) as usize;
-    assert_eq!(&data[..4], b"glTF");
-    assert_eq!(u(8), data.len());
-    let jl = u(12);
-    let json = serde_json::from_slice(&data[20..20 + jl]).unwrap();
-    let bo = 20 + jl;
-    let bin = if bo < data.len() { data[bo + 8..bo + 8 + u(bo)].to_vec() } else { Vec::new() };
-    (json, bin)
 }
 
 /// The elements of an accessor (no sparse), each as its bytes.

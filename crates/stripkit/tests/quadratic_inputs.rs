@@ -221,8 +221,7 @@ fn glb_output_takes_a_bounded_number_of_attributes_and_other_formats_all() {
     let at = many_attributes(limit);
     let scene = io::Scene::from_mesh(&at).unwrap();
     let glb = scene.to_bytes(io::Format::Glb).unwrap();
-    let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
-    let json: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
+    let (json, _) = stripkit_testkit::unglb(&glb);
     let attributes = json["meshes"][0]["primitives"][0]["attributes"].as_object().unwrap();
     assert_eq!(attributes.len(), limit + 1, "POSITION and every attribute");
     assert!(attributes.contains_key("_P4095"));

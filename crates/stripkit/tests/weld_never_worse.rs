@@ -203,36 +203,11 @@ fn scene_primitives_never_take_more_index_bytes_than_their_source() {
     // A truly unindexed primitive (no `indices`): welded and stripped, the strips
     // smaller than the list of its vertices.
     let glb = Scene::from_mesh(&torus).unwrap().to_bytes(Format::Glb).unwrap();
-    let (mut json, bin) = split_glb(&glb);
+    let (mut json, bin) = stripkit_testkit::unglb(&glb);
     json["meshes"][0]["primitives"][0].as_object_mut().unwrap().remove("indices");
-    let unindexed = Scene::from_bytes(Path::new("unindexed.glb"), Format::Glb, &join_glb(&json, &bin), &ReadOptions::default())
+    let unindexed = Scene::from_bytes(Path::new("unindexed.glb"), Format::Glb, &stripkit_testkit::glb(&json, &bin), &ReadOptions::default())
         .unwrap();
     let report = strip_and_check(unindexed, &dir, "unindexed.glb", &StripOptions::default());
     assert_eq!((report.kept_as_read, report.welded, report.vertices), (0, 6912 - 1152, 1152));
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-fn split_glb(data: &[u8]) -> (Value, Vec<u8>) {
-    let u = |o: usize| u32::from_le_bytes(data[o..o + 4].try_into().unwrap()) as usize;
-    let jl = u(12);
-    let json = serde_json::from_slice(&data[20..20 + jl]).unwrap();
-    let bo = 20 + jl;
-    (json, data[bo + 8..bo + 8 + u(bo)].to_vec())
-}
-
-fn join_glb(json: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut text = serde_json::to_vec(json).unwrap();
-    while text.len() % 4 != 0 {
-        text.push(b' ');
-    }
-    let mut out = b"glTF".to_vec();
-    out.extend(2u32.to_le_bytes());
-    out.extend(((28 + text.len() + bin.len()) as u32).to_le_bytes());
-    out.extend((text.len() as u32).to_le_bytes());
-    out.extend(0x4E4F_534Au32.to_le_bytes());
-    out.extend(&text);
-    out.extend((bin.len() as u32).to_le_bytes());
-    out.extend(0x004E_4942u32.to_le_bytes());
-    out.extend(bin);
-    out
 }
