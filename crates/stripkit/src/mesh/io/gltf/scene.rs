@@ -268,18 +268,14 @@ impl Scene {
     /// bytes).
     pub(crate) fn renumberable(&self) -> Vec<bool> {
         let doc = self.doc();
+        let lists: Vec<_> = self.primitives.iter().map(|sp| vertex_accessors(&self.json, sp)).collect();
         let mut users: HashMap<usize, usize> = HashMap::new();
-        for sp in &self.primitives {
-            for (_, _, a) in vertex_accessors(&self.json, sp) {
-                *users.entry(a).or_default() += 1;
-            }
+        for (_, _, a) in lists.iter().flatten() {
+            *users.entry(*a).or_default() += 1;
         }
-        self.primitives
+        lists
             .iter()
-            .map(|sp| {
-                let accessors = vertex_accessors(&self.json, sp);
-                accessors.iter().all(|(_, _, a)| users[a] == 1 && doc.read_packed(*a, &mut |_| Ok(())).is_ok())
-            })
+            .map(|list| list.iter().all(|(_, _, a)| users[a] == 1 && doc.read_packed(*a, &mut |_| Ok(())).is_ok()))
             .collect()
     }
 
