@@ -117,8 +117,7 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         _ => None,
     };
     if let Some(scene) = scene {
-        // The scene holds the mesh as a glTF document: the mesh goes before the work.
-        drop(mesh);
+        drop(mesh); // the scene holds it as a glTF document
         progress.finish_and_clear();
         for note in scene.notes() {
             eprintln!("note: {}: {note}", args.input.display());
@@ -138,13 +137,7 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         (VertexOrder::FirstUse, OutKind::Mesh(format)) => strips.in_first_use_order(&mesh, *format),
         _ => (mesh, strips),
     };
-    // A PLY or JSON output holds the strips and at most the vertices: the faces go
-    // before the output is encoded and checked (a fifth of the peak on big meshes).
-    if matches!(kind, OutKind::Json | OutKind::Mesh(Format::Ply)) && !strips.changes_mesh() {
-        mesh.face_offsets = vec![0];
-        mesh.face_indices = Vec::new();
-        mesh.face_groups = Vec::new();
-    }
+    drop_unwritten_faces(&mut mesh, &kind, &strips);
 
     progress.set_message(format!("writing {}", args.output.display()));
     let figures = &strips.figures;
@@ -201,6 +194,16 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         Some(_) => report::print_line(out, r),
         None => report::print_summary(out, r),
     })
+}
+
+/// A PLY or JSON output holds the strips and at most the vertices: the faces go
+/// before the output is encoded and checked (a fifth of the peak on big meshes).
+fn drop_unwritten_faces(mesh: &mut stripkit::Mesh, kind: &OutKind, strips: &stripkit::Strips) {
+    if matches!(kind, OutKind::Json | OutKind::Mesh(Format::Ply)) && !strips.changes_mesh() {
+        mesh.face_offsets = vec![0];
+        mesh.face_indices = Vec::new();
+        mesh.face_groups = Vec::new();
+    }
 }
 
 /// glTF in and glTF out: the whole scene goes through [`stripkit::io::Scene`].
