@@ -143,3 +143,43 @@ fn check_len<T>(count: usize, what: &str) -> Outcome<()> {
 pub(crate) fn count(n: usize) -> Outcome<i64> {
     i64::try_from(n).map_err(|_| Failure::new(Status::Invalid, format!("{n} does not fit int64_t")))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::ffi::CStr;
+
+    fn last_error() -> String {
+        unsafe { CStr::from_ptr(stripkit_last_error()) }.to_str().unwrap().to_string()
+    }
+
+    #[test]
+    fn a_panic_becomes_a_status_and_a_message() {
+        let status: i64 = guard("stripkit_test", || -> Outcome<i64> { panic!("boom at 3") });
+        assert_eq!(status, Status::Panic as i64);
+        assert_eq!(last_error(), "stripkit_test: internal error (panic: boom at 3); please report it");
+        // The next successful call clears the message.
+        assert_eq!(guard("stripkit_test", || Ok(5i64)), 5);
+        assert_eq!(last_error(), "");
+    }
+
+    #[test]
+    fn a_library_error_keeps_its_kind() {
+        let status: i32 = guard("stripkit_test", || Err(Error::Invalid("no triangles".into()).into()));
+        assert_eq!(status, Status::Invalid as i32);
+        assert_eq!(last_error(), "stripkit_test: no triangles");
+    }
+
+    #[test]
+    fn nulls_and_impossible_lengths_are_refused() {
+        let status = unsafe { input::<u32>(std::ptr::null(), 3, "indices") }.err().unwrap();
+        assert_eq!((status.status, status.message.as_str()), (Status::NullPointer, "indices is null"));
+        let data = [1u32, 2, 3];
+        let too_long = unsafe { input(data.as_ptr(), usize::MAX / 2, "indices") }.err().unwrap();
+        assert_eq!(too_long.status, Status::Invalid);
+        let mut out = [0u32; 2];
+        let small = unsafe { output(out.as_mut_ptr(), 2, 3, "destination") }.err().unwrap();
+        assert_eq!(small.status, Status::TooSmall);
+        assert_eq!(small.message, "destination holds 2 items but the result has 3");
+    }
+}
