@@ -13,8 +13,10 @@
  * index that is never a vertex id (0xFFFFFFFF, GL_PRIMITIVE_RESTART_FIXED_INDEX, by
  * default); stitched buffers are one strip joined by degenerate triangles.
  *
- * Build: cargo build -p stripkit-c --release (target/release/libstripkit.{so,a});
- * link with -lstripkit (static: also -lpthread -ldl -lm). See docs/c-api.md.
+ * Build: cargo build -p stripkit-c --release (target/release/libstripkit.{so,a}), then
+ * crates/stripkit-c/install.sh PREFIX; link with `pkg-config --libs stripkit` (shared),
+ * `pkg-config --libs stripkit-static` (the archive and the system libraries it needs)
+ * or CMake's find_package(stripkit). See docs/c-api.md.
  * Checked against the Rust side by crates/stripkit-c/tests/header.rs.
  */
 #ifndef STRIPKIT_H
