@@ -54,7 +54,7 @@ fn c_code(text: &str) -> String {
 /// `const unsigned int * x` -> ("const unsigned int*", "x").
 fn c_pair(decl: &str) -> (String, String) {
     let decl = decl.trim().replace(" *", "*").replace("* ", "*");
-    let split = decl.rfind(|c: char| c == '*' || c == ' ').expect("a type and a name");
+    let split = decl.rfind(['*', ' ']).expect("a type and a name");
     let (ty, name) = decl.split_at(split + 1);
     (ty.trim().to_string(), name.trim().to_string())
 }
