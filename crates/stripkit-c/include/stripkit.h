@@ -5,7 +5,9 @@
  * the memory wherever the result's size is known in advance. Every function checks
  * its pointers and sizes and never lets a panic cross into C: it returns a status
  * (functions returning int64_t: a count >= 0, or a negative stripkit_status), and
- * stripkit_last_error() gives the message of the thread's last failure.
+ * stripkit_last_error() gives the message of the thread's last failure. No function
+ * keeps global state: calls on different threads run in parallel, and one stripkit_lod
+ * handle may be read from several threads at once.
  *
  * Index conventions: a strip draws triangle i as (s[i], s[i+1], s[i+2]) for even i and
  * (s[i+1], s[i], s[i+2]) for odd i, so every triangle keeps its winding; a repeated
@@ -80,8 +82,9 @@ typedef struct stripkit_options {
 stripkit_options stripkit_options_default(void);
 
 /*
- * The message of this thread's last failed call ("" after a successful one), naming
- * the function and what was wrong. Valid until the thread's next stripkit call.
+ * The message of this thread's last failed call, naming the function and what was
+ * wrong; every function that returns a status clears it when it succeeds. Valid until
+ * the thread's next stripkit call.
  */
 const char* stripkit_last_error(void);
 
