@@ -104,7 +104,7 @@ pub use pipeline::{
 };
 pub use strip::{
     decode, decode_restart, degenerate_windows, encode_restart, encode_separate, encode_stitched, for_each_triangle,
-    is_degenerate, stitched_len, verify, verify_triangles, StripSet, Verification, DEFAULT_RESTART,
+    is_degenerate, stitched_len, verify, verify_decoded, verify_triangles, StripSet, Verification, DEFAULT_RESTART,
 };
 pub use stripify::greedy::{GreedyOptions, Heuristic};
 pub use stripify::quad::{Policy, QuadOptions};

@@ -117,6 +117,7 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         _ => None,
     };
     if let Some(scene) = scene {
+        drop(mesh); // the scene holds it as a glTF document
         progress.finish_and_clear();
         for note in scene.notes() {
             eprintln!("note: {}: {note}", args.input.display());
@@ -132,10 +133,11 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
     let strips = args.strip.stripify(&mesh, &args.input, |o| args.with_join(o))?;
-    let (mesh, strips) = match (vertex_order, &kind) {
+    let (mut mesh, strips) = match (vertex_order, &kind) {
         (VertexOrder::FirstUse, OutKind::Mesh(format)) => strips.in_first_use_order(&mesh, *format),
         _ => (mesh, strips),
     };
+    drop_unwritten_faces(&mut mesh, &kind, &strips);
 
     progress.set_message(format!("writing {}", args.output.display()));
     let figures = &strips.figures;
@@ -192,6 +194,16 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         Some(_) => report::print_line(out, r),
         None => report::print_summary(out, r),
     })
+}
+
+/// A PLY or JSON output holds the strips and at most the vertices: the faces go
+/// before the output is encoded and checked (a fifth of the peak on big meshes).
+fn drop_unwritten_faces(mesh: &mut stripkit::Mesh, kind: &OutKind, strips: &stripkit::Strips) {
+    if matches!(kind, OutKind::Json | OutKind::Mesh(Format::Ply)) && !strips.changes_mesh() {
+        mesh.face_offsets = vec![0];
+        mesh.face_indices = Vec::new();
+        mesh.face_groups = Vec::new();
+    }
 }
 
 /// glTF in and glTF out: the whole scene goes through [`stripkit::io::Scene`].
