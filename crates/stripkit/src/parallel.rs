@@ -120,11 +120,16 @@ fn in_pool() -> bool {
     rayon::current_thread_index().is_some()
 }
 
+/// Stack of each pool thread: a main thread's usual 8 MiB, so that work moved onto
+/// the pool has the room it had on the caller's thread.
+#[cfg(feature = "parallel")]
+const STACK_BYTES: usize = 8 << 20;
+
 /// A pool of `n` threads, made for one call; `None` when the system refuses threads
 /// (the work then runs serially, with the same results).
 #[cfg(feature = "parallel")]
 fn pool(n: usize) -> Option<rayon::ThreadPool> {
-    rayon::ThreadPoolBuilder::new().num_threads(n).build().ok()
+    rayon::ThreadPoolBuilder::new().num_threads(n).stack_size(STACK_BYTES).build().ok()
 }
 
 #[cfg(test)]
