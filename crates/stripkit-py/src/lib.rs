@@ -329,7 +329,8 @@ impl Lod {
             "level" if value >= 0.0 && value <= u32::MAX as f64 => LevelSpec::Level(value as u32),
             "triangles" if value >= 0.0 => LevelSpec::Triangles(value as u64),
             "ratio" => LevelSpec::Ratio(value),
-            _ => return Err(PyValueError::new_err(format!("{kind} {value} is not a level (level, triangles or ratio)"))),
+            "level" | "triangles" => return Err(PyValueError::new_err(format!("{kind} {value} is out of range"))),
+            _ => return Err(PyValueError::new_err(format!("`{kind}` names no level: level, triangles or ratio"))),
         };
         let e = py.detach(|| self.inner.extract(spec, frame)).map_err(to_py)?;
         let strips = e.strips.iter().map(|s| PyArray1::from_slice(py, s)).collect();

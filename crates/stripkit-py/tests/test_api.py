@@ -117,6 +117,9 @@ def test_acmr_agrees_with_the_figures():
         ([0, 1, 2], {"cache_size": -1}, "negative"),
         ([0, 1, 2], {"restart_index": -1}, "not a 32-bit index"),
         ([0, 1, 2], {"vertex_count": -2}, "negative"),
+        ([0, 1, 2], {"vertex_count": 2**40}, "do not fit 32-bit indices"),
+        ([0, 1, 2], {"vertex_count": 2**70}, "out of range"),
+        ([0, 1, 2], {"cache_size": 2**70}, "out of range"),
         ([0.0, 1.0, 2.0], {}, "integer array"),
         ([True, False, True], {}, "integer array"),
         (np.array([0, -1, 2], dtype=np.int64), {}, "not a 32-bit vertex id"),
@@ -345,6 +348,8 @@ def test_lod_levels_draw_at_most_their_triangles(tmp_path):
         stripkit.lod_extract(lod, level=1, ratio=0.5)
     with pytest.raises(ValueError, match="negative"):
         stripkit.lod_extract(lod, level=-1)
+    with pytest.raises(ValueError, match="out of range"):
+        stripkit.lod_extract(lod, level=10**12)
     with pytest.raises(ValueError):
         stripkit.lod_read(__file__)  # not a model: the library's format error
     with pytest.raises(OSError):

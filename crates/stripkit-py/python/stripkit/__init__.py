@@ -19,6 +19,7 @@ when an output fails its check, ``OSError`` for files.
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 from typing import Any, Dict, List, Optional, Tuple
@@ -51,6 +52,20 @@ __all__ = [
     "unstripify",
     "write",
 ]
+
+def _checked(function: Any) -> Any:
+    """A Python integer too large for the library's argument (e.g. ``cache_size=2**70``)
+    is a ``ValueError`` like every other bad input, not PyO3's ``OverflowError``."""
+
+    @functools.wraps(function)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return function(*args, **kwargs)
+        except OverflowError as e:
+            raise ValueError(f"{function.__name__}: an argument is out of range ({e})") from None
+
+    return wrapper
+
 
 _INDEX_DTYPES = (np.uint8, np.uint16, np.uint32, np.uint64, np.int8, np.int16, np.int32, np.int64)
 
@@ -93,6 +108,7 @@ def _vertices(vertices: Any) -> np.ndarray:
     return v
 
 
+@_checked
 def stripify(
     indices: Any,
     vertex_count: Optional[int] = None,
@@ -130,6 +146,7 @@ def _cache(value: int) -> int:
     return int(value)
 
 
+@_checked
 def stripify_bound(index_count: int) -> int:
     """The most indices :func:`stripify` returns for ``index_count`` input indices."""
     if int(index_count) < 0:
@@ -137,6 +154,7 @@ def stripify_bound(index_count: int) -> int:
     return _stripkit.stripify_bound(int(index_count))
 
 
+@_checked
 def acmr(indices: Any, vertex_count: Optional[int] = None, *, cache_size: int = 16) -> float:
     """Vertex-cache misses per triangle (a FIFO of ``cache_size`` entries) of a triangle
     list drawn in order: the figure ``Strips.figures["acmr"]`` gives for strips, here for
@@ -149,6 +167,7 @@ def acmr(indices: Any, vertex_count: Optional[int] = None, *, cache_size: int = 
     return _stripkit.acmr(flat, vertex_count, _cache(cache_size))
 
 
+@_checked
 def unstripify(strip: Any, restart_index: int = DEFAULT_RESTART) -> np.ndarray:
     """The triangle list (flat uint32, three per triangle) a strip buffer draws, winding
     kept, degenerate triangles dropped; ``restart_index`` separates strips."""
@@ -158,6 +177,7 @@ def unstripify(strip: Any, restart_index: int = DEFAULT_RESTART) -> np.ndarray:
     return _stripkit.unstripify(_as_u32(a, "strip"), _restart(restart_index))
 
 
+@_checked
 def mesh(vertices: Any, faces: Any) -> Mesh:
     """A :class:`Mesh` from vertices (n, 3) and faces (f, k): triangles (k = 3), quads
     (k = 4) or any polygons of k vertices; indices checked against n."""
@@ -206,6 +226,7 @@ class Strips:
         return f"Strips({self.algorithm}: {f['strips']} strips, {f['triangles']} triangles, acmr {f['acmr']:.3f})"
 
 
+@_checked
 def stripify_mesh(
     vertices: Any,
     faces: Any = None,
@@ -251,6 +272,7 @@ def strip_file(src: "os.PathLike[str] | str", format: str = "ply", **options: An
     return strips.to_bytes(format), strips.figures
 
 
+@_checked
 def simplify(m: Mesh, ratio: float = 0.5, *, triangles: Optional[int] = None) -> Tuple[Mesh, np.ndarray, np.ndarray]:
     """Quadric edge collapse to ``ratio`` of the triangles (or ``triangles`` of them).
     Returns the simplified mesh (all input vertices kept, removed ones unused), the
@@ -262,6 +284,7 @@ def simplify(m: Mesh, ratio: float = 0.5, *, triangles: Optional[int] = None) ->
     return _stripkit.simplify(m, float(ratio), None if triangles is None else int(triangles))
 
 
+@_checked
 def match(node_count: int, edges: Any, weights: Any, *, minimize: bool = False) -> Dict[str, Any]:
     """A perfect matching of maximum weight (``minimize``: minimum cost) on a graph
     given as an (m, 2) edge list and m integer weights; without a perfect matching, a
@@ -283,6 +306,7 @@ def match(node_count: int, edges: Any, weights: Any, *, minimize: bool = False) 
     return {"mate": mate, "edges": matched, "perfect": perfect, "total_weight": total}
 
 
+@_checked
 def lod_build(m: Mesh, *, algorithm: str = "auto", cache_size: int = 16) -> Lod:
     """A multiresolution strip model (SETS) of ``m``: strips, simplified as far as the
     simplifier goes, the strips of every level kept and checked against a replay.
@@ -297,6 +321,7 @@ def lod_read(path: "os.PathLike[str] | str") -> Lod:
     return _stripkit.lod_read(os.fspath(path))
 
 
+@_checked
 def lod_extract(
     lod: Lod,
     *,
