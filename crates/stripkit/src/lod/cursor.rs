@@ -53,9 +53,11 @@ pub struct Cursor<'a> {
     moves: u32,
 }
 
-/// Changes (versions and beginnings) a partial re-walk scans for the first changed
-/// slot before it re-walks the strip whole instead.
-const PARTIAL_SCAN: usize = 32;
+/// A partial re-walk scans the changes (versions and beginnings) between the two
+/// levels for the first changed slot while they number at most the strip's current
+/// length over this (many changes lie all along a strip, so the walk would resume
+/// near its start anyway); past that it re-walks the strip whole.
+const PARTIAL_SCAN: usize = 4;
 
 impl Sets {
     /// A cursor at `level` (clamped to the coarsest), every strip walked once, with
@@ -151,7 +153,7 @@ impl<'a> Cursor<'a> {
         let r = sets.change_offsets[s] as usize..sets.change_offsets[s + 1] as usize;
         let levels = &sets.change_level[r.clone()];
         let (a, b) = (levels.partition_point(|&l| l <= lo), levels.partition_point(|&l| l <= hi));
-        if b - a > PARTIAL_SCAN {
+        if (b - a) * PARTIAL_SCAN > self.lens[s] as usize {
             return 0;
         }
         let first = sets.change_slot[r.start + a..r.start + b].iter().copied().min().unwrap_or(0);
