@@ -33,6 +33,13 @@ pkg_args=()
 for c in "${crates[@]}"; do pkg_args+=(-p "$c"); done
 verify=()
 [ $quick = 1 ] && verify=(--no-verify)
+# Verification unpacks each package from cargo's local registry overlay into
+# CARGO_HOME/registry/src/-HASH/NAME-VERSION and reuses that folder while the version is
+# unchanged, so a later run would build the dependents against the first run's sources:
+# remove those copies of our four crates first.
+for c in "${crates[@]}"; do
+    rm -rf "${CARGO_HOME:-$HOME/.cargo}"/registry/src/-*/"$c-$version"
+done
 # Uncommitted work is packaged as it is (CI checks out a clean tree anyway).
 start=$SECONDS
 cargo package "${pkg_args[@]}" "${verify[@]}" --allow-dirty --quiet 2> >(grep -v -E "^warning: ignoring (test|example|bench) " >&2)
