@@ -18,6 +18,10 @@
 //!   the parity, hence the winding, of every later triangle);
 //! * at its end, any run whose triangles are all degenerate;
 //! * a strip with no non-degenerate triangle left is emptied.
+//!
+//! One file of about 1,000 lines on purpose: the model, its builder and the removal
+//! rules share the slot and version layout, and the builder's steps (rename, shorten,
+//! re-strip past a threshold) read best beside the invariants above.
 
 use crate::error::{Error, Result};
 use crate::mesh::Attribute;
