@@ -362,6 +362,95 @@ fn lod_read(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Lod> {
 }
 
 /// The extension module.
+/// The triangles a strip buffer draws (strips separated by `restart`), each with the
+/// number of its strip, or those of a triangle list (one strip); degenerate ones left out.
+fn numbered_triangles(buffer: &[u32], restart: u32, triangle_list: bool) -> Vec<(usize, [u32; 3])> {
+    let mut out = Vec::new();
+    if triangle_list {
+        for t in buffer.chunks_exact(3) {
+            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                out.push((0, [t[0], t[1], t[2]]));
+            }
+        }
+    } else {
+        for (k, s) in stripkit::decode_restart(buffer, restart).iter().enumerate() {
+            stripkit::for_each_triangle(s, |t| out.push((k, t)));
+        }
+    }
+    out
+}
+
+/// A picture error as the Python exception that fits it: no EGL is an `OSError`
+/// (saying what to install), a failed GL call a `RuntimeError`, the rest `ValueError`.
+fn picture_to_py(e: stripkit_render::PictureError) -> PyErr {
+    use stripkit_render::{PictureError, RenderError};
+    match e {
+        PictureError::Render(RenderError::NoEgl(_)) | PictureError::Render(RenderError::Io { .. }) => {
+            PyOSError::new_err(e.to_string())
+        }
+        PictureError::Render(RenderError::Gl(_)) => pyo3::exceptions::PyRuntimeError::new_err(e.to_string()),
+        _ => PyValueError::new_err(e.to_string()),
+    }
+}
+
+/// stripkit_render::draw_picture: the picture `stripkit render` draws of strips (a
+/// restart-separated buffer) or of a triangle list, as an (height, width, 4) RGBA array.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+fn render<'py>(
+    py: Python<'py>,
+    vertices: PyReadonlyArray2<'py, f32>,
+    buffer: PyReadonlyArray1<'py, u32>,
+    restart_index: u32,
+    triangle_list: bool,
+    size: (u32, u32),
+    color_by: &str,
+    cull_view: Option<[f32; 3]>,
+    shading: &str,
+    wireframe: bool,
+    view: [f32; 3],
+    up: [f32; 3],
+    fov: f32,
+    zoom: f32,
+    background: [u8; 3],
+) -> PyResult<Bound<'py, numpy::PyArray3<u8>>> {
+    use stripkit_render::{ColorBy, PictureOptions, Renderer, Scene, Shading};
+    let positions = positions(&vertices)?;
+    let data = slice(&buffer)?;
+    let color_by = match color_by {
+        "strips" => ColorBy::Strips,
+        "order" => ColorBy::Order,
+        "cull" => ColorBy::Cull { view: cull_view },
+        "none" => ColorBy::None,
+        other => return Err(PyValueError::new_err(format!("color_by `{other}`: use strips, order, cull or none"))),
+    };
+    let shading = Shading::from_str(shading).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let options = PictureOptions { size, view, up, fov_y_degrees: fov, zoom, background, shading, wireframe, color_by };
+    options.check().map_err(picture_to_py)?;
+    let image = py.detach(|| {
+        let triangles = numbered_triangles(data, restart_index, triangle_list);
+        let mut used = vec![false; positions.len()];
+        for &(_, t) in &triangles {
+            for v in t {
+                if let Some(u) = used.get_mut(v as usize) {
+                    *u = true;
+                }
+            }
+        }
+        // The camera frames the vertices the triangles use, as `stripkit render` frames
+        // those the faces use.
+        let frame: Vec<[f32; 3]> = positions.iter().zip(&used).filter(|(_, &u)| u).map(|(p, _)| *p).collect();
+        let scale = stripkit::unit_scale(&frame) as f32;
+        let scene = Scene { positions: &positions, triangles: &triangles, morph: None, frame: &frame, scale };
+        let mut renderer = Renderer::new(size.0, size.1)?;
+        stripkit_render::draw_picture(&mut renderer, &scene, &options).map(|p| p.image)
+    });
+    let image = image.map_err(picture_to_py)?;
+    let (w, h) = (image.width() as usize, image.height() as usize);
+    image.rgba().to_vec().into_pyarray(py).reshape([h, w, 4])
+}
+
+
 #[pymodule]
 fn _stripkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("VerificationError", m.py().get_type::<VerificationError>())?;
@@ -382,5 +471,6 @@ fn _stripkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(write, m)?)?;
     m.add_function(wrap_pyfunction!(simplify, m)?)?;
     m.add_function(wrap_pyfunction!(match_edges, m)?)?;
+    m.add_function(wrap_pyfunction!(render, m)?)?;
     Ok(())
 }

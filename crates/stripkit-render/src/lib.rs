@@ -10,7 +10,9 @@
 //! indices: [`Framing`] places a camera tightly around the points drawn, [`paint`]
 //! colours triangles by strip, by order or by facing, and [`wire`] turns edges into
 //! thin bands of triangles for a wireframe; [`morph_positions`] is the shader's morph
-//! on the CPU, for what is built from the drawn positions.
+//! on the CPU, for what is built from the drawn positions. [`draw_picture`] composes
+//! them into a whole picture in one call (what `stripkit render` and the Python
+//! package's `render` draw).
 //!
 //! It reads pixels back ([`Image`], PNG through the `png` crate), times draws, and counts
 //! vertex-shader invocations where the context has storage buffers (GLES 3.1), which
@@ -41,6 +43,7 @@ mod image;
 mod morph;
 mod normals;
 pub mod paint;
+mod picture;
 mod shaders;
 pub mod wire;
 
@@ -49,6 +52,7 @@ pub use frame::{FrameError, Framing};
 pub use image::Image;
 pub use morph::morph_positions;
 pub use normals::vertex_normals;
+pub use picture::{draw_picture, ColorBy, Picture, PictureError, PictureOptions, Scene};
 
 use glow::HasContext;
 use std::time::{Duration, Instant};

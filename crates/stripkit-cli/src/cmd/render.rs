@@ -2,9 +2,10 @@
 //! EGL and OpenGL ES (`stripkit-render`; Mesa's llvmpipe where there is no GPU).
 //!
 //! The strips come from the same door and the same flags as `stripkit strip`; they are
-//! exploded into a triangle list in strip order ([`paint::explode`]) so that each
+//! exploded into a triangle list in strip order (`stripkit_render::paint::explode`) so that each
 //! triangle can carry its strip's colour, its place in the strip order, or its facing.
-//! The geometry (framing, colours, wireframe bands) is `stripkit-render`'s.
+//! The picture (framing, colours, shading, wireframe) is `stripkit-render`'s
+//! [`draw_picture`], which the Python package's `render` calls too.
 
 mod input;
 mod report;
@@ -15,8 +16,7 @@ use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
 use stripkit::Error;
-use stripkit_render::paint::{self, Paint};
-use stripkit_render::{wire, DrawParams, FrameError, Framing, IndexWidth, Renderer, Shading, Topology, Vertices};
+use stripkit_render::{draw_picture, ColorBy, FrameError, PictureError, PictureOptions, Renderer, Scene, Shading};
 
 use super::strip::{heuristic_of, StripArgs};
 
@@ -140,82 +140,40 @@ fn check(args: &Args) -> anyhow::Result<()> {
     args.strip.validate(|o| o)
 }
 
-/// What is drawn: the exploded triangles over the mesh's positions (and the morph
-/// target's), seen by the framed camera.
-struct Scene<'a> {
-    framing: Framing,
-    exploded: paint::Exploded,
-    positions: &'a [[f32; 3]],
-    target: Option<&'a [[f32; 3]]>,
-    /// The positions as drawn: the blend at `t` when morphing.
-    drawn: &'a [[f32; 3]],
-    t: f32,
+/// The picture's options from the flags.
+fn options(args: &Args) -> PictureOptions {
+    PictureOptions {
+        size: args.size,
+        view: args.view,
+        up: args.up,
+        fov_y_degrees: args.fov,
+        zoom: args.zoom,
+        background: args.background,
+        shading: args.shading,
+        wireframe: args.wireframe,
+        color_by: match args.color {
+            ColorArg::Strips => ColorBy::Strips,
+            ColorArg::Order => ColorBy::Order,
+            ColorArg::Cull => ColorBy::Cull { view: args.cull_view },
+            ColorArg::None => ColorBy::None,
+        },
+    }
 }
 
-/// Draws the scene (and its wireframe) and reads the picture back. Returns the picture
-/// and, with `--wireframe`, the number of edges drawn.
-fn draw(
-    renderer: &mut Renderer,
-    args: &Args,
-    scene: &Scene,
-) -> anyhow::Result<(stripkit_render::Image, Option<usize>)> {
-    let (w, h) = args.size;
-    let exploded = &scene.exploded;
-    let camera = &scene.framing.camera;
-    let positions = exploded.gather(scene.positions);
-    let morph_target = scene.target.map(|o| exploded.gather(o));
-    let normals = (args.shading == Shading::Smooth)
-        .then(|| exploded.gather(&stripkit_render::vertex_normals(scene.drawn, &exploded.corners)));
-    let geometry = renderer.upload(&Vertices {
-        positions: &positions,
-        morph_target: morph_target.as_deref(),
-        normals: normals.as_deref(),
-        colors: Some(&exploded.colors),
-    })?;
-    let corners: Vec<u32> = (0..exploded.corners.len() as u32).collect();
-    let indices = renderer.upload_indices(&corners, Topology::Triangles, IndexWidth::smallest(corners.len()))?;
-    renderer.clear(args.background.map(|c| c as f32 / 255.0));
-    let mut params = DrawParams::new(camera.view_proj(w as f32 / h as f32));
-    params.morph = scene.t;
-    params.shading = args.shading;
-    params.light = scene.framing.light();
-    renderer.draw(&geometry, &indices, &params);
-    let mut edges = None;
-    if args.wireframe {
-        let mut line_params = params.clone();
-        line_params.morph = 0.0;
-        line_params.shading = Shading::Unlit;
-        edges = Some(draw_wireframe(renderer, args, scene, &line_params)?);
+/// A picture error as the CLI's error, naming the flags and the input.
+fn picture_error(e: PictureError, args: &Args) -> anyhow::Error {
+    match e {
+        PictureError::Frame(FrameError::ZeroView) => Error::Invalid("--view must not be 0,0,0".into()).into(),
+        PictureError::Frame(FrameError::BadUp) => {
+            Error::Invalid("--up must not be 0,0,0 nor parallel to --view".into()).into()
+        }
+        PictureError::Frame(e @ FrameError::NothingToFrame) => Error::Invalid(e.to_string()).into(),
+        PictureError::ZeroCullView => Error::Invalid("--cull-view must not be 0,0,0".into()).into(),
+        PictureError::NoFaces => {
+            Error::Invalid(format!("no faces in {} (every triangle is degenerate)", args.input.display())).into()
+        }
+        PictureError::Render(e) => e.into(),
     }
-    if let Some(e) = renderer.gl_error() {
-        return Err(stripkit_render::RenderError::Gl(format!("drawing failed (GL error {e:#x})")).into());
-    }
-    Ok((renderer.read_image(), edges))
-}
-
-/// Edges of a wireframe drawn at a time: about 19 MB of bands, colours and indices
-/// (and the driver's copy), where the whole wireframe of 2 million edges took 650 MB
-/// more and aborted under a 1.5 GB address-space limit.
-const WIRE_EDGES_AT_A_TIME: usize = 1 << 16;
-
-/// Draws the wireframe of the scene a slice of edges at a time (the same picture as
-/// all at once: the slices are drawn in order); returns the number of edges drawn.
-fn draw_wireframe(renderer: &mut Renderer, args: &Args, scene: &Scene, params: &DrawParams) -> anyhow::Result<usize> {
-    let all = wire::edges(&scene.exploded.corners);
-    let mut drawn = 0;
-    for slice in all.chunks(WIRE_EDGES_AT_A_TIME) {
-        let band = wire::wireframe_of(scene.drawn, slice, &scene.framing.camera, args.size);
-        drawn += band.len() / 6;
-        let colors = vec![paint::WIRE; band.len()];
-        let lines =
-            renderer.upload(&Vertices { positions: &band, morph_target: None, normals: None, colors: Some(&colors) })?;
-        let order: Vec<u32> = (0..band.len() as u32).collect();
-        let indices = renderer.upload_indices(&order, Topology::Triangles, IndexWidth::smallest(order.len()))?;
-        renderer.draw(&lines, &indices, params);
-        renderer.delete_geometry(lines);
-        renderer.delete_indices(indices);
-    }
-    Ok(drawn)
 }
 
 /// Runs the command: read -> frame -> door -> explode and colour -> draw -> PNG.
@@ -234,6 +192,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // The camera frames every vertex a face uses, of both meshes when morphing, so
     // that the pictures of one pair at several t line up.
     let (w, h) = args.size;
+    let options = options(&args);
+    options.check().map_err(|e| picture_error(e, &args))?;
     let mut points = mesh.used_positions();
     if let Some(other) = &target {
         points.extend(other.used_positions());
@@ -242,15 +202,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // single precision neither overflows in the projection nor falls under the
     // framing's smallest extents.
     let scale = stripkit::unit_scale(&points) as f32;
-    scale_points(&mut points, scale);
-    let framing = Framing::fit(&points, args.view, args.up, args.fov, args.zoom, w as f32 / h as f32).map_err(|e| {
-        Error::Invalid(match e {
-            FrameError::ZeroView => "--view must not be 0,0,0".into(),
-            FrameError::BadUp => "--up must not be 0,0,0 nor parallel to --view".into(),
-            FrameError::NothingToFrame => e.to_string(),
-        })
-    })?;
-    drop(points);
 
     // Fail before the stripifier's work where nothing can draw.
     progress.set_message("starting the renderer");
@@ -274,35 +225,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (None, Some((mesh, strips, _))) => (strips.clone(), mesh.positions.clone(), None),
         (None, None) => unreachable!("a mesh goes through the door"),
     };
-    let (mut positions, mut target_positions) = (positions, target_positions);
-    scale_points(&mut positions, scale);
-    if let Some(other) = &mut target_positions {
-        scale_points(other, scale);
-    }
-    let blended = target_positions.as_ref().map(|other| stripkit_render::morph_positions(&positions, other, t));
-    let drawn = blended.as_deref().unwrap_or(&positions);
 
     progress.set_message("drawing");
-    let paint = match args.color {
-        ColorArg::Strips => Paint::Strips,
-        ColorArg::Order => Paint::Order,
-        ColorArg::Cull => Paint::Cull {
-            eye: framing
-                .eye_towards(args.cull_view.unwrap_or(args.view))
-                .ok_or_else(|| Error::Invalid("--cull-view must not be 0,0,0".into()))?,
-        },
-        ColorArg::None => Paint::None,
+    let triangles = input::strip_triangles(&strip_set);
+    let scene = Scene {
+        positions: &positions,
+        triangles: &triangles,
+        morph: target_positions.as_deref().map(|o| (o, t)),
+        frame: &points,
+        scale,
     };
-    let exploded = paint::explode(&input::strip_triangles(&strip_set), drawn, paint);
-    if exploded.triangles() == 0 {
-        return Err(
-            Error::Invalid(format!("no faces in {} (every triangle is degenerate)", args.input.display())).into()
-        );
-    }
     let draw_start = Instant::now();
-    let scene = Scene { framing, exploded, positions: &positions, target: target_positions.as_deref(), drawn, t };
-    let (image, edges) = draw(&mut renderer, &args, &scene)?;
+    let picture = draw_picture(&mut renderer, &scene, &options).map_err(|e| picture_error(e, &args))?;
     let draw_time = draw_start.elapsed();
+    let image = &picture.image;
     let pixels = image.pixels_other_than(args.background);
     progress.set_message(format!("writing {}", args.output.display()));
     let write_start = Instant::now();
@@ -310,7 +246,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let write_time = write_start.elapsed();
     progress.finish_and_clear();
 
-    let exploded = &scene.exploded;
     let report = report::Report {
         input: &args.input,
         output: &args.output,
@@ -321,10 +256,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         width: w,
         height: h,
         strips: strip_set.iter().filter(|s| !s.is_empty()).count(),
-        triangles: exploded.triangles(),
-        front: (args.color == ColorArg::Cull).then_some(exploded.front),
+        triangles: picture.triangles,
+        front: (args.color == ColorArg::Cull).then_some(picture.front),
         pixels,
-        edges,
+        edges: picture.edges,
         stripify_ms: door.as_ref().map_or(0.0, |s| s.stripify_time.as_secs_f64() * 1e3),
         lod: lod.as_ref().map(|l| l.2.clone()),
         start_ms: start_time.as_secs_f64() * 1e3,
@@ -335,13 +270,4 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         t: target.is_some().then_some(t),
     };
     super::print_report(args.json, &report, |out, r| report::print_summary(out, r))
-}
-
-/// `points` multiplied by `scale` (a power of two from [`stripkit::unit_scale`]: exact).
-fn scale_points(points: &mut [[f32; 3]], scale: f32) {
-    if scale != 1.0 {
-        for p in points {
-            *p = p.map(|x| x * scale);
-        }
-    }
 }

@@ -43,6 +43,7 @@ __all__ = [
     "match",
     "mesh",
     "read",
+    "render",
     "simplify",
     "strip_file",
     "stripify",
@@ -246,6 +247,119 @@ def stripify_mesh(
     result._mesh = m
     result._restart = _restart(restart_index)
     return result
+
+
+_COLOR_BY = ("strips", "order", "cull", "none")
+_SHADINGS = ("flat", "smooth", "unlit")
+
+
+def _direction(value: Any, what: str) -> Tuple[float, float, float]:
+    d = np.asarray(value, dtype=np.float64) if not isinstance(value, str) else np.zeros(0)
+    if d.shape != (3,) or not np.isfinite(d).all():
+        raise ValueError(f"{what} must be three finite numbers (x, y, z), not {value!r}")
+    if not d.any():
+        raise ValueError(f"{what} must not be 0,0,0")
+    return (float(d[0]), float(d[1]), float(d[2]))
+
+
+def _render_buffer(strips_or_indices: Any, restart: int) -> Tuple[np.ndarray, bool]:
+    """The strips as one restart-separated uint32 buffer, or a flat triangle list
+    (the flag says which)."""
+    if isinstance(strips_or_indices, Strips):
+        strips_or_indices = strips_or_indices.strips
+    if isinstance(strips_or_indices, (list, tuple)):
+        parts: List[np.ndarray] = []
+        for k, s in enumerate(strips_or_indices):
+            a = np.asarray(s)
+            if a.ndim != 1:
+                raise ValueError(f"strip {k} must be flat, not of shape {a.shape}")
+            if parts:
+                parts.append(np.array([restart], dtype=np.uint32))
+            parts.append(_as_u32(a, f"strip {k}"))
+        return (np.concatenate(parts) if parts else np.zeros(0, np.uint32)), False
+    a = np.asarray(strips_or_indices)
+    if a.ndim == 2:
+        return _indices(a), True
+    if a.ndim != 1:
+        raise ValueError(f"strips_or_indices must be a strip buffer, a list of strips or (n, 3) triangles, not {a.shape}")
+    return _as_u32(a, "strip buffer"), False
+
+
+@_checked
+def render(
+    vertices: Any,
+    strips_or_indices: Any,
+    *,
+    width: int = 800,
+    height: int = 800,
+    color_by: str = "strips",
+    wireframe: bool = False,
+    shading: str = "flat",
+    view: Any = (0.3, 0.4, 1.0),
+    up: Any = (0.0, 1.0, 0.0),
+    fov: float = 30.0,
+    zoom: float = 1.0,
+    background: Any = (255, 255, 255),
+    cull_view: Any = None,
+    restart_index: int = DEFAULT_RESTART,
+    alpha: bool = False,
+) -> np.ndarray:
+    """The picture ``stripkit render`` draws, as a (height, width, 3) uint8 array
+    (RGB, top row first; (height, width, 4) RGBA with ``alpha=True``).
+
+    ``strips_or_indices``: a :class:`Strips`, a list of strips (1-D index arrays), a
+    strip buffer (1-D, strips separated by ``restart_index``), or an (n, 3) triangle
+    list (drawn as one strip). ``vertices`` (n, 3): those the strips index (with any
+    ``single`` added: ``Strips.vertices``). ``color_by``: "strips", "order", "cull"
+    (facing an eye in ``cull_view``, default ``view``) or "none"; ``shading``: "flat",
+    "smooth" or "unlit"; ``width`` / ``height`` 16 to 4096; ``fov`` 1 to 120 degrees;
+    ``zoom`` 1 to 100; ``background`` (r, g, b) 0 to 255. The same pixels as the CLI
+    with the same input and options.
+
+    Needs EGL and OpenGL ES 3 at run time: without them an ``OSError`` says what to
+    install (Debian, Ubuntu: libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri). The GIL
+    is released while drawing."""
+    v = _vertices(vertices)
+    restart = _restart(restart_index)
+    buffer, triangle_list = _render_buffer(strips_or_indices, restart)
+    if triangle_list and buffer.size % 3:
+        raise ValueError("a triangle list needs three indices per triangle")
+    used = buffer if triangle_list else buffer[buffer != restart]
+    if used.size and int(used.max()) >= len(v):
+        raise ValueError(f"index {int(used.max())} refers past the {len(v)} vertices")
+    for name, side in (("width", width), ("height", height)):
+        if isinstance(side, bool) or not isinstance(side, (int, np.integer)) or not 16 <= side <= 4096:
+            raise ValueError(f"{name} must be an integer from 16 to 4096, not {side!r}")
+    if color_by not in _COLOR_BY:
+        raise ValueError(f"color_by must be one of {', '.join(_COLOR_BY)}, not {color_by!r}")
+    if shading not in _SHADINGS:
+        raise ValueError(f"shading must be one of {', '.join(_SHADINGS)}, not {shading!r}")
+    if cull_view is not None and color_by != "cull":
+        raise ValueError('cull_view applies to color_by="cull"')
+    if not 1.0 <= float(fov) <= 120.0:
+        raise ValueError(f"fov must be from 1 to 120 degrees, not {fov!r}")
+    if not 1.0 <= float(zoom) <= 100.0:
+        raise ValueError(f"zoom must be from 1 to 100, not {zoom!r}")
+    bg = np.asarray(background)
+    if bg.shape != (3,) or not np.issubdtype(bg.dtype, np.integer) or (bg < 0).any() or (bg > 255).any():
+        raise ValueError(f"background must be three integers from 0 to 255, not {background!r}")
+    image = _stripkit.render(
+        v,
+        buffer,
+        restart,
+        triangle_list,
+        (int(width), int(height)),
+        color_by,
+        None if cull_view is None else _direction(cull_view, "cull_view"),
+        shading,
+        bool(wireframe),
+        _direction(view, "view"),
+        _direction(up, "up"),
+        float(fov),
+        float(zoom),
+        tuple(int(c) for c in bg),
+    )
+    return image if alpha else np.ascontiguousarray(image[:, :, :3])
 
 
 def read(path: "os.PathLike[str] | str") -> Mesh:

@@ -69,3 +69,21 @@ def lod_extract(
     ratio: Optional[float] = None,
     frame: Optional[float] = None,
 ) -> Tuple[npt.NDArray[np.float32], List[_U32], int, int]: ...
+def render(
+    vertices: npt.ArrayLike,
+    strips_or_indices: Union["Strips", List[npt.ArrayLike], npt.ArrayLike],
+    *,
+    width: int = 800,
+    height: int = 800,
+    color_by: str = "strips",
+    wireframe: bool = False,
+    shading: str = "flat",
+    view: Tuple[float, float, float] = (0.3, 0.4, 1.0),
+    up: Tuple[float, float, float] = (0.0, 1.0, 0.0),
+    fov: float = 30.0,
+    zoom: float = 1.0,
+    background: Tuple[int, int, int] = (255, 255, 255),
+    cull_view: Optional[Tuple[float, float, float]] = None,
+    restart_index: int = ...,
+    alpha: bool = False,
+) -> npt.NDArray[np.uint8]: ...

@@ -59,3 +59,19 @@ def simplify(
 def match_edges(
     node_count: int, edges: npt.NDArray[np.uint32], weights: npt.NDArray[np.int64], minimize: bool
 ) -> Tuple[npt.NDArray[np.uint32], npt.NDArray[np.uint32], bool, int]: ...
+def render(
+    vertices: npt.NDArray[np.float32],
+    buffer: npt.NDArray[np.uint32],
+    restart_index: int,
+    triangle_list: bool,
+    size: Tuple[int, int],
+    color_by: str,
+    cull_view: Optional[Tuple[float, float, float]],
+    shading: str,
+    wireframe: bool,
+    view: Tuple[float, float, float],
+    up: Tuple[float, float, float],
+    fov: float,
+    zoom: float,
+    background: Tuple[int, int, int],
+) -> npt.NDArray[np.uint8]: ...
