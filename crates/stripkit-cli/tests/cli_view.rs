@@ -117,3 +117,78 @@ fn the_page_draws_what_render_draws() {
         assert!(far * 100 <= lit * 2, "{}: {far} of {lit} lit pixels differ", c.name);
     }
 }
+
+/// Runs `.ci/viewer-page.mjs` with `options` on `pages` (page=out pairs); its JSON lines.
+fn open_pages(options: &[String], pages: &[String]) -> Vec<serde_json::Value> {
+    let run = Command::new("node").arg(repo_root().join(".ci/viewer-page.mjs")).args(options).args(pages).output();
+    let run = run.expect("runs node");
+    let text = String::from_utf8_lossy(&run.stdout);
+    eprintln!("{text}{}", String::from_utf8_lossy(&run.stderr));
+    assert!(run.status.success());
+    let reports: Vec<serde_json::Value> = text.lines().filter_map(|l| serde_json::from_str(l).ok()).collect();
+    assert_eq!(reports.len(), pages.len(), "{text}");
+    for r in &reports {
+        assert_eq!(r["errors"].as_array().unwrap().len(), 0, "console errors: {r}");
+    }
+    reports
+}
+
+#[test]
+fn the_pages_sets_runtime_extracts_every_level_like_lod_extract() {
+    if let Some(why) = missing() {
+        eprintln!("skip: {why}");
+        return;
+    }
+    // Two models: spot with its UVs (a version-2 file, endpoint placement) and a
+    // generated torus with optimal placement (version 1, a new vertex per collapse).
+    let torus = tmp("view-lod", "torus.obj");
+    let gen = stripkit(&["gen", "torus", "--major", "36", "--minor", "14", "-o", torus.to_str().unwrap()]);
+    assert!(gen.status.success(), "{}", String::from_utf8_lossy(&gen.stderr));
+    let models = [
+        ("spot", repo_root().join("assets/spot.obj"), &[][..]),
+        ("torus", torus, &["--placement", "optimal"][..]),
+    ];
+    for (name, input, flags) in models {
+        let sets = tmp("view-lod", &format!("{name}.sets"));
+        let mut args = vec!["lod", "build", input.to_str().unwrap(), "-o", sets.to_str().unwrap(), "--json"];
+        args.extend(flags);
+        let built = support::json(&stripkit(&args));
+        let levels = built["levels"].as_u64().unwrap();
+        assert!(levels > 100, "{built}");
+        // 20 levels: both ends and 18 between, visited in a shuffled order so that the
+        // cursor moves both ways by steps of every size.
+        let mut chosen: Vec<u64> = (0..20).map(|i| i * levels / 19).collect();
+        stripkit_testkit::XorShift64(0x5e75 + levels).shuffle(&mut chosen);
+        let html = tmp("view-lod", &format!("{name}.html"));
+        let png = tmp("view-lod", &format!("{name}.png"));
+        let view = support::json(&stripkit(&["view", sets.to_str().unwrap(), "-o", html.to_str().unwrap(), "--size", "256x256", "--json"]));
+        // The page holds the file as base64 (4/3) and the script.
+        let page_bytes = view["page_bytes"].as_u64().unwrap();
+        let file_bytes = std::fs::metadata(&sets).unwrap().len();
+        assert!(page_bytes < 2 * file_bytes + 100_000, "{page_bytes} bytes for a {file_bytes}-byte file");
+        let rgba = tmp("view-lod", &format!("{name}.rgba"));
+        let list: Vec<String> = chosen.iter().map(u64::to_string).collect();
+        open_pages(&[format!("--levels={}", list.join(","))], &[format!("{}={}", html.display(), rgba.display())]);
+        let got: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(format!("{}.levels.json", rgba.display())).unwrap()).unwrap();
+        for level in &chosen {
+            let json = tmp("view-lod", &format!("{name}-{level}.json"));
+            let l = level.to_string();
+            let run = stripkit(&["lod", "extract", sets.to_str().unwrap(), "--level", &l, "-o", json.to_str().unwrap()]);
+            assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+            let want: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+            assert!(!want["strips"].as_array().unwrap().is_empty());
+            assert_eq!(got[&l], want["strips"], "{name} level {level}");
+        }
+        // The first frame (level 0) is `stripkit render`'s picture of the model.
+        let run = stripkit(&["render", sets.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "256x256"]);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        let page: Vec<[u8; 3]> = std::fs::read(&rgba).unwrap().chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect();
+        let reference = read_png(&png);
+        let lit = reference.iter().filter(|p| **p != [255; 3]).count();
+        let far =
+            page.iter().zip(&reference).filter(|(a, b)| (0..3).any(|k| (a[k] as i32 - b[k] as i32).abs() > 8)).count();
+        eprintln!("{name}: {levels} levels, page {page_bytes} bytes for {file_bytes}; {far} of {lit} lit pixels differ");
+        assert!(lit > 10_000 && far * 100 <= lit * 2, "{name}: {far} of {lit} lit pixels differ");
+    }
+}

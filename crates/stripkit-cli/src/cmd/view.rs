@@ -23,6 +23,9 @@ const PAGE: &str = include_str!("view/page.html");
 const STYLE: &str = include_str!("view/viewer.css");
 /// The page's script: decoding, buffers, camera, drawing, panel.
 const SCRIPT: &str = include_str!("view/viewer.js");
+/// The `.sets` runtime (an ES module of its own, js/sets-runtime), inlined into the
+/// page's script at `/*RUNTIME*/` with its `export` keywords dropped.
+const RUNTIME: &str = include_str!("../../../../js/sets-runtime/index.js");
 
 /// Arguments of `stripkit view`.
 #[derive(clap::Args, Debug)]
@@ -30,7 +33,9 @@ const SCRIPT: &str = include_str!("view/viewer.js");
 It draws with WebGL2 in any current browser.\n\
 Exit status: 0 success, 1 the strips failed verification, 2 bad input or argument (nothing written).")]
 pub struct Args {
-    /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz).
+    /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz), or a `.sets`
+    /// model (`stripkit lod build`): the page then has a slider over every level, each
+    /// extracted in the page by the JavaScript `.sets` runtime.
     pub input: PathBuf,
     /// Output page (.html), replaced atomically.
     #[arg(short, long, value_name = "OUT.html")]
@@ -76,6 +81,10 @@ struct Model {
     lengths: String,
     /// Every strip's indices, one after the other (u32).
     strip_indices: String,
+    /// A `.sets` input: the file itself (the page decodes it), else empty.
+    sets: String,
+    /// The factor the page multiplies the `.sets` positions by (a power of two).
+    scale: f32,
 }
 
 /// The first frame's camera: stripkit-render's framing.
@@ -146,12 +155,59 @@ fn check(args: &Args) -> anyhow::Result<()> {
 /// occur (base64, numbers and the file name escaped below), so the block ends where it should.
 fn page(model: &Model) -> anyhow::Result<String> {
     let json = serde_json::to_string(model)?.replace("</", "<\\/");
-    Ok(PAGE.replacen("/*STYLE*/", STYLE, 1).replacen("/*SCRIPT*/", SCRIPT, 1).replacen("/*MODEL*/", &json, 1))
+    let script = SCRIPT.replacen("/*RUNTIME*/", &RUNTIME.replace("\nexport ", "\n"), 1);
+    Ok(PAGE.replacen("/*STYLE*/", STYLE, 1).replacen("/*SCRIPT*/", &script, 1).replacen("/*MODEL*/", &json, 1))
 }
 
-/// Runs the command: read -> door -> frame -> page -> write -> report.
-pub fn run(args: Args) -> anyhow::Result<()> {
-    check(&args)?;
+/// The page's camera for `used` (the positions the strips use, already scaled).
+fn first_camera(args: &Args, used: &[[f32; 3]]) -> anyhow::Result<Camera> {
+    let (w, h) = args.size;
+    let framing = Framing::fit(used, args.view, args.up, args.fov, 1.0, w as f32 / h as f32).map_err(|e| {
+        Error::Invalid(match e {
+            FrameError::ZeroView => "--view must not be 0,0,0".into(),
+            FrameError::BadUp => "--up must not be 0,0,0 nor parallel to --view".into(),
+            FrameError::NothingToFrame => e.to_string(),
+        })
+    })?;
+    let c = framing.camera;
+    Ok(Camera { eye: c.eye, target: c.target, up: c.up, fov: c.fov_y_degrees, near: c.near, far: c.far, light: framing.light() })
+}
+
+/// The page's model for a `.sets` file: the file, and its level 0's figures and camera.
+fn sets_model(args: &Args, sets: &stripkit::lod::Sets) -> anyhow::Result<Model> {
+    let strips = sets.strips_at(0);
+    let positions = sets.positions();
+    let used: Vec<[f32; 3]> = strips.iter().flatten().map(|&v| positions[v as usize]).collect();
+    let scale = stripkit::unit_scale(&used) as f32;
+    let used: Vec<[f32; 3]> = used.iter().map(|p| p.map(|x| x * scale)).collect();
+    let mut triangles = Vec::new();
+    for s in strips.iter() {
+        stripkit::for_each_triangle(s, |t| triangles.push(t));
+    }
+    // The level-0 strips' figures, with the default cache model (as `stripkit strip`).
+    let figures = stripkit::figures(&triangles, &strips, stripkit::CacheModel::default());
+    Ok(Model {
+        name: args.input.file_name().map_or("-".into(), |n| n.to_string_lossy().into_owned()),
+        algo: "sets",
+        triangles: figures.triangles,
+        strips: figures.strips,
+        indices: figures.indices_restart,
+        acmr: figures.acmr,
+        vertices: positions.len(),
+        size: [args.size.0, args.size.1],
+        camera: first_camera(args, &used)?,
+        positions: String::new(),
+        uv: String::new(),
+        lengths: String::new(),
+        strip_indices: String::new(),
+        sets: base64(&std::fs::read(&args.input)?),
+        scale,
+    })
+}
+
+/// The page's model for a mesh: its strips through the door, positions scaled as
+/// `stripkit render` scales them.
+fn mesh_model(args: &Args) -> anyhow::Result<Model> {
     let mesh = args.read.read(&args.input)?;
     let strips = args.strip.stripify(&mesh, &args.input, |o| o)?;
     let mut positions = strips.with_added_vertices(&mesh.positions);
@@ -161,17 +217,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         *p = p.map(|x| x * scale);
     }
     let used: Vec<[f32; 3]> = used.iter().map(|p| p.map(|x| x * scale)).collect();
-    let (w, h) = args.size;
-    let framing = Framing::fit(&used, args.view, args.up, args.fov, 1.0, w as f32 / h as f32).map_err(|e| {
-        Error::Invalid(match e {
-            FrameError::ZeroView => "--view must not be 0,0,0".into(),
-            FrameError::BadUp => "--up must not be 0,0,0 nor parallel to --view".into(),
-            FrameError::NothingToFrame => e.to_string(),
-        })
-    })?;
-    let c = framing.camera;
-    let camera =
-        Camera { eye: c.eye, target: c.target, up: c.up, fov: c.fov_y_degrees, near: c.near, far: c.far, light: framing.light() };
+    let camera = first_camera(args, &used)?;
     // UVs where the mesh has them and `single` added no vertices (their UVs are unknown).
     let uv = mesh
         .attributes
@@ -180,7 +226,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .map_or(String::new(), |a| f32_base64((0..a.len()).flat_map(|v| [a.get(v, 0) as f32, a.get(v, 1) as f32])));
     let set = &strips.strips;
     let figures = &strips.figures;
-    let model = Model {
+    Ok(Model {
         name: args.input.file_name().map_or("-".into(), |n| n.to_string_lossy().into_owned()),
         algo: strips.algorithm.name(),
         triangles: figures.triangles,
@@ -188,12 +234,26 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         indices: figures.indices_restart,
         acmr: figures.acmr,
         vertices: positions.len(),
-        size: [w, h],
+        size: [args.size.0, args.size.1],
         camera,
         positions: f32_base64(positions.iter().flatten().copied()),
         uv,
         lengths: u32_base64(set.iter().map(|s| s.len() as u32)),
         strip_indices: u32_base64(set.iter().flatten().copied()),
+        sets: String::new(),
+        scale,
+    })
+}
+
+/// Runs the command: read -> door (or the `.sets` file) -> frame -> page -> write -> report.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    check(&args)?;
+    let model = match stripkit::lod::Model::try_read(&args.input)? {
+        Some(stripkit::lod::Model::Sets(sets)) => sets_model(&args, &sets)?,
+        Some(stripkit::lod::Model::Seq(_)) => {
+            return Err(Error::Invalid(format!("{}: .lodseq pages are not made yet; extract a frame's .sets or a mesh", args.input.display())).into())
+        }
+        None => mesh_model(&args)?,
     };
     let text = page(&model)?;
     stripkit::io::write_encoded(&args.output, text.as_bytes())?;

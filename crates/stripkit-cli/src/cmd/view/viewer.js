@@ -1,11 +1,14 @@
-// stripkit view: draws the model in the JSON block #model with WebGL2, each strip
-// one drawElements(TRIANGLE_STRIP) run, the strips separated by the fixed restart
-// index 0xFFFFFFFF (always on in WebGL2). Every strip gets its own copy of its
-// slots' vertices (so that a strip can carry its own colour); the index buffer names
-// them in strip order. window.stripkitView holds the state and figures for tests:
-// ready, firstFrameMs, draw(), pixels().
+// stripkit view: draws the model in the JSON block #model with WebGL2, one
+// drawElements(TRIANGLE_STRIP) over every strip, the strips separated by the fixed
+// restart index 0xFFFFFFFF (always on in WebGL2). The strips lie in one buffer, each
+// at a fixed place one longer than its level-0 length, the rest of it restart
+// indices: the layout of the `.sets` runtime's cursor (inlined below), so that a
+// level change rewrites only the places of the strips that changed. Every place has
+// its own vertex (so that a strip can carry its own colour). window.stripkitView
+// holds the state and figures for tests: ready, firstFrameMs, pixels(), level(L).
 'use strict';
 (function () {
+    /*RUNTIME*/
     const RESTART = 0xffffffff;
     const model = JSON.parse(document.getElementById('model').textContent);
     const t0 = performance.now();
@@ -15,10 +18,27 @@
         for (let i = 0; i < s.length; i++) out[i] = s.charCodeAt(i);
         return out.buffer;
     }
-    const positions = new Float32Array(bytes(model.positions));
-    const uv = model.uv ? new Float32Array(bytes(model.uv)) : null;
-    const lengths = new Uint32Array(bytes(model.lengths));
-    const stripIndices = new Uint32Array(bytes(model.strip_indices));
+    // The strips' places: a mesh's strips laid out as a cursor lays out a level.
+    let sets = null, cursor = null, positions, uv = null, places, labels;
+    if (model.sets) {
+        sets = decodeSets(bytes(model.sets));
+        cursor = new SetsCursor(sets, 0);
+        positions = sets.positions.map((x) => x * model.scale);
+        places = sets.stripSlots;
+        labels = cursor.buffer;
+    } else {
+        positions = new Float32Array(bytes(model.positions));
+        uv = model.uv ? new Float32Array(bytes(model.uv)) : null;
+        const lengths = new Uint32Array(bytes(model.lengths));
+        places = new Uint32Array(lengths.length + 1);
+        for (let s = 0; s < lengths.length; s++) places[s + 1] = places[s] + lengths[s];
+        labels = new Uint32Array(places[lengths.length] + lengths.length).fill(RESTART);
+        const indices = new Uint32Array(bytes(model.strip_indices));
+        for (let s = 0; s < lengths.length; s++) labels.set(indices.subarray(places[s], places[s + 1]), places[s] + s);
+    }
+    const strips = places.length - 1;
+    const n = labels.length;
+    const placeOf = (s) => [places[s] + s, places[s + 1] + s + 1];
 
     // Colours as stripkit-render's paint module makes them.
     function hsv(h, s, v) {
@@ -43,18 +63,17 @@
     // Smooth normals: each vertex the sum of its triangles' unnormalized normals.
     function vertexNormals() {
         const acc = new Float64Array(positions.length);
-        let at = 0;
-        for (const n of lengths) {
-            for (let i = at; i + 2 < at + n; i++) {
+        for (let s = 0; s < strips; s++) {
+            const [at, end] = placeOf(s);
+            for (let i = at; i + 2 < end && labels[i + 2] !== RESTART; i++) {
                 const odd = (i - at) & 1;
-                const a = stripIndices[i + odd], b = stripIndices[i + 1 - odd], c = stripIndices[i + 2];
+                const a = labels[i + odd], b = labels[i + 1 - odd], c = labels[i + 2];
                 if (a === b || b === c || a === c) continue;
                 const e = [0, 1, 2].map((d) => positions[3 * b + d] - positions[3 * a + d]);
                 const g = [0, 1, 2].map((d) => positions[3 * c + d] - positions[3 * a + d]);
                 const nx = e[1] * g[2] - e[2] * g[1], ny = e[2] * g[0] - e[0] * g[2], nz = e[0] * g[1] - e[1] * g[0];
                 for (const v of [a, b, c]) { acc[3 * v] += nx; acc[3 * v + 1] += ny; acc[3 * v + 2] += nz; }
             }
-            at += n;
         }
         const out = new Float32Array(positions.length);
         for (let v = 0; v < out.length; v += 3) {
@@ -121,48 +140,72 @@ void main() {
     const u = {};
     for (const name of ['u_mvp', 'u_shading', 'u_checker', 'u_wire', 'u_light']) u[name] = gl.getUniformLocation(program, name);
 
-    const slots = stripIndices.length;
     let normals = null;
     const vao = gl.createVertexArray();
     gl.bindVertexArray(vao);
     function attribute(loc, data, size, type, normalized) {
         const buf = gl.createBuffer();
         gl.bindBuffer(gl.ARRAY_BUFFER, buf);
-        gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
+        gl.bufferData(gl.ARRAY_BUFFER, data, gl.DYNAMIC_DRAW);
         gl.enableVertexAttribArray(loc);
         gl.vertexAttribPointer(loc, size, type, normalized, 0, 0);
         return buf;
     }
-    function gather(values, k) {
-        const out = new Float32Array(slots * k);
-        for (let i = 0; i < slots; i++) for (let d = 0; d < k; d++) out[k * i + d] = values[k * stripIndices[i] + d];
+    // Each place's vertex values (k per vertex) gathered from `values` in [a, b).
+    function gather(values, k, out, a, b) {
+        for (let i = a; i < b; i++) {
+            const v = labels[i];
+            for (let d = 0; d < k; d++) out[k * i + d] = v === RESTART ? 0 : values[k * v + d];
+        }
         return out;
     }
-    attribute(0, gather(positions, 3), 3, gl.FLOAT, false);
-    const normalBuffer = attribute(1, new Float32Array(slots * 3), 3, gl.FLOAT, false);
-    const colorBuffer = attribute(2, new Uint8Array(slots * 4), 4, gl.UNSIGNED_BYTE, true);
-    attribute(3, uv ? gather(uv, 2) : new Float32Array(slots * 2), 2, gl.FLOAT, false);
-    const bary = new Float32Array(slots * 3);
-    const index = new Uint32Array(slots + lengths.length);
-    let count = 0;
-    for (let k = 0, at = 0; k < lengths.length; at += lengths[k], k++) {
-        if (lengths[k] === 0) continue;
-        if (count > 0) index[count++] = RESTART;
-        for (let i = 0; i < lengths[k]; i++) { index[count++] = at + i; bary[3 * (at + i) + (i % 3)] = 1; }
+    const placed = gather(positions, 3, new Float32Array(3 * n), 0, n);
+    const positionBuffer = attribute(0, placed, 3, gl.FLOAT, false);
+    const normalBuffer = attribute(1, new Float32Array(n * 3), 3, gl.FLOAT, false);
+    const colorBuffer = attribute(2, new Uint8Array(n * 4), 4, gl.UNSIGNED_BYTE, true);
+    attribute(3, uv ? gather(uv, 2, new Float32Array(2 * n), 0, n) : new Float32Array(n * 2), 2, gl.FLOAT, false);
+    const bary = new Float32Array(n * 3);
+    for (let s = 0; s < strips; s++) {
+        const [a, b] = placeOf(s);
+        for (let i = a; i < b; i++) bary[3 * i + ((i - a) % 3)] = 1;
     }
     attribute(4, bary, 3, gl.FLOAT, false);
+    const index = new Uint32Array(n);
+    for (let i = 0; i < n; i++) index[i] = labels[i] === RESTART ? RESTART : i;
     const indexBuffer = gl.createBuffer();
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indexBuffer);
-    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, index.subarray(0, count), gl.STATIC_DRAW);
+    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, index, gl.DYNAMIC_DRAW);
     gl.bindVertexArray(null);
 
+    // A new level: the places of the changed strips written again, and uploaded as one
+    // range from the first changed place to the last (one call per buffer: a call
+    // per strip cost 78 ms for bunny's 400 strips under SwiftShader).
+    function uploadStrips(changed) {
+        if (changed.length === 0) return;
+        let lo = n, hi = 0;
+        for (const s of changed) {
+            const [a, b] = placeOf(s);
+            gather(positions, 3, placed, a, b);
+            for (let i = a; i < b; i++) index[i] = labels[i] === RESTART ? RESTART : i;
+            lo = Math.min(lo, a);
+            hi = Math.max(hi, b);
+        }
+        gl.bindBuffer(gl.ARRAY_BUFFER, positionBuffer);
+        gl.bufferSubData(gl.ARRAY_BUFFER, 12 * lo, placed, 3 * lo, 3 * (hi - lo));
+        gl.bindVertexArray(vao);
+        gl.bufferSubData(gl.ELEMENT_ARRAY_BUFFER, 4 * lo, index, lo, hi - lo);
+        gl.bindVertexArray(null);
+        normals = null;
+    }
+
     function paint(mode) {
-        const col = new Uint8Array(slots * 4);
-        for (let k = 0, at = 0; k < lengths.length; at += lengths[k], k++) {
+        const col = new Uint8Array(n * 4);
+        for (let k = 0; k < strips; k++) {
+            const [a, b] = placeOf(k);
             const c = mode === 'strips' ? stripColor(k) : [205, 205, 205];
-            for (let i = at; i < at + lengths[k]; i++) {
-                const g = mode === 'order' ? gradient(slots > 1 ? i / (slots - 1) : 0) : c;
-                col.set([g[0], g[1], g[2], 255], 4 * i);
+            for (let i = a; i < b; i++) {
+                const g = mode === 'order' ? gradient(n > 1 ? i / (n - 1) : 0) : c;
+                col[4 * i] = g[0]; col[4 * i + 1] = g[1]; col[4 * i + 2] = g[2]; col[4 * i + 3] = 255;
             }
         }
         gl.bindBuffer(gl.ARRAY_BUFFER, colorBuffer);
@@ -221,7 +264,7 @@ void main() {
         gl.useProgram(program);
         gl.uniformMatrix4fv(u.u_mvp, false, viewProj(cam));
         if (state.shading === 'smooth' && !normals) {
-            normals = gather(vertexNormals(), 3);
+            normals = gather(vertexNormals(), 3, new Float32Array(3 * n), 0, n);
             gl.bindBuffer(gl.ARRAY_BUFFER, normalBuffer);
             gl.bufferSubData(gl.ARRAY_BUFFER, 0, normals);
         }
@@ -231,7 +274,7 @@ void main() {
         const light = cam.first ? first.light : cam.light;
         gl.uniform3fv(u.u_light, norm(light));
         gl.bindVertexArray(vao);
-        gl.drawElements(gl.TRIANGLE_STRIP, count, gl.UNSIGNED_INT, 0);
+        gl.drawElements(gl.TRIANGLE_STRIP, n, gl.UNSIGNED_INT, 0);
         gl.bindVertexArray(null);
     }
     let pending = false;
@@ -250,6 +293,32 @@ void main() {
     }
     const checker = document.querySelector('#color option[value=checker]');
     if (!uv) { checker.disabled = true; checker.textContent += ' — no UVs'; }
+    // The level slider (a .sets model): the level extracted by the cursor, only the
+    // changed strips uploaded.
+    const lodFigures = { level: 0, changed: 0, extractMs: 0, uploadMs: 0 };
+    function setLevel(level) {
+        const t = performance.now();
+        const changed = cursor.setLevel(level);
+        const t1 = performance.now();
+        uploadStrips(changed);
+        Object.assign(lodFigures, { level: cursor.level, changed: changed.length, extractMs: t1 - t, uploadMs: performance.now() - t1 });
+        return changed;
+    }
+    function showLevel() {
+        const t = document.getElementById('levelFigures');
+        t.textContent = '';
+        const rows = [['level', `${lodFigures.level.toLocaleString('en')} of ${sets.levels.toLocaleString('en')}`],
+            ['triangles', cursor.triangles().toLocaleString('en')], ['strips changed', lodFigures.changed],
+            ['extraction', lodFigures.extractMs.toFixed(2) + ' ms'], ['upload', lodFigures.uploadMs.toFixed(2) + ' ms']];
+        for (const [k, v] of rows) { const tr = t.insertRow(); tr.insertCell().textContent = k; tr.insertCell().textContent = v; }
+    }
+    if (sets) {
+        document.getElementById('lod').hidden = false;
+        const slider = document.getElementById('level');
+        slider.max = sets.levels;
+        slider.addEventListener('input', () => { setLevel(Number(slider.value)); showLevel(); redraw(); });
+        showLevel();
+    }
     const on = (id, ev, f) => document.getElementById(id).addEventListener(ev, f);
     on('color', 'change', (e) => { state.color = e.target.value; paint(state.color); redraw(); });
     on('shading', 'change', (e) => { state.shading = e.target.value; redraw(); });
@@ -284,10 +353,39 @@ void main() {
     gl.finish();
     window.stripkitView = {
         ready: true,
+        levels: sets ? sets.levels : 0,
         firstFrameMs: performance.now(),
         setupMs: performance.now() - t0,
         state, draw,
         set(changes) { Object.assign(state, changes); if (changes.color) paint(state.color); draw(); gl.finish(); },
+        /** A .sets page: moves to `level` and returns its non-empty strips. */
+        level(level) { setLevel(level); return cursor.strips(); },
+        /** A .sets page: one level per animation frame, as a slider dragged; resolves to the frames' intervals (ms). */
+        sweepFrames(levels) {
+            return new Promise((done) => {
+                const times = [];
+                let i = 0, last = null;
+                function step(now) {
+                    if (last !== null) times.push(now - last);
+                    last = now;
+                    if (i === levels.length) { done(times); return; }
+                    setLevel(levels[i++]);
+                    draw();
+                    requestAnimationFrame(step);
+                }
+                requestAnimationFrame(step);
+            });
+        },
+        /** A .sets page: per move, the milliseconds to extract, upload, and draw and finish a frame. */
+        sweep(levels) {
+            return levels.map((l) => {
+                setLevel(l);
+                const t = performance.now();
+                draw();
+                gl.finish();
+                return [lodFigures.extractMs, lodFigures.uploadMs, performance.now() - t, lodFigures.changed];
+            });
+        },
         pixels() {
             const px = new Uint8Array(canvas.width * canvas.height * 4);
             gl.readPixels(0, 0, canvas.width, canvas.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
