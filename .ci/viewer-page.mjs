@@ -1,7 +1,9 @@
 #!/usr/bin/env node
 // Opens pages written by `stripkit view` in headless Chromium (playwright-core, Debian's
 // chromium, SwiftShader WebGL: software rendering) and saves each canvas's first frame.
-//   node .ci/viewer-page.mjs [--levels=L,L,...] [--sweep=N] PAGE.html[#color=none&shading=smooth]=OUT.rgba [PAGE=OUT ...]
+//   node .ci/viewer-page.mjs [--eyes=X,Y,Z;...] [--levels=L,L,...] [--sweep=N] PAGE.html[#color=none&shading=smooth]=OUT.rgba [PAGE=OUT ...]
+// For a --cull page, --eyes=X,Y,Z;X,Y,Z;... adds "cull": [{"segments", "drawn",
+// "culled", "visited"} per eye] (eyes in the input's units) to the line.
 // For a `.sets` page, --levels writes OUT.levels.json ({"L": strips, ...}: the page's
 // runtime's strips at each level, as `stripkit lod extract`'s JSON), and --sweep moves
 // the slider's level across N steps from the finest to the coarsest and back, adding
@@ -48,6 +50,10 @@ try {
         for (let y = 0; y < r.height; y++) flipped.set(r.pixels.slice((r.height - 1 - y) * row, (r.height - y) * row), y * row);
         fs.writeFileSync(out, flipped);
         const line = { page, width: r.width, height: r.height, first_frame_ms: r.first_frame_ms, setup_ms: r.setup_ms, errors };
+        if (options.eyes) {
+            const eyes = options.eyes.split(';').map((e) => e.split(',').map(Number));
+            line.cull = await tab.evaluate((es) => es.map((e) => { const c = window.stripkitView.cull(e); delete c.ranges; return c; }), eyes);
+        }
         if (options.levels) {
             const levels = options.levels.split(',').map(Number);
             const strips = await tab.evaluate((ls) => Object.fromEntries(ls.map((l) => [l, window.stripkitView.level(l)])), levels);

@@ -192,3 +192,40 @@ fn the_pages_sets_runtime_extracts_every_level_like_lod_extract() {
         assert!(lit > 10_000 && far * 100 <= lit * 2, "{name}: {far} of {lit} lit pixels differ");
     }
 }
+
+#[test]
+fn the_pages_culling_gives_the_ranges_of_stripkit_cull() {
+    if let Some(why) = missing() {
+        eprintln!("skip: {why}");
+        return;
+    }
+    // Spot and a generated torus, each as one strip per component (`stripkit cull`'s
+    // strips), the 10 eyes of `stripkit cull --views 10`.
+    let torus = tmp("view-cull", "torus.obj");
+    let gen = stripkit(&["gen", "torus", "--major", "30", "--minor", "12", "-o", torus.to_str().unwrap()]);
+    assert!(gen.status.success(), "{}", String::from_utf8_lossy(&gen.stderr));
+    for (name, input) in [("spot", repo_root().join("assets/spot.obj")), ("torus", torus)] {
+        let html = tmp("view-cull", &format!("{name}.html"));
+        let (i, h) = (input.to_str().unwrap(), html.to_str().unwrap());
+        let run = stripkit(&["view", i, "--algo", "single", "--weights", "cull", "--cull", "-o", h, "--size", "64x64"]);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        let cull = support::json(&stripkit(&["cull", i, "--views", "10", "--repeat", "1", "--json"]));
+        let mesh = stripkit::io::read(&input).unwrap();
+        let (center, radius) = stripkit::cull::bounding_sphere(&mesh.positions);
+        let eyes = stripkit::cull::helix_eyes(center, radius, 10);
+        let eyes: Vec<String> = eyes.iter().map(|e| format!("{},{},{}", e[0], e[1], e[2])).collect();
+        let rgba = tmp("view-cull", &format!("{name}.rgba"));
+        let reports = open_pages(&[format!("--eyes={}", eyes.join(";"))], &[format!("{h}={}", rgba.display())]);
+        let page = reports[0]["cull"].as_array().unwrap();
+        let views = cull["per_view"].as_array().unwrap();
+        assert_eq!(page.len(), 10);
+        assert_eq!(views.len(), 10);
+        for (k, (p, v)) in page.iter().zip(views).enumerate() {
+            assert_eq!(p["segments"], v["segments"], "{name} eye {k}: {p} {v}");
+            assert_eq!(p["drawn"], v["drawn"], "{name} eye {k}: {p} {v}");
+            assert_eq!(p["visited"], v["visited_root"], "{name} eye {k}: {p} {v}");
+            assert!(p["segments"].as_u64().unwrap() > 0 && p["culled"].as_u64().unwrap() > 0, "{name} eye {k}: {p}");
+        }
+        eprintln!("{name}: 10 eyes, segments {:?}", page.iter().map(|p| p["segments"].as_u64().unwrap()).collect::<Vec<_>>());
+    }
+}

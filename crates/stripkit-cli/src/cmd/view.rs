@@ -54,6 +54,11 @@ pub struct Args {
     /// Canvas size in pixels, WIDTHxHEIGHT, each 16 to 4096.
     #[arg(long, value_name = "WxH", default_value = "800x800", value_parser = values::parse_wh)]
     pub size: (u32, u32),
+    /// Culling in the page: the strips' segment tree (as `stripkit cull` builds it) goes
+    /// into the page, which traverses it for the current eye and colours the drawn and
+    /// culled ranges. For one strip, as `stripkit cull`: `--algo single --weights cull`.
+    #[arg(long)]
+    pub cull: bool,
     /// Print one JSON object (counts, page size) on stdout instead of the summary.
     #[arg(long)]
     pub json: bool,
@@ -83,8 +88,37 @@ struct Model {
     strip_indices: String,
     /// A `.sets` input: the file itself (the page decodes it), else empty.
     sets: String,
-    /// The factor the page multiplies the `.sets` positions by (a power of two).
+    /// The factor positions were (a mesh) or are to be (a `.sets`) multiplied by: a
+    /// power of two from [`stripkit::unit_scale`].
     scale: f32,
+    /// `--cull`: the segment tree, or `None`.
+    tree: Option<Tree>,
+}
+
+/// A segment tree as the page traverses it (stripkit's `cull` module): per node, 9
+/// f32 (centre and radius, scaled as the positions; cone axis; cos, 2 for an empty
+/// cone; sin) and 5 u32 (range start and end in the strips' indices, triangles, strip,
+/// right child or `u32::MAX` for a leaf; the left child is the next node), and the roots.
+#[derive(Serialize)]
+struct Tree {
+    bounds: String,
+    ranges: String,
+    roots: String,
+}
+
+impl Tree {
+    /// The tree of `strips` over `positions` (unscaled: the tree `stripkit cull` builds).
+    fn of(strips: &stripkit::StripSet, positions: &[[f32; 3]], scale: f32) -> Tree {
+        let tree = stripkit::cull::SegmentTree::build(strips, positions);
+        let bounds = tree.nodes.iter().flat_map(|n| {
+            let b = &n.bounds;
+            let [x, y, z] = b.center.map(|c| c * scale);
+            let cos = if b.angle < 0.0 { 2.0 } else { b.cos_angle };
+            [x, y, z, b.radius * scale, b.axis[0], b.axis[1], b.axis[2], cos, b.sin_angle]
+        });
+        let ranges = tree.nodes.iter().flat_map(|n| [n.start, n.end, n.triangles, n.strip, n.children[1]]);
+        Tree { bounds: f32_base64(bounds), ranges: u32_base64(ranges), roots: u32_base64(tree.roots.iter().copied()) }
+    }
 }
 
 /// The first frame's camera: stripkit-render's framing.
@@ -202,6 +236,7 @@ fn sets_model(args: &Args, sets: &stripkit::lod::Sets) -> anyhow::Result<Model> 
         strip_indices: String::new(),
         sets: base64(&std::fs::read(&args.input)?),
         scale,
+        tree: None,
     })
 }
 
@@ -210,7 +245,8 @@ fn sets_model(args: &Args, sets: &stripkit::lod::Sets) -> anyhow::Result<Model> 
 fn mesh_model(args: &Args) -> anyhow::Result<Model> {
     let mesh = args.read.read(&args.input)?;
     let strips = args.strip.stripify(&mesh, &args.input, |o| o)?;
-    let mut positions = strips.with_added_vertices(&mesh.positions);
+    let unscaled = strips.with_added_vertices(&mesh.positions);
+    let mut positions = unscaled.clone();
     let used = mesh.used_positions();
     let scale = stripkit::unit_scale(&used) as f32;
     for p in &mut positions {
@@ -242,6 +278,7 @@ fn mesh_model(args: &Args) -> anyhow::Result<Model> {
         strip_indices: u32_base64(set.iter().flatten().copied()),
         sets: String::new(),
         scale,
+        tree: args.cull.then(|| Tree::of(set, &unscaled, scale)),
     })
 }
 
@@ -249,6 +286,7 @@ fn mesh_model(args: &Args) -> anyhow::Result<Model> {
 pub fn run(args: Args) -> anyhow::Result<()> {
     check(&args)?;
     let model = match stripkit::lod::Model::try_read(&args.input)? {
+        Some(_) if args.cull => return Err(Error::Invalid("--cull applies to meshes, not to .sets models".into()).into()),
         Some(stripkit::lod::Model::Sets(sets)) => sets_model(&args, &sets)?,
         Some(stripkit::lod::Model::Seq(_)) => {
             return Err(Error::Invalid(format!("{}: .lodseq pages are not made yet; extract a frame's .sets or a mesh", args.input.display())).into())

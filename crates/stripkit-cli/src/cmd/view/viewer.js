@@ -199,6 +199,7 @@ void main() {
     }
 
     function paint(mode) {
+        if (mode === 'cull') return; // coloured per eye in draw()
         const col = new Uint8Array(n * 4);
         for (let k = 0; k < strips; k++) {
             const [a, b] = placeOf(k);
@@ -255,6 +256,7 @@ void main() {
     }
     function draw() {
         const cam = camera();
+        if (state.color === 'cull' && tree) paintCull(cam.eye.map(Math.fround));
         gl.viewport(0, 0, canvas.width, canvas.height);
         gl.clearColor(1, 1, 1, 1);
         gl.clearDepth(1);
@@ -280,6 +282,71 @@ void main() {
     let pending = false;
     function redraw() { if (!pending) { pending = true; requestAnimationFrame(() => { pending = false; draw(); }); } }
 
+    // Culling (--cull): the segment tree's traversal for an eye, as stripkit's cull
+    // module does it from the roots, in single precision (Math.fround after every
+    // operation, as the f32 arithmetic of the library), so that the ranges are its ranges.
+    const tree = model.tree && {
+        bounds: new Float32Array(bytes(model.tree.bounds)),
+        ranges: new Uint32Array(bytes(model.tree.ranges)),
+        roots: new Uint32Array(bytes(model.tree.roots)),
+    };
+    const BACK = 0, FRONT = 1, SPLIT = 2, NONE = 0xffffffff;
+    function classify(k, eye) {
+        const f = Math.fround, b = tree.bounds, o = 9 * k;
+        const cos = b[o + 7], sin = b[o + 8], r = b[o + 3];
+        if (cos > 1.5) return BACK;
+        const d0 = f(b[o] - eye[0]), d1 = f(b[o + 1] - eye[1]), d2 = f(b[o + 2] - eye[2]);
+        const dsq = f(f(f(d0 * d0) + f(d1 * d1)) + f(d2 * d2));
+        const dn = f(f(f(b[o + 4] * d0) + f(b[o + 5] * d1)) + f(b[o + 6] * d2));
+        const dd = f(Math.sqrt(dsq));
+        const s = f(f(Math.sqrt(Math.max(f(dsq - f(dn * dn)), 0))) * sin);
+        const far = f(-dd - r);
+        const back = f(cos * dd) >= -dn ? f(f(f(dn * cos) - s) - r) : far;
+        const front = f(cos * dd) >= dn ? f(f(f(-dn * cos) - s) - r) : far;
+        return back >= 0 ? BACK : front > 0 ? FRONT : SPLIT;
+    }
+    /** The drawn ranges (of the strips' indices) for `eye` and the traversal's counts. */
+    function cullTree(eye, minTriangles = 0, maxGap = 0) {
+        const R = tree.ranges, out = { ranges: [], drawn: 0, culled: 0, visited: 0 };
+        let gap = 0, lastStrip = NONE;
+        const stack = [];
+        for (const root of tree.roots) {
+            stack.push(root);
+            while (stack.length) {
+                const id = stack.pop(), facing = classify(id, eye);
+                const [start, end, triangles, strip, right] = R.subarray(5 * id, 5 * id + 5);
+                out.visited++;
+                if (facing === SPLIT && right !== NONE && triangles > minTriangles) { stack.push(right, id + 1); continue; }
+                if (facing === BACK) { out.culled += triangles; gap += triangles; continue; }
+                out.drawn += triangles;
+                const last = out.ranges[out.ranges.length - 1];
+                if (last && lastStrip === strip && gap <= maxGap) { last[1] = end; out.drawn += gap; out.culled -= gap; }
+                else out.ranges.push([start, end]);
+                gap = 0;
+                lastStrip = strip;
+            }
+        }
+        return out;
+    }
+    const CULL_DRAWN = [58, 110, 190], CULL_SKIPPED = [246, 214, 200];
+    // Colours the places by the ranges culled for the current eye (index i of strip s
+    // lies at place i + s); the figures go to the panel.
+    function paintCull(eye) {
+        const t = performance.now(), out = cullTree(eye), ms = performance.now() - t;
+        const col = new Uint8Array(n * 4);
+        for (let i = 0; i < n; i++) col.set(CULL_SKIPPED, 4 * i);
+        let s = 0;
+        for (const [a, b] of out.ranges) {
+            while (places[s + 1] <= a) s++;
+            for (let i = a; i < b; i++) col.set(CULL_DRAWN, 4 * (i + s));
+        }
+        for (let i = 3; i < col.length; i += 4) col[i] = 255;
+        gl.bindBuffer(gl.ARRAY_BUFFER, colorBuffer);
+        gl.bufferSubData(gl.ARRAY_BUFFER, 0, col);
+        document.getElementById('cullFigures').textContent =
+            `${out.ranges.length} segments drawn, ${out.drawn.toLocaleString('en')} triangles drawn, ${out.culled.toLocaleString('en')} culled, ${out.visited} nodes visited, ${ms.toFixed(2)} ms`;
+    }
+
     // Panel.
     document.getElementById('name').textContent = model.name;
     const rows = [['triangles', model.triangles], ['strips', model.strips], ['indices (restart)', model.indices],
@@ -291,6 +358,9 @@ void main() {
         tr.insertCell().textContent = k;
         tr.insertCell().textContent = typeof v === 'number' ? v.toLocaleString('en') : v;
     }
+    const cullOption = document.querySelector('#color option[value=cull]');
+    if (!tree) cullOption.remove();
+    else document.getElementById('cullFigures').hidden = false;
     const checker = document.querySelector('#color option[value=checker]');
     if (!uv) { checker.disabled = true; checker.textContent += ' — no UVs'; }
     // The level slider (a .sets model): the level extracted by the cursor, only the
@@ -358,6 +428,11 @@ void main() {
         setupMs: performance.now() - t0,
         state, draw,
         set(changes) { Object.assign(state, changes); if (changes.color) paint(state.color); draw(); gl.finish(); },
+        /** A --cull page: the traversal for an eye given in the input's units. */
+        cull(eye) {
+            const out = cullTree(eye.map((x) => Math.fround(x) * model.scale));
+            return { segments: out.ranges.length, drawn: out.drawn, culled: out.culled, visited: out.visited, ranges: out.ranges };
+        },
         /** A .sets page: moves to `level` and returns its non-empty strips. */
         level(level) { setLevel(level); return cursor.strips(); },
         /** A .sets page: one level per animation frame, as a slider dragged; resolves to the frames' intervals (ms). */
