@@ -218,19 +218,23 @@ function decodeBody(r, h) {
     if (b !== h.beginnings) r.fail(`${b} beginnings, not the ${h.beginnings} the header gives`);
     if (r.at !== r.end) r.fail(`${r.end - r.at} bytes left over`);
     // The levels at which each strip changes: its beginnings' and its slots' versions'.
-    const changeOffsets = new Uint32Array(strips + 1), changes = [];
+    const changeOffsets = new Uint32Array(strips + 1);
+    const changeLevel = new Uint32Array(h.versions + h.beginnings);
+    let c = 0;
     for (let s = 0; s < strips; s++) {
-        const set = new Set();
-        for (let k = beginOffsets[s]; k < beginOffsets[s + 1]; k++) set.add(beginLevel[k]);
-        for (let k = versionOffsets[stripSlots[s]]; k < versionOffsets[stripSlots[s + 1]]; k++) set.add(verLevel[k]);
-        changeOffsets[s] = changes.length;
-        changes.push(...Array.from(set).sort((a, c) => a - c));
+        const v0 = versionOffsets[stripSlots[s]], v1 = versionOffsets[stripSlots[s + 1]];
+        const all = new Uint32Array(v1 - v0 + beginOffsets[s + 1] - beginOffsets[s]);
+        all.set(verLevel.subarray(v0, v1));
+        all.set(beginLevel.subarray(beginOffsets[s], beginOffsets[s + 1]), v1 - v0);
+        all.sort();
+        changeOffsets[s] = c;
+        for (let i = 0; i < all.length; i++) if (i === 0 || all[i] !== all[i - 1]) changeLevel[c++] = all[i];
     }
-    changeOffsets[strips] = changes.length;
+    changeOffsets[strips] = c;
     return {
         ...h, optimal, positionless, positions, attributes, targets, removed, triangleCount, stripSlots,
         versionOffsets, verLevel, verLabel, verNext, beginOffsets, beginLevel, beginSlot,
-        changeOffsets, changeLevel: Uint32Array.from(changes),
+        changeOffsets, changeLevel: changeLevel.subarray(0, c),
     };
 }
 
