@@ -229,3 +229,25 @@ fn the_pages_culling_gives_the_ranges_of_stripkit_cull() {
         eprintln!("{name}: 10 eyes, segments {:?}", page.iter().map(|p| p["segments"].as_u64().unwrap()).collect::<Vec<_>>());
     }
 }
+
+#[test]
+fn the_page_is_self_contained_and_bad_arguments_exit_2() {
+    let spot = repo_root().join("assets/spot.obj");
+    let html = tmp("view-args", "spot.html");
+    let run = stripkit(&["view", spot.to_str().unwrap(), "-o", html.to_str().unwrap()]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let page = std::fs::read_to_string(&html).unwrap();
+    // Nothing fetched: no external script, style, image or address.
+    for needle in ["<script src", "<link", "<img", "http://", "https://", "import("] {
+        assert!(!page.contains(needle), "the page holds `{needle}`");
+    }
+    assert!(page.contains("TRIANGLE_STRIP") && page.contains("\"strip_indices\":\""));
+    let png = tmp("view-args", "spot.png");
+    let run = stripkit(&["view", spot.to_str().unwrap(), "-o", png.to_str().unwrap()]);
+    assert_eq!(run.status.code(), Some(2), "a page must be .html");
+    assert!(!png.exists());
+    let sets = tmp("view-args", "spot.sets");
+    assert!(stripkit(&["lod", "build", spot.to_str().unwrap(), "-o", sets.to_str().unwrap()]).status.success());
+    let run = stripkit(&["view", sets.to_str().unwrap(), "--cull", "-o", html.to_str().unwrap()]);
+    assert_eq!(run.status.code(), Some(2), "{}", String::from_utf8_lossy(&run.stderr));
+}

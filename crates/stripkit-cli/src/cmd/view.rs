@@ -204,7 +204,8 @@ fn first_camera(args: &Args, used: &[[f32; 3]]) -> anyhow::Result<Camera> {
         })
     })?;
     let c = framing.camera;
-    Ok(Camera { eye: c.eye, target: c.target, up: c.up, fov: c.fov_y_degrees, near: c.near, far: c.far, light: framing.light() })
+    let light = framing.light();
+    Ok(Camera { eye: c.eye, target: c.target, up: c.up, fov: c.fov_y_degrees, near: c.near, far: c.far, light })
 }
 
 /// The page's model for a `.sets` file: the file, and its level 0's figures and camera.
@@ -285,11 +286,12 @@ fn mesh_model(args: &Args) -> anyhow::Result<Model> {
 /// Runs the command: read -> door (or the `.sets` file) -> frame -> page -> write -> report.
 pub fn run(args: Args) -> anyhow::Result<()> {
     check(&args)?;
+    let refuse = |why: &str| Err(Error::Invalid(format!("{}: {why}", args.input.display())).into());
     let model = match stripkit::lod::Model::try_read(&args.input)? {
-        Some(_) if args.cull => return Err(Error::Invalid("--cull applies to meshes, not to .sets models".into()).into()),
+        Some(_) if args.cull => return refuse("--cull applies to meshes, not to .sets models"),
         Some(stripkit::lod::Model::Sets(sets)) => sets_model(&args, &sets)?,
         Some(stripkit::lod::Model::Seq(_)) => {
-            return Err(Error::Invalid(format!("{}: .lodseq pages are not made yet; extract a frame's .sets or a mesh", args.input.display())).into())
+            return refuse(".lodseq pages are not made yet; extract a frame as a mesh, or view a .sets")
         }
         None => mesh_model(&args)?,
     };

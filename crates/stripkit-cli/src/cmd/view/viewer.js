@@ -236,7 +236,8 @@ void main() {
         return out;
     }
     const first = model.camera;
-    const state = { color: 'strips', shading: 'flat', wireframe: false, yaw: 0, pitch: 0, zoom: 1 };
+    const state = { color: 'strips', shading: 'flat', wireframe: false, hold: false, yaw: 0, pitch: 0, zoom: 1 };
+    let heldEye = null;
     // The camera of the current orbit: the first eye turned about the first up
     // (yaw) and the first right (pitch) around the target, its distance divided by zoom.
     function camera() {
@@ -256,7 +257,9 @@ void main() {
     }
     function draw() {
         const cam = camera();
-        if (state.color === 'cull' && tree) paintCull(cam.eye.map(Math.fround));
+        // "Hold the culling eye": orbit away to see what that eye culls.
+        if (!state.hold || !heldEye) heldEye = cam.eye.map(Math.fround);
+        if (state.color === 'cull' && tree) paintCull(heldEye);
         gl.viewport(0, 0, canvas.width, canvas.height);
         gl.clearColor(1, 1, 1, 1);
         gl.clearDepth(1);
@@ -343,7 +346,7 @@ void main() {
         for (let i = 3; i < col.length; i += 4) col[i] = 255;
         gl.bindBuffer(gl.ARRAY_BUFFER, colorBuffer);
         gl.bufferSubData(gl.ARRAY_BUFFER, 0, col);
-        document.getElementById('cullFigures').textContent =
+        document.getElementById('cullText').textContent =
             `${out.ranges.length} segments drawn, ${out.drawn.toLocaleString('en')} triangles drawn, ${out.culled.toLocaleString('en')} culled, ${out.visited} nodes visited, ${ms.toFixed(2)} ms`;
     }
 
@@ -393,6 +396,7 @@ void main() {
     on('color', 'change', (e) => { state.color = e.target.value; paint(state.color); redraw(); });
     on('shading', 'change', (e) => { state.shading = e.target.value; redraw(); });
     on('wireframe', 'change', (e) => { state.wireframe = e.target.checked; redraw(); });
+    on('hold', 'change', (e) => { state.hold = e.target.checked; redraw(); });
     on('reset', 'click', () => { Object.assign(state, { yaw: 0, pitch: 0, zoom: 1 }); redraw(); });
     let drag = null;
     canvas.addEventListener('pointerdown', (e) => { drag = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });
