@@ -79,11 +79,12 @@ class Reader {
     records(count, what) { if (count > this.end - this.at) this.fail(`${count} ${what} cannot fit in the ${this.end - this.at} bytes left`); }
 }
 
-/** Version 2's vertex attributes: name, scalar type, components, normalized, raw values. */
-function readAttributes(r, positions) {
+/** Vertex attributes (versions 2 and 3): name, scalar type, components, normalized, raw values. */
+function readAttributes(r, positions, version3) {
     const SIZES = [1, 1, 2, 2, 4, 4, 4, 8];
     const count = r.u32('the attribute count');
-    if (count < 1 || count > 64) r.fail(`${count} attributes (1 to 64)`);
+    const least = version3 ? 0 : 1;
+    if (count < least || count > 64) r.fail(`${count} attributes (${least} to 64)`);
     const attributes = [];
     for (let i = 0; i < count; i++) {
         const len = r.varint('an attribute name');
@@ -106,7 +107,11 @@ function readAttributes(r, positions) {
     return attributes;
 }
 
-/** Versions 1 and 2: positions, (version 2) attributes, then the five varint sections. */
+/**
+ * Versions 1 to 3: positions, (versions 2 and 3) attributes, then the five varint
+ * sections. Version 3 (re-stripped models) writes each strip's beginning count as
+ * `count << 1 | empty0`, empty0 saying that the strip draws nothing at level 0.
+ */
 function decodeBody(r, h) {
     const optimal = (h.flags & 1) !== 0;
     const positionless = (h.flags & 2) !== 0;
@@ -120,7 +125,7 @@ function decodeBody(r, h) {
         r.at += 4;
         if (!Number.isFinite(positions[i])) r.fail('a position that is not finite');
     }
-    const attributes = h.version === 2 && !positionless ? readAttributes(r, h.positions) : [];
+    const attributes = h.version >= 2 && !positionless ? readAttributes(r, h.positions, h.version === 3) : [];
     const { levels, strips, slots } = h;
     // 1. Collapses.
     r.records(levels, 'collapses');
@@ -197,9 +202,11 @@ function decodeBody(r, h) {
         beginOffsets[s] = b;
         if (b >= h.beginnings) r.fail(`more than the ${h.beginnings} beginnings the header gives`);
         beginLevel[b] = 0;
-        beginSlot[b] = stripSlots[s + 1] > stripSlots[s] ? stripSlots[s] : SETS_END;
+        const code0 = r.varint('a beginning count');
+        const empty0 = h.version === 3 && code0 % 2 === 1;
+        const n = h.version === 3 ? Math.floor(code0 / 2) : code0;
+        beginSlot[b] = stripSlots[s + 1] > stripSlots[s] && !empty0 ? stripSlots[s] : SETS_END;
         b++;
-        const n = r.varint('a beginning count');
         r.records(n, 'beginnings');
         let level = 0;
         for (let k = 0; k < n; k++) {
@@ -239,7 +246,7 @@ function decodeBody(r, h) {
 }
 
 /** The body decoder of each format version. */
-export const DECODERS = { 1: decodeBody, 2: decodeBody };
+export const DECODERS = { 1: decodeBody, 2: decodeBody, 3: decodeBody };
 
 /**
  * Decodes a `.sets` file (ArrayBuffer or Uint8Array). Checks what docs/sets-format.md

@@ -139,13 +139,15 @@ fn the_pages_sets_runtime_extracts_every_level_like_lod_extract() {
         eprintln!("skip: {why}");
         return;
     }
-    // Two models: spot with its UVs (a version-2 file, endpoint placement) and a
-    // generated torus with optimal placement (version 1, a new vertex per collapse).
+    // Three models: spot with its UVs (a version-2 file, endpoint placement), spot
+    // re-stripped (version 3: strips empty at level 0 that begin later) and a generated
+    // torus with optimal placement (version 1, a new vertex per collapse).
     let torus = tmp("view-lod", "torus.obj");
     let gen = stripkit(&["gen", "torus", "--major", "36", "--minor", "14", "-o", torus.to_str().unwrap()]);
     assert!(gen.status.success(), "{}", String::from_utf8_lossy(&gen.stderr));
     let models = [
         ("spot", repo_root().join("assets/spot.obj"), &[][..]),
+        ("spot_restrip", repo_root().join("assets/spot.obj"), &["--restrip", "1.4"][..]),
         ("torus", torus, &["--placement", "optimal"][..]),
     ];
     for (name, input, flags) in models {

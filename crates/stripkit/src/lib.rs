@@ -39,6 +39,9 @@
 //! (edge collapse), [`distance`] (Hausdorff and RMS distances between surfaces) and
 //! [`matching`] (weighted perfect matching).
 //!
+//! [`parallel`]: the thread count ([`parallel::Threads`], one by default) the library's
+//! independent work may use, with outputs the same bytes at any count.
+//!
 //! ## Example
 //!
 //! ```
@@ -86,6 +89,7 @@ pub mod cull;
 pub mod distance;
 pub mod gen;
 pub mod matching;
+pub mod parallel;
 pub mod lod;
 pub mod scene;
 pub mod simplify;
@@ -104,7 +108,7 @@ pub use pipeline::{
 };
 pub use strip::{
     decode, decode_restart, degenerate_windows, encode_restart, encode_separate, encode_stitched, for_each_triangle,
-    is_degenerate, stitched_len, verify, verify_triangles, StripSet, Verification, DEFAULT_RESTART,
+    is_degenerate, stitched_len, verify, verify_decoded, verify_triangles, StripSet, Verification, DEFAULT_RESTART,
 };
 pub use stripify::greedy::{GreedyOptions, Heuristic};
 pub use stripify::quad::{Policy, QuadOptions};

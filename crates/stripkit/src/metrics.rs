@@ -316,8 +316,11 @@ pub struct Figures {
 /// joins, swaps, ACMR (FIFO 16 and 32, and `cache`), and verification. O(n log n).
 pub fn figures(input: &[[u32; 3]], strips: &StripSet, cache: CacheModel) -> Figures {
     let decoded = strip::decode(strips);
-    let v = strip::verify_triangles(input, &decoded);
     let vertex_count = strips.vertex_bound();
+    let acmrs = [(16, CacheKind::Fifo), (32, CacheKind::Fifo), (cache.size, cache.kind)]
+        .map(|(size, kind)| acmr(&decoded, vertex_count, size, kind));
+    // The decoded list is the check's to sort: no copy of it on big meshes.
+    let v = strip::verify_decoded(input, decoded);
     let n_strips = strips.len();
     let indices_separate = strips.index_count();
     let indices_restart = strips.restart_len();
@@ -334,10 +337,10 @@ pub fn figures(input: &[[u32; 3]], strips: &StripSet, cache: CacheModel) -> Figu
         } else {
             indices_restart as f64 / v.expected as f64
         },
-        acmr16: acmr(&decoded, vertex_count, 16, CacheKind::Fifo),
-        acmr32: acmr(&decoded, vertex_count, 32, CacheKind::Fifo),
+        acmr16: acmrs[0],
+        acmr32: acmrs[1],
         cache,
-        acmr: acmr(&decoded, vertex_count, cache.size, cache.kind),
+        acmr: acmrs[2],
         verified: v.ok(),
         winding_preserved: v.flipped == 0,
         lost: v.lost,

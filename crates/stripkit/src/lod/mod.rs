@@ -34,7 +34,7 @@ pub mod timing;
 mod track;
 
 pub use build::{build, BuildOptions, BuildReport, Built};
-pub use check::{check_levels, LevelCheck};
+pub use check::{check_levels, check_levels_with, LevelCheck};
 pub use cursor::Cursor;
 pub use file::{LODSEQ_MAGIC, SETS_MAGIC};
 pub use model::{Extracted, Model};
@@ -42,7 +42,7 @@ pub use seq::{
     build_seq, read_frames, BuiltSeq, FrameQuality, Frames, LodSeq, Quality, SeqCursor, SeqOptions,
     SeqReport, QUALITY_RATIOS,
 };
-pub use sets::{LevelSpec, Sets, END};
+pub use sets::{LevelSpec, Sets, END, RESTRIP_MARGIN};
 
 #[cfg(test)]
 mod tests;

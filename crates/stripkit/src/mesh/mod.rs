@@ -288,6 +288,22 @@ impl Mesh {
         out
     }
 
+    /// The fan triangles of [`Mesh::triangulate`] alone, the mesh consumed: its
+    /// vertices and attributes are freed before the list is built, its faces after,
+    /// so a check of a big mesh's triangles holds one copy of them at a time.
+    pub fn into_triangles(self) -> Vec<[u32; 3]> {
+        let Mesh { face_offsets, face_indices, positions, attributes, .. } = self;
+        drop((positions, attributes));
+        let mut tris = Vec::with_capacity(face_indices.len().saturating_sub(2 * face_offsets.len().saturating_sub(1)));
+        for w in face_offsets.windows(2) {
+            let face = &face_indices[w[0] as usize..w[1] as usize];
+            for i in 1..face.len().saturating_sub(1) {
+                tris.push([face[0], face[i], face[i + 1]]);
+            }
+        }
+        tris
+    }
+
     /// Axis-aligned bounding box `(min, max)`; `None` for a mesh without vertices.
     pub fn bounds(&self) -> Option<([f32; 3], [f32; 3])> {
         let first = *self.positions.first()?;
@@ -331,6 +347,9 @@ mod tests {
         assert_eq!(t.tris[2], [1, 4, 2]);
         assert_eq!(t.face_of, vec![0, 1, 1, 2, 2, 2]);
         assert!(!mesh.is_triangle_mesh());
+        let tris = mesh.into_triangles();
+        assert_eq!(tris, t.tris);
+        assert_eq!(tris.capacity(), 6);
     }
 
     #[test]

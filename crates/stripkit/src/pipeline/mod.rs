@@ -201,7 +201,7 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
                 Algorithm::Cache { refine } => (CacheOptions { refine, ..CacheOptions::cache(size) }, None),
                 _ => unreachable!("matched above"),
             };
-            let m = cache::stripify_mesh(mesh, &cache_options, bound, options.split);
+            let m = cache::stripify_mesh(mesh, &cache_options, bound, options.split, options.threads);
             if m.qstrip_diagonals {
                 (m.strips, Split::Qstrip, None, None)
             } else {
@@ -244,10 +244,10 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     }
     // The joined form is checked here and rebuilt on demand (`Strips::joined`): for
     // two of the three joins it is the strips themselves.
-    let v = strip::verify(
-        &triangles,
-        &joined(&strips, std::slice::from_ref(&(0..strips.len())), options.join, options.restart_index),
-    );
+    // Bound first: the encoded buffer it is read back from is dropped before the check.
+    let joined_form = joined(&strips, std::slice::from_ref(&(0..strips.len())), options.join, options.restart_index);
+    let v = strip::verify(&triangles, &joined_form);
+    drop(joined_form);
     if !v.ok() {
         return Err(fail(&format!("the strips joined by {}", options.join.name()), &v));
     }

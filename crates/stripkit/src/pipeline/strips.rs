@@ -135,7 +135,7 @@ impl Strips {
             Format::Ply => self.join == Join::Degenerate,
             _ => false,
         };
-        let set = self.for_format(format).filter(|_| stitched)?;
+        let set = self.written_form(format).filter(|_| stitched)?;
         Some(set.iter().map(strip::degenerate_windows).sum())
     }
 
@@ -146,11 +146,19 @@ impl Strips {
     /// `None` for formats that cannot hold strips (OBJ, OFF, STL; for OBJ,
     /// [`Strips::to_file_bytes`] writes the triangles in strip order instead).
     pub fn for_format(&self, format: Format) -> Option<StripSet> {
+        self.written_form(format).map(Cow::into_owned)
+    }
+
+    /// [`Strips::for_format`], borrowing the strips where the file holds them as they
+    /// are (PLY's restart and separate joins): no copy of them on the way out.
+    fn written_form(&self, format: Format) -> Option<Cow<'_, StripSet>> {
         match (format, self.join) {
-            (Format::Ply, Join::Degenerate) | (Format::Gltf | Format::Glb, Join::Separate) => Some(self.joined()),
-            (Format::Ply, _) => Some(self.strips.clone()),
+            (Format::Ply, Join::Degenerate) | (Format::Gltf | Format::Glb, Join::Separate) => {
+                Some(Cow::Owned(self.joined()))
+            }
+            (Format::Ply, _) => Some(Cow::Borrowed(&self.strips)),
             (Format::Gltf | Format::Glb, _) => {
-                Some(joined(&self.strips, &self.group_ranges, Join::Degenerate, self.restart_index))
+                Some(Cow::Owned(joined(&self.strips, &self.group_ranges, Join::Degenerate, self.restart_index)))
             }
             _ => None,
         }
@@ -168,7 +176,7 @@ impl Strips {
     pub fn to_file_bytes_with(&self, mesh: &Mesh, format: Format, options: &WriteOptions) -> Result<Vec<u8>> {
         let (out, to_write) = self.file_content(mesh, format)?;
         io::encode_checked(
-            || io::write_bytes(format, &out, to_write.as_ref(), options),
+            || io::write_bytes(format, &out, to_write.as_deref(), options),
             |bytes| self.check_file(&out, format, bytes),
         )
     }
@@ -186,7 +194,7 @@ impl Strips {
         let (out, to_write) = self.file_content(mesh, format)?;
         io::write_checked(
             path,
-            || io::write_bytes(format, &out, to_write.as_ref(), options),
+            || io::write_bytes(format, &out, to_write.as_deref(), options),
             |bytes| self.check_file(&out, format, bytes),
         )
         .map(drop)
@@ -196,7 +204,7 @@ impl Strips {
     /// for OBJ, which has no strips, the triangles the strips draw, in strip order (what
     /// a vertex cache sees), group by group with their `g`/`usemtl`, over the mesh's
     /// vertices and attributes.
-    fn file_content<'a>(&self, mesh: &'a Mesh, format: Format) -> Result<(Cow<'a, Mesh>, Option<StripSet>)> {
+    fn file_content<'a>(&'a self, mesh: &'a Mesh, format: Format) -> Result<(Cow<'a, Mesh>, Option<Cow<'a, StripSet>>)> {
         let mesh = if self.changes_mesh() { Cow::Owned(self.changed_mesh(mesh)) } else { Cow::Borrowed(mesh) };
         if format == Format::Obj {
             let mut out =
@@ -214,7 +222,7 @@ impl Strips {
             }
             return Ok((Cow::Owned(out), None));
         }
-        match self.for_format(format) {
+        match self.written_form(format) {
             Some(to_write) => Ok((mesh, Some(to_write))),
             None => Err(Error::Invalid(format!(
                 "{format:?} files cannot hold strips; write PLY, glTF, GLB or OBJ (or JSON)"
@@ -229,7 +237,9 @@ impl Strips {
         let name = format!("the {format:?} bytes to be written");
         let back = io::read_bytes(Path::new(&name), format, bytes)?;
         if format != Format::Obj {
-            let v = strip::verify_triangles(&self.triangles, &back.triangulate().tris);
+            // Only the triangles are compared: the rest of what was read back goes
+            // first (on meshes of millions of triangles every copy counts).
+            let v = strip::verify_decoded(&self.triangles, back.into_triangles());
             if !v.ok() {
                 return Err(fail(&format!("{name}, read back"), &v));
             }

@@ -263,6 +263,9 @@ pub(crate) fn walks_with_graph(tris: &[[u32; 3]], graph: &DualGraph, options: &G
         }
         walks.push_iter(back.iter().rev().chain(&path).copied());
     }
+    // The buckets (18 bytes per triangle) are spent: freed before the tunnel pass
+    // builds its own state.
+    drop(g);
     match options.tunnel_cuts {
         Some(max_cuts) => {
             // `strips` counts strips only: a swap is free, so any strip saved is worth

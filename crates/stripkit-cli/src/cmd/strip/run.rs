@@ -43,9 +43,9 @@ fn output_kind(path: &Path, stdout_format: Option<Format>) -> anyhow::Result<Out
 }
 
 /// Runs the command on one input file: read -> door -> encode -> write. `batch`: the
-/// progress bar of a folder run (`main` runs each file of a folder input through
-/// here), above which the report is one line.
-pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result<()> {
+/// text of one file of a folder run (`main` runs each file of a folder input through
+/// here): the report is one line of it.
+pub fn run(args: Args, batch: Option<&cmd::BatchText>) -> anyhow::Result<()> {
     let stdout_format = if cmd::is_dash(&args.output) {
         Some(cmd::output_format(&args.output, args.output_format, Some((&args.input, &args.read)))?)
     } else {
@@ -117,6 +117,7 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         _ => None,
     };
     if let Some(scene) = scene {
+        drop(mesh); // the scene holds it as a glTF document
         progress.finish_and_clear();
         for note in scene.notes() {
             eprintln!("note: {}: {note}", args.input.display());
@@ -132,10 +133,11 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
     let strips = args.strip.stripify(&mesh, &args.input, |o| args.with_join(o))?;
-    let (mesh, strips) = match (vertex_order, &kind) {
+    let (mut mesh, strips) = match (vertex_order, &kind) {
         (VertexOrder::FirstUse, OutKind::Mesh(format)) => strips.in_first_use_order(&mesh, *format),
         _ => (mesh, strips),
     };
+    drop_unwritten_faces(&mut mesh, &kind, &strips);
 
     progress.set_message(format!("writing {}", args.output.display()));
     let figures = &strips.figures;
@@ -185,13 +187,23 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
     }
 
     let sink = match batch {
-        Some(bar) => cmd::Sink::Batch(bar.clone()),
+        Some(text) => cmd::Sink::Batch(text.clone()),
         None => cmd::Sink::for_output(&args.output),
     };
     cmd::print_report_to(&sink, args.json, &report, |out, r| match batch {
         Some(_) => report::print_line(out, r),
         None => report::print_summary(out, r),
     })
+}
+
+/// A PLY or JSON output holds the strips and at most the vertices: the faces go
+/// before the output is encoded and checked (a fifth of the peak on big meshes).
+fn drop_unwritten_faces(mesh: &mut stripkit::Mesh, kind: &OutKind, strips: &stripkit::Strips) {
+    if matches!(kind, OutKind::Json | OutKind::Mesh(Format::Ply)) && !strips.changes_mesh() {
+        mesh.face_offsets = vec![0];
+        mesh.face_indices = Vec::new();
+        mesh.face_groups = Vec::new();
+    }
 }
 
 /// glTF in and glTF out: the whole scene goes through [`stripkit::io::Scene`].
@@ -209,7 +221,7 @@ fn run_scene(
     options: &StripOptions,
     format: Format,
     vertex_order: VertexOrder,
-    batch: Option<&indicatif::ProgressBar>,
+    batch: Option<&cmd::BatchText>,
 ) -> anyhow::Result<()> {
     use stripkit::io::Scene;
     let invalid = |m: String| -> anyhow::Result<()> { Err(Error::Invalid(m).into()) };
@@ -259,7 +271,7 @@ fn strip_scene(
     read_time: std::time::Duration,
     format: Format,
     vertex_order: VertexOrder,
-    batch: Option<&indicatif::ProgressBar>,
+    batch: Option<&cmd::BatchText>,
 ) -> anyhow::Result<()> {
     let scene_options = match options.join {
         Join::Degenerate => stripkit::scene::SceneOptions::stitched(),
@@ -300,7 +312,7 @@ fn strip_scene(
         scene: &report,
     };
     let sink = match batch {
-        Some(bar) => cmd::Sink::Batch(bar.clone()),
+        Some(text) => cmd::Sink::Batch(text.clone()),
         None => cmd::Sink::for_output(&args.output),
     };
     cmd::print_report_to(&sink, args.json, &r, |out, r| report::print_scene(out, r, batch.is_some()))

@@ -263,24 +263,31 @@ pub(super) fn mesh_document(mesh: &Mesh, library: &Materials) -> Result<MeshDocu
     let mut group_of_primitive = Vec::new();
     let mut faces = Vec::new();
     for (g, part) in &parts {
-        let list: Vec<u32> = part.triangulate().tris.into_iter().flatten().collect();
-        if list.is_empty() {
+        // The fan's indices go straight into the buffer (no list of them first).
+        let count = 3 * part.triangle_count();
+        if count == 0 {
             continue;
         }
-        let attributes = write_vertices(part, &mut bin, &mut views, &mut accessors, &mut notes);
         let wide = part.vertex_count() >= u16::MAX as usize;
+        let attribute_bytes: usize = part.attributes.iter().map(|a| a.data.len()).sum();
+        bin.reserve(part.positions.len() * 12 + attribute_bytes + 8 + count * if wide { 4 } else { 2 });
+        let attributes = write_vertices(part, &mut bin, &mut views, &mut accessors, &mut notes);
         bin.resize(bin.len().next_multiple_of(4), 0);
         let start = bin.len();
-        for &i in &list {
-            if wide {
-                bin.extend_from_slice(&i.to_le_bytes());
-            } else {
-                bin.extend_from_slice(&(i as u16).to_le_bytes());
+        for face in part.faces() {
+            for i in 1..face.len().saturating_sub(1) {
+                for v in [face[0], face[i], face[i + 1]] {
+                    if wide {
+                        bin.extend_from_slice(&v.to_le_bytes());
+                    } else {
+                        bin.extend_from_slice(&(v as u16).to_le_bytes());
+                    }
+                }
             }
         }
         views.push(json!({"buffer": 0, "byteOffset": start, "byteLength": bin.len() - start, "target": 34963}));
         accessors.push(json!({"bufferView": views.len() - 1, "componentType": if wide { 5125 } else { 5123 },
-            "count": list.len(), "type": "SCALAR"}));
+            "count": count, "type": "SCALAR"}));
         let mut prim = json!({"attributes": attributes, "indices": accessors.len() - 1, "mode": 4});
         let group = mesh.groups.get(*g as usize);
         if let Some(m) = group.and_then(|g| g.material.as_ref()) {

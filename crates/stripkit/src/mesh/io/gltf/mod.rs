@@ -457,6 +457,12 @@ fn push_primitive_faces(
     mode: u64,
     indices: &[u32],
 ) -> Result<()> {
+    if mode == 4 {
+        // A list's faces are its triples: sized once (strips and fans may hold
+        // degenerate triangles, so they grow as they decode).
+        mesh.face_indices.reserve(indices.len() / 3 * 3);
+        mesh.face_offsets.reserve(indices.len() / 3);
+    }
     let res = match mode {
         4 => indices.chunks_exact(3).try_for_each(|t| {
             mesh.face_indices.extend_from_slice(t);

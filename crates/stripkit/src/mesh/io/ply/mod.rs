@@ -389,6 +389,10 @@ fn read_tristrips<B: Body>(src: Src, element: &Element, r: &mut B, vertex_count:
                 return Err(err(r, format!("negative list length {n}")));
             }
             r.check_list(n as u64, item).map_err(|w| err(r, w))?;
+            // A list of n indices draws at most n triangles, and the check above
+            // proved the file holds them: the faces are sized once.
+            mesh.face_indices.reserve((n as usize).saturating_mul(3));
+            mesh.face_offsets.reserve(n as usize);
             strip.clear();
             for _ in 0..n {
                 let i = r.int(item).map_err(|w| err(r, w))?;
@@ -567,7 +571,6 @@ fn skip_property<B: Body>(r: &mut B, kind: Kind) -> Result<(), String> {
 /// Encodes a mesh (or its strips) as PLY.
 pub(crate) fn write(mesh: &Mesh, strips: Option<&StripSet>, ascii: bool) -> Result<Vec<u8>> {
     let nv = mesh.positions.len();
-    let mut out = Vec::with_capacity(256 + nv * 12 + mesh.face_indices.len() * 5 + mesh.face_count());
     let format = if ascii { "ascii" } else { "binary_little_endian" };
     let mut header = format!(
         "ply\nformat {format} 1.0\ncomment written by stripkit\nelement vertex {nv}\n\
@@ -579,19 +582,16 @@ pub(crate) fn write(mesh: &Mesh, strips: Option<&StripSet>, ascii: bool) -> Resu
             header.push_str(&format!("property {} {name}\n", type_name(a.scalar)));
         }
     }
-    let strip_list: Option<Vec<i32>> = match strips {
+    // The strips' one list is written straight from the set (no copy of it): each
+    // non-empty strip's indices, then -1.
+    let strip_list: Option<(&StripSet, usize)> = match strips {
         Some(set) => {
-            let total = set.indices.len() + set.len();
+            let total = set.indices.len() + set.iter().filter(|s| !s.is_empty()).count();
             if total > i32::MAX as usize {
                 return Err(Error::Invalid(format!("{total} strip indices do not fit a PLY int list")));
             }
-            let mut list = Vec::with_capacity(total);
-            for s in set.iter().filter(|s| !s.is_empty()) {
-                list.extend(s.iter().map(|&i| i as i32));
-                list.push(-1);
-            }
             header.push_str("element tristrips 1\nproperty list int int vertex_indices\n");
-            Some(list)
+            Some((set, total))
         }
         None => None,
     };
@@ -601,6 +601,14 @@ pub(crate) fn write(mesh: &Mesh, strips: Option<&StripSet>, ascii: bool) -> Resu
         header.push_str(&format!("element face {}\nproperty list {count} int vertex_indices\n", mesh.face_count()));
     }
     header.push_str("end_header\n");
+    // Binary: the exact size, so the buffer is sized once; ASCII: an estimate.
+    let attribute_bytes: usize = attributes.iter().map(|a| a.data.len()).sum();
+    let capacity = match (ascii, &strip_list) {
+        (true, _) => 256 + nv * 12 + mesh.face_indices.len() * 5 + mesh.face_count(),
+        (false, Some((_, total))) => 4 + 4 * total,
+        (false, None) => mesh.face_indices.len() * 4 + mesh.face_count() * if wide { 4 } else { 1 },
+    };
+    let mut out = Vec::with_capacity(header.len() + nv * 12 + attribute_bytes + capacity);
     out.extend_from_slice(header.as_bytes());
     if ascii {
         for (v, p) in mesh.positions.iter().enumerate() {
@@ -619,9 +627,9 @@ pub(crate) fn write(mesh: &Mesh, strips: Option<&StripSet>, ascii: bool) -> Resu
             out.push(b'\n');
         }
         match &strip_list {
-            Some(list) => {
-                push_u64(&mut out, list.len() as u64);
-                for &i in list {
+            Some((set, total)) => {
+                push_u64(&mut out, *total as u64);
+                for i in strip_values(set) {
                     out.push(b' ');
                     if i < 0 {
                         out.extend_from_slice(b"-1");
@@ -643,9 +651,9 @@ pub(crate) fn write(mesh: &Mesh, strips: Option<&StripSet>, ascii: bool) -> Resu
             }
         }
         match &strip_list {
-            Some(list) => {
-                out.extend_from_slice(&(list.len() as i32).to_le_bytes());
-                for &i in list {
+            Some((set, total)) => {
+                out.extend_from_slice(&(*total as i32).to_le_bytes());
+                for i in strip_values(set) {
                     out.extend_from_slice(&i.to_le_bytes());
                 }
             }
@@ -664,6 +672,11 @@ pub(crate) fn write(mesh: &Mesh, strips: Option<&StripSet>, ascii: bool) -> Resu
         }
     }
     Ok(out)
+}
+
+/// The values of PLY's strip list: each non-empty strip's indices, then -1.
+fn strip_values(set: &StripSet) -> impl Iterator<Item = i32> + '_ {
+    set.iter().filter(|s| !s.is_empty()).flat_map(|s| s.iter().map(|&i| i as i32).chain(std::iter::once(-1)))
 }
 
 #[cfg(test)]
@@ -718,6 +731,20 @@ mod tests {
             let bytes = write(&mesh, None, ascii).unwrap();
             assert_eq!(parse(&bytes).unwrap(), mesh, "ascii={ascii}");
         }
+    }
+
+    #[test]
+    fn binary_files_are_sized_once() {
+        let mut mesh = Mesh::from_polygons(vec![[0.5; 3]; 5], &[vec![0, 1, 2, 3], vec![2, 1, 4]]);
+        mesh.attributes.push(Attribute::from_f32("w", 2, &[1.0; 10]));
+        let strips = StripSet::from_strips(&[vec![0, 1, 2, 3], vec![], vec![2, 4, 1]]);
+        for with in [None, Some(&strips)] {
+            let bytes = write(&mesh, with, false).unwrap();
+            assert_eq!(bytes.capacity(), bytes.len(), "strips: {}", with.is_some());
+        }
+        // The strip list skips the empty strip: 4 + 1 + 3 + 1 values.
+        let back = parse(&write(&mesh, Some(&strips), false).unwrap()).unwrap();
+        assert_eq!(back.faces().collect::<Vec<_>>(), vec![&[0, 1, 2][..], &[2, 1, 3], &[2, 4, 1]]);
     }
 
     #[test]
