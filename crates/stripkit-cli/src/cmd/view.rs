@@ -23,9 +23,10 @@ const PAGE: &str = include_str!("view/page.html");
 const STYLE: &str = include_str!("view/viewer.css");
 /// The page's script: decoding, buffers, camera, drawing, panel.
 const SCRIPT: &str = include_str!("view/viewer.js");
-/// The `.sets` runtime (an ES module of its own, js/sets-runtime), inlined into the
-/// page's script at `/*RUNTIME*/` with its `export` keywords dropped.
-const RUNTIME: &str = include_str!("../../../../js/sets-runtime/index.js");
+/// The `.sets` runtime (an ES module of its own, js/sets-runtime; `view/sets-runtime.js`
+/// is a link to it, which `cargo package` copies), inlined into the page's script at
+/// `/*RUNTIME*/` with its `export` keywords dropped.
+const RUNTIME: &str = include_str!("view/sets-runtime.js");
 
 /// Arguments of `stripkit view`.
 #[derive(clap::Args, Debug)]
