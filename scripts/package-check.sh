@@ -51,7 +51,7 @@ for c in "${crates[@]}"; do
     file="target/package/$c-$version.crate"
     list=$(tar tzf "$file" | sed "s|^$c-$version/||")
     bad=$(grep -v -E <<<"$list" \
-        '^(Cargo\.toml|Cargo\.toml\.orig|Cargo\.lock|\.cargo_vcs_info\.json|README\.md|LICENSE-MIT|LICENSE-APACHE|src/.*\.rs|examples/[a-z_]+\.rs)$' || true)
+        '^(Cargo\.toml|Cargo\.toml\.orig|Cargo\.lock|\.cargo_vcs_info\.json|README\.md|LICENSE-MIT|LICENSE-APACHE|src/.*\.rs|src/cmd/view/[a-z-]+\.(html|css|js)|examples/[a-z_]+\.rs)$' || true)
     if [ -n "$bad" ]; then
         echo "error: $c's package holds files outside the rules of docs/release.md:" >&2
         echo "$bad" >&2

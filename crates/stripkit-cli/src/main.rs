@@ -41,6 +41,8 @@ enum Command {
     Cull(cmd::cull::Args),
     /// Multiresolution strips (SETS): build a model of every level of detail, extract a level, time level changes.
     Lod(cmd::lod::Args),
+    /// Write one self-contained HTML page that draws a mesh's strips with WebGL2: orbit, shading, colours, wireframe, figures.
+    View(cmd::view::Args),
     /// Print a shell completion script on stdout, e.g.
     /// `stripkit completions bash > ~/.local/share/bash-completion/completions/stripkit`.
     Completions {
@@ -80,6 +82,7 @@ fn main() -> ExitCode {
         Command::Render(a) => cmd::render::run(a),
         Command::Cull(a) => cmd::cull::run(a),
         Command::Lod(a) => cmd::lod::run(a),
+        Command::View(a) => cmd::view::run(a),
         Command::Completions { shell } => {
             // Built first, then written: the script is the command's data, so a
             // closed standard output (a script cut short) is an error.

@@ -11,6 +11,7 @@ pub mod render;
 pub mod simplify;
 pub mod stats;
 pub mod strip;
+pub mod view;
 
 use std::path::Path;
 use std::process::ExitCode;

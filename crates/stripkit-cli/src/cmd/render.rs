@@ -9,7 +9,7 @@
 
 mod input;
 mod report;
-mod values;
+pub mod values;
 
 use clap::ValueEnum;
 use serde::Serialize;

@@ -1,0 +1,85 @@
+#!/usr/bin/env node
+// Opens pages written by `stripkit view` in headless Chromium (playwright-core, Debian's
+// chromium, SwiftShader WebGL: software rendering) and saves each canvas's first frame.
+//   node .ci/viewer-page.mjs [--eyes=X,Y,Z;...] [--levels=L,L,...] [--sweep=N] PAGE.html[#color=none&shading=smooth]=OUT.rgba [PAGE=OUT ...]
+// For a --cull page, --eyes=X,Y,Z;X,Y,Z;... adds "cull": [{"segments", "drawn",
+// "culled", "visited"} per eye] (eyes in the input's units) to the line.
+// For a `.sets` page, --levels writes OUT.levels.json ({"L": strips, ...}: the page's
+// runtime's strips at each level, as `stripkit lod extract`'s JSON), and --sweep moves
+// the slider's level across N steps from the finest to the coarsest and back, adding
+// "sweep": {"steps", "extract_ms", "upload_ms" and "frame_ms" (extract + upload + draw
+// + finish as the page sees them): median and max, "changed_strips" max, and
+// "frame_interval_ms": median, 95th percentile and max between animation frames when
+// the same moves are made one per frame} to the line.
+// OUT gets the canvas's pixels, RGBA, top row first. Prints one JSON line per page:
+// {"page", "width", "height", "first_frame_ms" (navigation start to the first frame
+// drawn and finished), "setup_ms" (the page's script, decoding to first frame),
+// "errors" (console errors and uncaught exceptions)}.
+// Needs CHROMIUM (default /usr/bin/chromium) and playwright-core in .ci/node_modules.
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const { chromium } = await import(path.join(here, 'node_modules/playwright-core/index.mjs'));
+const options = Object.fromEntries(process.argv.slice(2).filter((a) => a.startsWith('--')).map((a) => a.slice(2).split('=')));
+// Split at the last '=': the page's address may hold some.
+const pairs = process.argv.slice(2).filter((a) => !a.startsWith('--')).map((a) => [a.slice(0, a.lastIndexOf('=')), a.slice(a.lastIndexOf('=') + 1)]);
+if (pairs.length === 0 || pairs.some((p) => !p[0] || !p[1])) {
+    console.error('usage: viewer-page.mjs PAGE.html=OUT.rgba ...');
+    process.exit(2);
+}
+const browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+    args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox'],
+});
+try {
+    for (const [page, out] of pairs) {
+        const tab = await browser.newPage();
+        const errors = [];
+        tab.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+        tab.on('pageerror', (e) => errors.push(String(e)));
+        const [file, hash] = page.split('#');
+        await tab.goto(pathToFileURL(path.resolve(file)).href + (hash ? '#' + hash : ''));
+        await tab.waitForFunction(() => window.stripkitView && window.stripkitView.ready, null, { timeout: 60000 });
+        const r = await tab.evaluate(() => {
+            const v = window.stripkitView, c = document.getElementById('view');
+            return { width: c.width, height: c.height, first_frame_ms: v.firstFrameMs, setup_ms: v.setupMs, pixels: v.pixels() };
+        });
+        const row = r.width * 4, flipped = Buffer.alloc(r.pixels.length);
+        for (let y = 0; y < r.height; y++) flipped.set(r.pixels.slice((r.height - 1 - y) * row, (r.height - y) * row), y * row);
+        fs.writeFileSync(out, flipped);
+        const line = { page, width: r.width, height: r.height, first_frame_ms: r.first_frame_ms, setup_ms: r.setup_ms, errors };
+        if (options.eyes) {
+            const eyes = options.eyes.split(';').map((e) => e.split(',').map(Number));
+            line.cull = await tab.evaluate((es) => es.map((e) => { const c = window.stripkitView.cull(e); delete c.ranges; return c; }), eyes);
+        }
+        if (options.levels) {
+            const levels = options.levels.split(',').map(Number);
+            const strips = await tab.evaluate((ls) => Object.fromEntries(ls.map((l) => [l, window.stripkitView.level(l)])), levels);
+            fs.writeFileSync(out + '.levels.json', JSON.stringify(strips));
+        }
+        if (options.sweep) {
+            line.sweep = await tab.evaluate((steps) => {
+                const v = window.stripkitView, top = v.levels;
+                const ls = [];
+                for (let i = 0; i <= steps; i++) ls.push(Math.round((top * i) / steps));
+                for (let i = steps - 1; i >= 0; i--) ls.push(Math.round((top * i) / steps));
+                const t = v.sweep(ls);
+                const stat = (k) => { const x = t.map((r) => r[k]).sort((a, b) => a - b); return [x[x.length >> 1], x[x.length - 1]]; };
+                const frame = t.map((r) => r[0] + r[1] + r[2]).sort((a, b) => a - b);
+                return { steps: ls.length, extract_ms: stat(0), upload_ms: stat(1), frame_ms: [frame[frame.length >> 1], frame[frame.length - 1]], changed_strips: stat(3)[1], levels: ls };
+            }, Number(options.sweep));
+            // The same moves once per animation frame: the intervals between frames.
+            const intervals = await tab.evaluate((ls) => window.stripkitView.sweepFrames(ls), line.sweep.levels);
+            intervals.sort((a, b) => a - b);
+            delete line.sweep.levels;
+            line.sweep.frame_interval_ms = [intervals[intervals.length >> 1], intervals[Math.floor(intervals.length * 0.95)], intervals[intervals.length - 1]];
+            line.errors = errors;
+        }
+        console.log(JSON.stringify(line));
+        await tab.close();
+    }
+} finally {
+    await browser.close();
+}

@@ -1,0 +1,1 @@
+../../../../../js/sets-runtime/index.js

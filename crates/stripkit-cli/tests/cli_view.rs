@@ -1,0 +1,255 @@
+//! `stripkit view`'s page in a real browser: `.ci/viewer-page.mjs` opens the pages
+//! headless (Debian's chromium, SwiftShader: software rendering) and saves the
+//! canvas's first frame, which must match `stripkit render` of the same model and view
+//! (Mesa's llvmpipe) within a small tolerance, with no console error. Skips with a
+//! printed reason without Chromium (`.ci/run` installs Debian's `chromium` as root),
+//! node, or the npm package playwright-core.
+
+mod support;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use support::{stripkit, tmp};
+
+/// This checkout (not the testkit's, which may have been built in another tree).
+fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Why the check cannot run here, if it cannot.
+fn missing() -> Option<String> {
+    let chromium = std::env::var("CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
+    if !Path::new(&chromium).is_file() {
+        return Some(format!("{chromium} is absent (.ci/run installs Debian's chromium as root)"));
+    }
+    if !repo_root().join(".ci/node_modules/playwright-core/package.json").is_file() {
+        return Some("npm package playwright-core is not installed in .ci/node_modules (.ci/run installs it)".into());
+    }
+    match Command::new("node").arg("--version").output() {
+        Ok(o) if o.status.success() => None,
+        _ => Some("node is not on PATH".into()),
+    }
+}
+
+/// An RGB picture from `stripkit render`.
+fn read_png(path: &Path) -> Vec<[u8; 3]> {
+    let decoder = png::Decoder::new(std::fs::File::open(path).expect("the picture exists"));
+    let mut reader = decoder.read_info().expect("a PNG");
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).expect("PNG data");
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    buf[..info.buffer_size()].chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect()
+}
+
+/// One page to compare: the input, the flags both commands take (strips, view), the
+/// page's first state (its address's `#`) and `stripkit render`'s flags for it.
+struct Case {
+    input: PathBuf,
+    name: &'static str,
+    flags: &'static [&'static str],
+    hash: &'static str,
+    render: &'static [&'static str],
+}
+
+#[test]
+fn the_page_draws_what_render_draws() {
+    if let Some(why) = missing() {
+        eprintln!("skip: {why}");
+        return;
+    }
+    // A torus whose faces the generator writes in order; the strips are shuffled by
+    // the stripifier's own choices, and `--algo cache` gives a second, different set.
+    let torus = tmp("view", "torus.obj");
+    let gen = stripkit(&["gen", "torus", "--major", "40", "--minor", "16", "-o", torus.to_str().unwrap()]);
+    assert!(gen.status.success(), "{}", String::from_utf8_lossy(&gen.stderr));
+    let spot = repo_root().join("assets/spot.obj");
+    let cases = [
+        Case { input: spot.clone(), name: "spot_flat", flags: &[], hash: "", render: &[] },
+        Case {
+            input: spot.clone(),
+            name: "spot_smooth",
+            flags: &["--algo", "cache"],
+            hash: "color=none&shading=smooth",
+            render: &["--color", "none", "--shading", "smooth"],
+        },
+        Case { input: torus.clone(), name: "torus_flat", flags: &["--algo", "cache", "--view", "1,2,3"], hash: "", render: &[] },
+    ];
+    let mut pages = Vec::new();
+    for c in &cases {
+        let (html, png) = (tmp("view", &format!("{}.html", c.name)), tmp("view", &format!("{}.png", c.name)));
+        let mut args = vec!["view", c.input.to_str().unwrap(), "-o", html.to_str().unwrap(), "--size", "256x256", "--json"];
+        args.extend(c.flags);
+        let report = support::json(&stripkit(&args));
+        assert!(report["page_bytes"].as_u64().unwrap() > 1000, "{report}");
+        let mut args = vec!["render", c.input.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "256x256"];
+        args.extend(c.flags);
+        args.extend(c.render);
+        let run = stripkit(&args);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        let hash = if c.hash.is_empty() { String::new() } else { format!("#{}", c.hash) };
+        pages.push((format!("{}{hash}", html.display()), tmp("view", &format!("{}.rgba", c.name)), png));
+    }
+    let run = Command::new("node")
+        .arg(repo_root().join(".ci/viewer-page.mjs"))
+        .args(pages.iter().map(|(page, rgba, _)| format!("{page}={}", rgba.display())))
+        .output()
+        .expect("runs node");
+    let text = String::from_utf8_lossy(&run.stdout);
+    eprintln!("{text}{}", String::from_utf8_lossy(&run.stderr));
+    assert!(run.status.success());
+    let reports: Vec<serde_json::Value> = text.lines().filter_map(|l| serde_json::from_str(l).ok()).collect();
+    assert_eq!(reports.len(), cases.len(), "{text}");
+    for ((c, (_, rgba, png)), r) in cases.iter().zip(&pages).zip(&reports) {
+        assert_eq!(r["errors"].as_array().unwrap().len(), 0, "{}: console errors {r}", c.name);
+        let page: Vec<[u8; 3]> = std::fs::read(rgba).unwrap().chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect();
+        let reference = read_png(png);
+        assert_eq!(page.len(), reference.len(), "{}", c.name);
+        let lit = reference.iter().filter(|p| **p != [255; 3]).count();
+        let far = page
+            .iter()
+            .zip(&reference)
+            .filter(|(a, b)| (0..3).any(|k| (a[k] as i32 - b[k] as i32).abs() > 8))
+            .count();
+        eprintln!("{}: {lit} lit pixels, {far} differ by more than 8 levels", c.name);
+        // The model fills the picture; the two software rasterizers differ only on
+        // edge pixels (spot, flat: 97 of 16,325 lit pixels).
+        assert!(lit > 10_000, "{}: {lit} lit pixels", c.name);
+        assert!(far * 100 <= lit * 2, "{}: {far} of {lit} lit pixels differ", c.name);
+    }
+}
+
+/// Runs `.ci/viewer-page.mjs` with `options` on `pages` (page=out pairs); its JSON lines.
+fn open_pages(options: &[String], pages: &[String]) -> Vec<serde_json::Value> {
+    let run = Command::new("node").arg(repo_root().join(".ci/viewer-page.mjs")).args(options).args(pages).output();
+    let run = run.expect("runs node");
+    let text = String::from_utf8_lossy(&run.stdout);
+    eprintln!("{text}{}", String::from_utf8_lossy(&run.stderr));
+    assert!(run.status.success());
+    let reports: Vec<serde_json::Value> = text.lines().filter_map(|l| serde_json::from_str(l).ok()).collect();
+    assert_eq!(reports.len(), pages.len(), "{text}");
+    for r in &reports {
+        assert_eq!(r["errors"].as_array().unwrap().len(), 0, "console errors: {r}");
+    }
+    reports
+}
+
+#[test]
+fn the_pages_sets_runtime_extracts_every_level_like_lod_extract() {
+    if let Some(why) = missing() {
+        eprintln!("skip: {why}");
+        return;
+    }
+    // Three models: spot with its UVs (a version-2 file, endpoint placement), spot
+    // re-stripped (version 3: strips empty at level 0 that begin later) and a generated
+    // torus with optimal placement (version 1, a new vertex per collapse).
+    let torus = tmp("view-lod", "torus.obj");
+    let gen = stripkit(&["gen", "torus", "--major", "36", "--minor", "14", "-o", torus.to_str().unwrap()]);
+    assert!(gen.status.success(), "{}", String::from_utf8_lossy(&gen.stderr));
+    let models = [
+        ("spot", repo_root().join("assets/spot.obj"), &[][..]),
+        ("spot_restrip", repo_root().join("assets/spot.obj"), &["--restrip", "1.4"][..]),
+        ("torus", torus, &["--placement", "optimal"][..]),
+    ];
+    for (name, input, flags) in models {
+        let sets = tmp("view-lod", &format!("{name}.sets"));
+        let mut args = vec!["lod", "build", input.to_str().unwrap(), "-o", sets.to_str().unwrap(), "--json"];
+        args.extend(flags);
+        let built = support::json(&stripkit(&args));
+        let levels = built["levels"].as_u64().unwrap();
+        assert!(levels > 100, "{built}");
+        // 20 levels: both ends and 18 between, visited in a shuffled order so that the
+        // cursor moves both ways by steps of every size.
+        let mut chosen: Vec<u64> = (0..20).map(|i| i * levels / 19).collect();
+        stripkit_testkit::XorShift64(0x5e75 + levels).shuffle(&mut chosen);
+        let html = tmp("view-lod", &format!("{name}.html"));
+        let png = tmp("view-lod", &format!("{name}.png"));
+        let view = support::json(&stripkit(&["view", sets.to_str().unwrap(), "-o", html.to_str().unwrap(), "--size", "256x256", "--json"]));
+        // The page holds the file as base64 (4/3) and the script.
+        let page_bytes = view["page_bytes"].as_u64().unwrap();
+        let file_bytes = std::fs::metadata(&sets).unwrap().len();
+        assert!(page_bytes < 2 * file_bytes + 100_000, "{page_bytes} bytes for a {file_bytes}-byte file");
+        let rgba = tmp("view-lod", &format!("{name}.rgba"));
+        let list: Vec<String> = chosen.iter().map(u64::to_string).collect();
+        open_pages(&[format!("--levels={}", list.join(","))], &[format!("{}={}", html.display(), rgba.display())]);
+        let got: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(format!("{}.levels.json", rgba.display())).unwrap()).unwrap();
+        for level in &chosen {
+            let json = tmp("view-lod", &format!("{name}-{level}.json"));
+            let l = level.to_string();
+            let run = stripkit(&["lod", "extract", sets.to_str().unwrap(), "--level", &l, "-o", json.to_str().unwrap()]);
+            assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+            let want: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+            assert!(!want["strips"].as_array().unwrap().is_empty());
+            assert_eq!(got[&l], want["strips"], "{name} level {level}");
+        }
+        // The first frame (level 0) is `stripkit render`'s picture of the model.
+        let run = stripkit(&["render", sets.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "256x256"]);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        let page: Vec<[u8; 3]> = std::fs::read(&rgba).unwrap().chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect();
+        let reference = read_png(&png);
+        let lit = reference.iter().filter(|p| **p != [255; 3]).count();
+        let far =
+            page.iter().zip(&reference).filter(|(a, b)| (0..3).any(|k| (a[k] as i32 - b[k] as i32).abs() > 8)).count();
+        eprintln!("{name}: {levels} levels, page {page_bytes} bytes for {file_bytes}; {far} of {lit} lit pixels differ");
+        assert!(lit > 10_000 && far * 100 <= lit * 2, "{name}: {far} of {lit} lit pixels differ");
+    }
+}
+
+#[test]
+fn the_pages_culling_gives_the_ranges_of_stripkit_cull() {
+    if let Some(why) = missing() {
+        eprintln!("skip: {why}");
+        return;
+    }
+    // Spot and a generated torus, each as one strip per component (`stripkit cull`'s
+    // strips), the 10 eyes of `stripkit cull --views 10`.
+    let torus = tmp("view-cull", "torus.obj");
+    let gen = stripkit(&["gen", "torus", "--major", "30", "--minor", "12", "-o", torus.to_str().unwrap()]);
+    assert!(gen.status.success(), "{}", String::from_utf8_lossy(&gen.stderr));
+    for (name, input) in [("spot", repo_root().join("assets/spot.obj")), ("torus", torus)] {
+        let html = tmp("view-cull", &format!("{name}.html"));
+        let (i, h) = (input.to_str().unwrap(), html.to_str().unwrap());
+        let run = stripkit(&["view", i, "--algo", "single", "--weights", "cull", "--cull", "-o", h, "--size", "64x64"]);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        let cull = support::json(&stripkit(&["cull", i, "--views", "10", "--repeat", "1", "--json"]));
+        let mesh = stripkit::io::read(&input).unwrap();
+        let (center, radius) = stripkit::cull::bounding_sphere(&mesh.positions);
+        let eyes = stripkit::cull::helix_eyes(center, radius, 10);
+        let eyes: Vec<String> = eyes.iter().map(|e| format!("{},{},{}", e[0], e[1], e[2])).collect();
+        let rgba = tmp("view-cull", &format!("{name}.rgba"));
+        let reports = open_pages(&[format!("--eyes={}", eyes.join(";"))], &[format!("{h}={}", rgba.display())]);
+        let page = reports[0]["cull"].as_array().unwrap();
+        let views = cull["per_view"].as_array().unwrap();
+        assert_eq!(page.len(), 10);
+        assert_eq!(views.len(), 10);
+        for (k, (p, v)) in page.iter().zip(views).enumerate() {
+            assert_eq!(p["segments"], v["segments"], "{name} eye {k}: {p} {v}");
+            assert_eq!(p["drawn"], v["drawn"], "{name} eye {k}: {p} {v}");
+            assert_eq!(p["visited"], v["visited_root"], "{name} eye {k}: {p} {v}");
+            assert!(p["segments"].as_u64().unwrap() > 0 && p["culled"].as_u64().unwrap() > 0, "{name} eye {k}: {p}");
+        }
+        eprintln!("{name}: 10 eyes, segments {:?}", page.iter().map(|p| p["segments"].as_u64().unwrap()).collect::<Vec<_>>());
+    }
+}
+
+#[test]
+fn the_page_is_self_contained_and_bad_arguments_exit_2() {
+    let spot = repo_root().join("assets/spot.obj");
+    let html = tmp("view-args", "spot.html");
+    let run = stripkit(&["view", spot.to_str().unwrap(), "-o", html.to_str().unwrap()]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let page = std::fs::read_to_string(&html).unwrap();
+    // Nothing fetched: no external script, style, image or address.
+    for needle in ["<script src", "<link", "<img", "http://", "https://", "import("] {
+        assert!(!page.contains(needle), "the page holds `{needle}`");
+    }
+    assert!(page.contains("TRIANGLE_STRIP") && page.contains("\"strip_indices\":\""));
+    let png = tmp("view-args", "spot.png");
+    let run = stripkit(&["view", spot.to_str().unwrap(), "-o", png.to_str().unwrap()]);
+    assert_eq!(run.status.code(), Some(2), "a page must be .html");
+    assert!(!png.exists());
+    let sets = tmp("view-args", "spot.sets");
+    assert!(stripkit(&["lod", "build", spot.to_str().unwrap(), "-o", sets.to_str().unwrap()]).status.success());
+    let run = stripkit(&["view", sets.to_str().unwrap(), "--cull", "-o", html.to_str().unwrap()]);
+    assert_eq!(run.status.code(), Some(2), "{}", String::from_utf8_lossy(&run.stderr));
+}

@@ -1,0 +1,350 @@
+// A JavaScript runtime for stripkit's `.sets` files (docs/sets-format.md): decodes a
+// SETS multiresolution strip model and walks its strips at any level of detail, the
+// way `stripkit lod extract` and stripkit's `lod::Cursor` do. No dependencies; works
+// in browsers and node. `stripkit view MODEL.sets` inlines this file into its page
+// (with the `export` keywords dropped), so keep every export at a line's start.
+//
+//   import { decodeSets, SetsCursor } from 'stripkit-sets';
+//   const sets = decodeSets(bytes);              // an ArrayBuffer or Uint8Array
+//   const cursor = new SetsCursor(sets, 0);
+//   const changed = cursor.setLevel(1000);       // the strips whose indices changed
+//   // cursor.buffer: every strip at its fixed place, padded with the restart index,
+//   // ready for drawElements(TRIANGLE_STRIP); cursor.stripRange(s) is strip s's place.
+//
+// Versions: decodeSets reads the header, then hands the rest to the decoder of the
+// file's version (DECODERS); a new version is one more entry there.
+
+/** The restart index the buffers use (WebGL2's fixed one for 32-bit indices). */
+export const SETS_RESTART = 0xffffffff;
+/** A slot's successor or a strip's beginning that is none. */
+export const SETS_END = 0xffffffff;
+
+const MAGIC = 'SKLODSET';
+
+/** A `.sets` file that cannot be read: `at` is the byte offset where it went wrong. */
+export class SetsFormatError extends Error {
+    constructor(at, what) {
+        super(`.sets byte ${at}: ${what}`);
+        this.at = at;
+    }
+}
+
+let crcTable = null;
+/** CRC-32 (IEEE, as gzip) of `bytes`. */
+export function crc32(bytes) {
+    if (!crcTable) {
+        crcTable = new Uint32Array(256);
+        for (let n = 0; n < 256; n++) {
+            let c = n;
+            for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+            crcTable[n] = c >>> 0;
+        }
+    }
+    let c = 0xffffffff;
+    for (let i = 0; i < bytes.length; i++) c = crcTable[(c ^ bytes[i]) & 0xff] ^ (c >>> 8);
+    return (c ^ 0xffffffff) >>> 0;
+}
+
+/** Reads little-endian numbers and LEB128 varints, refusing to run past `end`. */
+class Reader {
+    constructor(bytes, end) {
+        this.bytes = bytes;
+        this.view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+        this.at = 0;
+        this.end = end;
+    }
+    fail(what) { throw new SetsFormatError(this.at, what); }
+    need(n, what) { if (this.end - this.at < n) this.fail(`the file ends inside ${what}`); }
+    u32(what) { this.need(4, what); const v = this.view.getUint32(this.at, true); this.at += 4; return v; }
+    u8(what) { this.need(1, what); return this.bytes[this.at++]; }
+    /** A varint as a number (exact up to 2^53). */
+    varint(what) {
+        let v = 0, scale = 1;
+        for (let i = 0; i < 10; i++) {
+            if (this.at >= this.end) this.fail(`the file ends inside ${what}`);
+            const b = this.bytes[this.at++];
+            v += (b & 0x7f) * scale;
+            if ((b & 0x80) === 0) return v;
+            scale *= 128;
+        }
+        this.fail(`${what}: a number longer than 64 bits`);
+    }
+    /** A varint below `limit`. */
+    below(limit, what) {
+        const v = this.varint(what);
+        if (v >= limit) this.fail(`${what} ${v} is not below ${limit}`);
+        return v;
+    }
+    /** Room for `count` records of at least one byte each. */
+    records(count, what) { if (count > this.end - this.at) this.fail(`${count} ${what} cannot fit in the ${this.end - this.at} bytes left`); }
+}
+
+/** Vertex attributes (versions 2 and 3): name, scalar type, components, normalized, raw values. */
+function readAttributes(r, positions, version3) {
+    const SIZES = [1, 1, 2, 2, 4, 4, 4, 8];
+    const count = r.u32('the attribute count');
+    const least = version3 ? 0 : 1;
+    if (count < least || count > 64) r.fail(`${count} attributes (${least} to 64)`);
+    const attributes = [];
+    for (let i = 0; i < count; i++) {
+        const len = r.varint('an attribute name');
+        if (len > 256) r.fail(`an attribute name of ${len} bytes (at most 256)`);
+        r.need(len, 'an attribute name');
+        const name = new TextDecoder('utf-8', { fatal: true }).decode(r.bytes.subarray(r.at, r.at + len));
+        r.at += len;
+        const scalar = r.u8('a scalar type'), components = r.u8('a component count'), normalized = r.u8('a normalized flag');
+        if (scalar > 7) r.fail(`scalar type ${scalar}`);
+        if (components < 1 || components > 4) r.fail(`${components} components (1 to 4)`);
+        if (normalized > 1 || (normalized === 1 && scalar >= 6)) r.fail('normalized only for integers');
+        attributes.push({ name, scalar, components, normalized: normalized === 1, size: SIZES[scalar] });
+    }
+    for (const a of attributes) {
+        const n = positions * a.components * a.size;
+        r.need(n, `the values of ${a.name}`);
+        a.data = r.bytes.slice(r.at, r.at + n);
+        r.at += n;
+    }
+    return attributes;
+}
+
+/**
+ * Versions 1 to 3: positions, (versions 2 and 3) attributes, then the five varint
+ * sections. Version 3 (re-stripped models) writes each strip's beginning count as
+ * `count << 1 | empty0`, empty0 saying that the strip draws nothing at level 0.
+ */
+function decodeBody(r, h) {
+    const optimal = (h.flags & 1) !== 0;
+    const positionless = (h.flags & 2) !== 0;
+    const expected = optimal ? h.inputVertices + h.levels : h.inputVertices;
+    if (h.positions !== expected) r.fail(`${h.positions} positions; the placement needs ${expected}`);
+    const stored = positionless ? 0 : h.positions;
+    r.need(12 * stored, 'the positions');
+    const positions = new Float32Array(3 * stored);
+    for (let i = 0; i < 3 * stored; i++) {
+        positions[i] = r.view.getFloat32(r.at, true);
+        r.at += 4;
+        if (!Number.isFinite(positions[i])) r.fail('a position that is not finite');
+    }
+    const attributes = h.version >= 2 && !positionless ? readAttributes(r, h.positions, h.version === 3) : [];
+    const { levels, strips, slots } = h;
+    // 1. Collapses.
+    r.records(levels, 'collapses');
+    const targets = new Uint32Array(levels), removed = new Uint32Array(levels);
+    let triangles = h.triangles0;
+    const triangleCount = new Float64Array(levels + 1);
+    triangleCount[0] = triangles;
+    for (let i = 0; i < levels; i++) {
+        targets[i] = optimal ? h.inputVertices + i : r.below(h.positions, 'a collapse target');
+        removed[i] = r.varint('a triangle count');
+        triangles -= removed[i];
+        if (triangles < 0) r.fail('the triangle count goes below zero');
+        triangleCount[i + 1] = triangles;
+    }
+    // 2. Strip lengths.
+    r.records(strips, 'strip lengths');
+    const stripSlots = new Uint32Array(strips + 1);
+    for (let s = 0; s < strips; s++) {
+        stripSlots[s + 1] = stripSlots[s] + r.varint('a strip length');
+        if (stripSlots[s + 1] > slots) r.fail(`the strips take more than the ${slots} slots`);
+    }
+    if (stripSlots[strips] !== slots) r.fail(`the strips take ${stripSlots[strips]} slots, not ${slots}`);
+    // 3. Level-0 vertices, zigzag differences.
+    r.records(slots, 'slots');
+    const vertex0 = new Uint32Array(slots);
+    let previous = 0;
+    for (let i = 0; i < slots; i++) {
+        const z = r.varint('a slot vertex');
+        previous += z % 2 === 0 ? z / 2 : -(z + 1) / 2;
+        if (previous < 0 || previous >= h.positions) r.fail(`vertex ${previous} is not below ${h.positions}`);
+        vertex0[i] = previous;
+    }
+    // 4. Slot versions: level 0 implied, then (level step, successor << 1 | relabelled).
+    r.records(slots, 'slot versions');
+    const versionOffsets = new Uint32Array(slots + 1);
+    let verLevel = new Uint32Array(Math.max(h.versions, slots)), verLabel = new Uint32Array(verLevel.length);
+    let verNext = new Uint32Array(verLevel.length);
+    let v = 0;
+    for (let s = 0; s < strips; s++) {
+        for (let x = stripSlots[s]; x < stripSlots[s + 1]; x++) {
+            versionOffsets[x] = v;
+            if (v >= verLevel.length) r.fail(`more than the ${h.versions} versions the header gives`);
+            verLevel[v] = 0;
+            verLabel[v] = vertex0[x];
+            verNext[v] = x + 1 < stripSlots[s + 1] ? x + 1 : SETS_END;
+            v++;
+            const n = r.varint('a version count');
+            r.records(n, 'versions');
+            let level = 0, label = vertex0[x];
+            for (let k = 0; k < n; k++) {
+                const step = r.varint('a version level');
+                level += step;
+                if (step < 1 || level > levels) r.fail(`version level ${level} is not in ${verLevel[v - 1] + 1}..=${levels}`);
+                const code = r.varint('a successor');
+                const successor = Math.floor(code / 2);
+                if (code % 2 === 1) label = targets[level - 1];
+                const next = successor === 0 ? SETS_END : x + successor;
+                if (successor !== 0 && next >= stripSlots[s + 1]) r.fail(`a successor leaves its strip`);
+                if (v >= verLevel.length) r.fail(`more than the ${h.versions} versions the header gives`);
+                verLevel[v] = level;
+                verLabel[v] = label;
+                verNext[v] = next;
+                v++;
+            }
+        }
+    }
+    versionOffsets[slots] = v;
+    if (v !== h.versions) r.fail(`${v} versions, not the ${h.versions} the header gives`);
+    // 5. Strip beginnings: level 0 implied, then (level step, 0 or 1 + offset).
+    const beginOffsets = new Uint32Array(strips + 1);
+    const beginLevel = new Uint32Array(h.beginnings), beginSlot = new Uint32Array(h.beginnings);
+    let b = 0;
+    for (let s = 0; s < strips; s++) {
+        beginOffsets[s] = b;
+        if (b >= h.beginnings) r.fail(`more than the ${h.beginnings} beginnings the header gives`);
+        beginLevel[b] = 0;
+        const code0 = r.varint('a beginning count');
+        const empty0 = h.version === 3 && code0 % 2 === 1;
+        const n = h.version === 3 ? Math.floor(code0 / 2) : code0;
+        beginSlot[b] = stripSlots[s + 1] > stripSlots[s] && !empty0 ? stripSlots[s] : SETS_END;
+        b++;
+        r.records(n, 'beginnings');
+        let level = 0;
+        for (let k = 0; k < n; k++) {
+            const step = r.varint('a beginning level');
+            level += step;
+            if (step < 1 || level > levels) r.fail(`beginning level ${level} is not in 1..=${levels}`);
+            const code = r.varint('a beginning');
+            if (code > stripSlots[s + 1] - stripSlots[s]) r.fail('a beginning outside its strip');
+            if (b >= h.beginnings) r.fail(`more than the ${h.beginnings} beginnings the header gives`);
+            beginLevel[b] = level;
+            beginSlot[b] = code === 0 ? SETS_END : stripSlots[s] + code - 1;
+            b++;
+        }
+    }
+    beginOffsets[strips] = b;
+    if (b !== h.beginnings) r.fail(`${b} beginnings, not the ${h.beginnings} the header gives`);
+    if (r.at !== r.end) r.fail(`${r.end - r.at} bytes left over`);
+    // The levels at which each strip changes: its beginnings' and its slots' versions'.
+    const changeOffsets = new Uint32Array(strips + 1);
+    const changeLevel = new Uint32Array(h.versions + h.beginnings);
+    let c = 0;
+    for (let s = 0; s < strips; s++) {
+        const v0 = versionOffsets[stripSlots[s]], v1 = versionOffsets[stripSlots[s + 1]];
+        const all = new Uint32Array(v1 - v0 + beginOffsets[s + 1] - beginOffsets[s]);
+        all.set(verLevel.subarray(v0, v1));
+        all.set(beginLevel.subarray(beginOffsets[s], beginOffsets[s + 1]), v1 - v0);
+        all.sort();
+        changeOffsets[s] = c;
+        for (let i = 0; i < all.length; i++) if (i === 0 || all[i] !== all[i - 1]) changeLevel[c++] = all[i];
+    }
+    changeOffsets[strips] = c;
+    return {
+        ...h, optimal, positionless, positions, attributes, targets, removed, triangleCount, stripSlots,
+        versionOffsets, verLevel, verLabel, verNext, beginOffsets, beginLevel, beginSlot,
+        changeOffsets, changeLevel: changeLevel.subarray(0, c),
+    };
+}
+
+/** The body decoder of each format version. */
+export const DECODERS = { 1: decodeBody, 2: decodeBody, 3: decodeBody };
+
+/**
+ * Decodes a `.sets` file (ArrayBuffer or Uint8Array). Checks what docs/sets-format.md
+ * lists (magic, version, flags, checksum, counts against the bytes left, vertices,
+ * levels, successors, beginnings, triangle counts) and throws SetsFormatError.
+ */
+export function decodeSets(data) {
+    const bytes = data instanceof Uint8Array ? data : new Uint8Array(data);
+    const r = new Reader(bytes, bytes.length);
+    if (bytes.length < 52 || String.fromCharCode(...bytes.subarray(0, 8)) !== MAGIC) r.fail('not a .sets file (magic SKLODSET)');
+    r.at = bytes.length - 4;
+    const stored = r.u32('the checksum');
+    if (crc32(bytes.subarray(0, bytes.length - 4)) !== stored) { r.at = bytes.length - 4; r.fail('the checksum does not match (a damaged or truncated file)'); }
+    r.at = 8;
+    r.end = bytes.length - 4;
+    const version = r.u32('the version');
+    const decode = DECODERS[version];
+    if (!decode) { r.at -= 4; r.fail(`format version ${version} is not known (${Object.keys(DECODERS).join(', ')})`); }
+    const flags = r.u32('the flags');
+    if (flags & ~3) { r.at -= 4; r.fail(`unknown flags ${flags}`); }
+    const h = { version, flags };
+    for (const k of ['inputVertices', 'positions', 'levels', 'strips', 'slots', 'versions', 'beginnings', 'triangles0']) h[k] = r.u32(k);
+    return decode(r, h);
+}
+
+/**
+ * The strips of a decoded model at one level, kept up to date as the level moves:
+ * `buffer` holds every strip at its fixed place (strip s from stripSlots[s] + s, its
+ * level-0 length plus one), the rest of its place the restart index, so that the
+ * whole buffer draws with one drawElements(TRIANGLE_STRIP). setLevel rewalks only the
+ * strips that change between the two levels and returns their numbers.
+ */
+export class SetsCursor {
+    constructor(sets, level = 0) {
+        this.sets = sets;
+        this.level = Math.min(level, sets.levels);
+        const strips = sets.strips;
+        this.buffer = new Uint32Array(sets.slots + strips).fill(SETS_RESTART);
+        this.lengths = new Uint32Array(strips);
+        this.validFrom = new Uint32Array(strips);
+        this.validTo = new Float64Array(strips);
+        this.changed = [];
+        for (let s = 0; s < strips; s++) this.rewalk(s);
+    }
+    /** Buffer positions [start, end) of strip s's place. */
+    stripRange(s) { return [this.sets.stripSlots[s] + s, this.sets.stripSlots[s + 1] + s + 1]; }
+    /** Moves to `level`; returns the strips whose indices changed. */
+    setLevel(level) {
+        level = Math.min(Math.max(0, level | 0), this.sets.levels);
+        this.level = level;
+        const changed = [];
+        for (let s = 0; s < this.lengths.length; s++) {
+            if (level < this.validFrom[s] || level >= this.validTo[s]) { this.rewalk(s); changed.push(s); }
+        }
+        this.changed = changed;
+        return changed;
+    }
+    /** Triangles the current level draws (the file's counts). */
+    triangles() { return this.sets.triangleCount[this.level]; }
+    rewalk(s) {
+        const S = this.sets, level = this.level, buffer = this.buffer;
+        const base = S.stripSlots[s] + s;
+        let pos = base;
+        let k = S.beginOffsets[s];
+        while (k + 1 < S.beginOffsets[s + 1] && S.beginLevel[k + 1] <= level) k++;
+        let x = S.beginSlot[k];
+        while (x !== SETS_END) {
+            const lo = S.versionOffsets[x];
+            let i = S.versionOffsets[x + 1] - 1;
+            while (i > lo && S.verLevel[i] > level) i--;
+            buffer[pos++] = S.verLabel[i];
+            x = S.verNext[i];
+        }
+        const old = this.lengths[s];
+        if (pos - base < old) buffer.fill(SETS_RESTART, pos, base + old);
+        this.lengths[s] = pos - base;
+        const c0 = S.changeOffsets[s], c1 = S.changeOffsets[s + 1];
+        let j = c0;
+        while (j + 1 < c1 && S.changeLevel[j + 1] <= level) j++;
+        this.validFrom[s] = S.changeLevel[j];
+        this.validTo[s] = j + 1 < c1 ? S.changeLevel[j + 1] : Infinity;
+    }
+    /** The non-empty strips, each an array of vertices (as `stripkit lod extract`'s JSON). */
+    strips() {
+        const out = [];
+        for (let s = 0; s < this.lengths.length; s++) {
+            if (this.lengths[s] > 0) {
+                const [a] = this.stripRange(s);
+                out.push(Array.from(this.buffer.subarray(a, a + this.lengths[s])));
+            }
+        }
+        return out;
+    }
+}
+
+/** The first level with at most ceil(ratio x triangles0) triangles (as `--ratio`). */
+export function levelForRatio(sets, ratio) {
+    const want = Math.ceil(ratio * sets.triangles0);
+    for (let l = 0; l <= sets.levels; l++) if (sets.triangleCount[l] <= want) return l;
+    return sets.levels;
+}
