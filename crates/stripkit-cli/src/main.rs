@@ -12,6 +12,11 @@ use std::process::ExitCode;
 #[derive(Parser)]
 #[command(name = "stripkit", version, about, long_about = None)]
 struct Cli {
+    /// Threads for independent work (files of a folder, glTF primitives, mesh groups,
+    /// frames, level checks, distance samples): 0 or absent = every core, 1 = one.
+    /// Outputs are the same bytes at any count.
+    #[arg(long, global = true, value_name = "N")]
+    threads: Option<usize>,
     #[command(subcommand)]
     command: Command,
 }
@@ -62,6 +67,7 @@ fn return_big_blocks() {}
 fn main() -> ExitCode {
     return_big_blocks();
     let cli = Cli::parse();
+    cmd::set_threads(stripkit::parallel::Threads::new(cli.threads.unwrap_or(0)));
     let result = match cli.command {
         Command::Stats(a) => cmd::stats::run(a),
         Command::Gen(a) => cmd::gen::run(a),
@@ -104,14 +110,14 @@ fn strip_folder(args: cmd::strip::Args) -> anyhow::Result<()> {
     cmd::batch::check_folders(&args.input, &args.output, &args.read)?;
     cmd::write_options(args.ascii, &args.output, Some(format))?;
     args.strip.validate(|o| o)?;
-    cmd::batch::run_folder("strip", &args.input, &args.output, |_| format, |file, output, bar| {
+    cmd::batch::run_folder("strip", &args.input, &args.output, |_| format, |file, output, text| {
         let one = cmd::strip::Args {
             input: file.to_path_buf(),
             output: output.to_path_buf(),
             output_format: Some(format),
             ..args.clone()
         };
-        cmd::strip::run(one, Some(bar))
+        cmd::strip::run(one, Some(text))
     })
 }
 
@@ -127,7 +133,7 @@ fn simplify_folder(args: cmd::simplify::Args) -> anyhow::Result<()> {
     );
     let chosen = args.output_format;
     let format_of = |file: &std::path::Path| chosen.or_else(|| cmd::path_format(file)).unwrap_or(Format::Ply);
-    cmd::batch::run_folder("simplify", &args.file, &args.output, format_of, |file, output, bar| {
+    cmd::batch::run_folder("simplify", &args.file, &args.output, format_of, |file, output, text| {
         let one = cmd::simplify::Args {
             file: file.to_path_buf(),
             output: output.to_path_buf(),
@@ -136,6 +142,6 @@ fn simplify_folder(args: cmd::simplify::Args) -> anyhow::Result<()> {
             ascii: args.ascii && format_of(file) == Format::Ply,
             ..args.clone()
         };
-        cmd::simplify::run(one, Some(bar))
+        cmd::simplify::run(one, Some(text))
     })
 }

@@ -39,6 +39,9 @@
 //! (edge collapse), [`distance`] (Hausdorff and RMS distances between surfaces) and
 //! [`matching`] (weighted perfect matching).
 //!
+//! [`parallel`]: the thread count ([`parallel::Threads`], one by default) the library's
+//! independent work may use, with outputs the same bytes at any count.
+//!
 //! ## Example
 //!
 //! ```
@@ -86,6 +89,7 @@ pub mod cull;
 pub mod distance;
 pub mod gen;
 pub mod matching;
+pub mod parallel;
 pub mod lod;
 pub mod scene;
 pub mod simplify;

@@ -5,7 +5,9 @@
 //! (1 for a failed verification, else 2).
 //!
 //! The runner knows no command: `main` sees that the input is a folder and hands
-//! [`run_folder`] the command's per-file function, which takes the bar as a parameter.
+//! [`run_folder`] the command's per-file function, which writes its report into the
+//! text it is given. Files run in parallel (`--threads`); their reports, errors and
+//! the bar follow the input order, so standard output is the same at any count.
 
 use std::path::{Path, PathBuf};
 use stripkit::io::Format;
@@ -83,16 +85,18 @@ pub fn check_folders(input: &Path, output: &Path, read: &super::ReadArgs) -> any
     Ok(())
 }
 
-/// Runs `one(file, output, bar)` for every mesh file in `input`, writing
-/// `output/NAME.EXT` (EXT of `format_of(file)`), under a progress bar. A failure is
-/// reported and the others still run; then the run fails naming every failed file,
-/// with exit status 1 if one failed verification, else 2.
+/// Runs `one(file, output, text)` for every mesh file in `input`, writing
+/// `output/NAME.EXT` (EXT of `format_of(file)`), under a progress bar, files in
+/// parallel (`--threads`); each file's `text` is printed, and its error reported, in
+/// input order as soon as the files before it are done. A failure is reported and
+/// the others still run; then the run fails naming every failed file, with exit
+/// status 1 if one failed verification, else 2.
 pub fn run_folder(
     what: &str,
     input: &Path,
     output: &Path,
     format_of: impl Fn(&Path) -> Format,
-    one: impl Fn(&Path, &Path, &indicatif::ProgressBar) -> anyhow::Result<()>,
+    one: impl Fn(&Path, &Path, &super::BatchText) -> anyhow::Result<()> + Sync,
 ) -> anyhow::Result<()> {
     let files = mesh_files(input)?;
     anyhow::ensure!(!files.is_empty(), "no mesh files in {}", input.display());
@@ -109,15 +113,17 @@ pub fn run_folder(
     std::fs::create_dir_all(output).map_err(|source| stripkit::Error::Io { path: output.to_path_buf(), source })?;
     let bar = super::progress_bar(true, what);
     bar.set_length(files.len() as u64);
-    let mut failed: Vec<(PathBuf, anyhow::Error)> = Vec::new();
-    for (i, (file, out)) in files.iter().zip(&outputs).enumerate() {
-        bar.set_position(i as u64);
-        if let Err(err) = one(file, out, &bar) {
-            bar.suspend(|| eprintln!("stripkit: error: {}", super::describe(&err)));
-            failed.push((file.clone(), err));
-        }
-    }
+    let order = std::sync::Mutex::new(InOrder { next: 0, done: (0..files.len()).map(|_| None).collect(), failed: Vec::new() });
+    stripkit::parallel::map_range(super::threads(), files.len(), |i| {
+        let text = super::BatchText::default();
+        let result = one(&files[i], &outputs[i], &text);
+        let text = std::mem::take(&mut *text.lock().unwrap_or_else(|e| e.into_inner()));
+        let mut order = order.lock().unwrap_or_else(|e| e.into_inner());
+        order.done[i] = Some((text, result));
+        order.print_ready(&files, &bar);
+    });
     bar.finish_and_clear();
+    let failed = order.into_inner().unwrap_or_else(|e| e.into_inner()).failed;
     if failed.is_empty() {
         return Ok(());
     }
@@ -132,6 +138,40 @@ pub fn run_folder(
     // The worst failure decides the exit status: a failed verification (1) over bad input (2).
     let verification = failed.iter().any(|(_, e)| super::exit_code(e) == std::process::ExitCode::from(1));
     Err(if verification { stripkit::Error::Verification(message) } else { stripkit::Error::Invalid(message) }.into())
+}
+
+/// The files of a folder run done but not yet printed, and those printed that failed.
+struct InOrder {
+    /// The first file not yet printed.
+    next: usize,
+    /// Each file's report text and result, from when it is done until it is printed.
+    done: Vec<Option<(Vec<u8>, anyhow::Result<()>)>>,
+    failed: Vec<(PathBuf, anyhow::Error)>,
+}
+
+impl InOrder {
+    /// Prints every done file from the first not printed on, in input order, until
+    /// one not done: its report on standard output, its error on standard error,
+    /// above the bar, which then counts the files printed.
+    fn print_ready(&mut self, files: &[PathBuf], bar: &indicatif::ProgressBar) {
+        use std::io::Write;
+        while let Some((text, mut result)) = self.done.get_mut(self.next).and_then(Option::take) {
+            bar.suspend(|| {
+                let written = super::ignore_closed_pipe(std::io::stdout().lock().write_all(&text));
+                if let (Ok(()), Err(e)) = (&result, written) {
+                    result = Err(e);
+                }
+                if let Err(err) = &result {
+                    eprintln!("stripkit: error: {}", super::describe(err));
+                }
+            });
+            if let Err(err) = result {
+                self.failed.push((files[self.next].clone(), err));
+            }
+            self.next += 1;
+            bar.set_position(self.next as u64);
+        }
+    }
 }
 
 /// Refuses a folder run one of whose outputs is one of its inputs (the output folder

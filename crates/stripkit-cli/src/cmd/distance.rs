@@ -34,7 +34,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let a = args.read.read(&args.a)?;
     let b = args.read.read(&args.b)?;
     let start = Instant::now();
-    let d = stripkit::distance::distance(&a, &b, args.samples)?;
+    let d = stripkit::distance::distance_with(&a, &b, args.samples, super::threads())?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     let rel = |x: f64| d.relative(x);
     if args.json {

@@ -151,16 +151,16 @@ impl ReadArgs {
 }
 
 /// Where a command's report goes: standard output, or standard error when the
-/// output mesh itself goes to standard output (`-o -`), or one line above a batch's
-/// progress bar.
+/// output mesh itself goes to standard output (`-o -`), or a folder run's text for
+/// one file (printed above its progress bar in input order, see [`batch::run_folder`]).
 #[derive(Clone, Debug)]
 pub enum Sink {
     /// Standard output.
     Stdout,
     /// Standard error (the mesh is on standard output).
     Stderr,
-    /// Standard output, printed with the batch's progress bar suspended.
-    Batch(indicatif::ProgressBar),
+    /// One file's text of a folder run, printed by the run in input order.
+    Batch(BatchText),
 }
 
 impl Sink {
@@ -192,9 +192,29 @@ pub fn print_report_to<R: serde::Serialize>(
     let written = match sink {
         Sink::Stderr => std::io::stderr().lock().write_all(&text),
         Sink::Stdout => std::io::stdout().lock().write_all(&text),
-        Sink::Batch(bar) => bar.suspend(|| std::io::stdout().lock().write_all(&text)),
+        Sink::Batch(buffer) => {
+            buffer.lock().unwrap_or_else(|e| e.into_inner()).extend_from_slice(&text);
+            Ok(())
+        }
     };
     ignore_closed_pipe(written)
+}
+
+/// The standard-output text of one file of a folder run, kept until the run prints
+/// it in input order.
+pub type BatchText = std::sync::Arc<std::sync::Mutex<Vec<u8>>>;
+
+/// The thread count of this run (`--threads`), set once by `main`.
+static THREADS: std::sync::OnceLock<stripkit::parallel::Threads> = std::sync::OnceLock::new();
+
+/// Sets the run's thread count (`--threads`; the first call wins).
+pub fn set_threads(threads: stripkit::parallel::Threads) {
+    let _ = THREADS.set(threads);
+}
+
+/// The run's thread count: `--threads`, every core when not given.
+pub fn threads() -> stripkit::parallel::Threads {
+    THREADS.get().copied().unwrap_or(stripkit::parallel::Threads::ALL)
 }
 
 /// A progress bar of 1,000 steps on stderr, `WHAT [bar] percent elapsed`; hidden

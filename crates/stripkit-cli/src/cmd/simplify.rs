@@ -72,9 +72,9 @@ pub struct Args {
     pub read: super::ReadArgs,
 }
 
-/// Runs the command on one input file. `batch`: the progress bar of a folder run
-/// (`main` runs each file of a folder input through here), above which the report goes.
-pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result<()> {
+/// Runs the command on one input file. `batch`: the text of one file of a folder run
+/// (`main` runs each file of a folder input through here), where the report goes.
+pub fn run(args: Args, batch: Option<&super::BatchText>) -> anyhow::Result<()> {
     let target = match (args.ratio, args.triangles, args.error) {
         (Some(r), _, _) => Target::Ratio(r),
         (_, Some(t), _) => Target::Triangles(t),
@@ -146,7 +146,7 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
         None => super::write_output(&args.output, &mesh_bytes)?,
     }
     let sink = match batch {
-        Some(bar) => super::Sink::Batch(bar.clone()),
+        Some(text) => super::Sink::Batch(text.clone()),
         None => super::Sink::for_output(&args.output),
     };
     if args.json {

@@ -5,6 +5,7 @@
 
 pub mod bvh;
 
+use crate::parallel::Threads;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::vec3;
@@ -106,33 +107,29 @@ impl SplitMix {
     }
 }
 
-/// Distances from `points` to the surface in `bvh`, on up to `threads` threads.
-fn one_sided(points: &[[f64; 3]], bvh: &Bvh, threads: usize) -> OneSided {
+/// Points per part of [`one_sided`]: the parts are fixed by the points alone, and
+/// their sums added in order, so the figures are the same bits at any thread count.
+const POINTS_PER_PART: usize = 4096;
+
+/// Distances from `points` to the surface in `bvh`, `threads` parts at a time.
+fn one_sided(points: &[[f64; 3]], bvh: &Bvh, threads: Threads) -> OneSided {
     if points.is_empty() {
         return OneSided::default();
     }
-    let chunk = points.len().div_ceil(threads.max(1)).max(1);
-    let parts: Vec<(f64, f64, f64)> = std::thread::scope(|s| {
-        let handles: Vec<_> = points
-            .chunks(chunk)
-            .map(|part| {
-                s.spawn(move || {
-                    let mut stack = Vec::with_capacity(64);
-                    let (mut max, mut sum2, mut sum) = (0.0f64, 0.0f64, 0.0f64);
-                    let mut hint = 0;
-                    for &p in part {
-                        let (d2, slot) = bvh.closest(p, hint, &mut stack);
-                        hint = slot;
-                        let d = d2.sqrt();
-                        max = max.max(d);
-                        sum2 += d2;
-                        sum += d;
-                    }
-                    (max, sum2, sum)
-                })
-            })
-            .collect();
-        handles.into_iter().map(|h| h.join().unwrap_or((f64::NAN, f64::NAN, f64::NAN))).collect()
+    let chunks: Vec<&[[f64; 3]]> = points.chunks(POINTS_PER_PART).collect();
+    let parts: Vec<(f64, f64, f64)> = crate::parallel::map_ordered(threads, &chunks, |part| {
+        let mut stack = Vec::with_capacity(64);
+        let (mut max, mut sum2, mut sum) = (0.0f64, 0.0f64, 0.0f64);
+        let mut hint = 0;
+        for &p in part.iter() {
+            let (d2, slot) = bvh.closest(p, hint, &mut stack);
+            hint = slot;
+            let d = d2.sqrt();
+            max = max.max(d);
+            sum2 += d2;
+            sum += d;
+        }
+        (max, sum2, sum)
     });
     let n = points.len() as f64;
     let max = parts.iter().map(|p| p.0).fold(0.0, f64::max);
@@ -157,11 +154,17 @@ fn check(mesh: &Mesh, name: &str) -> Result<()> {
 
 /// Symmetric Hausdorff and RMS distance between the surfaces of `a` and `b`:
 /// `samples` points on each surface (see [`sample_surface`]), each measured exactly
-/// against the other surface through a BVH. O((samples + n) log n), multi-threaded.
+/// against the other surface through a BVH. O((samples + n) log n), on the caller's
+/// thread ([`distance_with`] takes more).
 ///
 /// Fails when `samples` is 0 or above [`MAX_SAMPLES`].
 pub fn distance(a: &Mesh, b: &Mesh, samples: usize) -> Result<Distance> {
-    Surface::new(a, samples)?.distance_to(b)
+    distance_with(a, b, samples, Threads::SERIAL)
+}
+
+/// [`distance`] measuring the samples `threads` at a time: the same bits at any count.
+pub fn distance_with(a: &Mesh, b: &Mesh, samples: usize, threads: Threads) -> Result<Distance> {
+    Surface::new(a, samples)?.distance_to_with(b, threads)
 }
 
 /// One side of [`distance`] prepared once (its BVH and its samples), to measure many
@@ -203,8 +206,13 @@ impl Surface {
 
     /// [`distance`] from the prepared mesh to `b`, with as many samples on `b`.
     pub fn distance_to(&self, b: &Mesh) -> Result<Distance> {
+        self.distance_to_with(b, Threads::SERIAL)
+    }
+
+    /// [`Surface::distance_to`] measuring the samples `threads` at a time: the same
+    /// bits at any count.
+    pub fn distance_to_with(&self, b: &Mesh, threads: Threads) -> Result<Distance> {
         check(b, "second mesh")?;
-        let threads = std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1).min(16);
         let bvh_b = Bvh::build(&b.positions, &b.triangulate().tris);
         let pb = sample_surface(b, self.count, 0x5EED_0002);
         let pa = &self.samples;

@@ -99,7 +99,14 @@ impl Built {
     /// about `max_levels` levels spread over the range, plus the coarsest, 100 of
     /// them also against [`CollapseSequence::replay`] from scratch.
     pub fn check(&self, max_levels: Option<usize>) -> Result<LevelCheck> {
-        check_levels(&self.sets, &self.mesh, &self.sequence, stride(self.sets.levels(), max_levels), 100)
+        self.check_with(max_levels, crate::parallel::Threads::SERIAL)
+    }
+
+    /// [`Built::check`] with its replays run `threads` at a time
+    /// ([`super::check::check_levels_with`]): the same result at any count.
+    pub fn check_with(&self, max_levels: Option<usize>, threads: crate::parallel::Threads) -> Result<LevelCheck> {
+        let stride = stride(self.sets.levels(), max_levels);
+        super::check::check_levels_with(&self.sets, &self.mesh, &self.sequence, stride, 100, threads)
     }
 }
 

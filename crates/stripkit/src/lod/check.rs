@@ -1,6 +1,7 @@
 //! The independent check of a model: level by level against a replay of the
 //! collapses on the triangles, exact (multisets of oriented triangles).
 
+use crate::parallel::Threads;
 use super::sets::Sets;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
@@ -53,6 +54,19 @@ pub fn check_levels(
     stride: usize,
     replays: usize,
 ) -> Result<LevelCheck> {
+    check_levels_with(sets, mesh, sequence, stride, replays, Threads::SERIAL)
+}
+
+/// [`check_levels`] with the replays from scratch run `threads` at a time (the walk
+/// itself is one pass). The same checks, and the same first difference, at any count.
+pub fn check_levels_with(
+    sets: &Sets,
+    mesh: &Mesh,
+    sequence: &CollapseSequence,
+    stride: usize,
+    replays: usize,
+    threads: Threads,
+) -> Result<LevelCheck> {
     let start = Instant::now();
     let tris = mesh.triangulate().tris;
     let n = mesh.positions.len();
@@ -72,20 +86,39 @@ pub fn check_levels(
     let mut drawn = Drawn::new(sets, &mut diff);
     let mut report = LevelCheck::default();
     let mut level = 0usize;
+    // Replays waiting to be compared, in level order: (level, names, cursor strips).
+    // They are compared a batch at a time, and before any later difference is
+    // reported, so the first difference in level order is the error.
+    let batch = if threads.is_serial() { 1 } else { 2 * threads.count() };
+    let mut pending: Vec<(usize, Vec<u32>, crate::strip::StripSet)> = Vec::new();
+    let flush = |pending: &mut Vec<(usize, Vec<u32>, crate::strip::StripSet)>| -> Result<()> {
+        let results = crate::parallel::map_ordered(threads, pending, |(level, name, strips)| {
+            compare_with_replay(sets, mesh, sequence, *level, name, strips)
+        });
+        pending.clear();
+        results.into_iter().collect()
+    };
     loop {
         if level % stride == 0 || level == levels {
             let changed = drawn.move_to(level as u32, &mut diff);
             report.max_changed_strips = report.max_changed_strips.max(changed);
             report.levels_checked += 1;
-            diff.check(level)?;
+            if let Err(e) = diff.check(level) {
+                flush(&mut pending)?;
+                return Err(e);
+            }
             if level % replay_every == 0 || level == levels {
                 // The extraction's own walk, a cursor, at these levels.
                 drawn.cursor.set_level(level as u32);
-                compare_with_replay(sets, mesh, sequence, level, &replay.name, &drawn.cursor.strips())?;
+                pending.push((level, replay.name.clone(), drawn.cursor.strips()));
                 report.replays += 1;
+                if pending.len() >= batch {
+                    flush(&mut pending)?;
+                }
             }
         }
         if level == levels {
+            flush(&mut pending)?;
             break;
         }
         replay.collapse(level, sequence.collapses[level], &mut diff);

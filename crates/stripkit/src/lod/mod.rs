@@ -34,7 +34,7 @@ pub mod timing;
 mod track;
 
 pub use build::{build, BuildOptions, BuildReport, Built};
-pub use check::{check_levels, LevelCheck};
+pub use check::{check_levels, check_levels_with, LevelCheck};
 pub use cursor::Cursor;
 pub use file::{LODSEQ_MAGIC, SETS_MAGIC};
 pub use model::{Extracted, Model};

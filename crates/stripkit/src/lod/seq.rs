@@ -113,7 +113,9 @@ pub fn read_frames(folder: &Path, options: &ReadOptions) -> Result<Frames> {
 pub struct SeqOptions {
     /// The stripifier of the shared level-0 strips (one that adds no vertices).
     /// Default [`StripOptions::default`]. Its [`StripOptions::weld`] is not used:
-    /// vertices equal in the first frame may part in later ones.
+    /// vertices equal in the first frame may part in later ones. Its
+    /// [`StripOptions::threads`] are the build's: frames are simplified and measured
+    /// in parallel, with the same model at any count.
     pub strip: StripOptions,
     /// Most sequences to choose (each is one [`Sets`] model), besides the reference
     /// pose's, which is kept too when a frame falls back to it. Default 16.
@@ -335,12 +337,26 @@ impl BuiltSeq {
     /// [`CollapseSequence::replay`] from scratch. The counts add up over the models
     /// (the largest change is the largest of any); the time is the whole check's.
     pub fn check(&self, max_levels: Option<usize>) -> Result<super::check::LevelCheck> {
+        self.check_with(max_levels, crate::parallel::Threads::SERIAL)
+    }
+
+    /// [`BuiltSeq::check`] with the models checked `threads` at a time: the same
+    /// result at any count (the first failing model in order is the error).
+    pub fn check_with(
+        &self,
+        max_levels: Option<usize>,
+        threads: crate::parallel::Threads,
+    ) -> Result<super::check::LevelCheck> {
         let start = Instant::now();
         let mesh = Mesh::from_triangles(self.seq.positions[0].clone(), &self.triangles);
         let mut all = super::check::LevelCheck::default();
-        for (sets, sequence) in self.seq.models().iter().zip(&self.sequences) {
+        let pairs: Vec<_> = self.seq.models().iter().zip(&self.sequences).collect();
+        let checks = crate::parallel::map_ordered(threads, &pairs, |(sets, sequence)| {
             let stride = super::check::stride(sets.levels(), max_levels);
-            let one = super::check::check_levels(sets, &mesh, sequence, stride, 20)?;
+            super::check::check_levels(sets, &mesh, sequence, stride, 20)
+        });
+        for one in checks {
+            let one = one?;
             all.levels_checked += one.levels_checked;
             all.replays += one.replays;
             all.max_changed_strips = all.max_changed_strips.max(one.max_changed_strips);
@@ -405,11 +421,10 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
     // Every frame's own sequence, and the reference pose's (or frame 0's).
     let t = Instant::now();
     let full = Options::default().target(Target::Triangles(0)).placement(Placement::Endpoint);
-    let mut own = Vec::with_capacity(f_count);
-    for (i, p) in frames.positions.iter().enumerate() {
-        own.push(simplify(&frame_mesh(p), &full, &mut |_| {})?.sequence);
-        progress(0.4 * (i + 1) as f64 / f_count as f64);
-    }
+    let threads = options.strip.threads;
+    let own = by_frames(threads, f_count, &mut |done| progress(0.4 * done), |i| {
+        Ok(simplify(&frame_mesh(&frames.positions[i]), &full, &mut |_| {})?.sequence)
+    })?;
     let reference = match &frames.reference {
         Some(p) => simplify(&frame_mesh(p), &full, &mut |_| {})?.sequence,
         None => own[0].clone(),
@@ -425,9 +440,9 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
     candidates.extend((0..f_count).step_by(step).map(|f| (frames.names[f].clone(), &own[f], &frames.positions[f][..])));
     // The distance matrix: quality[c][f], and each frame's own.
     let t = Instant::now();
-    let mut quality = vec![vec![Quality::default(); f_count]; candidates.len()];
-    let mut own_quality = Vec::with_capacity(f_count);
-    for (f, p) in frames.positions.iter().enumerate() {
+    // Each frame's column (its own sequence's quality, then every candidate's).
+    let columns = by_frames(threads, f_count, &mut |done| progress(0.4 + 0.5 * done), |f| {
+        let p = &frames.positions[f];
         let mesh = frame_mesh(p);
         let surface = Surface::new(&mesh, options.samples)?;
         let measure = |seq: &CollapseSequence| -> Result<Quality> {
@@ -437,15 +452,21 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
                 // Endpoint collapses keep the survivor's own position: the frame's,
                 // not the one recorded in the sequence (another pose's).
                 let replayed = seq.replay(&mesh, level)?;
-                d[r] = surface.distance_to(&Mesh::from_triangles(p.clone(), &replayed.triangles))?;
+                d[r] = surface.distance_to_with(&Mesh::from_triangles(p.clone(), &replayed.triangles), threads)?;
             }
             Ok(Quality::from(d))
         };
-        own_quality.push(measure(&own[f])?);
-        for (c, (_, seq, _)) in candidates.iter().enumerate() {
-            quality[c][f] = measure(seq)?;
+        let own_q = measure(&own[f])?;
+        let column = candidates.iter().map(|(_, seq, _)| measure(seq)).collect::<Result<Vec<_>>>()?;
+        Ok((own_q, column))
+    })?;
+    let mut quality = vec![vec![Quality::default(); f_count]; candidates.len()];
+    let mut own_quality = Vec::with_capacity(f_count);
+    for (f, (own_q, column)) in columns.into_iter().enumerate() {
+        own_quality.push(own_q);
+        for (c, q) in column.into_iter().enumerate() {
+            quality[c][f] = q;
         }
-        progress(0.4 + 0.5 * (f + 1) as f64 / f_count as f64);
     }
     let distance_ms = t.elapsed().as_secs_f64() * 1e3;
     let assign = assign_sequences(&quality, &own_quality, options.max_sequences, options.tolerance);
@@ -454,18 +475,16 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
     used.dedup();
     // The models, one per used sequence, over the same strips.
     let t = Instant::now();
-    let mut models = Vec::with_capacity(used.len());
-    let mut sequences = Vec::with_capacity(used.len());
-    for &c in &used {
+    let built = crate::parallel::map_ordered(threads, &used, |&c| {
         let (_, sequence, pose) = candidates[c];
         let mut sets = Sets::build(pose, &strips.strips, sequence, Placement::Endpoint)?;
         // Checked before it is returned: 17 levels against the replay on the pose
         // the sequence was made on (whose positions the replay's survivors keep).
         super::check::check_levels(&sets, &frame_mesh(pose), sequence, (sets.levels() as usize / 16).max(1), 1)?;
         sets.positions = Vec::new();
-        models.push(sets);
-        sequences.push(sequence.clone());
-    }
+        Ok((sets, sequence.clone()))
+    });
+    let (models, sequences): (Vec<Sets>, Vec<CollapseSequence>) = built.into_iter().collect::<Result<Vec<_>>>()?.into_iter().unzip();
     let model_ms = t.elapsed().as_secs_f64() * 1e3;
     progress(1.0);
     let frame_model: Vec<u32> = assign.iter().map(|c| used.binary_search(c).unwrap_or(0) as u32).collect();
@@ -498,6 +517,28 @@ pub fn build_seq(frames: &Frames, options: &SeqOptions, progress: &mut dyn FnMut
         attributes: frames.mesh.attributes.clone(),
     };
     Ok(BuiltSeq { seq, triangles: tris, sequences, report })
+}
+
+/// `f(i)` for every frame `i < n`, results in frame order, in parallel when `threads`
+/// allow; `progress` gets the fraction done after each batch of frames (the batches
+/// only pace the progress: the results do not depend on them). The first error in
+/// frame order is the error.
+fn by_frames<R: Send>(
+    threads: crate::parallel::Threads,
+    n: usize,
+    progress: &mut dyn FnMut(f64),
+    f: impl Fn(usize) -> Result<R> + Sync,
+) -> Result<Vec<R>> {
+    let batch = 4 * threads.count().max(1);
+    let mut out = Vec::with_capacity(n);
+    for start in (0..n).step_by(batch) {
+        let end = (start + batch).min(n);
+        for r in crate::parallel::map_range(threads, end - start, |i| f(start + i)) {
+            out.push(r?);
+        }
+        progress(end as f64 / n as f64);
+    }
+    Ok(out)
 }
 
 /// The sequence of each frame (an index into the candidates of `quality[c][f]`, 0

@@ -32,16 +32,23 @@ pub(super) fn run_groups(mesh: &Mesh, options: &StripOptions) -> Result<Strips> 
     let mut group_ranges = Vec::with_capacity(groups);
     let (mut quads, mut any_quads, mut all_fan) = (0, false, true);
     let mut stripify_time = Duration::ZERO;
-    for faces in &faces_of {
-        let start = strips.len();
+    // The groups are stripped independently (in parallel when the options allow), then
+    // joined in group order; the first failing group in that order is the error.
+    let parts = crate::parallel::map_ordered(options.threads, &faces_of, |faces| {
         if faces.is_empty() {
-            group_ranges.push(start..start);
-            continue;
+            return Ok(None);
         }
         // The group's own vertices, in increasing id order so that ties break as on the
         // whole mesh.
         let (sub, map) = mesh.submesh(faces);
-        let part = run_one(&sub, &sub_options)?;
+        run_one(&sub, &sub_options).map(|part| Some((part, map)))
+    });
+    for part in parts {
+        let start = strips.len();
+        let Some((part, map)) = part? else {
+            group_ranges.push(start..start);
+            continue;
+        };
         for s in part.strips.iter() {
             let back: Vec<u32> = s.iter().map(|&i| map[i as usize]).collect();
             strips.push(&back);

@@ -201,7 +201,7 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
                 Algorithm::Cache { refine } => (CacheOptions { refine, ..CacheOptions::cache(size) }, None),
                 _ => unreachable!("matched above"),
             };
-            let m = cache::stripify_mesh(mesh, &cache_options, bound, options.split);
+            let m = cache::stripify_mesh(mesh, &cache_options, bound, options.split, options.threads);
             if m.qstrip_diagonals {
                 (m.strips, Split::Qstrip, None, None)
             } else {

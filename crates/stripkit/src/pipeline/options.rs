@@ -251,6 +251,11 @@ pub struct StripOptions {
     /// [`Strips::triangles`](super::Strips::triangles) use the welded ids and
     /// [`Strips::welded`](super::Strips::welded) counts the vertices left unused. Default `true`.
     pub weld: bool,
+    /// Threads the door may use for independent work: a mesh's groups, a glTF scene's
+    /// primitives, the two candidates of [`Split::Auto`]. The strips are the same at
+    /// any count. Default one (the library starts no thread unless asked); more need
+    /// the `parallel` feature.
+    pub threads: crate::parallel::Threads,
 }
 
 impl Default for StripOptions {
@@ -262,11 +267,18 @@ impl Default for StripOptions {
             join: Join::Restart,
             restart_index: strip::DEFAULT_RESTART,
             weld: true,
+            threads: crate::parallel::Threads::SERIAL,
         }
     }
 }
 
 impl StripOptions {
+    /// Sets the threads for independent work ([`StripOptions::threads`]).
+    pub fn threads(mut self, threads: crate::parallel::Threads) -> Self {
+        self.threads = threads;
+        self
+    }
+
     /// Sets the algorithm.
     pub fn algorithm(mut self, algorithm: Algorithm) -> Self {
         self.algorithm = algorithm;

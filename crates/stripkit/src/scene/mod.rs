@@ -206,7 +206,7 @@ impl Scene {
         }
         let start = Instant::now();
         let options = options.clone().join(Join::Restart).restart_index(u32::MAX);
-        let mut stripifier = Stripifier::new(options.clone())?;
+        let stripifier = Stripifier::new(options.clone())?;
         let mut report = SceneReport {
             primitives: Vec::new(),
             skipped: self.other_primitives(),
@@ -226,14 +226,27 @@ impl Scene {
         let readable = self.renumberable();
         let file = self.name().to_path_buf();
         let source_bytes = self.source_index_bytes();
-        let mut no_weld = options.weld.then(|| Stripifier::new(options.clone().weld(false))).transpose()?;
-        for (k, (sp, readable)) in self.primitives_mut().iter_mut().zip(readable).enumerate() {
+        let no_weld = options.weld.then(|| Stripifier::new(options.clone().weld(false))).transpose()?;
+        // Every primitive is stripped on its own (in parallel when the options allow),
+        // then the results are taken in primitive order: the same scene at any count.
+        let stripped = crate::parallel::map_ordered(options.threads, self.primitives(), |sp| {
+            if sp.mesh.face_count() == 0 {
+                return None;
+            }
+            // Morph targets are not in the decoded mesh: a weld could merge vertices
+            // that targets move apart.
+            Some(match (sp.targets > 0 && options.weld, &no_weld) {
+                (true, Some(s)) => s.clone().stripify(&sp.mesh),
+                _ => stripifier.clone().stripify(&sp.mesh),
+            })
+        });
+        for (k, ((sp, readable), strips)) in self.primitives_mut().iter_mut().zip(readable).zip(stripped).enumerate() {
             sp.strips = None;
             sp.order = None;
-            if sp.mesh.face_count() == 0 {
+            let Some(strips) = strips else {
                 report.skipped += 1;
                 continue;
-            }
+            };
             let name = |e: Error| {
                 let place =
                     format!("{}: meshes[{}].primitives[{}]", file.display(), sp.mesh_index, sp.primitive_index);
@@ -243,13 +256,7 @@ impl Scene {
                     other => other,
                 }
             };
-            // Morph targets are not in the decoded mesh: a weld could merge vertices
-            // that targets move apart.
-            let strips = match (sp.targets > 0 && options.weld, &mut no_weld) {
-                (true, Some(s)) => s.stripify(&sp.mesh),
-                _ => stripifier.stripify(&sp.mesh),
-            }
-            .map_err(name)?;
+            let strips = strips.map_err(name)?;
             stripify_time += strips.stripify_time;
             if strips.figures.triangles == 0 {
                 // Only degenerate triangles: a strip primitive would hold empty

@@ -445,8 +445,8 @@ fn quads_split_along_qstrip_diagonals_beat_a_random_fan() {
         (CacheOptions::cache(16), None),
         (CacheOptions::balanced(16), Some(0.8)),
     ] {
-        let fan = stripify_mesh(&mesh, &o, bound, Split::Fan);
-        let auto = stripify_mesh(&mesh, &o, bound, Split::Auto);
+        let fan = stripify_mesh(&mesh, &o, bound, Split::Fan, Default::default());
+        let auto = stripify_mesh(&mesh, &o, bound, Split::Auto, Default::default());
         assert!(!fan.qstrip_diagonals);
         assert!(auto.qstrip_diagonals, "{o:?}");
         verify_quads(&mesh, &auto.strips).expect("quad-level check");
@@ -481,7 +481,7 @@ fn quads_split_along_qstrip_diagonals_beat_a_random_fan() {
     }
     // A mesh without quads: Auto is the fan.
     let tris = crate::gen::icosphere(3);
-    let m = stripify_mesh(&tris, &CacheOptions::cache(16), None, Split::Auto);
+    let m = stripify_mesh(&tris, &CacheOptions::cache(16), None, Split::Auto, Default::default());
     assert!(!m.qstrip_diagonals);
     // The same triangles (in a canonical order, each possibly rotated).
     let sorted = |t: &[[u32; 3]]| {

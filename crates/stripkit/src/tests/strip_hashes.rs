@@ -147,7 +147,7 @@ fn strip_hashes() {
                     continue;
                 }
                 let t = Instant::now();
-                let m = cache::stripify_mesh(&mesh, &o, bound, d);
+                let m = cache::stripify_mesh(&mesh, &o, bound, d, Default::default());
                 let s = format!(
                     "{} w {:08x} acmr {:016x} q {}",
                     hash(&m.strips),

@@ -171,7 +171,7 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
     let built = lod::build(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the model of {}", args.file.display()))?;
     bar.finish_and_clear();
-    let check = args.common.check.max_levels().map(|max| built.check(max)).transpose()?;
+    let check = args.common.check.max_levels().map(|max| built.check_with(max, crate::cmd::threads())).transpose()?;
     // Written once the bytes read back to the model that was checked.
     let bytes = built.sets.write(&args.output)?;
     let out = BuildOut {
@@ -256,7 +256,8 @@ fn build_seq(args: BuildSeqArgs) -> anyhow::Result<()> {
     let built = lod::build_seq(&frames, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the level-of-detail strips of {}", args.folder.display()))?;
     bar.finish_and_clear();
-    let check = args.common.check.max_levels().map(|max| built.check(max)).transpose()?.unwrap_or_default();
+    let threads = crate::cmd::threads();
+    let check = args.common.check.max_levels().map(|max| built.check_with(max, threads)).transpose()?.unwrap_or_default();
     let bytes = built.seq.write(&args.output)?;
     let lod_bytes = built.seq.model_bytes();
     let position_bytes = bytes - lod_bytes;

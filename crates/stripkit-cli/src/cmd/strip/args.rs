@@ -217,7 +217,7 @@ impl StripArgs {
             Algorithm::Single(o) => *o = self.single(o.clone())?,
             _ => {}
         }
-        let mut options = StripOptions::default().algorithm(algorithm);
+        let mut options = StripOptions::default().algorithm(algorithm).threads(crate::cmd::threads());
         if self.no_weld {
             options = options.weld(false);
         }

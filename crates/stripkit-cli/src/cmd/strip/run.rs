@@ -43,9 +43,9 @@ fn output_kind(path: &Path, stdout_format: Option<Format>) -> anyhow::Result<Out
 }
 
 /// Runs the command on one input file: read -> door -> encode -> write. `batch`: the
-/// progress bar of a folder run (`main` runs each file of a folder input through
-/// here), above which the report is one line.
-pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result<()> {
+/// text of one file of a folder run (`main` runs each file of a folder input through
+/// here): the report is one line of it.
+pub fn run(args: Args, batch: Option<&cmd::BatchText>) -> anyhow::Result<()> {
     let stdout_format = if cmd::is_dash(&args.output) {
         Some(cmd::output_format(&args.output, args.output_format, Some((&args.input, &args.read)))?)
     } else {
@@ -187,7 +187,7 @@ pub fn run(args: Args, batch: Option<&indicatif::ProgressBar>) -> anyhow::Result
     }
 
     let sink = match batch {
-        Some(bar) => cmd::Sink::Batch(bar.clone()),
+        Some(text) => cmd::Sink::Batch(text.clone()),
         None => cmd::Sink::for_output(&args.output),
     };
     cmd::print_report_to(&sink, args.json, &report, |out, r| match batch {
@@ -221,7 +221,7 @@ fn run_scene(
     options: &StripOptions,
     format: Format,
     vertex_order: VertexOrder,
-    batch: Option<&indicatif::ProgressBar>,
+    batch: Option<&cmd::BatchText>,
 ) -> anyhow::Result<()> {
     use stripkit::io::Scene;
     let invalid = |m: String| -> anyhow::Result<()> { Err(Error::Invalid(m).into()) };
@@ -271,7 +271,7 @@ fn strip_scene(
     read_time: std::time::Duration,
     format: Format,
     vertex_order: VertexOrder,
-    batch: Option<&indicatif::ProgressBar>,
+    batch: Option<&cmd::BatchText>,
 ) -> anyhow::Result<()> {
     let scene_options = match options.join {
         Join::Degenerate => stripkit::scene::SceneOptions::stitched(),
@@ -312,7 +312,7 @@ fn strip_scene(
         scene: &report,
     };
     let sink = match batch {
-        Some(bar) => cmd::Sink::Batch(bar.clone()),
+        Some(text) => cmd::Sink::Batch(text.clone()),
         None => cmd::Sink::for_output(&args.output),
     };
     cmd::print_report_to(&sink, args.json, &r, |out, r| report::print_scene(out, r, batch.is_some()))

@@ -330,6 +330,7 @@ pub fn stripify_mesh(
     options: &CacheOptions,
     max_acmr: Option<f64>,
     split: Split,
+    threads: crate::parallel::Threads,
 ) -> MeshStrips {
     let fraction = crate::stripify::quad::quad_fraction(mesh);
     let (fan, qstrip) = match split {
@@ -361,12 +362,20 @@ pub fn stripify_mesh(
             acmr,
         }
     };
-    let a = fan.then(|| run(canon.fan(mesh), false));
-    let b = qstrip.then(|| {
-        let (_, strips) =
-            crate::stripify::quad::qstrip_mesh(&canon.rotated(mesh), &crate::stripify::quad::QuadOptions::default());
-        run(crate::strip::decode(&strips), true)
-    });
+    // The two candidates are independent: run side by side when threads allow.
+    let (a, b) = crate::parallel::join(
+        threads,
+        || fan.then(|| run(canon.fan(mesh), false)),
+        || {
+            qstrip.then(|| {
+                let (_, strips) = crate::stripify::quad::qstrip_mesh(
+                    &canon.rotated(mesh),
+                    &crate::stripify::quad::QuadOptions::default(),
+                );
+                run(crate::strip::decode(&strips), true)
+            })
+        },
+    );
     match (a, b) {
         (Some(a), Some(b)) => {
             let indices = |m: &MeshStrips| m.strips.restart_len() as f64;
