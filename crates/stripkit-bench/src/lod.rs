@@ -33,6 +33,10 @@ pub struct Args {
     /// Rounds of the down-and-back switching path (medians over all switches).
     #[arg(long, default_value_t = 200)]
     pub rounds: usize,
+    /// Indices-per-triangle thresholds of the re-stripped models
+    /// ([`stripkit::lod::BuildOptions::restrip`]).
+    #[arg(long, num_args = 1.., value_delimiter = ',', default_values_t = [1.5, 1.6, 1.8])]
+    pub thresholds: Vec<f64>,
     #[command(flatten)]
     pub table: crate::common::TableOut,
 }
@@ -78,6 +82,8 @@ struct Tables {
     memory: String,
     switch: String,
     distance: String,
+    coarse: String,
+    steps: String,
 }
 
 /// Runs the comparison.
@@ -98,6 +104,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     t.memory.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     t.switch.push_str("| model | chain memcpy, median switch us | chain, median pass us | SETS set_level, median switch us | SETS, median pass us | SETS set_level + compact, median switch us | SETS + compact, median pass us | switches per pass | chain bytes uploaded per pass | SETS changed-range bytes per pass |\n");
     t.switch.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    t.coarse.push_str("| model | strips | re-strip threshold | .sets bytes | in-memory bytes | build ms | 100% | 50% | 25% | 10% | 5% | 2% | 1% | worst level down to 1% |\n");
+    t.coarse.push_str("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    t.steps.push_str("| model | strips | path | switches per pass | median switch us | p99 switch us | changed strips' range bytes per switch (mean) | changed-range bytes per switch (mean) |\n");
+    t.steps.push_str("|---|---|---|---:|---:|---:|---:|---:|\n");
     t.distance.push_str("| model | ratio | meshopt triangles | SETS level | SETS triangles | Hausdorff meshopt | Hausdorff SETS | lower Hausdorff | RMS meshopt | RMS SETS | lower RMS |\n");
     t.distance.push_str("|---|---:|---:|---:|---:|---:|---:|---|---:|---:|---|\n");
     for name in &names {
@@ -116,6 +126,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         ("Strip quality at a level", &t.quality),
         ("Memory next to a discrete LoD chain (meshoptimizer simplify at 8 ratios + the full mesh)", &t.memory),
         ("Time to switch levels (full -> 8 chain levels -> full)", &t.switch),
+        ("Indices per triangle (restart buffer) at every level: kept strips, restart labels (bound), greedy from scratch, re-stripped models", &t.coarse),
+        ("Switch times and re-uploads, kept and re-stripped strips (median and 99th percentile of every timed switch)", &t.steps),
         ("Distance to the input at equal triangle counts (relative to the bounding-box diagonal)", &t.distance),
     ] {
         writeln!(out, "### {title}\n\n{table}")?;
@@ -151,6 +163,8 @@ fn model(mesh: &Mesh, label: &str, args: &Args, t: &mut Tables) -> anyhow::Resul
         r.simplify_ms,
         r.build_ms
     )?;
+
+    let restripped = coarse(&built, label, args, t)?;
 
     let greedy = StripOptions::default().algorithm(Algorithm::greedy());
     for ratio in QUALITY_RATIOS {
@@ -218,6 +232,7 @@ fn model(mesh: &Mesh, label: &str, args: &Args, t: &mut Tables) -> anyhow::Resul
         cursor.compact(u32::MAX, &mut compact);
         black_box(&compact);
     });
+    steps(label, sets, restripped.as_ref(), &levels, args.rounds, t)?;
     // What one pass uploads: the chain, every new level's list; SETS, the ranges of
     // the strips that changed (of the padded buffer).
     let chain_upload: usize = path.iter().map(|&i| 4 * chain[i].len()).sum();
@@ -263,6 +278,103 @@ fn model(mesh: &Mesh, label: &str, args: &Args, t: &mut Tables) -> anyhow::Resul
             d.rms,
             lower(d_mo.rms, d.rms)
         )?;
+    }
+    Ok(())
+}
+
+/// The ratios of the coarse-strips table.
+const COARSE_RATIOS: [f64; 7] = [1.0, 0.5, 0.25, 0.1, 0.05, 0.02, 0.01];
+
+/// The coarse-strips rows of one model: the kept strips, the restart-label bound, the
+/// models re-stripped at each threshold ([`lod::BuildOptions::restrip`]), and greedy
+/// from scratch, at the 7 ratios
+/// and at the worst level from 100% down to 1%.
+fn coarse(built: &lod::Built, label: &str, args: &Args, t: &mut Tables) -> anyhow::Result<Option<lod::Sets>> {
+    use crate::lod_coarse::{per_level, restart_ratio};
+    let sets = &built.sets;
+    let floor = sets.level_for_ratio(0.01);
+    let row = |t: &mut Tables, what: &str, thr: &str, bytes: usize, mem: usize, ms: f64, at: &dyn Fn(u32) -> f64, worst: f64| -> anyhow::Result<()> {
+        let cells: Vec<String> = COARSE_RATIOS.iter().map(|&r| format!("{:.3}", at(sets.level_for_ratio(r)))).collect();
+        writeln!(t.coarse, "| {label} | {what} | {thr} | {bytes} | {mem} | {ms:.0} | {} | {worst:.3} |", cells.join(" | "))?;
+        Ok(())
+    };
+    let mut first = None;
+    let kept = per_level(sets);
+    let worst = kept[..=floor as usize].iter().copied().fold(0.0, f64::max);
+    row(t, "SETS (kept)", "-", sets.to_bytes().len(), sets.memory_bytes(), 0.0, &|l: u32| kept[l as usize], worst)?;
+    let mut cursor = sets.cursor(0);
+    let bound: Vec<(u32, f64)> = COARSE_RATIOS.iter().map(|&r| {
+        let l = sets.level_for_ratio(r);
+        (l, restart_ratio(sets, &mut cursor, l))
+    }).collect();
+    let at_bound = |l: u32| bound.iter().find(|b| b.0 == l).map_or(f64::NAN, |b| b.1);
+    row(t, "restart labels (bound)", "-", 0, 0, 0.0, &at_bound, f64::NAN)?;
+    let greedy = StripOptions::default().algorithm(Algorithm::greedy()).weld(false);
+    let mut scratch = Vec::new();
+    for &r in &COARSE_RATIOS {
+        let l = sets.level_for_ratio(r);
+        let replay = built.sequence.replay(&built.mesh, l as usize)?;
+        let f = stripkit::stripify(&Mesh::from_triangles(replay.positions, &replay.triangles), &greedy)?.figures;
+        scratch.push((l, f.indices_restart as f64 / f.triangles.max(1) as f64));
+    }
+    let at_scratch = |l: u32| scratch.iter().find(|b| b.0 == l).map_or(f64::NAN, |b| b.1);
+    row(t, "greedy from scratch", "-", 0, 0, 0.0, &at_scratch, f64::NAN)?;
+    for &threshold in &args.thresholds {
+        let start = Instant::now();
+        let options = lod::BuildOptions::default().restrip(Some(threshold));
+        let re = lod::build(&built.mesh, &options, &mut |_| {})?;
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        anyhow::ensure!(re.sets.levels() == sets.levels(), "{label}: the re-stripped model has other levels");
+        let all = per_level(&re.sets);
+        let worst = all[..=floor as usize].iter().copied().fold(0.0, f64::max);
+        let what = format!("re-stripped ({} new strips)", re.sets.restripped_strips());
+        let (bytes, mem) = (re.sets.to_bytes().len(), re.sets.memory_bytes());
+        row(t, &what, &format!("{threshold}"), bytes, mem, ms, &|l: u32| all[l as usize], worst)?;
+        if first.is_none() {
+            first = Some(re.sets);
+        }
+    }
+    Ok(first)
+}
+
+/// Every switch along `path` (levels), `rounds` times after a warm-up pass: the
+/// median and 99th percentile microseconds of one `set_level`, and the mean bytes of
+/// the changed strips' ranges.
+fn switch_figures(sets: &lod::Sets, path: &[u32], rounds: usize) -> (f64, f64, f64, f64) {
+    let mut cursor = sets.cursor(0);
+    let (mut whole, mut bytes) = (0usize, 0usize);
+    for &l in path {
+        let changed = cursor.set_level(l).to_vec();
+        whole += changed.iter().map(|&s| 4 * cursor.strip_range(s as usize).len()).sum::<usize>();
+        bytes += changed.iter().map(|&s| 4 * cursor.changed_range(s as usize).len()).sum::<usize>();
+    }
+    let mut each = Vec::with_capacity(path.len() * rounds);
+    for _ in 0..rounds.max(1) {
+        for &l in path {
+            let t = Instant::now();
+            black_box(cursor.set_level(l).len());
+            each.push(t.elapsed().as_secs_f64() * 1e6);
+        }
+    }
+    each.sort_by(f64::total_cmp);
+    let p99 = each[((each.len() as f64 * 0.99) as usize).min(each.len() - 1)];
+    let per = |b: usize| b as f64 / path.len().max(1) as f64;
+    (median(each), p99, per(whole), per(bytes))
+}
+
+/// The switch rows of one model: the chain's levels and 1% of the levels (the
+/// paper's linear test), down and back, for the kept and the re-stripped strips.
+fn steps(label: &str, kept: &lod::Sets, restripped: Option<&lod::Sets>, chain_levels: &[u32], rounds: usize, t: &mut Tables) -> anyhow::Result<()> {
+    let max = kept.levels();
+    let down: Vec<u32> = (0..=100).map(|j| (j as f64 / 100.0 * max as f64).round() as u32).collect();
+    let one_percent: Vec<u32> = down.iter().copied().skip(1).chain(down.iter().rev().skip(1).copied()).collect();
+    let chain: Vec<u32> = chain_levels.iter().copied().skip(1).chain(chain_levels.iter().rev().skip(1).copied()).collect();
+    for (what, sets) in [("kept", Some(kept)), ("re-stripped", restripped)] {
+        let Some(sets) = sets else { continue };
+        for (name, path) in [("chain levels", &chain), ("1% of the levels", &one_percent)] {
+            let (med, p99, whole, bytes) = switch_figures(sets, path, rounds);
+            writeln!(t.steps, "| {label} | {what} | {name} | {} | {med:.2} | {p99:.2} | {whole:.0} | {bytes:.0} |", path.len())?;
+        }
     }
     Ok(())
 }

@@ -14,6 +14,7 @@ mod simplify;
 mod matching;
 mod single;
 mod lod;
+mod lod_coarse;
 
 use clap::{Parser, Subcommand};
 

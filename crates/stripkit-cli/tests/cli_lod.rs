@@ -120,6 +120,21 @@ fn optimal_placement_and_other_stripifiers() {
     }
 }
 
+/// `--restrip`: new strips where the kept ones decay, every level checked, a
+/// version-3 file that extracts like any model.
+#[test]
+fn restripped_models_build_check_and_extract() {
+    let input = torus();
+    let (model, r) = build(&input, "restrip.sets", &["--restrip", "1.5", "--check", "all"]);
+    assert!(r["restripped_strips"].as_u64().unwrap() > 0, "{r}");
+    assert_eq!(r["check"]["levels_checked"].as_u64().unwrap(), r["levels"].as_u64().unwrap() + 1, "{r}");
+    let bytes = std::fs::read(&model).unwrap();
+    assert_eq!(u32::from_le_bytes(bytes[8..12].try_into().unwrap()), 3);
+    let out = tmp("lod", "restrip.ply");
+    let o = stripkit(&["lod", "extract", model.to_str().unwrap(), "--ratio", "0.1", "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 #[test]
 fn bench_prints_the_papers_tests() {
     let (model, _) = build(&torus(), "bench.sets", &[]);
@@ -184,6 +199,8 @@ fn misuse_exits_2() {
         vec!["lod", "extract", model.to_str().unwrap(), "--level", "2", "-o", "/tmp/x.unknown"],
         vec!["lod", "build", input.to_str().unwrap(), "-o", "/no/such/folder/x.sets"],
         vec!["lod", "build", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--refine"],
+        vec!["lod", "build", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--restrip", "0.5"],
+        vec!["lod", "build", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--restrip", "nan"],
     ] {
         let o = stripkit(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));

@@ -3,6 +3,10 @@
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
+/// Processor seconds a `stripkit_1gib` run may use before it is killed.
+#[allow(dead_code)]
+pub const CPU_SECONDS: u32 = 20;
+
 /// Runs the built `stripkit` binary with `args`.
 #[allow(dead_code)] // not every test binary runs it
 pub fn stripkit(args: &[&str]) -> Output {
@@ -42,14 +46,17 @@ pub use stripkit_testkit::{assets_dir, encode_base64, gltf_validator, models_dir
 
 /// Runs the built `stripkit` binary with `args` under a 1 GiB address-space limit
 /// (`ulimit -v`, through `sh`), so that a run which tries to allocate from an
-/// absurd count fails fast instead of exhausting the machine. Returns the output
-/// and the seconds it took.
+/// absurd count fails fast instead of exhausting the machine, and under a limit of
+/// `CPU_SECONDS` of processor time (`ulimit -t`): a run that starts work of
+/// gigabytes is killed by SIGXCPU, so its exit status fails the test. Processor time,
+/// not wall time, so a loaded machine cannot fail it. Returns the output and the wall
+/// seconds it took (for messages).
 #[allow(dead_code)]
 pub fn stripkit_1gib(args: &[&str]) -> (Output, f64) {
     let start = std::time::Instant::now();
     let out = Command::new("sh")
         .arg("-c")
-        .arg("ulimit -v 1048576 && exec \"$0\" \"$@\"")
+        .arg(format!("ulimit -v 1048576 && ulimit -t {CPU_SECONDS} && exec \"$0\" \"$@\""))
         .arg(env!("CARGO_BIN_EXE_stripkit"))
         .args(args)
         .output()

@@ -30,9 +30,19 @@ pub struct BuildOptions {
     /// half-edge collapses, no new vertices, what `stripkit simplify` does by default)
     /// or [`Placement::Optimal`] (a new vertex per collapse).
     pub placement: Placement,
+    /// Re-stripping as the strips decay ([`Sets::build_restripping`]): the indices
+    /// per triangle (restart buffer) past which a level's triangles get new greedy
+    /// strips, or `None` to keep the level-0 strips at every level.
+    pub restrip: Option<f64>,
 }
 
 impl BuildOptions {
+    /// Sets [`BuildOptions::restrip`].
+    pub fn restrip(mut self, threshold: Option<f64>) -> Self {
+        self.restrip = threshold;
+        self
+    }
+
     /// Sets [`BuildOptions::strip`].
     pub fn strip(mut self, strip: StripOptions) -> Self {
         self.strip = strip;
@@ -65,6 +75,8 @@ pub struct BuildReport {
     pub versions: usize,
     /// Strip beginnings stored.
     pub beginnings: usize,
+    /// Strips made after level 0 by re-stripping ([`Sets::restripped_strips`]).
+    pub restripped_strips: usize,
     /// Bytes in memory ([`Sets::memory_bytes`]).
     pub memory_bytes: usize,
     /// Milliseconds of the stripifier.
@@ -135,12 +147,13 @@ pub fn build(mesh: &Mesh, options: &BuildOptions, progress: &mut dyn FnMut(f64))
     let simplified = simplify(&simplified_mesh, &simplify_options, progress)?;
     let simplify_ms = t.elapsed().as_secs_f64() * 1e3;
     let t = Instant::now();
-    let sets = Sets::build_with_attributes(
+    let sets = Sets::build_restripping(
         &simplified_mesh.positions,
         &simplified_mesh.attributes,
         &strips.strips,
         &simplified.sequence,
         options.placement,
+        options.restrip,
     )?;
     let build_ms = t.elapsed().as_secs_f64() * 1e3;
     // Checked before it is returned, as every output of the library: 17 levels
@@ -158,6 +171,7 @@ pub fn build(mesh: &Mesh, options: &BuildOptions, progress: &mut dyn FnMut(f64))
         slots: sets.slot_count(),
         versions: sets.version_count(),
         beginnings: sets.beginning_count(),
+        restripped_strips: sets.restripped_strips(),
         memory_bytes: sets.memory_bytes(),
         strip_ms,
         simplify_ms,

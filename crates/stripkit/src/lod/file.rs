@@ -14,6 +14,12 @@ const FORMAT_VERSION: u32 = 1;
 /// The version of a file that carries vertex attributes (an attributes section after
 /// the positions); files without attributes keep version 1, byte for byte.
 const FORMAT_VERSION_ATTRIBUTES: u32 = 2;
+/// The version of a `.sets` file with strips made after level 0 (re-stripped,
+/// [`Sets::build_restripping`]): the attributes section is always there (it may
+/// hold none), and each strip's beginning count carries a bit saying that its
+/// level-0 beginning is [`END`] although it has slots. Models without such strips
+/// keep version 1 or 2, byte for byte.
+const FORMAT_VERSION_RESTRIPS: u32 = 3;
 /// Most attributes a file may declare.
 const MAX_ATTRIBUTES: u32 = 64;
 /// Longest attribute name, in bytes.
@@ -34,7 +40,14 @@ impl Sets {
         let positionless = self.positions.is_empty() && self.input_vertices > 0;
         let flags = if self.placement == Placement::Optimal { FLAG_OPTIMAL } else { 0 }
             | if positionless { FLAG_NO_POSITIONS } else { 0 };
-        let version = if self.attributes.is_empty() { FORMAT_VERSION } else { FORMAT_VERSION_ATTRIBUTES };
+        let restrips = self.has_restrips();
+        let version = if restrips {
+            FORMAT_VERSION_RESTRIPS
+        } else if self.attributes.is_empty() {
+            FORMAT_VERSION
+        } else {
+            FORMAT_VERSION_ATTRIBUTES
+        };
         for x in [
             version,
             flags,
@@ -54,7 +67,7 @@ impl Sets {
                 out.extend_from_slice(&c.to_le_bytes());
             }
         }
-        if !self.attributes.is_empty() {
+        if restrips || !self.attributes.is_empty() {
             write_attributes(&mut out, &self.attributes);
         }
         for i in 0..self.targets.len() {
@@ -89,7 +102,12 @@ impl Sets {
         }
         for s in 0..self.strip_count() {
             let r = self.begin_offsets[s] as usize..self.begin_offsets[s + 1] as usize;
-            varint(&mut out, (r.len() - 1) as u64);
+            if restrips {
+                let empty0 = self.begin_slot[r.start] == END && self.strip_slots[s] < self.strip_slots[s + 1];
+                varint(&mut out, ((r.len() - 1) as u64) << 1 | empty0 as u64);
+            } else {
+                varint(&mut out, (r.len() - 1) as u64);
+            }
             for b in r.start + 1..r.end {
                 varint(&mut out, (self.begin_level[b] - self.begin_level[b - 1]) as u64);
                 let slot = match self.begin_slot[b] {
@@ -126,18 +144,19 @@ impl Sets {
     /// whose count the strips do not draw).
     pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Sets> {
         let fmt = |at: usize, what: String| Error::Format { path: path.to_path_buf(), at: format!("byte {at}"), what };
-        let (mut r, version) = Reader::open(bytes, SETS_MAGIC, 40, ".sets", &fmt)?;
+        let (mut r, version) = Reader::open(bytes, SETS_MAGIC, 40, ".sets", FORMAT_VERSION_RESTRIPS, &fmt)?;
         let h = SetsHeader::read(&mut r)?;
         let positions = read_positions(&mut r, if h.positionless { 0 } else { h.position_count })?;
         let attributes = match version {
             FORMAT_VERSION => Vec::new(),
-            _ => read_attributes(&mut r, h.position_count)?,
+            _ => read_attributes(&mut r, h.position_count, version == FORMAT_VERSION_RESTRIPS)?,
         };
         let (targets, removed_triangles) = h.read_collapses(&mut r)?;
         let strip_slots = h.read_strip_lengths(&mut r)?;
         let labels = h.read_labels(&mut r)?;
         let (version_offsets, versions) = h.read_versions(&mut r, &labels, &strip_slots, &targets)?;
-        let (begin_offsets, begin_level, begin_slot) = h.read_beginnings(&mut r, &strip_slots)?;
+        let (begin_offsets, begin_level, begin_slot) =
+            h.read_beginnings(&mut r, &strip_slots, version == FORMAT_VERSION_RESTRIPS)?;
         let body = r.bytes.len();
         if r.at != body {
             return Err(fmt(r.at, format!("{} bytes follow the last strip beginning", body - r.at)));
@@ -158,6 +177,9 @@ impl Sets {
             versions,
             change_offsets: Vec::new(),
             change_level: Vec::new(),
+            change_slot: Vec::new(),
+            level_offsets: Vec::new(),
+            level_strips: Vec::new(),
             triangles_at: Vec::new(),
         };
         sets.derive().map_err(|e| fmt(body, e.to_string()))?;
@@ -357,7 +379,14 @@ impl SetsHeader {
 
     /// The beginnings of every strip (its level-0 one implied): their offsets, levels
     /// (ascending within a strip) and slots (inside the strip, or [`END`]).
-    fn read_beginnings(&self, r: &mut Reader, strip_slots: &[u32]) -> Result<(Vec<u32>, Vec<u32>, Vec<u32>)> {
+    /// With `restrips` (version 3) the count's low bit says the strip is empty at
+    /// level 0.
+    fn read_beginnings(
+        &self,
+        r: &mut Reader,
+        strip_slots: &[u32],
+        restrips: bool,
+    ) -> Result<(Vec<u32>, Vec<u32>, Vec<u32>)> {
         let (levels, beginnings) = (self.levels, self.beginnings);
         r.need(self.strips as usize, "the strip beginnings")?;
         let mut begin_offsets = Vec::with_capacity(self.strips as usize + 1);
@@ -366,13 +395,18 @@ impl SetsHeader {
         let (mut begin_level, mut begin_slot) = (Vec::with_capacity(cap), Vec::with_capacity(cap));
         for s in 0..self.strips as usize {
             let (lo, hi) = (strip_slots[s], strip_slots[s + 1]);
-            let extra = r.index(u32::MAX, "a strip's beginning count")? as usize;
+            let code = r.varint("a strip's beginning count")?;
+            let (extra, empty0) = if restrips { (code >> 1, code & 1 == 1) } else { (code, false) };
+            if extra >= u32::MAX as u64 {
+                return Err(r.fail(r.at, format!("strip {s}: {extra} beginnings")));
+            }
+            let extra = extra as usize;
             if begin_level.len() + 1 + extra > beginnings as usize {
                 return Err(r.fail(r.at, format!("more strip beginnings than the {beginnings} the header gives")));
             }
             r.need(extra * 2, "a strip's beginnings")?;
             begin_level.push(0);
-            begin_slot.push(if lo < hi { lo } else { END });
+            begin_slot.push(if lo < hi && !empty0 { lo } else { END });
             for _ in 0..extra {
                 let step = r.index(u32::MAX, "a beginning's level step")?;
                 let level = begin_level.last().copied().unwrap_or(0) as u64 + step as u64;
@@ -425,6 +459,7 @@ impl<'a> Reader<'a> {
         magic: &[u8; 8],
         header: usize,
         kind: &str,
+        newest: u32,
         fmt: &'a dyn Fn(usize, String) -> Error,
     ) -> Result<(Reader<'a>, u32)> {
         if bytes.len() < magic.len() + header + 4 {
@@ -441,8 +476,8 @@ impl<'a> Reader<'a> {
         }
         let mut r = Reader { bytes: body, at: 8, fmt };
         let version = r.u32()?;
-        if version != FORMAT_VERSION && version != FORMAT_VERSION_ATTRIBUTES {
-            let known = format!("versions {FORMAT_VERSION} and {FORMAT_VERSION_ATTRIBUTES}");
+        if !(FORMAT_VERSION..=newest).contains(&version) {
+            let known = format!("versions {FORMAT_VERSION} to {newest}");
             return Err(fmt(8, format!("format version {version}; this stripkit reads {known}")));
         }
         Ok((r, version))
@@ -630,7 +665,7 @@ impl super::seq::LodSeq {
     /// model positionless over the frames' vertex count with the same strip layout.
     pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<super::seq::LodSeq> {
         let fmt = |at: usize, what: String| Error::Format { path: path.to_path_buf(), at: format!("byte {at}"), what };
-        let (mut r, version) = Reader::open(bytes, LODSEQ_MAGIC, 20, ".lodseq", &fmt)?;
+        let (mut r, version) = Reader::open(bytes, LODSEQ_MAGIC, 20, ".lodseq", FORMAT_VERSION_ATTRIBUTES, &fmt)?;
         let (frames, vertices, models, bits) = (r.u32()?, r.u32()?, r.u32()?, r.u32()?);
         if frames == 0 || models == 0 {
             return Err(fmt(12, "a sequence needs at least one frame and one model".into()));
@@ -647,7 +682,7 @@ impl super::seq::LodSeq {
         };
         let attributes = match version {
             FORMAT_VERSION => Vec::new(),
-            _ => read_attributes(&mut r, vertices)?,
+            _ => read_attributes(&mut r, vertices, false)?,
         };
         let models = read_models(path, &mut r, models, vertices)?;
         let body = r.bytes.len();
@@ -824,9 +859,9 @@ fn write_attributes(out: &mut Vec<u8>, attributes: &[Attribute]) {
 /// [`MAX_ATTRIBUTES`] attributes, names of at most [`MAX_ATTRIBUTE_NAME`] bytes, 1 to
 /// 4 components of a known type, and every attribute's values present in the bytes
 /// left before they are copied.
-fn read_attributes(r: &mut Reader, vertices: u32) -> Result<Vec<Attribute>> {
+fn read_attributes(r: &mut Reader, vertices: u32, may_be_empty: bool) -> Result<Vec<Attribute>> {
     let count = r.u32()?;
-    if count == 0 || count > MAX_ATTRIBUTES {
+    if (count == 0 && !may_be_empty) || count > MAX_ATTRIBUTES {
         return Err(r.fail(r.at - 4, format!("{count} attributes (a version-2 file holds 1 to {MAX_ATTRIBUTES})")));
     }
     r.need(count as usize * 4, "the attributes")?;

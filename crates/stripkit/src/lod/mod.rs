@@ -42,7 +42,7 @@ pub use seq::{
     build_seq, read_frames, BuiltSeq, FrameQuality, Frames, LodSeq, Quality, SeqCursor, SeqOptions,
     SeqReport, QUALITY_RATIOS,
 };
-pub use sets::{LevelSpec, Sets, END};
+pub use sets::{LevelSpec, Sets, END, RESTRIP_MARGIN};
 
 #[cfg(test)]
 mod tests;

@@ -712,7 +712,7 @@ impl<'a> SeqCursor<'a> {
         if m == self.model && !fresh {
             // Same model: the cursor's own changes (relative to this buffer).
             for &s in cursor.changed() {
-                let r = cursor.strip_range(s as usize);
+                let r = cursor.changed_range(s as usize);
                 self.buffer[r.clone()].copy_from_slice(&cursor.buffer()[r]);
                 self.changed.push(s);
             }

@@ -30,6 +30,11 @@ pub const END: u32 = u32::MAX;
 
 /// Slots gathered on each side of a renamed slot when looking for removals.
 const REACH: usize = 8;
+/// How much worse than when they were made (indices per triangle) the strips must
+/// get before [`Sets::build_restripping`] makes new ones: a mesh too small for any
+/// strips under the threshold is not re-stripped at every level.
+pub const RESTRIP_MARGIN: f64 = 0.15;
+
 /// The most slots a window holds.
 const WINDOW: usize = 2 * REACH + 1;
 
@@ -91,6 +96,15 @@ pub struct Sets {
     /// strip `s`'s sequence changes, ascending, starting with 0 (derived, not stored).
     pub(crate) change_offsets: Vec<u32>,
     pub(crate) change_level: Vec<u32>,
+    /// Parallel to `change_level`: the first slot whose version changes at that
+    /// level (the strip's first slot for a new beginning), where a walk from the
+    /// level before must start over (derived).
+    pub(crate) change_slot: Vec<u32>,
+    /// `level_strips[level_offsets[l]..level_offsets[l + 1]]`: the strips whose
+    /// sequence changes at level `l` (derived), so that a move between near levels
+    /// finds them without looking at every strip.
+    pub(crate) level_offsets: Vec<u32>,
+    pub(crate) level_strips: Vec<u32>,
     /// Triangles at each level (derived, not stored).
     pub(crate) triangles_at: Vec<u32>,
 }
@@ -134,6 +148,26 @@ impl Sets {
         sequence: &CollapseSequence,
         placement: Placement,
     ) -> Result<Sets> {
+        Sets::build_restripping(positions, attributes, strips, sequence, placement, None)
+    }
+
+    /// [`Sets::build_with_attributes`] that re-strips as the strips decay: after a
+    /// level whose strips take more than `threshold` indices per triangle (restart
+    /// buffer, [`crate::strip::StripSet::restart_len`]), and at least
+    /// [`RESTRIP_MARGIN`] more than the strips had when they were made, the level's
+    /// triangles are stripified again (greedy) into new strips, empty before that
+    /// level, and every strip drawn until then ends (its beginning becomes [`END`]).
+    /// Every level still draws exactly the replay's triangles; the new strips are
+    /// new slots of the same model, so a cursor, the file and the checks treat them
+    /// as any strip. `None` never re-strips ([`Sets::build_with_attributes`]).
+    pub fn build_restripping(
+        positions: &[[f32; 3]],
+        attributes: &[Attribute],
+        strips: &StripSet,
+        sequence: &CollapseSequence,
+        placement: Placement,
+        threshold: Option<f64>,
+    ) -> Result<Sets> {
         let n = positions.len();
         if let Some(a) = attributes.iter().find(|a| a.stride() == 0 || a.data.len() != n * a.stride()) {
             let what = format!("attribute {} does not hold one value for each of the {n} vertices", a.name);
@@ -155,6 +189,9 @@ impl Sets {
             return Err(Error::Invalid("more than 2^32 - 2 vertices or strip indices".into()));
         }
         let mut b = Builder::new(strips, total);
+        let mut live_triangles = strips.iter().map(count_triangles).sum::<usize>();
+        b.restrip_threshold = threshold;
+        b.fresh_ratio = b.ratio(live_triangles);
         let mut all_positions = positions.to_vec();
         // `name[v]`: what the sequence's vertex `v` is called now (itself, or with
         // optimal placement the new vertex of the last collapse that kept it).
@@ -192,11 +229,12 @@ impl Sets {
                     new
                 }
             };
-            b.settle(level);
+            live_triangles = live_triangles.saturating_sub(sequence.removed_by(i).len());
+            b.settle(level, live_triangles);
             targets.push(target);
             removed_triangles.push(sequence.removed_by(i).len() as u32);
         }
-        let triangles0 = strips.iter().map(count_triangles).sum::<usize>() as u32;
+        let triangles0 = b.triangles0;
         let mut sets = b.finish(placement, n as u32, all_positions, targets, removed_triangles, triangles0);
         sets.attributes = all_attributes;
         sets.derive()?;
@@ -207,26 +245,58 @@ impl Sets {
     /// that the triangle counts never go below zero.
     pub(crate) fn derive(&mut self) -> Result<()> {
         let strips = self.strip_count();
-        let mut levels: Vec<u32> = Vec::new();
+        // (level, slot) of every change of a strip: its beginnings (from its first
+        // slot) and its slots' versions.
+        let mut events: Vec<(u32, u32)> = Vec::new();
         self.change_offsets = Vec::with_capacity(strips + 1);
         self.change_offsets.push(0);
         self.change_level.clear();
+        self.change_slot.clear();
         for s in 0..strips {
-            levels.clear();
-            levels.extend_from_slice(
-                &self.begin_level[self.begin_offsets[s] as usize..self.begin_offsets[s + 1] as usize],
+            events.clear();
+            let first = self.strip_slots[s];
+            events.extend(
+                self.begin_level[self.begin_offsets[s] as usize..self.begin_offsets[s + 1] as usize]
+                    .iter()
+                    .map(|&l| (l, first)),
             );
             let slots = self.strip_slots[s] as usize..self.strip_slots[s + 1] as usize;
-            levels.extend(
-                self.versions[self.version_offsets[slots.start] as usize..self.version_offsets[slots.end] as usize]
-                    .iter()
-                    .map(|v| v.level),
-            );
-            levels.sort_unstable();
-            levels.dedup();
-            self.change_level.extend_from_slice(&levels);
+            for x in slots {
+                let r = self.version_offsets[x] as usize..self.version_offsets[x + 1] as usize;
+                events.extend(self.versions[r].iter().map(|v| (v.level, x as u32)));
+            }
+            events.sort_unstable();
+            for &(l, x) in &events {
+                if self.change_level.len() > self.change_offsets[s] as usize && self.change_level.last() == Some(&l) {
+                    continue; // the smallest slot of the level came first
+                }
+                self.change_level.push(l);
+                self.change_slot.push(x);
+            }
             self.change_offsets.push(self.change_level.len() as u32);
         }
+        // The strips changing at each level past 0, by a counting sort.
+        let levels = self.targets.len();
+        let mut offsets = vec![0u32; levels + 2];
+        for &l in &self.change_level {
+            if l > 0 && (l as usize) <= levels {
+                offsets[l as usize + 1] += 1;
+            }
+        }
+        for l in 0..=levels {
+            offsets[l + 1] += offsets[l];
+        }
+        let mut fill = offsets.clone();
+        self.level_strips = vec![0; offsets[levels + 1] as usize];
+        for s in 0..strips {
+            for &l in &self.change_level[self.change_offsets[s] as usize..self.change_offsets[s + 1] as usize] {
+                if l > 0 && (l as usize) <= levels {
+                    self.level_strips[fill[l as usize] as usize] = s as u32;
+                    fill[l as usize] += 1;
+                }
+            }
+        }
+        self.level_offsets = offsets;
         self.triangles_at = Vec::with_capacity(self.targets.len() + 1);
         let mut t = self.triangles0;
         self.triangles_at.push(t);
@@ -258,6 +328,23 @@ impl Sets {
     /// Number of slot versions (at least one per slot).
     pub fn version_count(&self) -> usize {
         self.versions.len()
+    }
+
+    /// Number of strips made after level 0 by re-stripping
+    /// ([`Sets::build_restripping`]): strips with slots but no beginning at level 0.
+    pub fn restripped_strips(&self) -> usize {
+        (0..self.strip_count())
+            .filter(|&s| {
+                self.begin_slot[self.begin_offsets[s] as usize] == END && self.strip_slots[s] < self.strip_slots[s + 1]
+            })
+            .count()
+    }
+
+    /// Whether any strip was made after level 0 ([`Sets::restripped_strips`]).
+    pub(crate) fn has_restrips(&self) -> bool {
+        (0..self.strip_count()).any(|s| {
+            self.begin_slot[self.begin_offsets[s] as usize] == END && self.strip_slots[s] < self.strip_slots[s + 1]
+        })
     }
 
     /// Number of strip beginnings (at least one per strip).
@@ -328,7 +415,9 @@ impl Sets {
             + self.version_offsets.len()
             + 3 * self.versions.len()
             + self.change_offsets.len()
-            + self.change_level.len()
+            + 2 * self.change_level.len()
+            + self.level_offsets.len()
+            + self.level_strips.len()
             + self.triangles_at.len())
             + 12 * self.positions.len()
             + self.attributes.iter().map(|a| a.data.len()).sum::<usize>()
@@ -352,26 +441,43 @@ impl Sets {
     /// Calls `emit` with the vertices of strip `s` at `level`, in order.
     #[inline]
     pub(crate) fn walk(&self, s: usize, level: u32, mut emit: impl FnMut(u32)) {
+        self.walk_slots(self.head_at(s, level), level, |_, v| emit(v));
+    }
+
+    /// Strip `s`'s first slot at `level` ([`END`] when empty).
+    #[inline]
+    pub(crate) fn head_at(&self, s: usize, level: u32) -> u32 {
         let b = self.begin_offsets[s] as usize..self.begin_offsets[s + 1] as usize;
         let k = b.start + self.begin_level[b.clone()].partition_point(|&l| l <= level) - 1;
-        let mut x = self.begin_slot[k];
+        self.begin_slot[k]
+    }
+
+    /// Slot `x`'s version at `level`.
+    #[inline]
+    pub(crate) fn version_at(&self, x: u32, level: u32) -> Version {
+        let lo = self.version_offsets[x as usize] as usize;
+        let hi = self.version_offsets[x as usize + 1] as usize;
+        let vs = &self.versions[lo..hi];
+        // Most slots have a few versions: the last, then a scan, then a search.
+        if vs[vs.len() - 1].level <= level {
+            vs[vs.len() - 1]
+        } else if vs.len() <= 8 {
+            let mut i = 0;
+            while vs[i + 1].level <= level {
+                i += 1;
+            }
+            vs[i]
+        } else {
+            vs[vs.partition_point(|v| v.level <= level) - 1]
+        }
+    }
+
+    /// Calls `emit(slot, vertex)` for the slots from `x` on at `level`.
+    #[inline]
+    pub(crate) fn walk_slots(&self, mut x: u32, level: u32, mut emit: impl FnMut(u32, u32)) {
         while x != END {
-            let lo = self.version_offsets[x as usize] as usize;
-            let hi = self.version_offsets[x as usize + 1] as usize;
-            let vs = &self.versions[lo..hi];
-            // Most slots have a few versions: the last, then a scan, then a search.
-            let v = if vs[vs.len() - 1].level <= level {
-                vs[vs.len() - 1]
-            } else if vs.len() <= 8 {
-                let mut i = 0;
-                while vs[i + 1].level <= level {
-                    i += 1;
-                }
-                vs[i]
-            } else {
-                vs[vs.partition_point(|v| v.level <= level) - 1]
-            };
-            emit(v.label);
+            let v = self.version_at(x, level);
+            emit(x, v.label);
             x = v.next;
         }
     }
@@ -409,6 +515,18 @@ struct Builder {
     changed: Vec<u32>,
     window: Vec<u32>,
     window_labels: Vec<u32>,
+    /// Slots of the live strips and the non-empty strips (the restart buffer's
+    /// length is their sum minus one).
+    live_slots: usize,
+    live_strips: usize,
+    /// Non-degenerate triangles of the level-0 strips.
+    triangles0: u32,
+    /// See [`Sets::build_restripping`].
+    restrip_threshold: Option<f64>,
+    /// Indices per triangle of the strips when they were last made.
+    fresh_ratio: f64,
+    /// Strips made after level 0 (for the file: their level-0 beginning is [`END`]).
+    restrips: usize,
 }
 
 impl Builder {
@@ -436,6 +554,12 @@ impl Builder {
             changed: Vec::new(),
             window: Vec::new(),
             window_labels: Vec::new(),
+            live_slots: slots,
+            live_strips: (0..strips.len()).filter(|&s| strips.offsets[s] < strips.offsets[s + 1]).count(),
+            triangles0: strips.iter().map(count_triangles).sum::<usize>() as u32,
+            restrip_threshold: None,
+            fresh_ratio: 0.0,
+            restrips: 0,
         };
         for s in 0..strips.len() {
             let r = strips.offsets[s] as usize..strips.offsets[s + 1] as usize;
@@ -522,7 +646,7 @@ impl Builder {
 
     /// After a collapse's renames: shortens the strips around the renamed slots and
     /// logs what changed at `level`.
-    fn settle(&mut self, level: u32) {
+    fn settle(&mut self, level: u32, triangles: usize) {
         let touched = std::mem::take(&mut self.touched);
         for &x in &touched {
             if self.alive[x as usize] && self.degenerate_near(x) {
@@ -531,6 +655,17 @@ impl Builder {
         }
         self.touched = touched;
         self.touched.clear();
+        let fresh = match self.restrip_threshold {
+            Some(t) if triangles > 0 => {
+                let r = self.ratio(triangles);
+                if r > t && r > self.fresh_ratio + RESTRIP_MARGIN {
+                    self.end_strips()
+                } else {
+                    None
+                }
+            }
+            _ => None,
+        };
         for i in 0..self.dirty.len() {
             let x = self.dirty[i];
             if self.alive[x as usize] {
@@ -546,6 +681,88 @@ impl Builder {
         }
         self.dirty.clear();
         self.changed.clear();
+        if let Some(tris) = fresh {
+            self.add_strips(level, &tris);
+            self.fresh_ratio = self.ratio(triangles);
+        }
+    }
+
+    /// Indices per triangle of the live strips as one restart buffer.
+    fn ratio(&self, triangles: usize) -> f64 {
+        (self.live_slots + self.live_strips).saturating_sub(1) as f64 / triangles.max(1) as f64
+    }
+
+    /// Ends every live strip (its slots die, its head becomes [`END`]) and returns
+    /// greedy strips of the triangles they drew, or `None` (nothing ended) when
+    /// those strips would not draw them exactly.
+    fn end_strips(&mut self) -> Option<StripSet> {
+        let mut tris = Vec::new();
+        let mut strip = Vec::new();
+        for s in 0..self.head.len() {
+            strip.clear();
+            let mut x = self.head[s];
+            while x != END {
+                strip.push(self.label[x as usize]);
+                x = self.next[x as usize];
+            }
+            crate::strip::for_each_triangle(&strip, |t| tris.push(t));
+        }
+        let fresh = crate::stripify::greedy::stripify(&tris, self.occ_head.len(), &Default::default());
+        if !crate::strip::verify_triangles(&tris, &crate::strip::decode(&fresh)).ok() {
+            return None;
+        }
+        for s in 0..self.head.len() {
+            let mut x = self.head[s];
+            while x != END {
+                self.alive[x as usize] = false;
+                x = self.next[x as usize];
+            }
+            if self.head[s] != END {
+                self.head[s] = END;
+                if self.strip_stamp[s] != self.stamp {
+                    self.strip_stamp[s] = self.stamp;
+                    self.changed.push(s as u32);
+                }
+            }
+        }
+        self.live_slots = 0;
+        self.live_strips = 0;
+        Some(fresh)
+    }
+
+    /// Appends `fresh` as new strips beginning at `level` (empty before it).
+    fn add_strips(&mut self, level: u32, fresh: &StripSet) {
+        for piece in fresh.iter().filter(|p| !p.is_empty()) {
+            let s = self.head.len() as u32;
+            let first = self.label.len() as u32;
+            for (k, &v) in piece.iter().enumerate() {
+                let x = first + k as u32;
+                let next = if k + 1 < piece.len() { x + 1 } else { END };
+                self.label.push(v);
+                self.next.push(next);
+                self.prev.push(if k > 0 { x - 1 } else { END });
+                self.alive.push(true);
+                self.strip_of.push(s);
+                self.occ_next.push(END);
+                self.slot_stamp.push(0);
+                if self.occ_tail[v as usize] == END {
+                    self.occ_head[v as usize] = x;
+                } else {
+                    self.occ_next[self.occ_tail[v as usize] as usize] = x;
+                }
+                self.occ_tail[v as usize] = x;
+                self.versions.push((x, 0, v, next));
+            }
+            self.strip_slots.push(self.label.len() as u32);
+            self.head.push(first);
+            self.recorded_head.push(first);
+            self.strip_stamp.push(0);
+            self.begins.push((s, 0, END));
+            self.begins.push((s, level, first));
+            self.live_slots += piece.len();
+            self.live_strips += 1;
+            self.restrips += 1;
+        }
     }
 
     /// Whether a triangle through live slot `x` is degenerate.
@@ -618,6 +835,10 @@ impl Builder {
         self.alive[yi] = false;
         let (p, q) = (self.prev[yi], self.next[yi]);
         let s = self.strip_of[yi] as usize;
+        self.live_slots -= 1;
+        if p == END && q == END {
+            self.live_strips -= 1;
+        }
         if p != END {
             self.next[p as usize] = q;
             self.mark_dirty(p);
@@ -682,6 +903,9 @@ impl Builder {
             versions,
             change_offsets: Vec::new(),
             change_level: Vec::new(),
+            change_slot: Vec::new(),
+            level_offsets: Vec::new(),
+            level_strips: Vec::new(),
             triangles_at: Vec::new(),
         }
     }

@@ -71,8 +71,19 @@ struct BuildArgs {
     /// Survivor placement of the collapses: endpoint (half-edge collapses, no new vertices) or optimal (a new vertex per collapse at the simplifier's optimal position). Default endpoint.
     #[arg(long, value_parser = crate::cmd::named::<Placement>(Placement::NAMES))]
     placement: Option<Placement>,
+    /// Re-strip as the strips decay: a level whose strips take more than this many indices per triangle (restart buffer) gets new greedy strips, every level still exact (a version-3 `.sets`). At least 1. Default: keep the level-0 strips at every level.
+    #[arg(long, value_name = "INDICES_PER_TRIANGLE", value_parser = restrip_threshold)]
+    restrip: Option<f64>,
     #[command(flatten)]
     common: CommonArgs,
+}
+
+/// `--restrip`'s value: a number of at least 1.
+fn restrip_threshold(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 1.0 => Ok(x),
+        _ => Err(format!("{s} is not a number of indices per triangle of at least 1")),
+    }
 }
 
 #[derive(clap::Args)]
@@ -166,7 +177,8 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
     let mesh = args.common.read.read(&args.file)?;
     args.common.strip.check_mesh(&mesh, &args.file)?;
     let placement = args.placement.unwrap_or(BuildOptions::default().placement);
-    let options = BuildOptions::default().strip(args.common.strip.options()?).placement(placement);
+    let options =
+        BuildOptions::default().strip(args.common.strip.options()?).placement(placement).restrip(args.restrip);
     let bar = crate::cmd::progress_bar(mesh.triangle_count() > 200_000, "simplify");
     let built = lod::build(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the model of {}", args.file.display()))?;
@@ -194,6 +206,9 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
             "model: {} slots, {} versions, {} strip beginnings; {} bytes on disk, {} in memory",
             r.slots, r.versions, r.beginnings, o.bytes, r.memory_bytes
         )?;
+        if r.restripped_strips > 0 {
+            writeln!(w, "re-stripped: {} strips made where the strips decayed", r.restripped_strips)?;
+        }
         match &o.check {
             Some(c) => writeln!(
                 w,
