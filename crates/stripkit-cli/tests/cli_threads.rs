@@ -2,8 +2,9 @@
 //! folder of generated meshes (one with material groups, one quad-dominant for the
 //! two candidates of the cache stripifier's auto split), a glTF scene of many
 //! primitives, `lod build` with its level checks, `lod build-seq` on a small bending
-//! torus, `distance`, and the folder of shared models where present. The reports
-//! are compared with their times taken out (and the output folder's name).
+//! torus, `distance`, a big mesh cut into parts (`--partition-above`), and the folder
+//! of shared models where present. The reports are compared with their times taken
+//! out (and the output folder's name).
 
 mod support;
 
@@ -123,6 +124,18 @@ fn a_folder_run_writes_the_same_bytes_and_reports_at_1_and_4_threads() {
         assert!(reports.iter().all(|r| r["verified"] == true), "{reports:?}");
         assert_eq!(reports[4]["triangles"], 2 * 1280);
     }
+}
+
+#[test]
+fn a_big_mesh_in_parts_is_the_same_at_1_and_4_threads() {
+    // icosphere(7), 327,680 triangles: `--partition-above 1` cuts it into two parts
+    // stripified side by side; the same bytes and reports at 1 and 4 threads, verified.
+    let input = fresh("parts-in");
+    write_mesh(&input.join("sphere.ply"), &stripkit::gen::icosphere(7));
+    let reports = folder_same_at_1_and_4(&input, "parts", &["--algo", "cache", "--partition-above", "1"]);
+    assert_eq!(reports.len(), 1);
+    assert_eq!(reports[0]["verified"], true);
+    assert_eq!(reports[0]["triangles"], 327_680);
 }
 
 /// A glTF of `n` primitives, each a shuffled grid of its own size over its own

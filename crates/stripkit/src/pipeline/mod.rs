@@ -198,7 +198,14 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
             let size = options.cache.size as u32;
             let (cache_options, bound) = match algorithm {
                 Algorithm::Balanced { max_acmr } => (CacheOptions::balanced(size), Some(max_acmr)),
-                Algorithm::Cache { refine } => (CacheOptions { refine, ..CacheOptions::cache(size) }, None),
+                Algorithm::Cache { refine } => (
+                    CacheOptions {
+                        refine,
+                        partition_above: options.partition_above,
+                        ..CacheOptions::cache(size)
+                    },
+                    None,
+                ),
                 _ => unreachable!("matched above"),
             };
             let m = cache::stripify_mesh(mesh, &cache_options, bound, options.split, options.threads);

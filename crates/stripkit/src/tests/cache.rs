@@ -508,3 +508,30 @@ fn refining_the_cache_strips_lowers_indices_without_adding_misses() {
     assert!((refined.indices_restart as f64) < 0.99 * plain.indices_restart as f64);
     assert!(refined.acmr <= plain.acmr);
 }
+
+#[test]
+fn a_big_mesh_in_parts_verifies_and_is_the_same_at_any_thread_count_and_face_order() {
+    // icosphere(7): 327,680 triangles, two parts. The partitioned strips verify against
+    // the mesh, are the same at 1 and 4 threads and for shuffled faces, and cost a
+    // little against the whole-mesh run (measured: 425,847 indices against 423,228,
+    // +0.62%; ACMR 0.5910 against 0.5851).
+    use crate::parallel::Threads;
+    use crate::stripify::cache::stripify_mesh;
+    use crate::stripify::Split;
+    let mesh = crate::gen::icosphere(7);
+    let tris = mesh.triangulate().tris;
+    let parted = CacheOptions { partition_above: 1, ..CacheOptions::cache(16) };
+    let one = stripify_mesh(&mesh, &parted, None, Split::Auto, Threads::SERIAL);
+    assert!(strip::verify(&tris, &one.strips).ok());
+    let four = stripify_mesh(&mesh, &parted, None, Split::Auto, Threads::new(4));
+    assert_eq!(one.strips, four.strips);
+    let shuffled = crate::gen::shuffle_faces(&mesh, 5);
+    let again = stripify_mesh(&shuffled, &parted, None, Split::Auto, Threads::new(2));
+    assert!(strip::verify(&shuffled.triangulate().tris, &again.strips).ok());
+    assert_eq!(one.strips.restart_len(), again.strips.restart_len());
+    let whole = stripify_mesh(&mesh, &CacheOptions::cache(16), None, Split::Auto, Threads::SERIAL);
+    let (a, b) = (one.strips.restart_len() as f64, whole.strips.restart_len() as f64);
+    eprintln!("icosphere(7) in parts: {a} indices (acmr {}), whole: {b} (acmr {})", one.acmr, whole.acmr);
+    assert!(a > b && a <= b * 1.01, "{a} against {b}");
+    assert!(one.acmr <= whole.acmr + 0.01, "{} against {}", one.acmr, whole.acmr);
+}

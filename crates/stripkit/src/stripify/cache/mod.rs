@@ -34,6 +34,7 @@
 
 mod canonical;
 mod fifo_strips;
+mod partition;
 
 use super::Split;
 use crate::improve::{refine, Effort};
@@ -78,6 +79,13 @@ pub struct CacheOptions {
     /// for many times the time. Used by [`stripify`], [`stripify_with_graph`] and [`stripify_mesh`] without a
     /// bound; [`stripify_within`] always refines.
     pub refine: bool,
+    /// Meshes of more triangles than this (after the split of quads) are cut into parts of
+    /// about `partition::PART_TRIANGLES` (262,144) triangles, ranges of the canonical (Z-order) triangle
+    /// list, stripified on their own (in parallel when the threads allow) and joined
+    /// across the part borders; `0` never cuts. The cut depends on the mesh only, so
+    /// the strips are the same at any thread count. Without a bound only
+    /// ([`stripify_within`] runs on the whole mesh). Default 0.
+    pub partition_above: u32,
 }
 
 impl CacheOptions {
@@ -99,6 +107,7 @@ impl CacheOptions {
             join: true,
             finish_bonus: 1.0,
             refine: false,
+            partition_above: 0,
         }
     }
 
@@ -348,8 +357,13 @@ pub fn stripify_mesh(
         let (strips, miss_weight, acmr) = match max_acmr {
             Some(bound) => stripify_within(&tris, vc, options, bound),
             None => {
-                let (graph, twins) = DualGraph::from_triangles_with_twins(&tris, vc);
-                let (strips, misses) = run_once(&tris, (&graph, &twins), vc, options);
+                let ranges = partition::parts(tris.len(), options.partition_above);
+                let (strips, misses) = if ranges.len() > 1 {
+                    partition::run_parted(&tris, &ranges, options, threads)
+                } else {
+                    let (graph, twins) = DualGraph::from_triangles_with_twins(&tris, vc);
+                    run_once(&tris, (&graph, &twins), vc, options)
+                };
                 let t = tris.iter().filter(|t| !is_degenerate(t)).count().max(1);
                 (strips, options.miss_weight, misses as f64 / t as f64)
             }
