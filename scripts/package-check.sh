@@ -40,15 +40,23 @@ verify=()
 for c in "${crates[@]}"; do
     rm -rf "${CARGO_HOME:-$HOME/.cargo}"/registry/src/-*/"$c-$version"
 done
+# Cargo also takes a registry crate's compiled output as current while its version is
+# unchanged (a registry's sources never change), so a second run would link the CLI
+# against the first run's stripkit: the packages are built in a target folder of their
+# own, from which our crates' outputs are removed each time (the third-party ones stay).
+verify_target="$root/target/package-verify"
+rm -rf "$verify_target"/debug/.fingerprint/stripkit-* "$verify_target"/debug/deps/*stripkit* \
+    "$verify_target"/debug/build/stripkit-*
+packages="$verify_target/package"
 # Uncommitted work is packaged as it is (CI checks out a clean tree anyway).
 start=$SECONDS
-cargo package "${pkg_args[@]}" "${verify[@]}" --allow-dirty --quiet 2> >(grep -v -E "^warning: ignoring (test|example|bench) " >&2)
+CARGO_TARGET_DIR="$verify_target" cargo package "${pkg_args[@]}" "${verify[@]}" --allow-dirty --quiet 2> >(grep -v -E "^warning: ignoring (test|example|bench) " >&2)
 echo "cargo package ${verify[*]:-(verified)}: $((SECONDS - start)) s"
 
 # 2. The files in each package, against the allowed patterns.
 status=0
 for c in "${crates[@]}"; do
-    file="target/package/$c-$version.crate"
+    file="$packages/$c-$version.crate"
     list=$(tar tzf "$file" | sed "s|^$c-$version/||")
     bad=$(grep -v -E <<<"$list" \
         '^(Cargo\.toml|Cargo\.toml\.orig|Cargo\.lock|\.cargo_vcs_info\.json|README\.md|LICENSE-MIT|LICENSE-APACHE|src/.*\.rs|src/cmd/view/[a-z-]+\.(html|css|js)|examples/[a-z_]+\.rs)$' || true)
@@ -76,7 +84,7 @@ done
 fresh=$(mktemp -d /tmp/stripkit-package-check.XXXXXX)
 trap 'rm -rf "$fresh"' EXIT
 for c in "${crates[@]}"; do
-    cp "target/package/$c-$version.crate" "$fresh/"
+    cp "$packages/$c-$version.crate" "$fresh/"
     tar xzf "$fresh/$c-$version.crate" -C "$fresh"
 done
 patches=()
