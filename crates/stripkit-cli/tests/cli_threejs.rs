@@ -15,29 +15,7 @@ mod support;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use support::{stripkit, tmp};
-
-/// This checkout (not the testkit's, which may have been built in another tree).
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// Why the check cannot run here, if it cannot.
-fn missing() -> Option<String> {
-    let chromium = std::env::var("CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
-    if !Path::new(&chromium).is_file() {
-        return Some(format!("{chromium} is absent (.ci/run installs Debian's chromium as root)"));
-    }
-    for p in ["three", "playwright-core"] {
-        if !repo_root().join(".ci/node_modules").join(p).join("package.json").is_file() {
-            return Some(format!("npm package {p} is not installed in .ci/node_modules (.ci/run installs it)"));
-        }
-    }
-    match Command::new("node").arg("--version").output() {
-        Ok(o) if o.status.success() => None,
-        _ => Some("node is not on PATH".into()),
-    }
-}
+use support::{chromium_missing, repo_root, stripkit, tmp};
 
 /// One output to draw: the source's file name in assets/ (or `out:NAME`, an earlier
 /// output stripped again and compared with assets/spot.obj), the output's name and
@@ -193,7 +171,7 @@ fn check_packed(pairs: &[(PathBuf, PathBuf, [u64; 2])], reports: &[serde_json::V
 
 #[test]
 fn threejs_draws_every_output_like_the_source() {
-    if let Some(why) = missing() {
+    if let Some(why) = chromium_missing(&["three", "playwright-core"]) {
         eprintln!("skip: {why}");
         return;
     }

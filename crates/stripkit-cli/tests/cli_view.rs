@@ -9,27 +9,7 @@ mod support;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use support::{stripkit, tmp};
-
-/// This checkout (not the testkit's, which may have been built in another tree).
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// Why the check cannot run here, if it cannot.
-fn missing() -> Option<String> {
-    let chromium = std::env::var("CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
-    if !Path::new(&chromium).is_file() {
-        return Some(format!("{chromium} is absent (.ci/run installs Debian's chromium as root)"));
-    }
-    if !repo_root().join(".ci/node_modules/playwright-core/package.json").is_file() {
-        return Some("npm package playwright-core is not installed in .ci/node_modules (.ci/run installs it)".into());
-    }
-    match Command::new("node").arg("--version").output() {
-        Ok(o) if o.status.success() => None,
-        _ => Some("node is not on PATH".into()),
-    }
-}
+use support::{chromium_missing, repo_root, stripkit, tmp};
 
 /// An RGB picture from `stripkit render`.
 fn read_png(path: &Path) -> Vec<[u8; 3]> {
@@ -53,7 +33,7 @@ struct Case {
 
 #[test]
 fn the_page_draws_what_render_draws() {
-    if let Some(why) = missing() {
+    if let Some(why) = chromium_missing(&["playwright-core"]) {
         eprintln!("skip: {why}");
         return;
     }
@@ -135,7 +115,7 @@ fn open_pages(options: &[String], pages: &[String]) -> Vec<serde_json::Value> {
 
 #[test]
 fn the_pages_sets_runtime_extracts_every_level_like_lod_extract() {
-    if let Some(why) = missing() {
+    if let Some(why) = chromium_missing(&["playwright-core"]) {
         eprintln!("skip: {why}");
         return;
     }
@@ -197,7 +177,7 @@ fn the_pages_sets_runtime_extracts_every_level_like_lod_extract() {
 
 #[test]
 fn the_pages_culling_gives_the_ranges_of_stripkit_cull() {
-    if let Some(why) = missing() {
+    if let Some(why) = chromium_missing(&["playwright-core"]) {
         eprintln!("skip: {why}");
         return;
     }

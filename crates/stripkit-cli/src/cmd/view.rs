@@ -96,6 +96,30 @@ struct Model {
     tree: Option<Tree>,
 }
 
+impl Model {
+    /// The figures panel's fields, the size and camera; the buffers empty, no tree.
+    fn new(args: &Args, algo: &'static str, figures: &stripkit::Figures, vertices: usize, camera: Camera, scale: f32) -> Self {
+        Model {
+            name: args.input.file_name().map_or("-".into(), |n| n.to_string_lossy().into_owned()),
+            algo,
+            triangles: figures.triangles,
+            strips: figures.strips,
+            indices: figures.indices_restart,
+            acmr: figures.acmr,
+            vertices,
+            size: [args.size.0, args.size.1],
+            camera,
+            positions: String::new(),
+            uv: String::new(),
+            lengths: String::new(),
+            strip_indices: String::new(),
+            sets: String::new(),
+            scale,
+            tree: None,
+        }
+    }
+}
+
 /// A segment tree as the page traverses it (stripkit's `cull` module): per node, 9
 /// f32 (centre and radius, scaled as the positions; cone axis; cos, 2 for an empty
 /// cone; sin) and 5 u32 (range start and end in the strips' indices, triangles, strip,
@@ -223,22 +247,8 @@ fn sets_model(args: &Args, sets: &stripkit::lod::Sets) -> anyhow::Result<Model> 
     // The level-0 strips' figures, with the default cache model (as `stripkit strip`).
     let figures = stripkit::figures(&triangles, &strips, stripkit::CacheModel::default());
     Ok(Model {
-        name: args.input.file_name().map_or("-".into(), |n| n.to_string_lossy().into_owned()),
-        algo: "sets",
-        triangles: figures.triangles,
-        strips: figures.strips,
-        indices: figures.indices_restart,
-        acmr: figures.acmr,
-        vertices: positions.len(),
-        size: [args.size.0, args.size.1],
-        camera: first_camera(args, &used)?,
-        positions: String::new(),
-        uv: String::new(),
-        lengths: String::new(),
-        strip_indices: String::new(),
         sets: base64(&std::fs::read(&args.input)?),
-        scale,
-        tree: None,
+        ..Model::new(args, "sets", &figures, positions.len(), first_camera(args, &used)?, scale)
     })
 }
 
@@ -265,22 +275,12 @@ fn mesh_model(args: &Args) -> anyhow::Result<Model> {
     let set = &strips.strips;
     let figures = &strips.figures;
     Ok(Model {
-        name: args.input.file_name().map_or("-".into(), |n| n.to_string_lossy().into_owned()),
-        algo: strips.algorithm.name(),
-        triangles: figures.triangles,
-        strips: figures.strips,
-        indices: figures.indices_restart,
-        acmr: figures.acmr,
-        vertices: positions.len(),
-        size: [args.size.0, args.size.1],
-        camera,
         positions: f32_base64(positions.iter().flatten().copied()),
         uv,
         lengths: u32_base64(set.iter().map(|s| s.len() as u32)),
         strip_indices: u32_base64(set.iter().flatten().copied()),
-        sets: String::new(),
-        scale,
         tree: args.cull.then(|| Tree::of(set, &unscaled, scale)),
+        ..Model::new(args, strips.algorithm.name(), figures, positions.len(), camera, scale)
     })
 }
 

@@ -64,3 +64,29 @@ pub fn stripkit_1gib(args: &[&str]) -> (Output, f64) {
     (out, start.elapsed().as_secs_f64())
 }
 
+
+/// This checkout's root (not the testkit's, which may have been built in another tree).
+#[allow(dead_code)]
+pub fn repo_root() -> PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Why a check in headless Chromium cannot run here, if it cannot: Debian's
+/// `chromium` (or `$CHROMIUM`), node, and each of the npm `packages` in
+/// `.ci/node_modules` (all of which `.ci/run` installs).
+#[allow(dead_code)]
+pub fn chromium_missing(packages: &[&str]) -> Option<String> {
+    let chromium = std::env::var("CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
+    if !std::path::Path::new(&chromium).is_file() {
+        return Some(format!("{chromium} is absent (.ci/run installs Debian's chromium as root)"));
+    }
+    for p in packages {
+        if !repo_root().join(".ci/node_modules").join(p).join("package.json").is_file() {
+            return Some(format!("npm package {p} is not installed in .ci/node_modules (.ci/run installs it)"));
+        }
+    }
+    match Command::new("node").arg("--version").output() {
+        Ok(o) if o.status.success() => None,
+        _ => Some("node is not on PATH".into()),
+    }
+}
