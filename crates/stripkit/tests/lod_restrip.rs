@@ -3,6 +3,7 @@
 //! level, and the `.sets` file's version 3 with the old versions still read.
 
 mod simplify_meshes;
+mod support;
 
 use simplify_meshes::{bumpy_sphere, grid, shuffled};
 use std::path::Path;
@@ -89,14 +90,7 @@ fn version_3_round_trips_and_old_versions_still_read() {
         // Damage behind a valid checksum: an error or a model, never a panic.
         let mut rng = stripkit_testkit::XorShift64(0x9E3779B97F4A7C15);
         for _ in 0..300 {
-            let mut bad = bytes.clone();
-            let x = rng.next();
-            let at = 8 + (x as usize >> 8) % (bad.len() - 12);
-            bad[at] = (x & 0xff) as u8;
-            let n = bad.len() - 4;
-            let mut crc = flate2::Crc::new();
-            crc.update(&bad[..n]);
-            bad[n..].copy_from_slice(&crc.sum().to_le_bytes());
+            let bad = support::damaged_with_valid_checksum(&bytes, rng.next());
             if let Ok(s) = lod::Sets::from_bytes(path, &bad) {
                 let mut c = s.cursor(s.levels());
                 c.set_level(0);

@@ -163,14 +163,7 @@ fn lodseq_files_round_trip_and_refuse_damage() {
         // Damage behind a valid checksum: an error or a sequence, never a panic.
         let mut rng = XorShift64(0x2545F4914F6CDD1D);
         for _ in 0..300 {
-            let mut bad = bytes.clone();
-            let x = rng.next();
-            let at = 8 + (x as usize >> 8) % (bad.len() - 12);
-            bad[at] = (x & 0xff) as u8;
-            let n = bad.len() - 4;
-            let mut crc = flate2::Crc::new();
-            crc.update(&bad[..n]);
-            bad[n..].copy_from_slice(&crc.sum().to_le_bytes());
+            let bad = support::damaged_with_valid_checksum(&bytes, rng.next());
             if let Ok(s) = LodSeq::from_bytes(path, &bad) {
                 let mut c = s.cursor(0, LevelSpec::Ratio(0.5));
                 c.set(s.frame_count() - 1, LevelSpec::Level(u32::MAX));

@@ -51,3 +51,17 @@ pub fn model(name: &str) -> Option<stripkit::Mesh> {
 pub fn read_surface(path: &std::path::Path) -> stripkit::Result<stripkit::Mesh> {
     stripkit::io::read_with(path, &stripkit::io::ReadOptions::default().positions_only(true))
 }
+
+/// `bytes` (a `.sets` or `.lodseq` file) with one byte behind the 8-byte header
+/// replaced, both chosen by the random word `x`, and the trailing CRC-32 written
+/// again, so that the damage reaches the reader's parsing behind a valid checksum.
+pub fn damaged_with_valid_checksum(bytes: &[u8], x: u64) -> Vec<u8> {
+    let mut bad = bytes.to_vec();
+    let at = 8 + (x as usize >> 8) % (bad.len() - 12);
+    bad[at] = (x & 0xff) as u8;
+    let n = bad.len() - 4;
+    let mut crc = flate2::Crc::new();
+    crc.update(&bad[..n]);
+    bad[n..].copy_from_slice(&crc.sum().to_le_bytes());
+    bad
+}
