@@ -1,9 +1,10 @@
 #!/usr/bin/env node
 // Opens pages written by `stripkit view` in headless Chromium (playwright-core, Debian's
-// chromium, SwiftShader WebGL: software rendering) and saves each canvas's first frame.
+// chromium, software WebGL) and saves each canvas's first frame.
 //   node .ci/viewer-page.mjs [--gl=BACKEND] [--eyes=X,Y,Z;...] [--levels=L,L,...] [--frames=F:L,...] [--play=MS] [--sweep=N] PAGE.html[#color=none&shading=smooth]=OUT.rgba [PAGE=OUT ...]
-// --gl picks Chromium's WebGL backend: swiftshader (default; the pixel checks use it),
-// or llvmpipe (ANGLE on Mesa's OpenGL ES through EGL: Mesa's llvmpipe, multi-threaded).
+// --gl picks Chromium's WebGL backend: llvmpipe (default: ANGLE on Mesa's OpenGL ES
+// through EGL, the rasterizer `stripkit render` uses, so that first frames match its
+// pictures to within 8 levels everywhere), or swiftshader (ANGLE on SwiftShader's Vulkan).
 // For a `.lodseq` page, --frames writes OUT.frames.json ({"F:L": {"frame", "level",
 // "strips", "positions"}: the runtime's strips and the frame's decoded positions}) and
 // --play=MS presses play for MS milliseconds, adding "play": {"played", "frame"} to the line.
@@ -39,7 +40,7 @@ const BACKENDS = {
     swiftshader: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
     llvmpipe: ['--use-gl=angle', '--use-angle=gl-egl', '--ignore-gpu-blocklist'],
 };
-const backend = BACKENDS[options.gl || 'swiftshader'];
+const backend = BACKENDS[options.gl || 'llvmpipe'];
 if (!backend) {
     console.error(`--gl: one of ${Object.keys(BACKENDS).join(', ')}`);
     process.exit(2);

@@ -1,7 +1,8 @@
 // A JavaScript runtime for stripkit's `.sets` files (docs/sets-format.md): decodes a
 // SETS multiresolution strip model and walks its strips at any level of detail, the
 // way `stripkit lod extract` and stripkit's `lod::Cursor` do. No dependencies; works
-// in browsers and node. `stripkit view MODEL.sets` inlines this file into its page
+// in browsers and node. Also reads `.lodseq` animations (decodeLodSeq, LodSeqCursor).
+// `stripkit view MODEL.sets` (or ANIM.lodseq) inlines this file into its page
 // (with the `export` keywords dropped), so keep every export at a line's start.
 //
 //   import { decodeSets, SetsCursor } from 'stripkit-sets';

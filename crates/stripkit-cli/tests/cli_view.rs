@@ -1,7 +1,7 @@
 //! `stripkit view`'s page in a real browser: `.ci/viewer-page.mjs` opens the pages
-//! headless (Debian's chromium, SwiftShader: software rendering) and saves the
-//! canvas's first frame, which must match `stripkit render` of the same model and view
-//! (Mesa's llvmpipe) within a small tolerance, with no console error. Skips with a
+//! headless (Debian's chromium, WebGL on Mesa's llvmpipe: software rendering) and saves
+//! the canvas's first frame, which must match `stripkit render` of the same model and
+//! view (llvmpipe too) within a small tolerance, with no console error. Skips with a
 //! printed reason without Chromium (`.ci/run` installs Debian's `chromium` as root),
 //! node, or the npm package playwright-core.
 
@@ -30,6 +30,18 @@ fn differing(rgba: &Path, png: &Path) -> (usize, usize) {
     let lit = reference.iter().filter(|p| **p != [255; 3]).count();
     let far = page.iter().zip(&reference).filter(|(a, b)| (0..3).any(|k| (a[k] as i32 - b[k] as i32).abs() > 8)).count();
     (lit, far)
+}
+
+/// The most pixels in a thousand lit ones that may differ by more than 8 levels from
+/// `stripkit render`'s picture, for the renderer the page `report` names: 1 on Mesa's
+/// llvmpipe (render's own rasterizer; 0 differed on every page), else `software`
+/// (SwiftShader, another rasterizer: edge pixels differ, 2% to 3%).
+fn allowed_per_mille(report: &serde_json::Value, software: usize) -> usize {
+    if report["renderer"].as_str().unwrap_or("").contains("llvmpipe") {
+        1
+    } else {
+        software
+    }
 }
 
 /// One page to compare: the input, the flags both commands take (strips, view), the
@@ -102,10 +114,10 @@ fn the_page_draws_what_render_draws() {
             .filter(|(a, b)| (0..3).any(|k| (a[k] as i32 - b[k] as i32).abs() > 8))
             .count();
         eprintln!("{}: {lit} lit pixels, {far} differ by more than 8 levels", c.name);
-        // The model fills the picture; the two software rasterizers differ only on
-        // edge pixels (spot, flat: 97 of 16,325 lit pixels).
+        // The model fills the picture; SwiftShader differs from llvmpipe only on edge
+        // pixels (spot, flat: 97 of 16,325 lit pixels).
         assert!(lit > 10_000, "{}: {lit} lit pixels", c.name);
-        assert!(far * 100 <= lit * 2, "{}: {far} of {lit} lit pixels differ", c.name);
+        assert!(far * 1000 <= lit * allowed_per_mille(r, 20), "{}: {far} of {lit} lit pixels differ", c.name);
     }
 }
 
@@ -161,7 +173,7 @@ fn the_pages_sets_runtime_extracts_every_level_like_lod_extract() {
         assert!(page_bytes < 2 * file_bytes + 100_000, "{page_bytes} bytes for a {file_bytes}-byte file");
         let rgba = tmp("view-lod", &format!("{name}.rgba"));
         let list: Vec<String> = chosen.iter().map(u64::to_string).collect();
-        open_pages(&[format!("--levels={}", list.join(","))], &[format!("{}={}", html.display(), rgba.display())]);
+        let reports = open_pages(&[format!("--levels={}", list.join(","))], &[format!("{}={}", html.display(), rgba.display())]);
         let got: serde_json::Value =
             serde_json::from_slice(&std::fs::read(format!("{}.levels.json", rgba.display())).unwrap()).unwrap();
         for level in &chosen {
@@ -182,7 +194,7 @@ fn the_pages_sets_runtime_extracts_every_level_like_lod_extract() {
         let far =
             page.iter().zip(&reference).filter(|(a, b)| (0..3).any(|k| (a[k] as i32 - b[k] as i32).abs() > 8)).count();
         eprintln!("{name}: {levels} levels, page {page_bytes} bytes for {file_bytes}; {far} of {lit} lit pixels differ");
-        assert!(lit > 10_000 && far * 100 <= lit * 2, "{name}: {far} of {lit} lit pixels differ");
+        assert!(lit > 10_000 && far * 1000 <= lit * allowed_per_mille(&reports[0], 20), "{name}: {far} of {lit} lit pixels differ");
     }
 }
 
@@ -293,14 +305,14 @@ fn the_pages_lodseq_runtime_gives_lod_extracts_strips_and_the_frames_positions()
     // The rippling torus with exact and with quantized (deflated) positions, and
     // horse-gallop's first frames when the research models are here.
     let ripple = rippling_torus(6);
-    // The first frame is `stripkit render --frame 0`'s picture: at most 2% of the lit
-    // pixels differ on the torus, 3% on the horse (thin legs: more edge pixels; 124 of
-    // 6,944 differed).
-    let mut cases = vec![("ripple", ripple.clone(), &[][..], 2), ("ripple_q12", ripple, &["--position-bits", "12"][..], 2)];
+    // The first frame is `stripkit render --frame 0`'s picture: under SwiftShader at
+    // most 2% of the lit pixels differ on the torus, 3% on the horse (thin legs: more
+    // edge pixels; 124 of 6,944 differed); under llvmpipe 0 of each.
+    let mut cases = vec![("ripple", ripple.clone(), &[][..], 20), ("ripple_q12", ripple, &["--position-bits", "12"][..], 20)];
     if let Some(gallop) = gallop_frames(5) {
-        cases.push(("gallop", gallop, &["--position-bits", "16"][..], 3));
+        cases.push(("gallop", gallop, &["--position-bits", "16"][..], 30));
     }
-    for (name, dir, flags, percent) in cases {
+    for (name, dir, flags, software) in cases {
         let file = tmp("view-seq", &format!("{name}.lodseq"));
         let mut args = vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", file.to_str().unwrap(), "--samples", "500", "--json"];
         args.extend(flags);
@@ -353,6 +365,6 @@ fn the_pages_lodseq_runtime_gives_lod_extracts_strips_and_the_frames_positions()
             seq.models().len(),
             report["play"]["played"]
         );
-        assert!(lit > 3000 && far * 100 <= lit * percent, "{name}: {far} of {lit} lit pixels differ");
+        assert!(lit > 3000 && far * 1000 <= lit * allowed_per_mille(report, software), "{name}: {far} of {lit} lit pixels differ");
     }
 }
