@@ -4,7 +4,8 @@
 //! primitives, `lod build` with its level checks, `lod build-seq` on a small bending
 //! torus, `distance`, a big mesh cut into parts (`--partition-above`), and the folder
 //! of shared models where present. The reports are compared with their times taken
-//! out (and the output folder's name).
+//! out (and the output folder's name); and one unindexed mesh, read from binary PLY,
+//! through every output format.
 
 mod support;
 
@@ -188,6 +189,64 @@ fn scene(n: usize) -> Value {
         "bufferViews": views,
         "buffers": [{"byteLength": bin.len(), "uri": format!("data:application/octet-stream;base64,{}", encode_base64(&bin))}]
     })
+}
+
+/// `mesh` unindexed: its triangles shuffled, each with three vertices of its own (the
+/// weld then has work on every vertex).
+fn unindexed_shuffled(mesh: &stripkit::Mesh, seed: u64) -> stripkit::Mesh {
+    let mut tris = mesh.triangulate().tris;
+    let mut state = seed;
+    for i in (1..tris.len()).rev() {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        tris.swap(i, (state >> 33) as usize % (i + 1));
+    }
+    let positions = tris.iter().flatten().map(|&v| mesh.positions[v as usize]).collect();
+    let faces: Vec<[u32; 3]> = (0..tris.len() as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+    stripkit::Mesh::from_triangles(positions, &faces)
+}
+
+#[test]
+fn one_mesh_through_every_output_format_is_the_same_at_1_and_4_threads() {
+    // icosphere(6) unindexed (81,920 triangles, 245,760 vertices welded back to
+    // 40,962): read from binary PLY, welded, stripped by cache, checked and written
+    // in every format; more than one part of every parallel cut of the read, weld and
+    // check. The same bytes (JSON without its times) at 1 and 4 threads.
+    let dir = fresh("formats");
+    let input = dir.join("sphere.ply");
+    write_mesh(&input, &unindexed_shuffled(&stripkit::gen::icosphere(6), 3));
+    let outputs: [(&str, &[&str]); 6] = [
+        ("s.ply", &[]),
+        ("s-ascii.ply", &["--ascii"]),
+        ("s.obj", &[]),
+        ("s.glb", &[]),
+        ("s.gltf", &[]),
+        ("s.json", &[]),
+    ];
+    let mut glb = Vec::new();
+    for (name, extra) in outputs {
+        let mut written = Vec::new();
+        for threads in [1, 4] {
+            let out = dir.join(format!("{threads}-{name}"));
+            let mut args = vec!["strip", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--algo", "cache", "--json"];
+            args.extend_from_slice(extra);
+            let report = lines(&run_at(threads, &args), &out);
+            assert_eq!(report[0]["verified"], true, "{name}");
+            assert_eq!(report[0]["triangles"], 81_920, "{name}");
+            let bytes = std::fs::read(&out).unwrap();
+            let bytes = match name.ends_with(".json") {
+                true => serde_json::to_vec(&timeless(&serde_json::from_slice(&bytes).unwrap(), out.to_str().unwrap(), "OUT"))
+                    .unwrap(),
+                false => bytes,
+            };
+            written.push((bytes, report));
+            if name.ends_with(".glb") || name.ends_with(".gltf") {
+                glb.push(out);
+            }
+        }
+        assert!(written[0].0 == written[1].0, "{name}: the file differs between 1 and 4 threads");
+        assert_eq!(written[0].1, written[1].1, "{name}: the reports differ between 1 and 4 threads");
+    }
+    gltf_validator::validate(&glb.iter().map(PathBuf::as_path).collect::<Vec<_>>());
 }
 
 #[test]

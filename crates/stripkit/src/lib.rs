@@ -100,15 +100,15 @@ pub(crate) mod test_support;
 mod tests;
 
 pub use error::{Error, OptionName, Result};
-pub use mesh::{io, weld_map, Attribute, Group, Mesh, Scalar, Triangles};
-pub use metrics::{acmr, cache_misses, figures, swaps, BatchModel, CacheKind, CacheModel, Figures};
+pub use mesh::{io, weld_map, weld_map_with, Attribute, Group, Mesh, Scalar, Triangles};
+pub use metrics::{acmr, cache_misses, figures, figures_with, swaps, BatchModel, CacheKind, CacheModel, Figures};
 pub use pipeline::{
     is_quad_dominant, stripify, stripify_bound, stripify_indices, unstripify, Algorithm, AutoOptions, Join, Split,
     StripOptions, Stripifier, Strips, MAX_CACHE_SIZE, MAX_TUNNEL_CUTS, QUAD_DOMINANT,
 };
 pub use strip::{
     decode, decode_restart, degenerate_windows, encode_restart, encode_separate, encode_stitched, for_each_triangle,
-    is_degenerate, stitched_len, verify, verify_decoded, verify_triangles, StripSet, Verification, DEFAULT_RESTART,
+    decode_with, is_degenerate, stitched_len, verify, verify_decoded, verify_decoded_with, verify_triangles, verify_with, StripSet, Verification, DEFAULT_RESTART,
 };
 pub use stripify::greedy::{GreedyOptions, Heuristic};
 pub use stripify::quad::{Policy, QuadOptions};

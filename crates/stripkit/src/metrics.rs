@@ -315,12 +315,34 @@ pub struct Figures {
 /// Measures `strips` against the `input` triangles they should draw: counts, the three
 /// joins, swaps, ACMR (FIFO 16 and 32, and `cache`), and verification. O(n log n).
 pub fn figures(input: &[[u32; 3]], strips: &StripSet, cache: CacheModel) -> Figures {
-    let decoded = strip::decode(strips);
+    figures_with(input, strips, cache, crate::parallel::Threads::SERIAL)
+}
+
+/// [`figures`] with the three cache simulations, the stitched length and the check
+/// run side by side (and the check's sorting in parallel) when `threads` allows: the
+/// same figures at any thread count.
+pub fn figures_with(
+    input: &[[u32; 3]],
+    strips: &StripSet,
+    cache: CacheModel,
+    threads: crate::parallel::Threads,
+) -> Figures {
+    use crate::parallel::{join, map_ordered};
+    let decoded = strip::decode_with(strips, threads);
     let vertex_count = strips.vertex_bound();
-    let acmrs = [(16, CacheKind::Fifo), (32, CacheKind::Fifo), (cache.size, cache.kind)]
-        .map(|(size, kind)| acmr(&decoded, vertex_count, size, kind));
-    // The decoded list is the check's to sort: no copy of it on big meshes.
-    let v = strip::verify_decoded(input, decoded);
+    let models = [(16, CacheKind::Fifo), (32, CacheKind::Fifo), (cache.size, cache.kind)];
+    // The check's expected list is sorted while the simulations read the decoded
+    // list in order; the decoded list is then the check's to sort (no copy of it).
+    let ((acmrs, (swaps, stitched)), want) = join(
+        threads,
+        || {
+            let acmrs = map_ordered(threads, &models, |&(size, kind)| acmr(&decoded, vertex_count, size, kind));
+            (acmrs, join(threads, || swaps(strips), || strip::stitched_len(strips)))
+        },
+        || strip::sorted_expected(input, threads),
+    );
+    let v = strip::compare_sorted(&want, decoded, threads);
+    drop(want);
     let n_strips = strips.len();
     let indices_separate = strips.index_count();
     let indices_restart = strips.restart_len();
@@ -328,10 +350,10 @@ pub fn figures(input: &[[u32; 3]], strips: &StripSet, cache: CacheModel) -> Figu
         triangles: v.expected,
         dropped_degenerate: v.dropped_degenerate,
         strips: n_strips,
-        swaps: swaps(strips),
+        swaps,
         indices_separate,
         indices_restart,
-        indices_degenerate: strip::stitched_len(strips),
+        indices_degenerate: stitched,
         indices_per_triangle: if v.expected == 0 {
             0.0
         } else {

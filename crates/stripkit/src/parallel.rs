@@ -113,6 +113,78 @@ pub fn join<A: Send, B: Send>(threads: Threads, a: impl FnOnce() -> A + Send, b:
     (a(), b())
 }
 
+/// Sorts `v`, in parallel when `threads` allows. Meant for types whose equal values
+/// cannot be told apart (integers, arrays of them): the sorted slice is then the same
+/// at any thread count.
+pub fn sort_unstable<T: Ord + Send>(threads: Threads, v: &mut [T]) {
+    #[cfg(feature = "parallel")]
+    if !threads.is_serial() && v.len() > PART {
+        use rayon::prelude::*;
+        return threads.install(|| v.par_sort_unstable());
+    }
+    let _ = threads;
+    v.sort_unstable();
+}
+
+/// Sorts `v` by `compare`, in parallel when `threads` allows. `compare` must be a total
+/// order in which only indistinguishable items tie: the sorted slice is then the same
+/// at any thread count.
+pub fn sort_unstable_by<T: Send>(
+    threads: Threads,
+    v: &mut [T],
+    compare: impl Fn(&T, &T) -> std::cmp::Ordering + Sync,
+) {
+    #[cfg(feature = "parallel")]
+    if !threads.is_serial() && v.len() > PART {
+        use rayon::prelude::*;
+        return threads.install(|| v.par_sort_unstable_by(&compare));
+    }
+    let _ = threads;
+    v.sort_unstable_by(compare);
+}
+
+/// Applies `f` to every item in place, in parallel when `threads` allows (parts of
+/// [`PART`] items).
+pub fn for_each_mut<T: Send>(threads: Threads, v: &mut [T], f: impl Fn(&mut T) + Sync) {
+    #[cfg(feature = "parallel")]
+    if !threads.is_serial() && v.len() > PART {
+        use rayon::prelude::*;
+        return threads.install(|| v.par_chunks_mut(PART).for_each(|part| part.iter_mut().for_each(&f)));
+    }
+    let _ = threads;
+    v.iter_mut().for_each(f);
+}
+
+/// Items per part where a flat array is cut for parallel work: the cut depends on the
+/// array's length only.
+pub const PART: usize = 1 << 16;
+
+/// `fill` run on consecutive parts of `out`, in parallel when `threads` allows:
+/// part `k` (its first index in `starts[k]`, ascending from 0, the end being
+/// `out.len()`) gets `fill(k, &mut out[starts[k]..starts[k + 1]])`.
+pub fn fill_parts<T: Send>(threads: Threads, out: &mut [T], starts: &[usize], fill: impl Fn(usize, &mut [T]) + Sync) {
+    let mut parts: Vec<&mut [T]> = Vec::with_capacity(starts.len());
+    let mut rest = out;
+    let mut at = 0;
+    for (k, &start) in starts.iter().enumerate() {
+        let end = starts.get(k + 1).copied().unwrap_or(at + rest.len());
+        debug_assert!(start == at && end >= start);
+        let (part, tail) = rest.split_at_mut(end - start);
+        parts.push(part);
+        rest = tail;
+        at = end;
+    }
+    #[cfg(feature = "parallel")]
+    if !threads.is_serial() && parts.len() > 1 {
+        use rayon::prelude::*;
+        return threads.install(|| parts.into_par_iter().enumerate().for_each(|(k, part)| fill(k, part)));
+    }
+    let _ = threads;
+    for (k, part) in parts.into_iter().enumerate() {
+        fill(k, part);
+    }
+}
+
 /// Whether the caller already runs on one of a pool's threads (nested work then
 /// shares that pool).
 #[cfg(feature = "parallel")]

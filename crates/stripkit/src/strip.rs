@@ -97,6 +97,41 @@ pub fn decode(strips: &StripSet) -> Vec<[u32; 3]> {
     out
 }
 
+/// Strips per part where [`decode_with`] cuts a set.
+const DECODE_PART: usize = 1024;
+
+/// [`decode`] with the strips cut into parts of 1,024 strips decoded in parallel when
+/// `threads` allows: each part's triangles are counted first, so the list is sized
+/// once and every part writes its own range of it. The same list at any thread count.
+pub fn decode_with(strips: &StripSet, threads: crate::parallel::Threads) -> Vec<[u32; 3]> {
+    use crate::parallel::{fill_parts, map_range};
+    const PART: usize = DECODE_PART;
+    if threads.is_serial() || strips.len() <= PART {
+        return decode(strips);
+    }
+    let parts = strips.len().div_ceil(PART);
+    let range = |k: usize| k * PART..((k + 1) * PART).min(strips.len());
+    let counts = map_range(threads, parts, |k| {
+        let mut n = 0;
+        for s in range(k) {
+            for_each_triangle(strips.strip(s), |_| n += 1);
+        }
+        n
+    });
+    let starts: Vec<usize> = counts.iter().scan(0, |at, &n| Some(std::mem::replace(at, *at + n))).collect();
+    let mut out = vec![[0u32; 3]; counts.iter().sum()];
+    fill_parts(threads, &mut out, &starts, |k, part| {
+        let mut at = 0;
+        for s in range(k) {
+            for_each_triangle(strips.strip(s), |t| {
+                part[at] = t;
+                at += 1;
+            });
+        }
+    });
+    out
+}
+
 /// The primitive-restart index used unless told otherwise (`0xFFFF_FFFF`, what
 /// `GL_PRIMITIVE_RESTART_FIXED_INDEX` uses for 32-bit indices).
 pub const DEFAULT_RESTART: u32 = u32::MAX;
@@ -399,19 +434,65 @@ pub fn verify_triangles(expected: &[[u32; 3]], decoded: &[[u32; 3]]) -> Verifica
 /// [`verify_triangles`] taking the decoded list by value: it is canonicalized and
 /// sorted in place, so the check holds one more list (the expected one, canonical)
 /// beside the two it is given: 12 bytes per triangle on meshes of millions.
-pub fn verify_decoded(expected: &[[u32; 3]], mut got: Vec<[u32; 3]>) -> Verification {
-    let mut want: Vec<[u32; 3]> = Vec::with_capacity(expected.len());
-    want.extend(expected.iter().filter(|t| !is_degenerate(t)).map(|&t| canonical(t)));
+pub fn verify_decoded(expected: &[[u32; 3]], got: Vec<[u32; 3]>) -> Verification {
+    verify_decoded_with(expected, got, crate::parallel::Threads::SERIAL)
+}
+
+/// [`verify`] with its decoding and sorting in parallel when `threads` allows; the
+/// same result at any thread count (the sorted lists are the same, and the
+/// comparison after them runs on one thread).
+pub fn verify_with(expected: &[[u32; 3]], strips: &StripSet, threads: crate::parallel::Threads) -> Verification {
+    verify_decoded_with(expected, decode_with(strips, threads), threads)
+}
+
+/// [`verify_decoded`] with its sorting in parallel when `threads` allows; the same
+/// result at any thread count.
+pub fn verify_decoded_with(expected: &[[u32; 3]], got: Vec<[u32; 3]>, threads: crate::parallel::Threads) -> Verification {
+    compare_sorted(&sorted_expected(expected, threads), got, threads)
+}
+
+/// The expected side of the check, ready for [`compare_sorted`].
+pub(crate) struct SortedExpected {
+    /// The non-degenerate expected triangles, canonical and sorted.
+    want: Vec<[u32; 3]>,
+    /// How many expected triangles were degenerate.
+    dropped_degenerate: usize,
+}
+
+/// The non-degenerate `expected` triangles, canonical and sorted (in parallel when
+/// `threads` allows).
+pub(crate) fn sorted_expected(expected: &[[u32; 3]], threads: crate::parallel::Threads) -> SortedExpected {
+    let dropped_degenerate = expected.iter().filter(|t| is_degenerate(t)).count();
+    let mut want: Vec<[u32; 3]> = Vec::with_capacity(expected.len() - dropped_degenerate);
+    want.extend(expected.iter().filter(|t| !is_degenerate(t)));
+    crate::parallel::for_each_mut(threads, &mut want, |t| *t = canonical(*t));
+    crate::parallel::sort_unstable(threads, &mut want);
+    SortedExpected { want, dropped_degenerate }
+}
+
+/// [`sorted_expected`] of a list the caller gives up: sorted in place, no copy.
+pub(crate) fn sorted_expected_owned(mut expected: Vec<[u32; 3]>, threads: crate::parallel::Threads) -> SortedExpected {
+    let before = expected.len();
+    expected.retain(|t| !is_degenerate(t));
+    let dropped_degenerate = before - expected.len();
+    crate::parallel::for_each_mut(threads, &mut expected, |t| *t = canonical(*t));
+    crate::parallel::sort_unstable(threads, &mut expected);
+    SortedExpected { want: expected, dropped_degenerate }
+}
+
+/// The check's comparison: `got` (decoded triangles, in any order) made canonical and
+/// sorted in place, then merged with the expected list on one thread.
+pub(crate) fn compare_sorted(
+    expected: &SortedExpected,
+    mut got: Vec<[u32; 3]>,
+    threads: crate::parallel::Threads,
+) -> Verification {
+    let SortedExpected { want, dropped_degenerate } = expected;
+    let dropped_degenerate = *dropped_degenerate;
     got.retain(|t| !is_degenerate(t));
-    got.iter_mut().for_each(|t| *t = canonical(*t));
-    let mut v = Verification {
-        expected: want.len(),
-        dropped_degenerate: expected.len() - want.len(),
-        decoded: got.len(),
-        ..Verification::default()
-    };
-    want.sort_unstable();
-    got.sort_unstable();
+    crate::parallel::for_each_mut(threads, &mut got, |t| *t = canonical(*t));
+    crate::parallel::sort_unstable(threads, &mut got);
+    let mut v = Verification { expected: want.len(), dropped_degenerate, decoded: got.len(), ..Verification::default() };
     let (mut lost, mut added) = (Vec::new(), Vec::new());
     let (mut i, mut j) = (0, 0);
     while i < want.len() || j < got.len() {

@@ -21,7 +21,7 @@ pub fn write_options(
             output.display()
         )));
     }
-    Ok(stripkit::io::WriteOptions::default().ply_ascii(ascii))
+    Ok(stripkit::io::WriteOptions::default().ply_ascii(ascii).threads(super::threads()))
 }
 
 /// The format a file's extension names (through `.gz`), if any.

@@ -18,7 +18,7 @@ pub(crate) mod order;
 mod weld;
 
 pub use attr::{Attribute, Group, Scalar};
-pub use weld::weld_map;
+pub use weld::{weld_map, weld_map_with};
 
 use crate::error::{Error, Result};
 

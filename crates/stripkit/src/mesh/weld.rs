@@ -5,12 +5,20 @@
 //! strips can follow (docs/experiments/weld-and-materials.md).
 
 use super::Mesh;
-use std::collections::HashMap;
+use crate::parallel::{for_each_mut, sort_unstable_by, Threads};
 
 /// For every vertex, the lowest vertex id bit-identical to it (itself where none is
 /// lower), and how many vertices map to another. Cost: one pass over the vertex data
-/// and a hash map of the distinct vertices.
+/// and a sort of the vertices by a hash of it.
 pub fn weld_map(mesh: &Mesh) -> (Vec<u32>, usize) {
+    weld_map_with(mesh, Threads::SERIAL)
+}
+
+/// [`weld_map`] with its hashing and sorting in parallel when `threads` allows; the
+/// same map at any thread count. The vertices are sorted by (hash of their key, key,
+/// id), so bit-identical vertices end up side by side, lowest id first, whatever
+/// order the sort visits them in.
+pub fn weld_map_with(mesh: &Mesh, threads: Threads) -> (Vec<u32>, usize) {
     let n = mesh.vertex_count();
     // Each vertex's key: position bits, then every attribute's bytes.
     let sizes: Vec<usize> = mesh.attributes.iter().map(|a| a.components as usize * a.scalar.size()).collect();
@@ -22,20 +30,47 @@ pub fn weld_map(mesh: &Mesh) -> (Vec<u32>, usize) {
         }
         for (a, &size) in mesh.attributes.iter().zip(&sizes) {
             // An attribute shorter than the vertices (a malformed mesh) keys as absent.
-            keys.extend(a.data.get(v * size..(v + 1) * size).map_or_else(|| vec![0xff; size], <[u8]>::to_vec));
+            match a.data.get(v * size..(v + 1) * size) {
+                Some(bytes) => keys.extend_from_slice(bytes),
+                None => keys.extend(std::iter::repeat_n(0xff, size)),
+            }
         }
     }
-    let mut first: HashMap<&[u8], u32> = HashMap::with_capacity(n);
+    let key = |v: u32| &keys[v as usize * stride..(v as usize + 1) * stride];
+    let mut order: Vec<(u64, u32)> = (0..n as u32).map(|v| (0, v)).collect();
+    for_each_mut(threads, &mut order, |(hash, v)| *hash = hash_key(key(*v)));
+    sort_unstable_by(threads, &mut order, |a, b| {
+        a.0.cmp(&b.0).then_with(|| key(a.1).cmp(key(b.1))).then(a.1.cmp(&b.1))
+    });
+    let mut map = vec![0u32; n];
     let mut merged = 0;
-    let map = (0..n)
-        .map(|v| {
-            let key = &keys[v * stride..(v + 1) * stride];
-            let rep = *first.entry(key).or_insert(v as u32);
-            merged += usize::from(rep != v as u32);
-            rep
-        })
-        .collect();
+    let mut i = 0;
+    while i < n {
+        let (hash, rep) = order[i];
+        map[rep as usize] = rep;
+        i += 1;
+        while i < n && order[i].0 == hash && key(order[i].1) == key(rep) {
+            map[order[i].1 as usize] = rep;
+            merged += 1;
+            i += 1;
+        }
+    }
     (map, merged)
+}
+
+/// A 64-bit hash of a vertex key (FxHash's step over 8-byte words, then a final mix).
+fn hash_key(key: &[u8]) -> u64 {
+    const K: u64 = 0x517c_c1b7_2722_0a95;
+    let mut h: u64 = key.len() as u64;
+    let mut words = key.chunks_exact(8);
+    for w in &mut words {
+        let x = u64::from_le_bytes(w.try_into().unwrap_or([0; 8]));
+        h = (h.rotate_left(5) ^ x).wrapping_mul(K);
+    }
+    let mut tail = [0u8; 8];
+    tail[..words.remainder().len()].copy_from_slice(words.remainder());
+    h = (h.rotate_left(5) ^ u64::from_le_bytes(tail)).wrapping_mul(K);
+    h ^ (h >> 29)
 }
 
 impl Mesh {
@@ -45,7 +80,12 @@ impl Mesh {
     /// ids stay as they are (the twins are left unused), so strips of the welded mesh
     /// index this mesh's vertices; they draw the same triangles in every attribute.
     pub fn welded(&self) -> Option<(Mesh, usize)> {
-        let (map, merged) = weld_map(self);
+        self.welded_with(Threads::SERIAL)
+    }
+
+    /// [`Mesh::welded`] with [`weld_map_with`]: the same mesh at any thread count.
+    pub fn welded_with(&self, threads: Threads) -> Option<(Mesh, usize)> {
+        let (map, merged) = weld_map_with(self, threads);
         if merged == 0 || self.face_indices.iter().all(|&v| map.get(v as usize) == Some(&v)) {
             return None;
         }
@@ -59,7 +99,17 @@ impl Mesh {
             })
             .collect();
         let moved = (0..self.vertex_count()).filter(|&v| used[v] && map[v] != v as u32).count();
-        Some((Mesh { face_indices, ..self.clone() }, moved))
+        // Every field but the faces' indices cloned (those are remapped above).
+        let mesh = Mesh {
+            positions: self.positions.clone(),
+            face_offsets: self.face_offsets.clone(),
+            face_indices,
+            attributes: self.attributes.clone(),
+            face_groups: self.face_groups.clone(),
+            groups: self.groups.clone(),
+            material_libraries: self.material_libraries.clone(),
+        };
+        Some((mesh, moved))
     }
 }
 

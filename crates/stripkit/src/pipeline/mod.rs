@@ -112,7 +112,7 @@ fn fail(what: &str, v: &strip::Verification) -> Error {
 fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     mesh.check_faces()?;
     if options.weld {
-        if let Some((welded, moved)) = mesh.welded() {
+        if let Some((welded, moved)) = mesh.welded_with(options.threads) {
             let mut strips = run_welded(&welded, options)?;
             strips.welded = moved;
             return Ok(strips);
@@ -245,15 +245,15 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
             strip::decode(&strips)
         }
     };
-    let figures = metrics::figures(&triangles, &strips, options.cache);
+    let figures = metrics::figures_with(&triangles, &strips, options.cache, options.threads);
     if !figures.verified {
-        return Err(fail("the strips", &strip::verify(&triangles, &strips)));
+        return Err(fail("the strips", &strip::verify_with(&triangles, &strips, options.threads)));
     }
     // The joined form is checked here and rebuilt on demand (`Strips::joined`): for
     // two of the three joins it is the strips themselves.
     // Bound first: the encoded buffer it is read back from is dropped before the check.
     let joined_form = joined(&strips, std::slice::from_ref(&(0..strips.len())), options.join, options.restart_index);
-    let v = strip::verify(&triangles, &joined_form);
+    let v = strip::verify_with(&triangles, &joined_form, options.threads);
     drop(joined_form);
     if !v.ok() {
         return Err(fail(&format!("the strips joined by {}", options.join.name()), &v));

@@ -177,7 +177,7 @@ impl Strips {
         let (out, to_write) = self.file_content(mesh, format)?;
         io::encode_checked(
             || io::write_bytes(format, &out, to_write.as_deref(), options),
-            |bytes| self.check_file(&out, format, bytes),
+            |bytes| self.check_file(&out, format, bytes, options.threads),
         )
     }
 
@@ -195,7 +195,7 @@ impl Strips {
         io::write_checked(
             path,
             || io::write_bytes(format, &out, to_write.as_deref(), options),
-            |bytes| self.check_file(&out, format, bytes),
+            |bytes| self.check_file(&out, format, bytes, options.threads),
         )
         .map(drop)
     }
@@ -233,13 +233,13 @@ impl Strips {
     /// The read-back check of [`Strips::file_content`] (`out`) written as `bytes`: the
     /// triangles decoded again must be [`Strips::triangles`]; for OBJ, each with its
     /// group too.
-    fn check_file(&self, out: &Mesh, format: Format, bytes: &[u8]) -> Result<()> {
+    fn check_file(&self, out: &Mesh, format: Format, bytes: &[u8], threads: crate::parallel::Threads) -> Result<()> {
         let name = format!("the {format:?} bytes to be written");
         let back = io::read_bytes(Path::new(&name), format, bytes)?;
         if format != Format::Obj {
             // Only the triangles are compared: the rest of what was read back goes
             // first (on meshes of millions of triangles every copy counts).
-            let v = strip::verify_decoded(&self.triangles, back.into_triangles());
+            let v = strip::verify_decoded_with(&self.triangles, back.into_triangles(), threads);
             if !v.ok() {
                 return Err(fail(&format!("{name}, read back"), &v));
             }

@@ -306,6 +306,7 @@ impl Scene {
         }
         self.set_restart_groups(scene_options.restart);
         self.set_compress(scene_options.compress);
+        self.set_threads(options.threads);
         report.stripify_ms = stripify_time.as_secs_f64() * 1e3;
         report.total_ms = start.elapsed().as_secs_f64() * 1e3;
         Ok(report)

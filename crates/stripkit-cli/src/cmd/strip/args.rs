@@ -111,6 +111,9 @@ pub struct Args {
     /// Print one JSON object with every figure instead of the text summary.
     #[arg(long)]
     pub json: bool,
+    /// Print the seconds of each phase (read, strip with its check, encode, write) to standard error.
+    #[arg(long)]
+    pub timings: bool,
     #[command(flatten)]
     pub read: super::super::ReadArgs,
 }

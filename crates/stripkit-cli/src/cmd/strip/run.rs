@@ -98,7 +98,9 @@ pub fn run(args: Args, batch: Option<&cmd::BatchText>) -> anyhow::Result<()> {
     };
     progress.enable_steady_tick(std::time::Duration::from_millis(120));
     progress.set_message(format!("reading {}", args.input.display()));
+    let read_start = std::time::Instant::now();
     let mesh = args.read.read(&args.input)?;
+    let read_time = read_start.elapsed();
     // A mesh written as glTF: the library chooses its writer (a scene of one
     // primitive per group, or the plain writer; stripkit::scene::for_gltf_output).
     let start = std::time::Instant::now();
@@ -132,7 +134,9 @@ pub fn run(args: Args, batch: Option<&cmd::BatchText>) -> anyhow::Result<()> {
     }
 
     progress.set_message(format!("stripifying and verifying {} triangles", mesh.triangle_count()));
+    let strip_start = std::time::Instant::now();
     let strips = args.strip.stripify(&mesh, &args.input, |o| args.with_join(o))?;
+    let strip_time = strip_start.elapsed();
     let (mut mesh, strips) = match (vertex_order, &kind) {
         (VertexOrder::FirstUse, OutKind::Mesh(format)) => strips.in_first_use_order(&mesh, *format),
         _ => (mesh, strips),
@@ -167,6 +171,7 @@ pub fn run(args: Args, batch: Option<&cmd::BatchText>) -> anyhow::Result<()> {
             strips.figures.cache.size
         );
     }
+    let encode_start = std::time::Instant::now();
     let bytes = match kind {
         OutKind::Json => {
             let mut obj = strips.to_json();
@@ -177,7 +182,12 @@ pub fn run(args: Args, batch: Option<&cmd::BatchText>) -> anyhow::Result<()> {
         }
         OutKind::Mesh(format) => strips.to_file_bytes_with(&mesh, format, &write_options)?,
     };
+    let encode_time = encode_start.elapsed();
+    let write_start = std::time::Instant::now();
     cmd::write_output(&args.output, &bytes)?;
+    if args.timings {
+        print_timings(read_time, strip_time, encode_time, write_start.elapsed());
+    }
     progress.finish_and_clear();
     // The notes are not data: never where --json data goes to standard error (-o -).
     let notes = batch.is_none() && !(args.json && cmd::is_dash(&args.output));
@@ -194,6 +204,18 @@ pub fn run(args: Args, batch: Option<&cmd::BatchText>) -> anyhow::Result<()> {
         Some(_) => report::print_line(out, r),
         None => report::print_summary(out, r),
     })
+}
+
+/// `--timings`: the seconds of each phase, on standard error.
+fn print_timings(
+    read: std::time::Duration,
+    strip: std::time::Duration,
+    encode: std::time::Duration,
+    write: std::time::Duration,
+) {
+    let phases = [("read", read), ("strip", strip), ("encode", encode), ("write", write)];
+    let text: Vec<String> = phases.iter().map(|(name, t)| format!("{name} {:.3}", t.as_secs_f64())).collect();
+    eprintln!("timings (s): {}", text.join(", "));
 }
 
 /// A PLY or JSON output holds the strips and at most the vertices: the faces go
@@ -290,12 +312,18 @@ fn strip_scene(
     progress.set_message(format!("stripifying and verifying {} primitives", scene.primitives().len()));
     // The scene chooses its written forms and restart values itself (scene_options):
     // the door gets the strip flags alone.
+    let strip_start = std::time::Instant::now();
     let report = scene.strip(&args.strip.options()?, &scene_options).map_err(cmd::flag_error)?;
+    let strip_time = strip_start.elapsed();
     progress.set_message(format!("writing {}", args.output.display()));
     let start = std::time::Instant::now();
-    let bytes = scene.to_bytes(format)?;
+    let bytes = scene.into_bytes(format)?;
+    let encode_time = start.elapsed();
     cmd::write_output(&args.output, &bytes)?;
     let write_ms = start.elapsed().as_secs_f64() * 1e3;
+    if args.timings {
+        print_timings(read_time, strip_time, encode_time, start.elapsed() - encode_time);
+    }
     progress.finish_and_clear();
     if batch.is_none() && !(args.json && cmd::is_dash(&args.output)) {
         let restart = options.join == Join::Restart;

@@ -80,12 +80,21 @@ pub fn supported_write_extensions() -> &'static str {
 pub struct WriteOptions {
     /// Write PLY as ASCII text instead of binary little-endian. Default `false`.
     pub ply_ascii: bool,
+    /// Threads for the read-back check of written strips (the same bytes and result
+    /// at any count). Default one.
+    pub threads: crate::parallel::Threads,
 }
 
 impl WriteOptions {
     /// Sets [`WriteOptions::ply_ascii`].
     pub fn ply_ascii(mut self, on: bool) -> Self {
         self.ply_ascii = on;
+        self
+    }
+
+    /// Sets [`WriteOptions::threads`].
+    pub fn threads(mut self, threads: crate::parallel::Threads) -> Self {
+        self.threads = threads;
         self
     }
 }

@@ -136,6 +136,8 @@ pub struct Scene {
     restart_groups: bool,
     /// Whether index and vertex views are written compressed ([`Scene::set_compress`]).
     compress: bool,
+    /// Threads for the read-back check of written strips ([`Scene::set_threads`]).
+    threads: crate::parallel::Threads,
     notes: Vec<String>,
 }
 
@@ -202,6 +204,7 @@ impl Scene {
             primitives,
             restart_groups: true,
             compress: false,
+            threads: crate::parallel::Threads::SERIAL,
             notes: Vec::new(),
         })
     }
@@ -297,6 +300,12 @@ impl Scene {
         self.restart_groups = on;
     }
 
+    /// Sets the threads the read-back check of the written strips may use (the same
+    /// result at any count).
+    pub(crate) fn set_threads(&mut self, threads: crate::parallel::Threads) {
+        self.threads = threads;
+    }
+
     /// The name of the file (or the stand-in name) the scene came from, for errors.
     pub(crate) fn name(&self) -> &Path {
         &self.name
@@ -308,6 +317,23 @@ impl Scene {
     /// written as read (buffers merged).
     pub fn to_bytes(&self, format: Format) -> Result<Vec<u8>> {
         encode_checked(|| self.encode(format), |bytes| self.check_written(format, bytes))
+    }
+
+    /// [`Scene::to_bytes`] for a scene not needed afterwards: once encoded, what the
+    /// check of the written bytes does not read (the buffers as read, the stripped
+    /// primitives' faces and strips) is let go before the check reads the bytes back,
+    /// so the file and its reading back are not held beside them. The same bytes.
+    pub fn into_bytes(mut self, format: Format) -> Result<Vec<u8>> {
+        let bytes = self.encode(format)?;
+        self.buffers = Vec::new();
+        for sp in self.primitives.iter_mut().filter(|sp| sp.strips.is_some()) {
+            sp.strips = Some(StripSet::new());
+            sp.mesh.face_offsets = vec![0];
+            sp.mesh.face_indices = Vec::new();
+            sp.mesh.face_groups = Vec::new();
+        }
+        self.check_written(format, &bytes)?;
+        Ok(bytes)
     }
 
     /// Writes the scene to `path` (`.gltf` or `.glb`, optionally `.gz`), atomically,
@@ -476,7 +502,7 @@ impl Scene {
         let name = PathBuf::from(format!("the {format:?} bytes to be written"));
         // The input was accepted under the caller's budget; the output decodes to the same.
         let options = ReadOptions::default().max_decoded_bytes(Some(u64::MAX));
-        let back = Scene::from_bytes(&name, format, bytes, &options)?;
+        let mut back = Scene::from_bytes(&name, format, bytes, &options)?;
         let fail = |sp: &ScenePrimitive, what: String| {
             Error::Verification(format!(
                 "{}, read back: meshes[{}].primitives[{}]: {what}",
@@ -493,6 +519,9 @@ impl Scene {
                 self.primitives.len()
             )));
         }
+        // Taken out of the scene read back, so that each one's data can go as soon as
+        // it has been compared.
+        let mut back_primitives = std::mem::take(&mut back.primitives);
         let doc = back.doc();
         // Each primitive's restart group in the written document: the first group of
         // its mesh naming that primitive alone (looked up once, not per primitive).
@@ -507,7 +536,7 @@ impl Scene {
                 }
             }
         }
-        for (a, b) in self.primitives.iter().zip(&back.primitives) {
+        for (a, b) in self.primitives.iter().zip(back_primitives.iter_mut()) {
             if (a.mesh_index, a.primitive_index) != (b.mesh_index, b.primitive_index) {
                 return Err(fail(
                     a,
@@ -530,7 +559,8 @@ impl Scene {
             if *attributes != b.mesh.attributes {
                 return Err(fail(a, "vertex attributes differ".into()));
             }
-            let got = b.mesh.triangulate().tris;
+            drop((std::mem::take(&mut b.mesh.positions), std::mem::take(&mut b.mesh.attributes), attributes));
+            let got = take_triangles(&mut b.mesh);
             if a.strips.is_none() {
                 let want = a.mesh.triangulate().tris;
                 if want != got {
@@ -545,8 +575,12 @@ impl Scene {
                     Cow::Owned(a.drawn.iter().map(|t| t.map(|v| new_id[v as usize])).collect())
                 }
             };
-            let want = &*want;
-            let v = strip::verify_decoded(want, got);
+            // Sorted once for both checks below.
+            let want = match want {
+                Cow::Borrowed(list) => strip::sorted_expected(list, self.threads),
+                Cow::Owned(list) => strip::sorted_expected_owned(list, self.threads),
+            };
+            let v = strip::compare_sorted(&want, got, self.threads);
             if !v.ok() {
                 return Err(fail(a, format!("stitched strip: {v}")));
             }
@@ -562,9 +596,13 @@ impl Scene {
                     if list.iter().any(|&i| i != restart && i as usize >= n) {
                         return Err(fail(a, "restart indices out of range".into()));
                     }
-                    let decoded = strip::decode(&strip::decode_restart(&list, restart));
+                    // Decoded straight from the list (no strip set of it in between).
+                    let mut decoded = Vec::with_capacity(list.len());
+                    for s in list.split(|&i| i == restart) {
+                        strip::for_each_triangle(s, |t| decoded.push(t));
+                    }
                     drop(list);
-                    let v = strip::verify_decoded(want, decoded);
+                    let v = strip::compare_sorted(&want, decoded, self.threads);
                     if !v.ok() {
                         return Err(fail(a, format!("restart group: {v}")));
                     }
@@ -586,6 +624,19 @@ impl Scene {
             accessors: self.json.get("accessors").and_then(Value::as_array).map_or(&[], Vec::as_slice),
         }
     }
+}
+
+/// The faces of a mesh read back, as triangles, taken out of it: where every face is
+/// a triangle (strips read back) the offsets go first and the indices are regrouped,
+/// so at most the indices and the triangles are alive at once; otherwise
+/// [`Mesh::triangulate`].
+fn take_triangles(mesh: &mut Mesh) -> Vec<[u32; 3]> {
+    if !mesh.face_offsets.windows(2).all(|w| w[1].wrapping_sub(w[0]) == 3) {
+        return mesh.triangulate().tris;
+    }
+    drop(std::mem::take(&mut mesh.face_offsets));
+    let indices = std::mem::take(&mut mesh.face_indices);
+    indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
 }
 
 /// See [`Scene::garbage`].

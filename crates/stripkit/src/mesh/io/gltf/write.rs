@@ -164,17 +164,20 @@ pub(super) fn glb_container(json: &Value, mut bin: Vec<u8>) -> Result<Vec<u8>> {
     }
     let total = 12 + 8 + text.len() + if with_bin { 8 + bin.len() } else { 0 };
     let total32 = u32::try_from(total).map_err(|_| Error::Invalid(format!("{total} bytes do not fit a GLB file")))?;
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(GLB_MAGIC);
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&total32.to_le_bytes());
-    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
-    out.extend_from_slice(&CHUNK_JSON.to_le_bytes());
-    out.extend_from_slice(&text);
-    if with_bin {
-        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-        out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
-        out.extend_from_slice(&bin);
+    let mut head = Vec::with_capacity(12 + 8 + text.len() + 8);
+    head.extend_from_slice(GLB_MAGIC);
+    head.extend_from_slice(&2u32.to_le_bytes());
+    head.extend_from_slice(&total32.to_le_bytes());
+    head.extend_from_slice(&(text.len() as u32).to_le_bytes());
+    head.extend_from_slice(&CHUNK_JSON.to_le_bytes());
+    head.extend_from_slice(&text);
+    if !with_bin {
+        return Ok(head);
     }
-    Ok(out)
+    head.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    head.extend_from_slice(&CHUNK_BIN.to_le_bytes());
+    // The head goes in front of the binary chunk in its own allocation (grown, not
+    // copied beside it): the file is never held twice.
+    drop(bin.splice(0..0, head));
+    Ok(bin)
 }

@@ -53,6 +53,14 @@ pub(super) trait Body {
     /// After the last record: where and what the first extra data is, if anything but
     /// whitespace follows.
     fn extra(&mut self) -> Option<(String, String)>;
+    /// A binary body's bytes (the whole file), the reading position in them and
+    /// whether it is big-endian, for readers that take whole records; `None` for text.
+    fn binary(&self) -> Option<(&[u8], usize, bool)> {
+        None
+    }
+    /// Moves a binary body's reading position to `pos` (past records read through
+    /// [`Body::binary`]).
+    fn seek(&mut self, _pos: usize) {}
 }
 
 pub(super) struct Ascii<'a> {
@@ -193,6 +201,12 @@ impl<'a> Binary<'a> {
 }
 
 impl Body for Binary<'_> {
+    fn binary(&self) -> Option<(&[u8], usize, bool)> {
+        Some((self.data, self.pos, self.big))
+    }
+    fn seek(&mut self, pos: usize) {
+        self.pos = pos;
+    }
     #[inline]
     fn real(&mut self, s: Scalar) -> Result<f32, String> {
         let v = if s == Scalar::F32 {

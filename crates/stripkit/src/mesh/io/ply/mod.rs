@@ -23,6 +23,7 @@
 //! strip with `-1`. Face groups are not written (PLY has no materials).
 
 mod body;
+mod fast;
 
 use super::common::{
     capped, close_face, index_message, line_at, parse_count, push_strip_triangles, show, sniff, tokens, Lines, Src,
@@ -215,9 +216,15 @@ fn read_body<B: Body>(src: Src, header: &Header, r: &mut B, positions_only: bool
         match element.name.as_str() {
             "vertex" if !vertices_read => {
                 vertices_read = true;
-                read_vertices(src, element, r, min_record, positions_only, &mut mesh)?;
+                if !fast::vertices(element, r, positions_only, &mut mesh) {
+                    read_vertices(src, element, r, min_record, positions_only, &mut mesh)?;
+                }
             }
-            "face" => read_faces(src, element, r, min_record, vertex_count, &mut mesh)?,
+            "face" => {
+                if !fast::faces(element, r, vertex_count, &mut mesh) {
+                    read_faces(src, element, r, min_record, vertex_count, &mut mesh)?;
+                }
+            }
             "tristrips" => read_tristrips(src, element, r, vertex_count, &mut mesh)?,
             _ => {
                 for e in 0..element.count {
@@ -313,15 +320,20 @@ fn read_vertices<B: Body>(
         }
         mesh.positions.push(p);
     }
-    for a in &mut attributes {
+    flip_texcoord(&mut attributes);
+    mesh.attributes = attributes;
+    Ok(())
+}
+
+/// Texture `v` flipped to glTF's top-left origin, as read.
+fn flip_texcoord(attributes: &mut [Attribute]) {
+    for a in attributes {
         if a.name == "TEXCOORD_0" {
             for v in 0..a.len() {
                 a.set(v, 1, 1.0 - a.get(v, 1));
             }
         }
     }
-    mesh.attributes = attributes;
-    Ok(())
 }
 
 /// Reads the face element's `vertex_indices` (or `vertex_index`) lists as faces of at
