@@ -166,24 +166,27 @@ fn measure(args: &Args, base: &Path, levels: u32, thread_counts: &[usize], work:
 fn render(rows: &[Row], thread_counts: &[usize]) -> String {
     let mut s = String::from("# Scale: time and peak memory per triangle\n\n");
     s.push_str(&format!(
-        "Each phase in a process of its own, its peak resident size reset before the phase (inputs included). \
+        "Each phase in a process of its own, its peak resident size reset before the phase: `before MB` is the \
+         resident size then (the program and the phase's inputs), `peak MB` the peak during the phase, inputs \
+         included; `bytes/tri` = peak / triangles. \
          Threads: {}. Stripifier times are the stripify call alone (as meshoptimizer's are); their peaks include the \
          front door's verification. `verify` and the writes work on greedy's strips; the writes are the library's \
          checked writes (read back and compared). acmr16 as METRICS.md defines it, by stripkit's figures.\n\n",
         thread_counts.iter().map(|t| t.to_string()).collect::<Vec<_>>().join(" and ")
     ));
-    s.push_str("| mesh | triangles | phase | threads | ms | ns/tri | peak MB | bytes/tri | indices | acmr16 |\n");
-    s.push_str("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    s.push_str("| mesh | triangles | phase | threads | ms | ns/tri | before MB | peak MB | bytes/tri | indices | acmr16 |\n");
+    s.push_str("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for r in rows {
         let rep = &r.report;
         s.push_str(&format!(
-            "| {} | {} | {} | {} | {:.1} | {:.0} | {:.0} | {:.0} | {} | {} |\n",
+            "| {} | {} | {} | {} | {:.1} | {:.0} | {:.0} | {:.0} | {:.0} | {} | {} |\n",
             r.mesh,
             rep.triangles,
             if r.phase == "meshopt" { "meshopt vcache + stripify" } else { &r.phase },
             r.threads,
             rep.ns as f64 / 1e6,
             r.ns_per_triangle(),
+            rep.rss_before as f64 / 1e6,
             rep.peak_bytes as f64 / 1e6,
             r.bytes_per_triangle(),
             rep.indices.map_or("-".into(), |n| n.to_string()),

@@ -49,6 +49,9 @@ pub struct Report {
     pub peak_bytes: u64,
     /// Whether the peak was reset before the phase (else it includes the preparation).
     pub peak_reset: bool,
+    /// The resident size when the phase started (bytes: the program and the phase's
+    /// inputs), so that `peak_bytes - rss_before` is what the phase itself added.
+    pub rss_before: u64,
     /// Indices with restarts of the strips (stripifier rows).
     pub indices: Option<usize>,
     /// acmr16 of the strips (stripifier rows).
@@ -91,8 +94,10 @@ fn phase(args: &Args, threads: Threads) -> anyhow::Result<Report> {
     anyhow::ensure!(PHASES.contains(&name), "unknown phase {name}; one of {}", PHASES.join(", "));
     let read = || stripkit::io::read(&args.mesh).with_context(|| format!("reading {}", args.mesh.display()));
     let (mut indices, mut acmr) = (None, None);
+    let rss_before;
     let (ns, peak_reset, mesh) = if name == "read" {
         let reset = reset_peak();
+        rss_before = status_kb("VmRSS:").unwrap_or(0) * 1024;
         let t = Instant::now();
         let mesh = read()?;
         (t.elapsed().as_nanos() as u64, reset, mesh)
@@ -105,6 +110,7 @@ fn phase(args: &Args, threads: Threads) -> anyhow::Result<Report> {
         };
         let tris = (name == "meshopt").then(|| mesh.triangulate().tris);
         let reset = reset_peak();
+        rss_before = status_kb("VmRSS:").unwrap_or(0) * 1024;
         let t = Instant::now();
         let ns = match name {
             "verify" => {
@@ -147,6 +153,7 @@ fn phase(args: &Args, threads: Threads) -> anyhow::Result<Report> {
         ns,
         peak_bytes: status_kb("VmHWM:").unwrap_or(0) * 1024,
         peak_reset,
+        rss_before,
         indices,
         acmr,
         mesh_bytes: 12 * (mesh.vertex_count() + mesh.triangle_count()) as u64,

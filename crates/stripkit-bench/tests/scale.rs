@@ -85,6 +85,12 @@ fn quick_scale_run_measures_every_phase_and_matches_the_library() {
                     let mesh_bytes = rep["mesh_bytes"].as_u64().unwrap();
                     assert_eq!(mesh_bytes, 12 * (mesh.vertex_count() + triangles) as u64);
                     assert!(peak > mesh_bytes, "{label} {phase}: peak {peak} <= mesh {mesh_bytes}");
+                    let before = rep["rss_before"].as_u64().unwrap();
+                    assert!(before > 0 && peak >= before, "{label} {phase}: {before} before, {peak} peak");
+                    if phase != "read" {
+                        // The phase's inputs (the mesh at least) were resident before it.
+                        assert!(before > mesh_bytes, "{label} {phase}: {before} before <= mesh {mesh_bytes}");
+                    }
                     assert!(rep["ns"].as_u64().unwrap() > 0);
                     indices.push(rep["indices"].as_u64());
                     assert!(table.contains(&format!("| {label} | {triangles} | ")), "table has {label}");
