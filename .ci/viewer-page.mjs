@@ -1,7 +1,13 @@
 #!/usr/bin/env node
 // Opens pages written by `stripkit view` in headless Chromium (playwright-core, Debian's
-// chromium, SwiftShader WebGL: software rendering) and saves each canvas's first frame.
-//   node .ci/viewer-page.mjs [--eyes=X,Y,Z;...] [--levels=L,L,...] [--sweep=N] PAGE.html[#color=none&shading=smooth]=OUT.rgba [PAGE=OUT ...]
+// chromium, software WebGL) and saves each canvas's first frame.
+//   node .ci/viewer-page.mjs [--gl=BACKEND] [--eyes=X,Y,Z;...] [--levels=L,L,...] [--frames=F:L,...] [--play=MS] [--sweep=N] PAGE.html[#color=none&shading=smooth]=OUT.rgba [PAGE=OUT ...]
+// --gl picks Chromium's WebGL backend: llvmpipe (default: ANGLE on Mesa's OpenGL ES
+// through EGL, the rasterizer `stripkit render` uses, so that first frames match its
+// pictures to within 8 levels everywhere), or swiftshader (ANGLE on SwiftShader's Vulkan).
+// For a `.lodseq` page, --frames writes OUT.frames.json ({"F:L": {"frame", "level",
+// "strips", "positions"}: the runtime's strips and the frame's decoded positions}) and
+// --play=MS presses play for MS milliseconds, adding "play": {"played", "frame"} to the line.
 // For a --cull page, --eyes=X,Y,Z;X,Y,Z;... adds "cull": [{"segments", "drawn",
 // "culled", "visited"} per eye] (eyes in the input's units) to the line.
 // For a `.sets` page, --levels writes OUT.levels.json ({"L": strips, ...}: the page's
@@ -14,7 +20,8 @@
 // OUT gets the canvas's pixels, RGBA, top row first. Prints one JSON line per page:
 // {"page", "width", "height", "first_frame_ms" (navigation start to the first frame
 // drawn and finished), "setup_ms" (the page's script, decoding to first frame),
-// "errors" (console errors and uncaught exceptions)}.
+// "renderer" (WebGL's unmasked renderer), "errors" (console errors and uncaught
+// exceptions), "requests" (every address the page asked for besides itself)}.
 // Needs CHROMIUM (default /usr/bin/chromium) and playwright-core in .ci/node_modules.
 import fs from 'node:fs';
 import path from 'node:path';
@@ -29,9 +36,18 @@ if (pairs.length === 0 || pairs.some((p) => !p[0] || !p[1])) {
     console.error('usage: viewer-page.mjs PAGE.html=OUT.rgba ...');
     process.exit(2);
 }
+const BACKENDS = {
+    swiftshader: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+    llvmpipe: ['--use-gl=angle', '--use-angle=gl-egl', '--ignore-gpu-blocklist'],
+};
+const backend = BACKENDS[options.gl || 'llvmpipe'];
+if (!backend) {
+    console.error(`--gl: one of ${Object.keys(BACKENDS).join(', ')}`);
+    process.exit(2);
+}
 const browser = await chromium.launch({
     executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-    args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox'],
+    args: [...backend, '--no-sandbox'],
 });
 try {
     for (const [page, out] of pairs) {
@@ -40,16 +56,19 @@ try {
         tab.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
         tab.on('pageerror', (e) => errors.push(String(e)));
         const [file, hash] = page.split('#');
-        await tab.goto(pathToFileURL(path.resolve(file)).href + (hash ? '#' + hash : ''));
+        const address = pathToFileURL(path.resolve(file)).href;
+        const requests = [];
+        tab.on('request', (q) => { if (q.url().split('#')[0] !== address) requests.push(q.url()); });
+        await tab.goto(address + (hash ? '#' + hash : ''));
         await tab.waitForFunction(() => window.stripkitView && window.stripkitView.ready, null, { timeout: 60000 });
         const r = await tab.evaluate(() => {
             const v = window.stripkitView, c = document.getElementById('view');
-            return { width: c.width, height: c.height, first_frame_ms: v.firstFrameMs, setup_ms: v.setupMs, pixels: v.pixels() };
+            return { width: c.width, height: c.height, first_frame_ms: v.firstFrameMs, setup_ms: v.setupMs, renderer: v.renderer, pixels: v.pixels() };
         });
         const row = r.width * 4, flipped = Buffer.alloc(r.pixels.length);
         for (let y = 0; y < r.height; y++) flipped.set(r.pixels.slice((r.height - 1 - y) * row, (r.height - y) * row), y * row);
         fs.writeFileSync(out, flipped);
-        const line = { page, width: r.width, height: r.height, first_frame_ms: r.first_frame_ms, setup_ms: r.setup_ms, errors };
+        const line = { page, width: r.width, height: r.height, first_frame_ms: r.first_frame_ms, setup_ms: r.setup_ms, renderer: r.renderer, errors, requests };
         if (options.eyes) {
             const eyes = options.eyes.split(';').map((e) => e.split(',').map(Number));
             line.cull = await tab.evaluate((es) => es.map((e) => { const c = window.stripkitView.cull(e); delete c.ranges; return c; }), eyes);
@@ -58,6 +77,17 @@ try {
             const levels = options.levels.split(',').map(Number);
             const strips = await tab.evaluate((ls) => Object.fromEntries(ls.map((l) => [l, window.stripkitView.level(l)])), levels);
             fs.writeFileSync(out + '.levels.json', JSON.stringify(strips));
+        }
+        if (options.frames) {
+            const pairs = options.frames.split(',');
+            const got = await tab.evaluate((ps) => Object.fromEntries(ps.map((p) => [p, window.stripkitView.frame(...p.split(':').map(Number))])), pairs);
+            fs.writeFileSync(out + '.frames.json', JSON.stringify(got));
+        }
+        if (options.play) {
+            await tab.click('#play');
+            await tab.waitForTimeout(Number(options.play));
+            await tab.click('#play');
+            line.play = await tab.evaluate(() => window.stripkitView.played());
         }
         if (options.sweep) {
             line.sweep = await tab.evaluate((steps) => {

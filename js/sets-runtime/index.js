@@ -1,7 +1,8 @@
 // A JavaScript runtime for stripkit's `.sets` files (docs/sets-format.md): decodes a
 // SETS multiresolution strip model and walks its strips at any level of detail, the
 // way `stripkit lod extract` and stripkit's `lod::Cursor` do. No dependencies; works
-// in browsers and node. `stripkit view MODEL.sets` inlines this file into its page
+// in browsers and node. Also reads `.lodseq` animations (decodeLodSeq, LodSeqCursor).
+// `stripkit view MODEL.sets` (or ANIM.lodseq) inlines this file into its page
 // (with the `export` keywords dropped), so keep every export at a line's start.
 //
 //   import { decodeSets, SetsCursor } from 'stripkit-sets';
@@ -21,10 +22,10 @@ export const SETS_END = 0xffffffff;
 
 const MAGIC = 'SKLODSET';
 
-/** A `.sets` file that cannot be read: `at` is the byte offset where it went wrong. */
+/** A `.sets` (or `.lodseq`) file that cannot be read: `at` is the byte offset where it went wrong. */
 export class SetsFormatError extends Error {
-    constructor(at, what) {
-        super(`.sets byte ${at}: ${what}`);
+    constructor(at, what, kind = '.sets') {
+        super(`${kind} byte ${at}: ${what}`);
         this.at = at;
     }
 }
@@ -47,15 +48,17 @@ export function crc32(bytes) {
 
 /** Reads little-endian numbers and LEB128 varints, refusing to run past `end`. */
 class Reader {
-    constructor(bytes, end) {
+    constructor(bytes, end, kind = '.sets') {
         this.bytes = bytes;
         this.view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
         this.at = 0;
         this.end = end;
+        this.kind = kind;
     }
-    fail(what) { throw new SetsFormatError(this.at, what); }
+    fail(what) { throw new SetsFormatError(this.at, what, this.kind); }
     need(n, what) { if (this.end - this.at < n) this.fail(`the file ends inside ${what}`); }
     u32(what) { this.need(4, what); const v = this.view.getUint32(this.at, true); this.at += 4; return v; }
+    f32(what) { this.need(4, what); const v = this.view.getFloat32(this.at, true); this.at += 4; return v; }
     u8(what) { this.need(1, what); return this.bytes[this.at++]; }
     /** A varint as a number (exact up to 2^53). */
     varint(what) {
@@ -347,4 +350,204 @@ export function levelForRatio(sets, ratio) {
     const want = Math.ceil(ratio * sets.triangles0);
     for (let l = 0; l <= sets.levels; l++) if (sets.triangleCount[l] <= want) return l;
     return sets.levels;
+}
+
+const SEQ_MAGIC = 'SKLODSEQ';
+
+/**
+ * The raw deflate stream `packed` inflated, at most `limit` bytes (more throws). Async:
+ * DecompressionStream('deflate-raw'), in browsers and node 20.
+ */
+async function inflateRaw(packed, limit, r) {
+    const chunks = [];
+    let length = 0;
+    try {
+        const stream = new Blob([packed]).stream().pipeThrough(new DecompressionStream('deflate-raw'));
+        for await (const chunk of stream) {
+            length += chunk.length;
+            if (length > limit) r.fail(`the positions inflate past the ${limit} bytes their counts allow`);
+            chunks.push(chunk);
+        }
+    } catch (e) {
+        if (e instanceof SetsFormatError) throw e;
+        r.fail(`the positions do not inflate: ${e.message}`);
+    }
+    const raw = new Uint8Array(length);
+    let at = 0;
+    for (const c of chunks) { raw.set(c, at); at += c.length; }
+    return raw;
+}
+
+/**
+ * Quantized positions (`position_bits` 8 to 20): the grid, then the deflated zigzag
+ * varints (the first frame against the previous vertex, each later frame against the
+ * frame before), each coordinate `lo + q x step` in single precision as the library
+ * computes it. Returns one Float32Array (3 per vertex) per frame.
+ */
+async function readQuantized(r, frames, vertices, bits) {
+    const f = Math.fround;
+    const grid = [];
+    for (let i = 0; i < 6; i++) grid.push(r.f32('the position grid'));
+    const lo = grid.slice(0, 3), step = grid.slice(3);
+    if (!grid.every(Number.isFinite) || step.some((s) => s <= 0)) r.fail('the position grid is not finite and positive');
+    const top = 2 ** bits - 1;
+    const value = (q, d) => f(lo[d] + f(q * step[d]));
+    for (let d = 0; d < 3; d++) if (!Number.isFinite(value(top, d))) r.fail(`the position grid's far corner is not finite (axis ${d})`);
+    const len = r.varint("the positions' length");
+    r.need(len, 'the positions');
+    const packed = r.bytes.subarray(r.at, r.at + len);
+    r.at += len;
+    const total = frames * vertices;
+    if (total * 12 > len * 64 + (1 << 20)) r.fail(`${frames} frames of ${vertices} vertices cannot come from ${len} bytes`);
+    const raw = await inflateRaw(packed, total * 15, r);
+    const v = new Reader(raw, raw.length, '.lodseq positions');
+    const out = [];
+    let prev = null;
+    for (let fr = 0; fr < frames; fr++) {
+        const cur = new Uint32Array(3 * vertices), pos = new Float32Array(3 * vertices);
+        for (let i = 0; i < 3 * vertices; i++) {
+            const base = fr > 0 ? prev[i] : i >= 3 ? cur[i - 3] : 0;
+            const z = v.varint('a position');
+            const x = base + (z % 2 === 0 ? z / 2 : -(z + 1) / 2);
+            if (x < 0 || x > top) r.fail(`frame ${fr}: a position off its ${bits}-bit grid`);
+            cur[i] = x;
+            pos[i] = value(x, i % 3);
+        }
+        out.push(pos);
+        prev = cur;
+    }
+    if (v.at !== raw.length) r.fail('bytes follow the last position');
+    return out;
+}
+
+/**
+ * Decodes a `.lodseq` file (an animation's level-of-detail strips, docs/sets-format.md),
+ * versions 1 and 2, with the library's checks; throws SetsFormatError ('.lodseq byte N').
+ * Async because quantized positions are deflated. Returns { version, frames, vertices,
+ * names, frameModel (each frame's model), positions (a Float32Array per frame, 3 per
+ * vertex, as the library decodes them), bits (0: exact), attributes (version 2: the
+ * first frame's, shared), models (decoded positionless `.sets`, one strip layout) }.
+ */
+export async function decodeLodSeq(data) {
+    const bytes = data instanceof Uint8Array ? data : new Uint8Array(data);
+    const r = new Reader(bytes, bytes.length, '.lodseq');
+    if (bytes.length < 32) r.fail(`${bytes.length} bytes is too short for a .lodseq file`);
+    if (String.fromCharCode(...bytes.subarray(0, 8)) !== SEQ_MAGIC) r.fail('not a .lodseq file (magic SKLODSEQ)');
+    r.at = bytes.length - 4;
+    const stored = r.u32('the checksum');
+    r.at = bytes.length - 4;
+    if (crc32(bytes.subarray(0, bytes.length - 4)) !== stored) r.fail('the checksum does not match (a damaged or truncated file)');
+    r.at = 8;
+    r.end = bytes.length - 4;
+    const version = r.u32('the version');
+    if (version !== 1 && version !== 2) { r.at -= 4; r.fail(`format version ${version} is not known (1, 2)`); }
+    const [frames, vertices, modelCount, bits] = ['frames', 'vertices', 'models', 'position bits'].map((k) => r.u32(k));
+    if (frames === 0 || modelCount === 0) { r.at = 12; r.fail('a sequence needs at least one frame and one model'); }
+    if (bits !== 0 && (bits < 8 || bits > 20)) { r.at = 24; r.fail(`${bits} bits per coordinate (0 for exact positions, else 8 to 20)`); }
+    r.records(2 * frames, 'frame names');
+    const names = [], frameModel = new Uint32Array(frames);
+    for (let f = 0; f < frames; f++) {
+        const len = r.varint("a frame name's length");
+        if (len > 4096) r.fail(`a frame name of ${len} bytes (at most 4096)`);
+        r.need(len, 'a frame name');
+        names.push(new TextDecoder('utf-8').decode(bytes.subarray(r.at, r.at + len)));
+        r.at += len;
+        frameModel[f] = r.below(modelCount, "a frame's model");
+    }
+    let positions;
+    if (bits === 0) {
+        r.need(12 * frames * vertices, "the frames' positions");
+        positions = [];
+        for (let f = 0; f < frames; f++) {
+            const p = new Float32Array(3 * vertices);
+            for (let i = 0; i < p.length; i++) {
+                p[i] = r.f32('a position');
+                if (!Number.isFinite(p[i])) { r.at -= 4; r.fail(`frame ${f}: a NaN or infinite coordinate`); }
+            }
+            positions.push(p);
+        }
+    } else {
+        positions = await readQuantized(r, frames, vertices, bits);
+    }
+    const attributes = version === 2 ? readAttributes(r, vertices, false) : [];
+    r.records(modelCount, 'models');
+    const models = [];
+    for (let m = 0; m < modelCount; m++) {
+        const len = r.varint("a model's length");
+        r.need(len, 'a model');
+        const at = r.at;
+        let sets;
+        try {
+            sets = decodeSets(bytes.subarray(at, at + len));
+        } catch (e) {
+            if (e instanceof SetsFormatError) { r.at = at + e.at; r.fail(`model ${m}: ${e.message}`); }
+            throw e;
+        }
+        r.at += len;
+        const layout = models.length === 0 || sets.stripSlots.length === models[0].stripSlots.length && sets.stripSlots.every((x, i) => x === models[0].stripSlots[i]);
+        if (sets.inputVertices !== vertices || !sets.positionless || sets.attributes.length > 0 || sets.optimal) {
+            r.at = at;
+            r.fail(`model ${m} is not a positionless endpoint model over ${vertices} vertices`);
+        }
+        if (!layout) { r.at = at; r.fail(`model ${m} lays its strips out unlike model 0`); }
+        models.push(sets);
+    }
+    if (r.at !== r.end) r.fail(`${r.end - r.at} bytes follow the last model`);
+    return { version, frames, vertices, names, frameModel, positions, bits, attributes, models };
+}
+
+/**
+ * The strips of one (frame, level) of a decoded `.lodseq`, kept up to date as either
+ * moves, like the library's SeqCursor: one `buffer` in the layout of SetsCursor (the
+ * same for every model), a SetsCursor per model made when first needed. `set` returns
+ * the strips whose place changed: a new level re-walks only the strips that change,
+ * a frame with another model copies only the strips that differ. The level is clamped
+ * to the frame's model (as `stripkit lod extract --frame F --level L`).
+ */
+export class LodSeqCursor {
+    constructor(seq, frame = 0, level = 0) {
+        this.seq = seq;
+        const m0 = seq.models[0];
+        this.buffer = new Uint32Array(m0.slots + m0.strips).fill(SETS_RESTART);
+        this.cursors = seq.models.map(() => null);
+        this.frame = -1;
+        this.model = -1;
+        this.changed = [];
+        this.set(frame, level);
+    }
+    /** Buffer positions [start, end) of strip s's place. */
+    stripRange(s) { return [this.seq.models[0].stripSlots[s] + s, this.seq.models[0].stripSlots[s + 1] + s + 1]; }
+    /** The current frame's positions (a Float32Array, 3 per vertex). */
+    positions() { return this.seq.positions[this.frame]; }
+    /** The current frame's level (clamped to its model's levels). */
+    get level() { return this.cursors[this.model].level; }
+    /** Triangles the current frame and level draw. */
+    triangles() { return this.cursors[this.model].triangles(); }
+    /** Moves to frame `frame` (clamped) at `level`; returns the strips whose place changed. */
+    set(frame, level) {
+        const seq = this.seq;
+        const f = Math.min(Math.max(0, frame | 0), seq.frames - 1), m = seq.frameModel[f];
+        const fresh = this.cursors[m] === null;
+        if (fresh) this.cursors[m] = new SetsCursor(seq.models[m], level);
+        const cursor = this.cursors[m];
+        const changed = [];
+        const copy = (s) => { const [a, b] = this.stripRange(s); this.buffer.set(cursor.buffer.subarray(a, b), a); changed.push(s); };
+        if (m === this.model && !fresh) {
+            for (const s of cursor.setLevel(level)) copy(s);
+        } else {
+            if (!fresh) cursor.setLevel(level);
+            for (let s = 0; s < cursor.lengths.length; s++) {
+                const [a, b] = this.stripRange(s);
+                let same = true;
+                for (let i = a; i < b && same; i++) same = this.buffer[i] === cursor.buffer[i];
+                if (!same) copy(s);
+            }
+            this.model = m;
+        }
+        this.frame = f;
+        this.changed = changed;
+        return changed;
+    }
+    /** The non-empty strips, each an array of vertices (as `stripkit lod extract`'s JSON). */
+    strips() { return this.cursors[this.model].strips(); }
 }

@@ -1,7 +1,7 @@
 //! `stripkit view`'s page in a real browser: `.ci/viewer-page.mjs` opens the pages
-//! headless (Debian's chromium, SwiftShader: software rendering) and saves the
-//! canvas's first frame, which must match `stripkit render` of the same model and view
-//! (Mesa's llvmpipe) within a small tolerance, with no console error. Skips with a
+//! headless (Debian's chromium, WebGL on Mesa's llvmpipe: software rendering) and saves
+//! the canvas's first frame, which must match `stripkit render` of the same model and
+//! view (llvmpipe too) within a small tolerance, with no console error. Skips with a
 //! printed reason without Chromium (`.ci/run` installs Debian's `chromium` as root),
 //! node, or the npm package playwright-core.
 
@@ -19,6 +19,29 @@ fn read_png(path: &Path) -> Vec<[u8; 3]> {
     let info = reader.next_frame(&mut buf).expect("PNG data");
     assert_eq!(info.color_type, png::ColorType::Rgb);
     buf[..info.buffer_size()].chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect()
+}
+
+/// Lit pixels of `stripkit render`'s picture `png`, and pixels where the page's
+/// first frame `rgba` differs from it by more than 8 levels in a channel.
+fn differing(rgba: &Path, png: &Path) -> (usize, usize) {
+    let page: Vec<[u8; 3]> = std::fs::read(rgba).unwrap().chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect();
+    let reference = read_png(png);
+    assert_eq!(page.len(), reference.len());
+    let lit = reference.iter().filter(|p| **p != [255; 3]).count();
+    let far = page.iter().zip(&reference).filter(|(a, b)| (0..3).any(|k| (a[k] as i32 - b[k] as i32).abs() > 8)).count();
+    (lit, far)
+}
+
+/// The most pixels in a thousand lit ones that may differ by more than 8 levels from
+/// `stripkit render`'s picture, for the renderer the page `report` names: 1 on Mesa's
+/// llvmpipe (render's own rasterizer; 0 differed on every page), else `software`
+/// (SwiftShader, another rasterizer: edge pixels differ, 2% to 3%).
+fn allowed_per_mille(report: &serde_json::Value, software: usize) -> usize {
+    if report["renderer"].as_str().unwrap_or("").contains("llvmpipe") {
+        1
+    } else {
+        software
+    }
 }
 
 /// One page to compare: the input, the flags both commands take (strips, view), the
@@ -91,10 +114,10 @@ fn the_page_draws_what_render_draws() {
             .filter(|(a, b)| (0..3).any(|k| (a[k] as i32 - b[k] as i32).abs() > 8))
             .count();
         eprintln!("{}: {lit} lit pixels, {far} differ by more than 8 levels", c.name);
-        // The model fills the picture; the two software rasterizers differ only on
-        // edge pixels (spot, flat: 97 of 16,325 lit pixels).
+        // The model fills the picture; SwiftShader differs from llvmpipe only on edge
+        // pixels (spot, flat: 97 of 16,325 lit pixels).
         assert!(lit > 10_000, "{}: {lit} lit pixels", c.name);
-        assert!(far * 100 <= lit * 2, "{}: {far} of {lit} lit pixels differ", c.name);
+        assert!(far * 1000 <= lit * allowed_per_mille(r, 20), "{}: {far} of {lit} lit pixels differ", c.name);
     }
 }
 
@@ -150,7 +173,7 @@ fn the_pages_sets_runtime_extracts_every_level_like_lod_extract() {
         assert!(page_bytes < 2 * file_bytes + 100_000, "{page_bytes} bytes for a {file_bytes}-byte file");
         let rgba = tmp("view-lod", &format!("{name}.rgba"));
         let list: Vec<String> = chosen.iter().map(u64::to_string).collect();
-        open_pages(&[format!("--levels={}", list.join(","))], &[format!("{}={}", html.display(), rgba.display())]);
+        let reports = open_pages(&[format!("--levels={}", list.join(","))], &[format!("{}={}", html.display(), rgba.display())]);
         let got: serde_json::Value =
             serde_json::from_slice(&std::fs::read(format!("{}.levels.json", rgba.display())).unwrap()).unwrap();
         for level in &chosen {
@@ -171,7 +194,7 @@ fn the_pages_sets_runtime_extracts_every_level_like_lod_extract() {
         let far =
             page.iter().zip(&reference).filter(|(a, b)| (0..3).any(|k| (a[k] as i32 - b[k] as i32).abs() > 8)).count();
         eprintln!("{name}: {levels} levels, page {page_bytes} bytes for {file_bytes}; {far} of {lit} lit pixels differ");
-        assert!(lit > 10_000 && far * 100 <= lit * 2, "{name}: {far} of {lit} lit pixels differ");
+        assert!(lit > 10_000 && far * 1000 <= lit * allowed_per_mille(&reports[0], 20), "{name}: {far} of {lit} lit pixels differ");
     }
 }
 
@@ -232,4 +255,116 @@ fn the_page_is_self_contained_and_bad_arguments_exit_2() {
     assert!(stripkit(&["lod", "build", spot.to_str().unwrap(), "-o", sets.to_str().unwrap()]).status.success());
     let run = stripkit(&["view", sets.to_str().unwrap(), "--cull", "-o", html.to_str().unwrap()]);
     assert_eq!(run.status.code(), Some(2), "{}", String::from_utf8_lossy(&run.stderr));
+}
+
+/// A procedural animation for `stripkit lod build-seq`: a torus rippled by a wave
+/// that travels around it, `frames` OBJ files in a fresh folder.
+fn rippling_torus(frames: usize) -> PathBuf {
+    let dir = tmp("view-seq", "ripple");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = stripkit::gen::torus(30, 10, 1.0, 0.35);
+    for f in 0..frames {
+        let mut mesh = base.clone();
+        let phase = f as f32 * 0.7;
+        for p in mesh.positions.iter_mut() {
+            let angle = p[2].atan2(p[0]);
+            let lift = 0.15 * (3.0 * angle + phase).sin();
+            *p = [p[0] * (1.0 + 0.5 * lift), p[1] + lift, p[2] * (1.0 + 0.5 * lift)];
+        }
+        support::write_mesh(&dir.join(format!("ripple-{f:02}.obj")), &mesh);
+    }
+    dir
+}
+
+/// The first `count` frames of horse-gallop, copied into a fresh folder (the whole
+/// animation's 48 frames would take minutes to build in a debug test run).
+fn gallop_frames(count: usize) -> Option<PathBuf> {
+    let src = stripkit_testkit::models_dir()?.join("sequences/horse-gallop");
+    if !src.is_dir() {
+        eprintln!("skipped horse-gallop: {} is absent", src.display());
+        return None;
+    }
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&src).unwrap().map(|e| e.unwrap().path()).collect();
+    files.sort();
+    let dir = tmp("view-seq", "gallop");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in files.iter().filter(|f| !f.to_string_lossy().contains("reference")).take(count) {
+        std::fs::copy(f, dir.join(f.file_name().unwrap())).unwrap();
+    }
+    Some(dir)
+}
+
+#[test]
+fn the_pages_lodseq_runtime_gives_lod_extracts_strips_and_the_frames_positions() {
+    if let Some(why) = chromium_missing(&["playwright-core"]) {
+        eprintln!("skip: {why}");
+        return;
+    }
+    // The rippling torus with exact and with quantized (deflated) positions, and
+    // horse-gallop's first frames when the research models are here.
+    let ripple = rippling_torus(6);
+    // The first frame is `stripkit render --frame 0`'s picture: under SwiftShader at
+    // most 2% of the lit pixels differ on the torus, 3% on the horse (thin legs: more
+    // edge pixels; 124 of 6,944 differed); under llvmpipe 0 of each.
+    let mut cases = vec![("ripple", ripple.clone(), &[][..], 20), ("ripple_q12", ripple, &["--position-bits", "12"][..], 20)];
+    if let Some(gallop) = gallop_frames(5) {
+        cases.push(("gallop", gallop, &["--position-bits", "16"][..], 30));
+    }
+    for (name, dir, flags, software) in cases {
+        let file = tmp("view-seq", &format!("{name}.lodseq"));
+        let mut args = vec!["lod", "build-seq", dir.to_str().unwrap(), "-o", file.to_str().unwrap(), "--samples", "500", "--json"];
+        args.extend(flags);
+        support::json(&stripkit(&args));
+        let seq = stripkit::lod::LodSeq::read(&file).unwrap();
+        let frames = seq.frame_count();
+        let levels = seq.models().iter().map(|m| m.levels()).max().unwrap() as usize;
+        assert!(frames >= 5 && levels > 100, "{name}: {frames} frames, {levels} levels");
+        // 3 frames x 4 levels, shuffled: the cursor moves frames and levels both ways,
+        // between models when the frames use different ones.
+        let mut chosen: Vec<(usize, usize)> =
+            [0, frames / 2, frames - 1].iter().flat_map(|&f| [0, levels / 3, 2 * levels / 3, levels].map(|l| (f, l))).collect();
+        stripkit_testkit::XorShift64(0x5e9 + levels as u64).shuffle(&mut chosen);
+        let html = tmp("view-seq", &format!("{name}.html"));
+        let view = support::json(&stripkit(&["view", file.to_str().unwrap(), "-o", html.to_str().unwrap(), "--size", "256x256", "--json"]));
+        let page_bytes = view["page_bytes"].as_u64().unwrap();
+        let file_bytes = std::fs::metadata(&file).unwrap().len();
+        assert!(page_bytes < 2 * file_bytes + 100_000, "{page_bytes} bytes for a {file_bytes}-byte file");
+        let rgba = tmp("view-seq", &format!("{name}.rgba"));
+        let list: Vec<String> = chosen.iter().map(|(f, l)| format!("{f}:{l}")).collect();
+        let options = [format!("--frames={}", list.join(",")), "--play=1500".to_string()];
+        let report = &open_pages(&options, &[format!("{}={}", html.display(), rgba.display())])[0];
+        assert_eq!(report["requests"].as_array().unwrap().len(), 0, "{name}: the page fetched {report}");
+        // Play moved the frames on (about 30 a second; a loaded machine draws fewer).
+        assert!(report["play"]["played"].as_u64().unwrap() >= 2, "{name}: {report}");
+        let got: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(format!("{}.frames.json", rgba.display())).unwrap()).unwrap();
+        for (frame, level) in &chosen {
+            let key = format!("{frame}:{level}");
+            let json = tmp("view-seq", &format!("{name}-{frame}-{level}.json"));
+            let (f, l) = (frame.to_string(), level.to_string());
+            let run = stripkit(&["lod", "extract", file.to_str().unwrap(), "--frame", &f, "--level", &l, "-o", json.to_str().unwrap()]);
+            assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+            let want: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+            assert!(!want["strips"].as_array().unwrap().is_empty());
+            assert_eq!(got[&key]["strips"], want["strips"], "{name} frame {frame} level {level}");
+            // The positions as the library decodes them, bit for bit.
+            let page: Vec<f32> = got[&key]["positions"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap() as f32).collect();
+            let lib: Vec<f32> = seq.positions(*frame).iter().flatten().copied().collect();
+            assert_eq!(page.len(), lib.len(), "{name} frame {frame}");
+            let differ = page.iter().zip(&lib).filter(|(a, b)| a.to_bits() != b.to_bits()).count();
+            assert_eq!(differ, 0, "{name} frame {frame}: {differ} coordinates differ");
+        }
+        let png = tmp("view-seq", &format!("{name}.png"));
+        let run = stripkit(&["render", file.to_str().unwrap(), "--frame", "0", "-o", png.to_str().unwrap(), "--size", "256x256"]);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        let (lit, far) = differing(&rgba, &png);
+        eprintln!(
+            "{name}: {frames} frames, {} models, {levels} levels; page {page_bytes} bytes for {file_bytes}; played {}; {far} of {lit} lit pixels differ",
+            seq.models().len(),
+            report["play"]["played"]
+        );
+        assert!(lit > 3000 && far * 1000 <= lit * allowed_per_mille(report, software), "{name}: {far} of {lit} lit pixels differ");
+    }
 }

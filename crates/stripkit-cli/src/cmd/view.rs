@@ -36,7 +36,8 @@ Exit status: 0 success, 1 the strips failed verification, 2 bad input or argumen
 pub struct Args {
     /// Input mesh (.obj, .ply, .off, .stl, .gltf, .glb, optionally .gz), or a `.sets`
     /// model (`stripkit lod build`): the page then has a slider over every level, each
-    /// extracted in the page by the JavaScript `.sets` runtime.
+    /// extracted in the page by the JavaScript `.sets` runtime. Or a `.lodseq` animation
+    /// (`stripkit lod build-seq`): a frame slider and a play button besides the level's.
     pub input: PathBuf,
     /// Output page (.html), replaced atomically.
     #[arg(short, long, value_name = "OUT.html")]
@@ -89,6 +90,8 @@ struct Model {
     strip_indices: String,
     /// A `.sets` input: the file itself (the page decodes it), else empty.
     sets: String,
+    /// A `.lodseq` input: the file itself (the page decodes it, frames and models), else empty.
+    lodseq: String,
     /// The factor positions were (a mesh) or are to be (a `.sets`) multiplied by: a
     /// power of two from [`stripkit::unit_scale`].
     scale: f32,
@@ -114,6 +117,7 @@ impl Model {
             lengths: String::new(),
             strip_indices: String::new(),
             sets: String::new(),
+            lodseq: String::new(),
             scale,
             tree: None,
         }
@@ -233,10 +237,9 @@ fn first_camera(args: &Args, used: &[[f32; 3]]) -> anyhow::Result<Camera> {
     Ok(Camera { eye: c.eye, target: c.target, up: c.up, fov: c.fov_y_degrees, near: c.near, far: c.far, light })
 }
 
-/// The page's model for a `.sets` file: the file, and its level 0's figures and camera.
-fn sets_model(args: &Args, sets: &stripkit::lod::Sets) -> anyhow::Result<Model> {
-    let strips = sets.strips_at(0);
-    let positions = sets.positions();
+/// The level-0 `strips` over `positions`: their figures with the default cache model
+/// (as `stripkit strip`), the camera, and the scale of the used positions.
+fn level0_view(args: &Args, strips: &stripkit::StripSet, positions: &[[f32; 3]]) -> anyhow::Result<(stripkit::Figures, Camera, f32)> {
     let used: Vec<[f32; 3]> = strips.iter().flatten().map(|&v| positions[v as usize]).collect();
     let scale = stripkit::unit_scale(&used) as f32;
     let used: Vec<[f32; 3]> = used.iter().map(|p| p.map(|x| x * scale)).collect();
@@ -244,11 +247,28 @@ fn sets_model(args: &Args, sets: &stripkit::lod::Sets) -> anyhow::Result<Model> 
     for s in strips.iter() {
         stripkit::for_each_triangle(s, |t| triangles.push(t));
     }
-    // The level-0 strips' figures, with the default cache model (as `stripkit strip`).
-    let figures = stripkit::figures(&triangles, &strips, stripkit::CacheModel::default());
+    let figures = stripkit::figures(&triangles, strips, stripkit::CacheModel::default());
+    Ok((figures, first_camera(args, &used)?, scale))
+}
+
+/// The page's model for a `.sets` file: the file, and its level 0's figures and camera.
+fn sets_model(args: &Args, sets: &stripkit::lod::Sets) -> anyhow::Result<Model> {
+    let positions = sets.positions();
+    let (figures, camera, scale) = level0_view(args, &sets.strips_at(0), positions)?;
     Ok(Model {
         sets: base64(&std::fs::read(&args.input)?),
-        ..Model::new(args, "sets", &figures, positions.len(), first_camera(args, &used)?, scale)
+        ..Model::new(args, "sets", &figures, positions.len(), camera, scale)
+    })
+}
+
+/// The page's model for a `.lodseq` file: the file, and the figures, camera and scale
+/// of frame 0 at level 0 (the scale stays for every frame, so that the animation moves).
+fn seq_model(args: &Args, seq: &stripkit::lod::LodSeq) -> anyhow::Result<Model> {
+    let positions = seq.positions(0);
+    let (figures, camera, scale) = level0_view(args, &seq.models()[seq.model_of(0)].strips_at(0), positions)?;
+    Ok(Model {
+        lodseq: base64(&std::fs::read(&args.input)?),
+        ..Model::new(args, "lodseq", &figures, positions.len(), camera, scale)
     })
 }
 
@@ -289,11 +309,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     check(&args)?;
     let refuse = |why: &str| Err(Error::Invalid(format!("{}: {why}", args.input.display())).into());
     let model = match stripkit::lod::Model::try_read(&args.input)? {
-        Some(_) if args.cull => return refuse("--cull applies to meshes, not to .sets models"),
+        Some(_) if args.cull => return refuse("--cull applies to meshes, not to .sets or .lodseq models"),
         Some(stripkit::lod::Model::Sets(sets)) => sets_model(&args, &sets)?,
-        Some(stripkit::lod::Model::Seq(_)) => {
-            return refuse(".lodseq pages are not made yet; extract a frame as a mesh, or view a .sets")
-        }
+        Some(stripkit::lod::Model::Seq(seq)) => seq_model(&args, &seq)?,
         None => mesh_model(&args)?,
     };
     let text = page(&model)?;

@@ -5,9 +5,10 @@
 // indices: the layout of the `.sets` runtime's cursor (inlined below), so that a
 // level change rewrites only the places of the strips that changed. Every place has
 // its own vertex (so that a strip can carry its own colour). window.stripkitView
-// holds the state and figures for tests: ready, firstFrameMs, pixels(), level(L).
+// holds the state and figures for tests: ready, firstFrameMs, pixels(), level(L),
+// frame(F, L). A `.lodseq` page decodes its file asynchronously (deflated positions).
 'use strict';
-(function () {
+(async function () {
     /*RUNTIME*/
     const RESTART = 0xffffffff;
     const model = JSON.parse(document.getElementById('model').textContent);
@@ -19,8 +20,16 @@
         return out.buffer;
     }
     // The strips' places: a mesh's strips laid out as a cursor lays out a level.
-    let sets = null, cursor = null, positions, uv = null, places, labels;
-    if (model.sets) {
+    let sets = null, seq = null, cursor = null, positions, uv = null, places, labels;
+    // A .lodseq's frames share one strip layout; positions change with the frame.
+    const scaled = (p) => p.map((x) => x * model.scale);
+    if (model.lodseq) {
+        seq = await decodeLodSeq(bytes(model.lodseq));
+        cursor = new LodSeqCursor(seq, 0, 0);
+        positions = scaled(cursor.positions());
+        places = seq.models[0].stripSlots;
+        labels = cursor.buffer;
+    } else if (model.sets) {
         sets = decodeSets(bytes(model.sets));
         cursor = new SetsCursor(sets, 0);
         positions = sets.positions.map((x) => x * model.scale);
@@ -180,7 +189,14 @@ void main() {
     // A new level: the places of the changed strips written again, and uploaded as one
     // range from the first changed place to the last (one call per buffer: a call
     // per strip cost 78 ms for bunny's 400 strips under SwiftShader).
-    function uploadStrips(changed) {
+    // `frameMoved`: every place's position is gathered again and uploaded whole.
+    function uploadStrips(changed, frameMoved = false) {
+        if (frameMoved) {
+            gather(positions, 3, placed, 0, n);
+            gl.bindBuffer(gl.ARRAY_BUFFER, positionBuffer);
+            gl.bufferSubData(gl.ARRAY_BUFFER, 0, placed);
+            normals = null;
+        }
         if (changed.length === 0) return;
         let lo = n, hi = 0;
         for (const s of changed) {
@@ -368,29 +384,61 @@ void main() {
     if (!uv) { checker.disabled = true; checker.textContent += ' — no UVs'; }
     // The level slider (a .sets model): the level extracted by the cursor, only the
     // changed strips uploaded.
-    const lodFigures = { level: 0, changed: 0, extractMs: 0, uploadMs: 0 };
-    function setLevel(level) {
+    // A .lodseq: the slider's level is clamped to each frame's model, and kept as asked.
+    const levelCount = sets ? sets.levels : seq ? Math.max(...seq.models.map((m) => m.levels)) : 0;
+    const lodFigures = { level: 0, asked: 0, frame: 0, changed: 0, extractMs: 0, uploadMs: 0, played: 0 };
+    function setLevel(level, frame = lodFigures.frame) {
         const t = performance.now();
-        const changed = cursor.setLevel(level);
+        const changed = seq ? cursor.set(frame, level) : cursor.setLevel(level);
         const t1 = performance.now();
-        uploadStrips(changed);
-        Object.assign(lodFigures, { level: cursor.level, changed: changed.length, extractMs: t1 - t, uploadMs: performance.now() - t1 });
+        const frameMoved = seq !== null && cursor.frame !== lodFigures.frame;
+        if (frameMoved) positions = scaled(cursor.positions());
+        uploadStrips(changed, frameMoved);
+        Object.assign(lodFigures, { level: cursor.level, asked: level, frame: seq ? cursor.frame : 0, changed: changed.length, extractMs: t1 - t, uploadMs: performance.now() - t1 });
         return changed;
     }
     function showLevel() {
         const t = document.getElementById('levelFigures');
         t.textContent = '';
-        const rows = [['level', `${lodFigures.level.toLocaleString('en')} of ${sets.levels.toLocaleString('en')}`],
+        const rows = [['level', `${lodFigures.level.toLocaleString('en')} of ${levelCount.toLocaleString('en')}`],
             ['triangles', cursor.triangles().toLocaleString('en')], ['strips changed', lodFigures.changed],
             ['extraction', lodFigures.extractMs.toFixed(2) + ' ms'], ['upload', lodFigures.uploadMs.toFixed(2) + ' ms']];
+        if (seq) rows.unshift(['frame', `${lodFigures.frame + 1} of ${seq.frames}: ${seq.names[lodFigures.frame]}`]);
         for (const [k, v] of rows) { const tr = t.insertRow(); tr.insertCell().textContent = k; tr.insertCell().textContent = v; }
     }
-    if (sets) {
+    if (sets || seq) {
         document.getElementById('lod').hidden = false;
         const slider = document.getElementById('level');
-        slider.max = sets.levels;
+        slider.max = levelCount;
         slider.addEventListener('input', () => { setLevel(Number(slider.value)); showLevel(); redraw(); });
         showLevel();
+    }
+    // A .lodseq: the frame slider, and play: one frame further every 1/30 s, drawn on
+    // the animation frame that follows.
+    let playing = false;
+    if (seq) {
+        document.getElementById('anim').hidden = false;
+        const frameSlider = document.getElementById('frame'), play = document.getElementById('play');
+        frameSlider.max = seq.frames - 1;
+        frameSlider.addEventListener('input', () => { setLevel(lodFigures.asked, Number(frameSlider.value)); showLevel(); redraw(); });
+        let last = 0;
+        function tick(now) {
+            if (!playing) return;
+            if (now - last >= 1000 / 30) {
+                last = now;
+                setLevel(lodFigures.asked, (lodFigures.frame + 1) % seq.frames);
+                lodFigures.played++;
+                frameSlider.value = lodFigures.frame;
+                showLevel();
+                draw();
+            }
+            requestAnimationFrame(tick);
+        }
+        play.addEventListener('click', () => {
+            playing = !playing;
+            play.textContent = playing ? 'pause' : 'play';
+            if (playing) requestAnimationFrame(tick);
+        });
     }
     const on = (id, ev, f) => document.getElementById(id).addEventListener(ev, f);
     on('color', 'change', (e) => { state.color = e.target.value; paint(state.color); redraw(); });
@@ -427,7 +475,13 @@ void main() {
     gl.finish();
     window.stripkitView = {
         ready: true,
-        levels: sets ? sets.levels : 0,
+        levels: levelCount,
+        frames: seq ? seq.frames : 0,
+        renderer: (() => { const e = gl.getExtension('WEBGL_debug_renderer_info'); return e ? gl.getParameter(e.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER); })(),
+        /** A .lodseq page: frames moved by play so far, and the current frame. */
+        played() { return { played: lodFigures.played, frame: lodFigures.frame, playing }; },
+        /** A .lodseq page: moves to frame `f` at `level`; its non-empty strips and the frame's positions as decoded (unscaled). */
+        frame(f, level) { setLevel(level, f); return { frame: cursor.frame, level: cursor.level, strips: cursor.strips(), positions: Array.from(cursor.positions()) }; },
         firstFrameMs: performance.now(),
         setupMs: performance.now() - t0,
         state, draw,
@@ -437,7 +491,7 @@ void main() {
             const out = cullTree(eye.map((x) => Math.fround(x) * model.scale));
             return { segments: out.ranges.length, drawn: out.drawn, culled: out.culled, visited: out.visited, ranges: out.ranges };
         },
-        /** A .sets page: moves to `level` and returns its non-empty strips. */
+        /** A .sets (or .lodseq, at the current frame) page: moves to `level` and returns its non-empty strips. */
         level(level) { setLevel(level); return cursor.strips(); },
         /** A .sets page: one level per animation frame, as a slider dragged; resolves to the frames' intervals (ms). */
         sweepFrames(levels) {
@@ -455,13 +509,18 @@ void main() {
                 requestAnimationFrame(step);
             });
         },
-        /** A .sets page: per move, the milliseconds to extract, upload, and draw and finish a frame. */
+        /**
+         * A .sets page: per move, the milliseconds to extract, upload, and draw a frame.
+         * The draw is waited for by reading one pixel back: Chromium's gl.finish() returns
+         * at once (0.0 to 0.2 ms for bunny, whose draw takes 60 ms and more in software).
+         */
         sweep(levels) {
+            const px = new Uint8Array(4);
             return levels.map((l) => {
                 setLevel(l);
                 const t = performance.now();
                 draw();
-                gl.finish();
+                gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
                 return [lodFigures.extractMs, lodFigures.uploadMs, performance.now() - t, lodFigures.changed];
             });
         },
