@@ -15,6 +15,9 @@ mod matching;
 mod single;
 mod lod;
 mod lod_coarse;
+mod chart;
+mod scale;
+mod scale_phase;
 
 use clap::{Parser, Subcommand};
 
@@ -51,6 +54,12 @@ enum Command {
     /// SETS multiresolution strips: size, strips of a level against greedy from scratch, and next
     /// to a discrete LoD chain of meshoptimizer's simplify (memory, levels, switch time, distances).
     Lod(lod::Args),
+    /// Time and peak memory per triangle of read, the stripifiers, verify and the writes
+    /// on Loop subdivisions 1x-64x, at 1 and N threads, beside meshoptimizer; a log-log PNG.
+    Scale(scale::Args),
+    /// One phase of `scale` in a process of its own (run by `scale`).
+    #[command(hide = true)]
+    ScalePhase(scale_phase::Args),
 }
 
 fn main() -> anyhow::Result<()> {
@@ -65,5 +74,7 @@ fn main() -> anyhow::Result<()> {
         Command::Cull(a) => cull::run(a),
         Command::CullGpu(a) => cull_gpu::run(a),
         Command::Lod(a) => lod::run(a),
+        Command::Scale(a) => scale::run(a),
+        Command::ScalePhase(a) => scale_phase::run(a),
     }
 }
