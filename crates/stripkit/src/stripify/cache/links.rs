@@ -31,7 +31,9 @@ pub(super) fn twin(link: u32) -> usize {
 /// The neighbour's vertex opposite the shared edge (the link must have a neighbour).
 #[inline(always)]
 pub(super) fn opp(tris: &[[u32; 3]], link: u32) -> u32 {
-    tris[nbr(link) as usize][super::fifo_strips::PREV[twin(link)]]
+    // The slot before the shared edge's slot holds the vertex opposite it.
+    const PREV: [usize; 3] = [2, 0, 1];
+    tris[nbr(link) as usize][PREV[twin(link)]]
 }
 
 /// The links of `tris`, whose non-degenerate triangles around each vertex are listed
