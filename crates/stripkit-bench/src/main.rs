@@ -2,6 +2,7 @@
 //! run; writes markdown tables. One module per comparison.
 
 mod batch;
+mod cache_race;
 mod buffers;
 mod common;
 mod cull;
@@ -33,6 +34,8 @@ struct Cli {
 enum Command {
     /// Stripifiers: stripkit's modes next to meshoptimizer, every figure by stripkit's decoder.
     Strips(strips::Args),
+    /// stripkit's `cache` against meshoptimizer's vcache + stripify on one mesh, in turns.
+    CacheRace(cache_race::Args),
     /// Simplification: stripkit's QEM next to meshoptimizer's simplify.
     Simplify(simplify::Args),
     /// Draw times on the GPU (or llvmpipe) of every index buffer: lists, meshoptimizer's strips, stripkit's modes.
@@ -65,6 +68,7 @@ enum Command {
 fn main() -> anyhow::Result<()> {
     match Cli::parse().command {
         Command::Strips(a) => strips::run(a),
+        Command::CacheRace(a) => cache_race::run(a),
         Command::Simplify(a) => simplify::run(a),
         Command::Matching(a) => matching::run(a),
         Command::Gpu(a) => gpu::run(a),

@@ -33,6 +33,11 @@ impl Buckets {
     /// Every non-degenerate triangle of `tris` free, with its degree in `graph`; each
     /// bucket in input order.
     pub(super) fn of(tris: &[[u32; 3]], graph: &DualGraph) -> Self {
+        Self::with_degrees(tris, |t| graph.degree(t) as u8)
+    }
+
+    /// As [`Buckets::of`], triangle `t` having `degree(t)` dual neighbours.
+    pub(super) fn with_degrees(tris: &[[u32; 3]], degree: impl Fn(usize) -> u8) -> Self {
         let n = tris.len();
         let mut b = Buckets::new(n);
         // Inserted in reverse so that each bucket starts in input order.
@@ -41,7 +46,7 @@ impl Buckets {
                 continue;
             }
             b.free[t] = true;
-            b.push_front(t as u32, graph.degree(t) as u8);
+            b.push_front(t as u32, degree(t));
         }
         b
     }
@@ -51,6 +56,21 @@ impl Buckets {
     pub(super) fn push_front(&mut self, t: u32, d: u8) {
         self.stacks[d as usize].push(t);
         self.degree[t as usize] = d;
+    }
+
+    /// Entries held, stale ones included.
+    pub(super) fn held(&self) -> usize {
+        self.stacks.iter().map(Vec::len).sum()
+    }
+
+    /// Drops the stale entries (the order of the others kept: [`Buckets::lowest`]
+    /// answers as before) and gives back the memory they held.
+    pub(super) fn compact(&mut self) {
+        let (free, degree) = (&self.free, &self.degree);
+        for (d, stack) in self.stacks.iter_mut().enumerate() {
+            stack.retain(|&t| free[t as usize] && degree[t as usize] as usize == d);
+            stack.shrink_to_fit();
+        }
     }
 
     /// The first free triangle of the lowest degree, dropping stale entries on the way.

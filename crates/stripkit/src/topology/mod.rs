@@ -219,6 +219,7 @@ impl DualGraph {
     /// the neighbour: `twins[t][j]` is the slot `k` with `neighbors[neighbors[t][j]][k]
     /// == t` across the same edge (0 where there is no neighbour). Free on top of the
     /// graph (the pairing knows both corners).
+    #[cfg(test)]
     pub(crate) fn from_triangles_with_twins(
         tris: &[[u32; 3]],
         vertex_count: usize,

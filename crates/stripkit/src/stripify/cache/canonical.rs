@@ -121,6 +121,12 @@ impl Canonical {
         out
     }
 
+    /// Frees the new ids ([`Canonical::fan`] and [`Canonical::rotated`] need them; the
+    /// way back does not).
+    pub(super) fn forget_new(&mut self) {
+        self.new = Vec::new();
+    }
+
     pub(super) fn strips_back(&self, mut s: StripSet) -> StripSet {
         for v in &mut s.indices {
             *v = self.old[*v as usize];

@@ -31,40 +31,41 @@
 //! Cost: O(T * c * L) for c candidates per strip (the free triangles around the
 //! cache, at most `cache_size * FAN_CANDIDATES`) and walks of at most L triangles,
 //! whatever the valences; flat arrays, nothing allocated per step.
-//! A step reads one neighbour record (neighbours, their new vertices, the twin slots)
-//! and the records of four vertices; the walk that found the chosen strip is kept, not
-//! walked again.
+//! A step reads the links of one triangle (neighbours and twin slots, see `links.rs`),
+//! the vertices of the neighbours it may enter and the records of four vertices; the
+//! walk that found the chosen strip is kept, not walked again.
+//!
+//! Memory (4.4M triangles, 2.2M vertices): the links 12 bytes per triangle, the
+//! vertex-to-triangle lists 14 and their start cursors 2, the vertex records 10, marks
+//! 8, buckets 6 to 10, the FIFO's stamps 2, the output 5; the walks (4) only where the
+//! local search needs them.
 
-use super::{CacheOptions, Links};
+use super::links::{nbr, opp, twin};
+use super::CacheOptions;
 use crate::stripify::buckets::Buckets;
 use crate::metrics::Fifo;
 use crate::strip::{is_degenerate, StripSet};
-use crate::topology::{vertex_bound, vertex_triangles, Csr, FreeCursor, Walks, NO_NEIGHBOR};
+use crate::topology::{vertex_bound, vertex_triangles, Csr, Walks};
 
 pub(super) const NONE: u32 = u32::MAX;
 /// `mark` of a triangle already in a strip.
 pub(super) const TAKEN: u32 = u32::MAX;
+/// The bit of `mark` that says a triangle was offered as a candidate (see
+/// [`State::consider`]); the other bits hold an epoch, always below `EPOCHS`.
+pub(super) const OFFERED: u32 = 1 << 31;
+/// `vs` fields not set in the record's epoch.
+const UNSET: u32 = u32::MAX;
+/// Epochs run from 1 to `EPOCHS - 1` (`EPOCHS | OFFERED` would read as TAKEN).
+const EPOCHS: u32 = OFFERED - 1;
 /// The slot after / before each slot of a triangle.
 pub(super) const NEXT: [usize; 3] = [1, 2, 0];
 pub(super) const PREV: [usize; 3] = [2, 0, 1];
-
-/// A triangle's [`DualGraph`](crate::topology::DualGraph) neighbours (a missing one is the sentinel triangle
-/// `tris.len()`, always TAKEN) and, for each, the neighbour's vertex opposite the shared
-/// edge and the slot of that edge in the neighbour (one 32-byte record: a walk step
-/// reads one and nothing of `tris`).
-#[derive(Clone, Copy)]
-#[repr(C, align(32))]
-pub(super) struct Adj {
-    pub(super) nbr: [u32; 3],
-    pub(super) opp: [u32; 3],
-    pub(super) twin: [u8; 3],
-}
 
 /// What a walk reads and writes: the per-vertex records, the triangle marks, the
 /// walk's epoch, the FIFO (read only: the walk's own pushes go to its private copy in
 /// the records) and the walk's pushes so far.
 pub(super) struct Walk<'s> {
-    pub(super) vs: &'s mut [[u32; 5]],
+    pub(super) vs: &'s mut [[u32; 4]],
     pub(super) mark: &'s mut [u32],
     pub(super) epoch: u32,
     pub(super) fifo: &'s Fifo,
@@ -73,18 +74,18 @@ pub(super) struct Walk<'s> {
 }
 
 impl Walk<'_> {
-    /// Free and not yet in the walk (a triangle or the sentinel of `Adj::nbr`).
+    /// Free and not yet in the walk (a triangle or the sentinel of a link).
     #[inline(always)]
     fn is_open(&self, t: u32) -> bool {
         let m = self.mark[t as usize];
-        m != TAKEN && m != self.epoch
+        m != TAKEN && m & EPOCHS != self.epoch
     }
 
     /// Whether `v` is in the FIFO after the walk's pushes so far.
     #[inline(always)]
     fn cached_after(&self, v: u32) -> bool {
         let [mark, local, ..] = self.vs[v as usize];
-        if mark == self.epoch {
+        if mark == self.epoch && local != UNSET {
             return self.pushes - local <= self.c;
         }
         self.fifo.contains_after(v, self.pushes)
@@ -97,7 +98,10 @@ impl Walk<'_> {
             return false;
         }
         let e = &mut self.vs[v as usize];
-        e[0] = self.epoch;
+        if e[0] != self.epoch {
+            e[0] = self.epoch;
+            e[2] = UNSET;
+        }
         e[1] = self.pushes;
         self.pushes += 1;
         true
@@ -107,9 +111,10 @@ impl Walk<'_> {
     #[inline(always)]
     fn uncover(&mut self, v: u32) {
         let e = &mut self.vs[v as usize];
-        if e[2] != self.epoch {
-            e[2] = self.epoch;
-            e[3] = 0;
+        if e[0] != self.epoch {
+            *e = [self.epoch, UNSET, 0, e[3]];
+        } else if e[2] == UNSET {
+            e[2] = 0;
         }
     }
 
@@ -118,8 +123,8 @@ impl Walk<'_> {
     #[inline(always)]
     fn cover(&mut self, v: u32) -> bool {
         let e = &mut self.vs[v as usize];
-        e[3] += 1;
-        e[3] == e[4]
+        e[2] += 1;
+        e[2] == e[3]
     }
 }
 
@@ -179,7 +184,8 @@ impl Walk<'_> {
                 total += w;
             }
         }
-        self.mark[t as usize] = self.epoch;
+        // `t` was offered: `State::consider` set its OFFERED bit.
+        self.mark[t as usize] = self.epoch | OFFERED;
         if fb != 0.0 {
             for v in tri {
                 self.uncover(v);
@@ -242,29 +248,31 @@ impl Best {
 
 pub(super) struct State<'a> {
     pub(super) tris: &'a [[u32; 3]],
-    /// Neighbours of each triangle.
-    pub(super) adj: Vec<Adj>,
+    /// The links of each triangle (see `links.rs`).
+    pub(super) adj: &'a [[u32; 3]],
     pub(super) opt: CacheOptions,
     /// Free triangles by free degree (the greedy stripifier's buckets).
     pub(super) b: Buckets,
-    /// Vertex -> its triangles.
-    pub(super) vtris: Csr<u32>,
-    /// Per position of `vtris.values()`: itself while its triangle may be free, else
-    /// a later position of the same bucket (or the bucket's end) before which every
-    /// triangle is taken (see [`State::next_free`]).
-    pub(super) free: FreeCursor,
-    /// Per vertex, in one record: `[0]` the epoch of the walk that pushed it in its
-    /// private copy of the FIFO and `[1]` that walk's push count then; `[2]` the epoch
-    /// of the walk that counted `[3]` of its free triangles as covered; `[4]` its free
-    /// triangles.
-    pub(super) vs: Vec<[u32; 5]>,
+    /// Vertex -> its triangles: the list of vertex `v` is `vlist[vstart[v]..voff[v + 1]]`,
+    /// in triangle order; it holds every free triangle of `v` (and taken ones not yet
+    /// dropped: [`State::scan`] drops those it passes, moving the free ones it
+    /// offered up to the rest of the list).
+    pub(super) vlist: Vec<u32>,
+    pub(super) voff: Vec<u32>,
+    pub(super) vstart: Vec<u32>,
+    /// Per vertex, in one record: `[0]` the epoch of the last walk that pushed it in
+    /// its private copy of the FIFO or counted its triangles; in that walk, `[1]` the
+    /// walk's push count when it pushed the vertex and `[2]` how many of its free
+    /// triangles the walk covers (each UNSET until then); `[3]` its free triangles.
+    pub(super) vs: Vec<[u32; 4]>,
     /// The FIFO the emitted strips went through; its pushes are their misses.
     pub(super) fifo: Fifo,
-    /// TAKEN for triangles in strips, else the epoch of the last walk through them.
+    /// TAKEN for triangles in strips, else the epoch of the last walk through them,
+    /// with the OFFERED bit.
     pub(super) mark: Vec<u32>,
     pub(super) epoch: u32,
-    /// Candidate triangles already tried for the current strip (round `round`).
-    pub(super) smark: Vec<u32>,
+    /// The first epoch of the current strip's round: a triangle whose mark has the
+    /// OFFERED bit and an epoch from this one on was offered in this round.
     pub(super) round: u32,
     /// The current walk after its first triangle: (triangle, swap vertex or NONE, the
     /// triangle's new vertex); `bpath`: that of the walk that set the best prefix last
@@ -275,78 +283,80 @@ pub(super) struct State<'a> {
     pub(super) last: u32,
 
     pub(super) out: StripSet,
-    /// The strips as walks (triangle ids in output order).
+    /// The strips as walks (triangle ids in output order), recorded after
+    /// [`State::keep_walks`] only.
     pub(super) walks: Walks,
+    record_walks: bool,
+    /// Triangles not yet in a strip.
+    free_count: usize,
+}
+
+/// The vertex count the stripifier works with for `tris` (at least `vertex_count`),
+/// the triangles around each vertex and the links of the triangles.
+pub(super) fn prepare(tris: &[[u32; 3]], vertex_count: usize) -> (Csr<u32>, Vec<[u32; 3]>) {
+    let vcount = vertex_bound(tris).max(vertex_count);
+    let vtris = vertex_triangles(tris, vcount);
+    let links = super::links::links(tris, &vtris);
+    (vtris, links)
 }
 
 impl<'a> State<'a> {
-    pub(super) fn new(tris: &'a [[u32; 3]], (graph, twins): Links, vertex_count: usize, opt: &CacheOptions) -> Self {
+    /// The state for `tris` with their `links` and, when given, their vertex lists as
+    /// [`prepare`] returns them (built here when not).
+    pub(super) fn new(
+        tris: &'a [[u32; 3]],
+        links: &'a [[u32; 3]],
+        vtris: Option<Csr<u32>>,
+        vertex_count: usize,
+        opt: &CacheOptions,
+    ) -> Self {
         let n = tris.len();
         let vcount = vertex_bound(tris).max(vertex_count);
         let mut opt = *opt;
         opt.cache_size = opt.cache_size.max(3);
         opt.max_len = opt.max_len.max(1);
         opt.scan_entries = opt.scan_entries.clamp(1, opt.cache_size);
-        let degenerate: Vec<bool> = tris.iter().map(is_degenerate).collect();
-        let vtris = vertex_triangles(tris, vcount);
-        // The record of a triangle: a missing neighbour becomes the sentinel `n`.
-        let record = |nbr: [u32; 3], twin: [u8; 3]| {
-            let mut a = Adj {
-                nbr: [n as u32; 3],
-                opp: [0; 3],
-                twin,
-            };
-            for k in 0..3 {
-                let m = nbr[k];
-                if m != NO_NEIGHBOR {
-                    a.nbr[k] = m;
-                    a.opp[k] = tris[m as usize][PREV[twin[k] as usize]];
-                }
-            }
-            a
-        };
-        let mut adj: Vec<Adj> = graph
-            .neighbors
-            .iter()
-            .zip(twins)
-            .map(|(&nbr, &twin)| record(nbr, twin))
-            .collect();
-        // The sentinel (its own neighbours: never read, a walk never enters it).
-        adj.push(Adj {
-            nbr: [n as u32; 3],
-            opp: [0; 3],
-            twin: [0; 3],
-        });
-        let b = Buckets::of(tris, graph);
+        let vtris = vtris.unwrap_or_else(|| vertex_triangles(tris, vcount));
+        let (voff, vlist) = vtris.into_parts();
+        let degree = |t: usize| links[t].iter().filter(|&&l| l != n as u32).count() as u8;
+        let b = Buckets::with_degrees(tris, degree);
         let mut out = StripSet::new();
         out.indices.reserve(n + n / 2);
         State {
             tris,
-            adj,
+            adj: links,
             opt,
             b,
-            vs: (0..vcount).map(|v| [0, 0, 0, 0, vtris.bucket(v).len() as u32]).collect(),
-            free: FreeCursor::new(vtris.values().len()),
-            vtris,
+            vs: (0..vcount).map(|v| [0, UNSET, UNSET, voff[v + 1] - voff[v]]).collect(),
+            vstart: voff[..vcount].to_vec(),
+            voff,
+            vlist,
             fifo: Fifo::new(opt.cache_size, vcount),
             // The sentinel triangle `n` is TAKEN.
-            mark: degenerate
+            mark: tris
                 .iter()
-                .map(|&d| if d { TAKEN } else { 0 })
+                .map(|t| if is_degenerate(t) { TAKEN } else { 0 })
                 .chain([TAKEN])
                 .collect(),
             epoch: 0,
-            smark: vec![0; n],
             round: 0,
             wpath: vec![(0, 0, 0); opt.max_len as usize],
             bpath: vec![(0, 0, 0); opt.max_len as usize],
             last: NONE,
             out,
-            walks: Walks::with_capacity(n),
+            walks: Walks::new(),
+            record_walks: false,
+            free_count: tris.iter().filter(|t| !is_degenerate(t)).count(),
         }
     }
 
-    /// Free (a triangle or the sentinel of `Adj::nbr`).
+    /// Records the strips as walks (for the local search) from here on.
+    pub(super) fn keep_walks(&mut self) {
+        self.walks = Walks::with_capacity(self.tris.len());
+        self.record_walks = true;
+    }
+
+    /// Free (a triangle or the sentinel of a link).
     #[inline]
     fn is_free(&self, t: u32) -> bool {
         self.mark[t as usize] != TAKEN
@@ -361,15 +371,16 @@ impl<'a> State<'a> {
     /// A new epoch for the next walk (marks and records of older walks then read as
     /// untouched).
     fn next_epoch(&mut self) {
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == TAKEN {
+        self.epoch += 1;
+        if self.epoch == EPOCHS {
+            // The round's offers are forgotten too: a triangle may then be offered
+            // twice in this round, which walks the same walks again (no strict
+            // improvement: the same strips).
             for m in self.mark.iter_mut().filter(|m| **m != TAKEN) {
                 *m = 0;
             }
-            self.vs.iter_mut().for_each(|x| {
-                x[0] = 0;
-                x[2] = 0;
-            });
+            self.round = 1;
+            self.vs.iter_mut().for_each(|x| x[0] = 0);
             self.epoch = 1;
         }
     }
@@ -408,13 +419,15 @@ impl<'a> State<'a> {
             let end = (self.out.indices[n - 2], self.out.indices[n - 1]);
             k.go_on(t, tri, end, fb)
         } else {
-            let nb = self.adj[t as usize].nbr[slot];
+            let nb = nbr(self.adj[t as usize][slot]);
             let left = self.b.degree[t as usize] as f32 - f32::from(k.mark[nb as usize] != TAKEN);
             k.start(t, tri, slot, w, fb, self.opt.start_penalty * left.max(0.0))
         };
-        let adjs = &self.adj[..];
+        let adjs = self.adj;
+        let tris = self.tris;
         let wpath = &mut self.wpath[..];
         let first = len;
+        let round_offered = OFFERED | self.round;
         let mut improved = false;
         let mut swaps = 0u32;
         let max_len = self.opt.max_len;
@@ -440,7 +453,7 @@ impl<'a> State<'a> {
             if total - len as f32 >= bound {
                 break;
             }
-            let adj = &adjs[cur as usize];
+            let adj = adjs[cur as usize];
             let (nat, swp) = if fwd {
                 (NEXT[entry], PREV[entry])
             } else {
@@ -448,16 +461,16 @@ impl<'a> State<'a> {
             };
             // The exit: `nat` when open, or `swp` (one swap) where `nat` is blocked or
             // where its new vertex would miss and the swap's would hit.
-            let nat_ok = k.is_open(adj.nbr[nat]);
+            let nat_ok = k.is_open(nbr(adj[nat]));
             let (e, swap) = if swaps >= max_swaps {
                 if !nat_ok {
                     break;
                 }
                 (nat, false)
             } else {
-                let swp_ok = k.is_open(adj.nbr[swp]);
+                let swp_ok = k.is_open(nbr(adj[swp]));
                 if nat_ok && swp_ok {
-                    if !k.cached_after(adj.opp[nat]) && k.cached_after(adj.opp[swp]) {
+                    if !k.cached_after(opp(tris, adj[nat])) && k.cached_after(opp(tris, adj[swp])) {
                         (swp, true)
                     } else {
                         (nat, false)
@@ -470,16 +483,19 @@ impl<'a> State<'a> {
                     break;
                 }
             };
-            let n = adj.nbr[e];
-            let j = adj.twin[e] as usize;
+            let n = nbr(adj[e]);
+            let j = twin(adj[e]);
             // The new vertex of `n`, opposite the edge it shares with `cur`.
-            let y = adj.opp[e];
+            let y = tris[n as usize][PREV[j]];
             total += 1.0;
             if swap {
                 swaps += 1;
                 total += 1.0;
             }
-            k.mark[n as usize] = k.epoch;
+            // Offered in this round (the OFFERED bit with an epoch from the round's
+            // first on) stays offered; an older offer is forgotten.
+            let offered = if k.mark[n as usize] >= round_offered { OFFERED } else { 0 };
+            k.mark[n as usize] = k.epoch | offered;
             // Leaving across NEXT[entry] the exit edge is (r[1], r[2]), across
             // PREV[entry] it is (r[2], r[0]); `n` runs it the other way from slot j.
             let via_next = e == NEXT[entry];
@@ -530,10 +546,13 @@ impl<'a> State<'a> {
     /// Offers every exit of free triangle `t` (once per round) when at least
     /// `min_cached` of its vertices are cached.
     fn consider(&mut self, t: u32, min_cached: u32, best: &mut Best) {
-        if self.smark[t as usize] == self.round {
+        let m = self.mark[t as usize];
+        if m & OFFERED != 0 && m & EPOCHS >= self.round {
             return;
         }
-        self.smark[t as usize] = self.round;
+        // The epoch of the last walk (or this round's first), kept by the walks
+        // through `t` this round.
+        self.mark[t as usize] = self.epoch | OFFERED;
         if min_cached > 0 {
             let cached = self.tris[t as usize]
                 .iter()
@@ -550,12 +569,17 @@ impl<'a> State<'a> {
 
     fn take(&mut self, t: u32) {
         self.b.free[t as usize] = false;
+        self.free_count -= 1;
+        // The buckets' stale entries held at most about as many as the free ones.
+        if self.b.held() > 2 * self.free_count + (1 << 16) {
+            self.b.compact();
+        }
         self.mark[t as usize] = TAKEN;
         for &v in &self.tris[t as usize] {
-            self.vs[v as usize][4] -= 1;
+            self.vs[v as usize][3] -= 1;
         }
         for k in 0..3 {
-            let m = self.adj[t as usize].nbr[k];
+            let m = nbr(self.adj[t as usize][k]);
             if self.is_free(m) {
                 let d = self.b.degree[m as usize] - 1;
                 self.b.push_front(m, d);
@@ -563,12 +587,10 @@ impl<'a> State<'a> {
         }
     }
 
+    /// A new round of candidates: an epoch no mark holds yet.
     fn next_round(&mut self) {
-        self.round = self.round.wrapping_add(1);
-        if self.round == 0 {
-            self.smark.fill(0);
-            self.round = 1;
-        }
+        self.next_epoch();
+        self.round = self.epoch;
     }
 
     pub(super) fn run(&mut self) {
@@ -624,28 +646,33 @@ impl<'a> State<'a> {
     fn scan(&mut self, entries: u32, min_cached: u32, best: &mut Best) {
         let live = self.fifo.len();
         for i in (live.saturating_sub(entries)..live).rev() {
-            let v = self.fifo.newest(i);
-            if self.vs[v as usize][4] == 0 {
+            let v = self.fifo.newest(i) as usize;
+            if self.vs[v][3] == 0 {
                 continue;
             }
-            let offsets = self.vtris.offsets();
-            let end = offsets[v as usize + 1];
-            let mut idx = self.next_free(offsets[v as usize], end);
+            // The list's taken triangles passed are dropped: the free ones offered
+            // move up to the part not read (order kept), so a vertex of high valence
+            // costs O(1) per strip, not O(valence).
+            let (start, end) = (self.vstart[v] as usize, self.voff[v + 1] as usize);
+            let (mut read, mut kept) = (start, start);
             let mut offered = 0;
-            while idx < end && offered < FAN_CANDIDATES {
-                let t = self.vtris.values()[idx as usize];
-                self.consider(t, min_cached, best);
+            while read < end && offered < FAN_CANDIDATES {
+                let t = self.vlist[read];
+                read += 1;
+                if self.mark[t as usize] == TAKEN {
+                    continue;
+                }
+                self.vlist[kept] = t;
+                kept += 1;
                 offered += 1;
-                idx = self.next_free(idx + 1, end);
+                self.consider(t, min_cached, best);
+            }
+            if kept < read {
+                let moved = kept - start;
+                self.vlist.copy_within(start..kept, read - moved);
+                self.vstart[v] = (read - moved) as u32;
             }
         }
-    }
-
-    /// The first free position from `start` on in its bucket of `vtris` (see [`FreeCursor`]).
-    #[inline]
-    fn next_free(&mut self, start: u32, end: u32) -> u32 {
-        let mark = &self.mark;
-        self.free.next_free(start, end, self.vtris.values(), |t| mark[t as usize] == TAKEN)
     }
 
     /// Emits the chosen prefix as a new strip (or as more of the last one) and feeds
@@ -658,13 +685,17 @@ impl<'a> State<'a> {
         let steps = best.len as usize - usize::from(slot != CONTINUE);
         let (mut a, mut b);
         if slot == CONTINUE {
-            self.walks.reopen_last();
+            if self.record_walks {
+                self.walks.reopen_last();
+            }
             self.out.offsets.pop();
             let n = self.out.indices.len();
             (a, b) = (self.out.indices[n - 2], self.out.indices[n - 1]);
         } else {
             let [x, u, w] = start_of(self.tris[t as usize], slot);
-            self.walks.push_triangle(t);
+            if self.record_walks {
+                self.walks.push_triangle(t);
+            }
             self.take(t);
             self.out.indices.extend_from_slice(&[x, u, w]);
             self.touch(x);
@@ -682,7 +713,9 @@ impl<'a> State<'a> {
                 self.out.indices.extend_from_slice(&[p, b]);
             }
             self.take(n);
-            self.walks.push_triangle(n);
+            if self.record_walks {
+                self.walks.push_triangle(n);
+            }
             self.out.indices.push(y);
             // The decoded order of the new triangle (the two old vertices are hits
             // unless that triangle's own pushes evicted one).
@@ -703,6 +736,8 @@ impl<'a> State<'a> {
         }
         let end = self.out.indices.len() as u32;
         self.out.offsets.push(end);
-        self.walks.end_walk();
+        if self.record_walks {
+            self.walks.end_walk();
+        }
     }
 }

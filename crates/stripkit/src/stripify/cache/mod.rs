@@ -34,6 +34,7 @@
 
 mod canonical;
 mod fifo_strips;
+mod links;
 mod partition;
 
 use super::Split;
@@ -41,7 +42,7 @@ use crate::improve::{refine, Effort};
 use crate::strip::{is_degenerate, join_shared_ends, StripSet};
 use crate::topology::{DualGraph, Walks};
 use canonical::Canonical;
-use fifo_strips::State;
+use fifo_strips::{prepare, State};
 pub(crate) use fifo_strips::FAN_CANDIDATES;
 
 /// Settings of the cache-aware stripifier.
@@ -137,8 +138,7 @@ impl Default for CacheOptions {
 /// runs [`stripify_mesh`]; the tests run this on raw triangle lists.)
 #[cfg(test)]
 pub fn stripify(tris: &[[u32; 3]], vertex_count: usize, options: &CacheOptions) -> StripSet {
-    let (graph, twins) = DualGraph::from_triangles_with_twins(tris, vertex_count);
-    run_once(tris, (&graph, &twins), vertex_count, options).0
+    run_once(tris, None, vertex_count, options).0
 }
 
 /// As [`stripify`], with the dual graph of `tris` already built.
@@ -149,35 +149,46 @@ pub fn stripify_with_graph(
     graph: &DualGraph,
     options: &CacheOptions,
 ) -> StripSet {
-    run_once(tris, (graph, &graph.twins(tris)), vertex_count, options).0
+    run_once(tris, Some(graph), vertex_count, options).0
 }
 
-/// The dual graph of the triangles and, for every link, the slot of the shared edge
-/// in the neighbour (see [`DualGraph::from_triangles_with_twins`]).
-type Links<'g> = (&'g DualGraph, &'g [[u8; 3]]);
-
-/// One run of the stripifier, refined when `options.refine`: the strips and their
-/// misses in the FIFO of `options.cache_size`.
+/// One run of the stripifier, refined when `options.refine` (on `graph`, the dual
+/// graph of `tris`, built here when not given): the strips and their misses in the
+/// FIFO of `options.cache_size`. The stripifier's state is dropped before the graph
+/// of the refinement is built.
 fn run_once(
     tris: &[[u32; 3]],
-    links: Links,
+    graph: Option<&DualGraph>,
     vertex_count: usize,
     options: &CacheOptions,
 ) -> (StripSet, u64) {
-    let mut s = State::new(tris, links, vertex_count, options);
-    s.run();
-    let misses = u64::from(s.fifo.pushes());
-    let mut out = s.out;
+    let (misses, mut out, walks) = {
+        let (vtris, links) = prepare(tris, vertex_count);
+        let mut s = State::new(tris, &links, Some(vtris), vertex_count, options);
+        if options.refine {
+            s.keep_walks();
+        }
+        s.run();
+        (u64::from(s.fifo.pushes()), s.out, s.walks)
+    };
     join_shared_ends(&mut out);
     if !options.refine {
         return (out, misses);
     }
+    let built;
+    let graph = match graph {
+        Some(g) => g,
+        None => {
+            built = DualGraph::from_triangles(tris, vertex_count);
+            &built
+        }
+    };
     let cache_size = options.cache_size.max(3) as usize;
     let lambda = f64::from(options.miss_weight);
     let (strips, refined) = refine(
         tris,
-        links.0,
-        &s.walks,
+        graph,
+        &walks,
         cache_size,
         lambda,
         misses,
@@ -212,15 +223,17 @@ pub fn stripify_within(
     options: &CacheOptions,
     max_acmr: f64,
 ) -> (StripSet, f32, f64) {
-    // The dual graph raises the vertex count itself for larger indices.
-    let (graph, twins) = DualGraph::from_triangles_with_twins(tris, vertex_count);
+    // The dual graph and the links raise the vertex count themselves for larger indices.
+    let graph = DualGraph::from_triangles(tris, vertex_count);
+    let links = prepare(tris, vertex_count).1;
     let triangles = tris.iter().filter(|t| !is_degenerate(t)).count();
     let run = |miss_weight: f32| {
         let o = CacheOptions {
             miss_weight,
             ..*options
         };
-        let mut s = State::new(tris, (&graph, &twins), vertex_count, &o);
+        let mut s = State::new(tris, &links, None, vertex_count, &o);
+        s.keep_walks();
         s.run();
         // The simulated FIFO is the measured one: its pushes are the misses.
         Try {
@@ -351,8 +364,14 @@ pub fn stripify_mesh(
     // The same strips whatever the order of the faces, their rotation (but for the
     // fan of a polygon, which is another split) and the vertex ids: run in a canonical
     // order, map back.
-    let canon = Canonical::of(mesh);
+    let mut canon = Canonical::of(mesh);
     let vc = mesh.vertex_count();
+    let fan_tris = fan.then(|| canon.fan(mesh));
+    if !qstrip {
+        // The new ids have served (the strips go back through the old ones).
+        canon.forget_new();
+    }
+    let canon = canon;
     let run = |tris: Vec<[u32; 3]>, qstrip_diagonals: bool| {
         let (strips, miss_weight, acmr) = match max_acmr {
             Some(bound) => stripify_within(&tris, vc, options, bound),
@@ -361,8 +380,7 @@ pub fn stripify_mesh(
                 let (strips, misses) = if ranges.len() > 1 {
                     partition::run_parted(&tris, &ranges, options, threads)
                 } else {
-                    let (graph, twins) = DualGraph::from_triangles_with_twins(&tris, vc);
-                    run_once(&tris, (&graph, &twins), vc, options)
+                    run_once(&tris, None, vc, options)
                 };
                 let t = tris.iter().filter(|t| !is_degenerate(t)).count().max(1);
                 (strips, options.miss_weight, misses as f64 / t as f64)
@@ -379,7 +397,7 @@ pub fn stripify_mesh(
     // The two candidates are independent: run side by side when threads allow.
     let (a, b) = crate::parallel::join(
         threads,
-        || fan.then(|| run(canon.fan(mesh), false)),
+        || fan_tris.map(|tris| run(tris, false)),
         || {
             qstrip.then(|| {
                 let (_, strips) = crate::stripify::quad::qstrip_mesh(
@@ -479,8 +497,10 @@ mod tests {
         // rerouting the inside of strips can, every output verified, the misses within
         // the budget, and the index count the search keeps that of the joined output.
         let (tris, vc) = random_diagonals(40, 30, 7);
-        let (graph, twins) = DualGraph::from_triangles_with_twins(&tris, vc);
-        let mut s = State::new(&tris, (&graph, &twins), vc, &CacheOptions::balanced(16));
+        let graph = DualGraph::from_triangles(&tris, vc);
+        let links = prepare(&tris, vc).1;
+        let mut s = State::new(&tris, &links, None, vc, &CacheOptions::balanced(16));
+        s.keep_walks();
         s.run();
         let budget = ((0.8 * tris.len() as f64) as u64).max(u64::from(s.fifo.pushes()));
         let mut counts = Vec::new();
@@ -510,8 +530,8 @@ mod tests {
             CacheOptions::balanced(16),
             CacheOptions::cache(5),
         ] {
-            let (graph, twins) = DualGraph::from_triangles_with_twins(&tris, vc);
-            let mut s = State::new(&tris, (&graph, &twins), vc, &o);
+            let links = prepare(&tris, vc).1;
+            let mut s = State::new(&tris, &links, None, vc, &o);
             s.run();
             let decoded = decode(&s.out);
             let measured = cache_misses(&decoded, vc, o.cache_size as usize, CacheKind::Fifo);

@@ -11,7 +11,6 @@
 
 use super::{run_once, CacheOptions};
 use crate::strip::{join_shared_ends, StripSet};
-use crate::topology::DualGraph;
 
 /// Triangles per part, about: the `n` triangles are cut into `ceil(n / PART_TRIANGLES)`
 /// ranges of equal size (within one).
@@ -58,8 +57,7 @@ fn run_part(tris: &[[u32; 3]], options: &CacheOptions) -> (StripSet, u64) {
         .map(|t| t.map(|v| local[(v - lo) as usize]))
         .collect();
     drop(local);
-    let (graph, twins) = DualGraph::from_triangles_with_twins(&part, verts.len());
-    let (mut strips, misses) = run_once(&part, (&graph, &twins), verts.len(), options);
+    let (mut strips, misses) = run_once(&part, None, verts.len(), options);
     for v in &mut strips.indices {
         *v = verts[*v as usize];
     }
@@ -119,8 +117,7 @@ mod tests {
         for n in [2, 4] {
             assert_eq!(run_parted(&tris, &ranges, &o, Threads::new(n)), (one.clone(), misses), "{n}");
         }
-        let (graph, twins) = DualGraph::from_triangles_with_twins(&tris, vc);
-        let (whole, _) = run_once(&tris, (&graph, &twins), vc, &o);
+        let (whole, _) = run_once(&tris, None, vc, &o);
         let (a, b) = (one.restart_len() as f64, whole.restart_len() as f64);
         eprintln!("parts of 300: {a} indices, whole: {b}");
         assert!(a < b * 1.05, "{a} against {b}");
