@@ -45,6 +45,9 @@ pub struct Cursor<'a> {
     /// the current level; the change before it and this one bound the levels where
     /// its current sequence holds (its validity interval).
     next_change: Vec<u32>,
+    /// Per strip: `[lo, hi)` of levels where its current sequence holds (read from
+    /// `next_change`, kept flat for the scan of a far jump).
+    valid: Vec<(u32, u32)>,
     lens: Vec<u32>,
     buffer: Vec<u32>,
     /// Parallel to `buffer`: the slot each current vertex came from (ascending
@@ -94,6 +97,7 @@ impl Sets {
             level: level.min(self.levels()),
             restart: crate::strip::DEFAULT_RESTART,
             next_change: Vec::with_capacity(strips),
+            valid: vec![(0, 0); strips],
             lens: vec![0; strips],
             buffer: vec![crate::strip::DEFAULT_RESTART; self.slot_count() + strips],
             slot_at: vec![super::END; self.slot_count() + strips],
@@ -155,10 +159,8 @@ impl<'a> Cursor<'a> {
             }
             self.changed.sort_unstable();
         } else {
-            let changes = &sets.change_level;
-            for s in 0..self.lens.len() {
-                let k = self.next_change[s] as usize;
-                let (a, b) = (changes[k - 1], if k < sets.change_offsets[s + 1] as usize { changes[k] } else { u32::MAX });
+            for s in 0..self.valid.len() {
+                let (a, b) = self.valid[s];
                 if level < a || level >= b {
                     self.changed.push(s as u32);
                 }
@@ -330,6 +332,9 @@ impl<'a> Cursor<'a> {
         }
         self.lens[s] = len as u32;
         self.written[s] = (from as u32, len.max(old) as u32);
+        let k = self.next_change[s] as usize;
+        let next = if k < sets.change_offsets[s + 1] as usize { sets.change_level[k] } else { u32::MAX };
+        self.valid[s] = (sets.change_level[k - 1], next);
     }
 
     /// The part of strip `s`'s range ([`Cursor::strip_range`]) that the last
