@@ -362,16 +362,32 @@ fn switch_figures(sets: &lod::Sets, path: &[u32], rounds: usize) -> (f64, f64, f
     (median(each), p99, per(whole), per(bytes))
 }
 
-/// The switch rows of one model: the chain's levels and 1% of the levels (the
-/// paper's linear test), down and back, for the kept and the re-stripped strips.
+/// `down` (starting at level 0) walked down and back, level 0 left out.
+fn down_and_back(down: &[u32]) -> Vec<u32> {
+    down.iter().copied().skip(1).chain(down.iter().rev().skip(1).copied()).collect()
+}
+
+/// The switch rows of one model, down and back, for the kept and the re-stripped
+/// strips: the chain's levels; 1% of the levels (the paper's linear test); 1% of
+/// the triangles (100%, 99%, ... 1%); and one level at a time over the 200 levels
+/// around the one of 1% of the triangles.
 fn steps(label: &str, kept: &lod::Sets, restripped: Option<&lod::Sets>, chain_levels: &[u32], rounds: usize, t: &mut Tables) -> anyhow::Result<()> {
     let max = kept.levels();
-    let down: Vec<u32> = (0..=100).map(|j| (j as f64 / 100.0 * max as f64).round() as u32).collect();
-    let one_percent: Vec<u32> = down.iter().copied().skip(1).chain(down.iter().rev().skip(1).copied()).collect();
-    let chain: Vec<u32> = chain_levels.iter().copied().skip(1).chain(chain_levels.iter().rev().skip(1).copied()).collect();
+    let one_percent = down_and_back(&(0..=100).map(|j| (j as f64 / 100.0 * max as f64).round() as u32).collect::<Vec<_>>());
+    let triangles = down_and_back(&(0..=99).map(|j| kept.level_for_ratio(1.0 - j as f64 / 100.0)).collect::<Vec<_>>());
+    let at = kept.level_for_ratio(0.01);
+    let (lo, hi) = (at.saturating_sub(100), (at + 100).min(max));
+    let one_level: Vec<u32> = (lo + 1..=hi).chain((lo..hi).rev()).collect();
+    let chain = down_and_back(chain_levels);
     for (what, sets) in [("kept", Some(kept)), ("re-stripped", restripped)] {
         let Some(sets) = sets else { continue };
-        for (name, path) in [("chain levels", &chain), ("1% of the levels", &one_percent)] {
+        let paths = [
+            ("chain levels", &chain),
+            ("1% of the levels", &one_percent),
+            ("1% of the triangles", &triangles),
+            ("one level, around 1% of the triangles", &one_level),
+        ];
+        for (name, path) in paths {
             let (med, p99, whole, bytes) = switch_figures(sets, path, rounds);
             writeln!(t.steps, "| {label} | {what} | {name} | {} | {med:.2} | {p99:.2} | {whole:.0} | {bytes:.0} |", path.len())?;
         }

@@ -16,10 +16,13 @@ use std::ops::Range;
 /// the same (the paper's validity interval), so a level change re-walks only the
 /// strips whose interval does not hold the new level. A move between near levels
 /// finds those strips from the model's per-level lists instead of looking at every
-/// strip, and re-walks each one only from the first slot that changes between the
-/// two levels (the slots before it, and their places in the buffer, stay); a far
-/// jump looks at every strip and re-walks the changed ones whole, as a new cursor
-/// would. [`Cursor::changed_range`] is what a renderer must upload again.
+/// strip, reads each strip's changes from where the last move left it (no search),
+/// and re-reads only the slots that change between the two levels: the runs of
+/// unchanged slots between them are copied from the old walk (moved within the
+/// range where the strip got shorter or longer), and the slots before the first
+/// change stay. A far jump (many changes in a strip) re-walks the changed strips
+/// whole, as a new cursor would. [`Cursor::changed_range`] is what a renderer must
+/// upload again.
 ///
 /// ```
 /// use stripkit::{gen, lod, StripOptions};
@@ -38,7 +41,12 @@ pub struct Cursor<'a> {
     sets: &'a Sets,
     level: u32,
     restart: u32,
-    /// Per strip: `[lo, hi)` of levels where its current sequence holds.
+    /// Per strip: the index in the model's change lists of its first change past
+    /// the current level; the change before it and this one bound the levels where
+    /// its current sequence holds (its validity interval).
+    next_change: Vec<u32>,
+    /// Per strip: `[lo, hi)` of levels where its current sequence holds (read from
+    /// `next_change`, kept flat for the scan of a far jump).
     valid: Vec<(u32, u32)>,
     lens: Vec<u32>,
     buffer: Vec<u32>,
@@ -51,12 +59,32 @@ pub struct Cursor<'a> {
     /// Per strip: the move that last listed it (a move lists each strip once).
     stamp: Vec<u32>,
     moves: u32,
+    /// Scratch of a move: the changed slot spans of a strip, and its old walk.
+    spans: Vec<u32>,
+    plan: Vec<Piece>,
 }
 
-/// A partial re-walk scans the changes (versions and beginnings) between the two
-/// levels for the first changed slot while they number at most the strip's current
-/// length over this (many changes lie all along a strip, so the walk would resume
-/// near its start anyway); past that it re-walks the strip whole.
+/// A piece of a partial re-walk: a slot walked and its vertex, or a run
+/// `[start, end)` of the old walk (offsets from where the re-walk starts) reused.
+#[derive(Clone, Copy, Debug)]
+enum Piece {
+    Walked(u32, u32),
+    Old(u32, u32),
+}
+
+impl Piece {
+    fn len(&self) -> usize {
+        match *self {
+            Piece::Walked(..) => 1,
+            Piece::Old(a, b) => (b - a) as usize,
+        }
+    }
+}
+
+/// A partial re-walk reads the changes (changed slots and beginnings) between the
+/// two levels while they number at most the strip's current length over this (many
+/// changes lie all along a strip, so copying the runs between them would not pay);
+/// past that it re-walks the strip whole.
 const PARTIAL_SCAN: usize = 4;
 
 impl Sets {
@@ -68,6 +96,7 @@ impl Sets {
             sets: self,
             level: level.min(self.levels()),
             restart: crate::strip::DEFAULT_RESTART,
+            next_change: Vec::with_capacity(strips),
             valid: vec![(0, 0); strips],
             lens: vec![0; strips],
             buffer: vec![crate::strip::DEFAULT_RESTART; self.slot_count() + strips],
@@ -76,9 +105,14 @@ impl Sets {
             changed: Vec::with_capacity(strips),
             stamp: vec![0; strips],
             moves: 0,
+            spans: Vec::new(),
+            plan: Vec::new(),
         };
         for s in 0..strips {
-            c.rewalk(s, 0);
+            let r = self.change_offsets[s] as usize..self.change_offsets[s + 1] as usize;
+            c.next_change.push((r.start + self.change_level[r].partition_point(|&l| l <= c.level)) as u32);
+            c.spans.clear();
+            c.rewalk(s, 0, true);
         }
         c
     }
@@ -111,7 +145,7 @@ impl<'a> Cursor<'a> {
         // The strips that change at a level in (lo, hi]: from the per-level lists
         // when they hold fewer entries than there are strips, else by a scan.
         let listed = (sets.level_offsets[hi + 1] - sets.level_offsets[lo + 1]) as usize;
-        if listed < self.valid.len() {
+        if listed < self.lens.len() {
             self.moves = self.moves.wrapping_add(1);
             if self.moves == 0 {
                 self.stamp.fill(0);
@@ -134,8 +168,8 @@ impl<'a> Cursor<'a> {
         }
         for i in 0..self.changed.len() {
             let s = self.changed[i] as usize;
-            let from = self.first_change(s, lo as u32, hi as u32);
-            self.rewalk(s, from);
+            let from = self.first_change(s, lo as u32, hi as u32, level > old);
+            self.rewalk(s, from, level > old);
         }
         &self.changed
     }
@@ -145,53 +179,162 @@ impl<'a> Cursor<'a> {
         &self.changed
     }
 
-    /// The offset in strip `s`'s range from which its walk changes between levels
-    /// `lo` and `hi`: the place of the first slot that has a change in `(lo, hi]`
-    /// (0 when that is a new beginning, or when too many changes lie between).
-    fn first_change(&self, s: usize, lo: u32, hi: u32) -> usize {
+    /// Where strip `s`'s walk changes between levels `lo` and `hi`: gathers into
+    /// `self.spans` the slots that change in `(lo, hi]`, ascending, moves its next
+    /// change past the new level, and returns the offset in its range of the first
+    /// changed slot; 0 and no slots (a whole walk) when too many changes lie
+    /// between. The changes crossed are read from the strip's next change on, in
+    /// the direction of the move, so a near move searches nothing.
+    fn first_change(&mut self, s: usize, lo: u32, hi: u32, coarser: bool) -> usize {
         let sets = self.sets;
         let r = sets.change_offsets[s] as usize..sets.change_offsets[s + 1] as usize;
-        let levels = &sets.change_level[r.clone()];
-        let (a, b) = (levels.partition_point(|&l| l <= lo), levels.partition_point(|&l| l <= hi));
-        if (b - a) * PARTIAL_SCAN > self.lens[s] as usize {
+        let levels = &sets.change_level;
+        let cap = self.lens[s] as usize / PARTIAL_SCAN;
+        let at = self.next_change[s] as usize;
+        // The changes crossed: `levels[a..b]`, those in (lo, hi].
+        let (mut a, mut b) = (at, at);
+        if coarser {
+            while b < r.end && levels[b] <= hi && b - a <= cap {
+                b += 1;
+            }
+            if b - a > cap {
+                b += levels[b..r.end].partition_point(|&l| l <= hi);
+            }
+            self.next_change[s] = b as u32;
+        } else {
+            while a > r.start && levels[a - 1] > lo && b - a <= cap {
+                a -= 1;
+            }
+            if b - a > cap {
+                a = r.start + levels[r.start..a].partition_point(|&l| l <= lo);
+            }
+            self.next_change[s] = a as u32;
+        }
+        self.spans.clear();
+        if b - a > cap {
             return 0;
         }
-        let first = sets.change_slot[r.start + a..r.start + b].iter().copied().min().unwrap_or(0);
-        if first <= sets.strip_slots[s] {
-            return 0;
-        }
+        self.spans.extend_from_slice(&sets.change_slot[a..b]);
+        self.spans.sort_unstable();
+        self.spans.dedup();
+        let first = self.spans.first().copied().unwrap_or(super::END);
         let base = sets.strip_slots[s] as usize + s;
         self.slot_at[base..base + self.lens[s] as usize].partition_point(|&x| x < first)
     }
 
     /// Walks strip `s` at the current level into its range from offset `from` on
-    /// (the slots before it unchanged since the last walk) and updates its validity
-    /// interval.
-    fn rewalk(&mut self, s: usize, from: usize) {
+    /// (the slots before it unchanged since the last walk). With the changed spans of `self.spans` (empty: walk the whole
+    /// rest), the runs of the old walk between them are copied instead of walked:
+    /// a slot outside every span has the same vertex and successor at both levels,
+    /// so once the walk meets a slot the old walk had, the two go on alike until
+    /// the next span.
+    fn rewalk(&mut self, s: usize, from: usize, coarser: bool) {
         let sets = self.sets;
         let base = sets.strip_slots[s] as usize + s;
-        let start = if from == 0 {
+        let old = self.lens[s] as usize;
+        let mut x = if from == 0 {
             sets.head_at(s, self.level)
         } else {
             sets.version_at(self.slot_at[base + from - 1], self.level).next
         };
+        let level = self.level;
         let mut pos = base + from;
-        let (buffer, slot_at) = (&mut self.buffer, &mut self.slot_at);
-        sets.walk_slots(start, self.level, |x, v| {
-            buffer[pos] = v;
-            slot_at[pos] = x;
-            pos += 1;
-        });
-        let len = (pos - base) as u32;
-        let old = self.lens[s];
-        if len < old {
-            buffer[pos..base + old as usize].fill(self.restart);
+        if self.spans.is_empty() {
+            // Nothing of the old walk is reused: straight into the range.
+            let (buffer, slot_at) = (&mut self.buffer, &mut self.slot_at);
+            sets.walk_slots(x, level, |y, v| {
+                buffer[pos] = v;
+                slot_at[pos] = y;
+                pos += 1;
+            });
+            self.finish_walk(s, from, pos - base, old);
+            return;
         }
-        self.lens[s] = len;
-        self.written[s] = (from as u32, len.max(old));
-        let c = &sets.change_level[sets.change_offsets[s] as usize..sets.change_offsets[s + 1] as usize];
-        let k = c.partition_point(|&l| l <= self.level);
-        self.valid[s] = (c[k - 1], c.get(k).copied().unwrap_or(u32::MAX));
+        // First the plan: the walk's changed slots and the runs of the old walk
+        // it reuses, read from the range as it is.
+        self.plan.clear();
+        let (spans, old_slots) = (&self.spans, &self.slot_at[base + from..base + old]);
+        let (mut j, mut k, mut len) = (0, 0, from);
+        while x != super::END {
+            while j < spans.len() && spans[j] < x {
+                j += 1;
+            }
+            if j == spans.len() || x < spans[j] {
+                // Unchanged: where the old walk had x, reuse it up to the next
+                // changed slot.
+                while k < old_slots.len() && old_slots[k] < x {
+                    k += 1;
+                }
+                if k < old_slots.len() && old_slots[k] == x {
+                    let end = match spans.get(j) {
+                        Some(&next) => k + old_slots[k..].partition_point(|&y| y < next),
+                        None => old_slots.len(),
+                    };
+                    self.plan.push(Piece::Old(k as u32, end as u32));
+                    len += end - k;
+                    x = old_slots.get(end).copied().unwrap_or(super::END);
+                    k = end;
+                    continue;
+                }
+            }
+            let v = sets.version_at(x, level);
+            self.plan.push(Piece::Walked(x, v.label));
+            len += 1;
+            x = v.next;
+        }
+        // Then the writes, in place: a coarser level keeps a subset of the old
+        // slots, each at or before its old place, so front to back; a finer one a
+        // superset, each at or after it, so back to front.
+        let (buffer, slot_at) = (&mut self.buffer[base..], &mut self.slot_at[base..]);
+        // The end of what differs from the old walk (a run left in place does not).
+        let mut differs = from;
+        let mut put = |piece: &Piece, at: usize| match *piece {
+            Piece::Walked(x, v) => {
+                buffer[at] = v;
+                slot_at[at] = x;
+                differs = differs.max(at + 1);
+            }
+            Piece::Old(a, b) => {
+                let src = from + a as usize..from + b as usize;
+                if src.start != at {
+                    differs = differs.max(at + src.len());
+                    buffer.copy_within(src.clone(), at);
+                    slot_at.copy_within(src, at);
+                }
+            }
+        };
+        if coarser {
+            let mut at = from;
+            for piece in &self.plan {
+                put(piece, at);
+                at += piece.len();
+            }
+        } else {
+            let mut at = len;
+            for piece in self.plan.iter().rev() {
+                at -= piece.len();
+                put(piece, at);
+            }
+        }
+        self.finish_walk(s, from, len, old);
+        if len == old {
+            self.written[s].1 = differs as u32;
+        }
+    }
+
+    /// After a walk of strip `s` from offset `from` to its new length `len`
+    /// (`old` before): restarts where it shrank, and what was written.
+    fn finish_walk(&mut self, s: usize, from: usize, len: usize, old: usize) {
+        let sets = self.sets;
+        let base = sets.strip_slots[s] as usize + s;
+        if len < old {
+            self.buffer[base + len..base + old].fill(self.restart);
+        }
+        self.lens[s] = len as u32;
+        self.written[s] = (from as u32, len.max(old) as u32);
+        let k = self.next_change[s] as usize;
+        let next = if k < sets.change_offsets[s + 1] as usize { sets.change_level[k] } else { u32::MAX };
+        self.valid[s] = (sets.change_level[k - 1], next);
     }
 
     /// The part of strip `s`'s range ([`Cursor::strip_range`]) that the last

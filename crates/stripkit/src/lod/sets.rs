@@ -97,12 +97,14 @@ pub struct Sets {
     pub(crate) version_offsets: Vec<u32>,
     pub(crate) versions: Vec<Version>,
     /// `change_level[change_offsets[s]..change_offsets[s + 1]]`: the levels where
-    /// strip `s`'s sequence changes, ascending, starting with 0 (derived, not stored).
+    /// strip `s`'s sequence changes, ascending (once per slot that changes there),
+    /// starting with 0 (derived, not stored).
     pub(crate) change_offsets: Vec<u32>,
     pub(crate) change_level: Vec<u32>,
-    /// Parallel to `change_level`: the first slot whose version changes at that
-    /// level (the strip's first slot for a new beginning), where a walk from the
-    /// level before must start over (derived).
+    /// Parallel to `change_level`: the slot whose version changes there (the
+    /// strip's first slot for a new beginning). A walk that moves across the level
+    /// re-reads these slots; any other slot has the same vertex and successor on
+    /// both sides, so the old walk's runs of them are reused (derived).
     pub(crate) change_slot: Vec<u32>,
     /// `level_strips[level_offsets[l]..level_offsets[l + 1]]`: the strips whose
     /// sequence changes at level `l` (derived), so that a move between near levels
@@ -270,10 +272,10 @@ impl Sets {
                 events.extend(self.versions[r].iter().map(|v| (v.level, x as u32)));
             }
             events.sort_unstable();
-            for &(l, x) in &events {
-                if self.change_level.len() > self.change_offsets[s] as usize && self.change_level.last() == Some(&l) {
-                    continue; // the smallest slot of the level came first
-                }
+            events.dedup();
+            // Level 0 once (every slot has a version there), then every change.
+            let at_zero = events.partition_point(|e| e.0 == 0);
+            for &(l, x) in events[at_zero.saturating_sub(1)..].iter() {
                 self.change_level.push(l);
                 self.change_slot.push(x);
             }
@@ -282,9 +284,13 @@ impl Sets {
         // The strips changing at each level past 0, by a counting sort.
         let levels = self.targets.len();
         let mut offsets = vec![0u32; levels + 2];
-        for &l in &self.change_level {
-            if l > 0 && (l as usize) <= levels {
-                offsets[l as usize + 1] += 1;
+        for s in 0..strips {
+            let mut last = 0;
+            for &l in &self.change_level[self.change_offsets[s] as usize..self.change_offsets[s + 1] as usize] {
+                if l > last && (l as usize) <= levels {
+                    offsets[l as usize + 1] += 1;
+                    last = l;
+                }
             }
         }
         for l in 0..=levels {
@@ -293,10 +299,12 @@ impl Sets {
         let mut fill = offsets.clone();
         self.level_strips = vec![0; offsets[levels + 1] as usize];
         for s in 0..strips {
+            let mut last = 0;
             for &l in &self.change_level[self.change_offsets[s] as usize..self.change_offsets[s + 1] as usize] {
-                if l > 0 && (l as usize) <= levels {
+                if l > last && (l as usize) <= levels {
                     self.level_strips[fill[l as usize] as usize] = s as u32;
                     fill[l as usize] += 1;
+                    last = l;
                 }
             }
         }
