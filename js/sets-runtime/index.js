@@ -151,18 +151,28 @@ function decodeBody(r, h) {
         if (stripSlots[s + 1] > slots) r.fail(`the strips take more than the ${slots} slots`);
     }
     if (stripSlots[strips] !== slots) r.fail(`the strips take ${stripSlots[strips]} slots, not ${slots}`);
-    // 3. Level-0 vertices, zigzag differences.
+    // 3. Level-0 vertices: zigzag differences (versions 1, 2) or candidate codes (3).
     r.records(slots, 'slots');
-    const vertex0 = new Uint32Array(slots);
+    const vertex0 = h.version === 3 ? readLabels3(r, slots, h.positions) : new Uint32Array(slots);
     let previous = 0;
-    for (let i = 0; i < slots; i++) {
+    for (let i = 0; h.version !== 3 && i < slots; i++) {
         const z = r.varint('a slot vertex');
         previous += z % 2 === 0 ? z / 2 : -(z + 1) / 2;
         if (previous < 0 || previous >= h.positions) r.fail(`vertex ${previous} is not below ${h.positions}`);
         vertex0[i] = previous;
     }
+    // Version 3: every slot's version count, 2 bits each (3: a varint of the rest follows).
+    let packed = null;
+    if (h.version === 3) {
+        const len = Math.ceil(slots / 4);
+        r.need(len, 'the version counts');
+        packed = r.bytes.subarray(r.at, r.at + len);
+        if (slots % 4 !== 0 && packed[len - 1] >> (2 * (slots % 4)) !== 0) r.fail('bits set past the last version count');
+        r.at += len;
+    } else {
+        r.records(slots, 'slot versions');
+    }
     // 4. Slot versions: level 0 implied, then (level step, successor << 1 | relabelled).
-    r.records(slots, 'slot versions');
     const versionOffsets = new Uint32Array(slots + 1);
     let verLevel = new Uint32Array(Math.max(h.versions, slots)), verLabel = new Uint32Array(verLevel.length);
     let verNext = new Uint32Array(verLevel.length);
@@ -175,7 +185,8 @@ function decodeBody(r, h) {
             verLabel[v] = vertex0[x];
             verNext[v] = x + 1 < stripSlots[s + 1] ? x + 1 : SETS_END;
             v++;
-            const n = r.varint('a version count');
+            const two = packed ? (packed[x >> 2] >> (2 * (x & 3))) & 3 : 0;
+            const n = !packed ? r.varint('a version count') : two === 3 ? 3 + r.varint('a version count') : two;
             r.records(n, 'versions');
             let level = 0, label = vertex0[x];
             for (let k = 0; k < n; k++) {
@@ -200,7 +211,7 @@ function decodeBody(r, h) {
     // 5. Strip beginnings: level 0 implied, then (level step, 0 or 1 + offset).
     const beginOffsets = new Uint32Array(strips + 1);
     const beginLevel = new Uint32Array(h.beginnings), beginSlot = new Uint32Array(h.beginnings);
-    let b = 0;
+    let b = 0, lastStart = 0;
     for (let s = 0; s < strips; s++) {
         beginOffsets[s] = b;
         if (b >= h.beginnings) r.fail(`more than the ${h.beginnings} beginnings the header gives`);
@@ -212,8 +223,17 @@ function decodeBody(r, h) {
         b++;
         r.records(n, 'beginnings');
         let level = 0;
+        const restripped = empty0 && stripSlots[s + 1] > stripSlots[s];
         for (let k = 0; k < n; k++) {
-            const step = r.varint('a beginning level');
+            let step;
+            if (restripped && k === 0) {
+                // Against the previous re-stripped strip's first beginning.
+                const z = r.varint('a beginning level');
+                lastStart += z % 2 === 0 ? z / 2 : -(z + 1) / 2;
+                step = lastStart;
+            } else {
+                step = r.varint('a beginning level');
+            }
             level += step;
             if (step < 1 || level > levels) r.fail(`beginning level ${level} is not in 1..=${levels}`);
             const code = r.varint('a beginning');
@@ -246,6 +266,55 @@ function decodeBody(r, h) {
         versionOffsets, verLevel, verLabel, verNext, beginOffsets, beginLevel, beginSlot,
         changeOffsets, changeLevel: changeLevel.subarray(0, c),
     };
+}
+
+/**
+ * Version 3's level-0 vertices (the library's LabelCoder): a code below 12 names one
+ * of the candidates near the earlier occurrences of the two vertices before (3 slots
+ * on each side, after before before, nearest first), below 76 one of the 64 vertices
+ * named last (most recent first), else the zigzag difference plus 76 from the last
+ * vertex so coded.
+ */
+function readLabels3(r, slots, vertices) {
+    const NEAR = 3, CANDIDATES = 12, RECENT = 64;
+    const labels = new Uint32Array(slots), before = new Float64Array(slots);
+    const last = new Map();
+    let recent = [], lastNew = 0;
+    const candidates = [];
+    for (let x = 0; x < slots; x++) {
+        candidates.length = 0;
+        for (let back = 1; back <= 2 && x >= back; back++) {
+            const p = before[x - back];
+            if (p < 0) continue;
+            for (let d = 1; d <= NEAR; d++) {
+                if (p + d < x) candidates.push(labels[p + d]);
+                if (p >= d) candidates.push(labels[p - d]);
+            }
+        }
+        const code = r.varint('a slot vertex');
+        let v;
+        if (code < CANDIDATES) {
+            if (code >= candidates.length) r.fail(`slot ${x} names candidate ${code} of ${candidates.length}`);
+            v = candidates[code];
+        } else if (code < CANDIDATES + RECENT) {
+            if (code - CANDIDATES >= recent.length) r.fail(`slot ${x} names recent vertex ${code - CANDIDATES} of ${recent.length}`);
+            v = recent[code - CANDIDATES];
+        } else {
+            const z = code - CANDIDATES - RECENT;
+            v = lastNew + (z % 2 === 0 ? z / 2 : -(z + 1) / 2);
+            if (v < 0 || v >= vertices) r.fail(`vertex ${v} is not below ${vertices}`);
+            lastNew = v;
+        }
+        labels[x] = v;
+        const p = last.get(v);
+        before[x] = p === undefined ? -1 : p;
+        last.set(v, x);
+        const i = recent.indexOf(v);
+        if (i >= 0) recent.splice(i, 1);
+        else if (recent.length === RECENT) recent.pop();
+        recent.unshift(v);
+    }
+    return labels;
 }
 
 /** The body decoder of each format version. */

@@ -79,15 +79,30 @@ impl Sets {
         for s in 0..self.strip_count() {
             varint(&mut out, (self.strip_slots[s + 1] - self.strip_slots[s]) as u64);
         }
-        let mut last = 0u32;
-        for x in 0..self.slot_count() {
-            let label = self.versions[self.version_offsets[x] as usize].label;
-            varint(&mut out, zigzag(label as i64 - last as i64));
-            last = label;
+        let label0 = |x: usize| self.versions[self.version_offsets[x] as usize].label;
+        if restrips {
+            let mut coder = LabelCoder::default();
+            for x in 0..self.slot_count() {
+                varint(&mut out, coder.code(label0(x)));
+            }
+            let counts: Vec<usize> = (0..self.slot_count())
+                .map(|x| (self.version_offsets[x + 1] - self.version_offsets[x]) as usize - 1)
+                .collect();
+            pack_counts(&mut out, &counts);
+        } else {
+            let mut last = 0u32;
+            for x in 0..self.slot_count() {
+                varint(&mut out, zigzag(label0(x) as i64 - last as i64));
+                last = label0(x);
+            }
         }
         for x in 0..self.slot_count() {
             let r = self.version_offsets[x] as usize..self.version_offsets[x + 1] as usize;
-            varint(&mut out, (r.len() - 1) as u64);
+            match (restrips, r.len() - 1) {
+                (false, n) => varint(&mut out, n as u64),
+                (true, n) if n >= COUNT_ESCAPE as usize => varint(&mut out, (n - COUNT_ESCAPE as usize) as u64),
+                (true, _) => {}
+            }
             for w in self.versions[r].windows(2) {
                 let (before, v) = (w[0], w[1]);
                 varint(&mut out, (v.level - before.level) as u64);
@@ -100,16 +115,24 @@ impl Sets {
                 varint(&mut out, next << 1 | relabel as u64);
             }
         }
+        // Version 3: the first beginning of a strip empty at level 0 (a re-stripped
+        // one) is stored against the previous such strip's, as they share few levels.
+        let mut last_start = 0u32;
         for s in 0..self.strip_count() {
             let r = self.begin_offsets[s] as usize..self.begin_offsets[s + 1] as usize;
+            let empty0 = restrips && self.begin_slot[r.start] == END && self.strip_slots[s] < self.strip_slots[s + 1];
             if restrips {
-                let empty0 = self.begin_slot[r.start] == END && self.strip_slots[s] < self.strip_slots[s + 1];
                 varint(&mut out, ((r.len() - 1) as u64) << 1 | empty0 as u64);
             } else {
                 varint(&mut out, (r.len() - 1) as u64);
             }
             for b in r.start + 1..r.end {
-                varint(&mut out, (self.begin_level[b] - self.begin_level[b - 1]) as u64);
+                if empty0 && b == r.start + 1 {
+                    varint(&mut out, zigzag(self.begin_level[b] as i64 - last_start as i64));
+                    last_start = self.begin_level[b];
+                } else {
+                    varint(&mut out, (self.begin_level[b] - self.begin_level[b - 1]) as u64);
+                }
                 let slot = match self.begin_slot[b] {
                     END => 0,
                     y => (y - self.strip_slots[s] + 1) as u64,
@@ -153,8 +176,9 @@ impl Sets {
         };
         let (targets, removed_triangles) = h.read_collapses(&mut r)?;
         let strip_slots = h.read_strip_lengths(&mut r)?;
-        let labels = h.read_labels(&mut r)?;
-        let (version_offsets, versions) = h.read_versions(&mut r, &labels, &strip_slots, &targets)?;
+        let v3 = version == FORMAT_VERSION_RESTRIPS;
+        let labels = h.read_labels(&mut r, v3)?;
+        let (version_offsets, versions) = h.read_versions(&mut r, &labels, &strip_slots, &targets, v3)?;
         let (begin_offsets, begin_level, begin_slot) =
             h.read_beginnings(&mut r, &strip_slots, version == FORMAT_VERSION_RESTRIPS)?;
         let body = r.bytes.len();
@@ -303,11 +327,23 @@ impl SetsHeader {
         Ok(strip_slots)
     }
 
-    /// The level-0 vertex of every slot (zigzag differences from the previous one).
-    fn read_labels(&self, r: &mut Reader) -> Result<Vec<u32>> {
+    /// The level-0 vertex of every slot: zigzag differences from the previous one, or
+    /// with `recent` (version 3) [`LabelCoder`] codes.
+    fn read_labels(&self, r: &mut Reader, recent: bool) -> Result<Vec<u32>> {
         let position_count = self.position_count;
         r.need(self.slots as usize, "the level-0 strips")?;
         let mut labels = Vec::with_capacity(self.slots as usize);
+        if recent {
+            let mut coder = LabelCoder::default();
+            for _ in 0..self.slots {
+                let code = r.varint("a level-0 vertex")?;
+                let v = coder.vertex(code, position_count).ok_or_else(|| {
+                    r.fail(r.at, format!("a level-0 strip names no recent vertex or one outside the {position_count} vertices"))
+                })?;
+                labels.push(v);
+            }
+            return Ok(labels);
+        }
         let mut last = 0i64;
         for _ in 0..self.slots {
             let d = unzigzag(r.varint("a level-0 vertex")?);
@@ -328,17 +364,27 @@ impl SetsHeader {
         labels: &[u32],
         strip_slots: &[u32],
         targets: &[u32],
+        packed: bool,
     ) -> Result<(Vec<u32>, Vec<Version>)> {
         let (levels, versions) = (self.levels, self.versions);
         let strip_of = |x: usize| strip_slots.partition_point(|&o| o as usize <= x) - 1;
-        r.need(self.slots as usize, "the slot versions")?;
+        let counts = if packed { Some(unpack_counts(r, self.slots as usize)?) } else { None };
+        if !packed {
+            r.need(self.slots as usize, "the slot versions")?;
+        }
         let mut version_offsets = Vec::with_capacity(self.slots as usize + 1);
         version_offsets.push(0u32);
         let cap = (versions as usize).min(r.left());
         let mut all_versions: Vec<Version> = Vec::with_capacity(cap);
         for (x, &label0) in labels.iter().enumerate() {
             let strip_end = strip_slots[strip_of(x) + 1] as usize;
-            let extra = r.index(u32::MAX, "a slot's version count")? as usize;
+            let extra = match &counts {
+                None => r.index(u32::MAX, "a slot's version count")? as usize,
+                Some(c) if c[x] == COUNT_ESCAPE => {
+                    COUNT_ESCAPE as usize + r.index(u32::MAX - COUNT_ESCAPE as u32, "a slot's version count")? as usize
+                }
+                Some(c) => c[x] as usize,
+            };
             if all_versions.len() + 1 + extra > versions as usize {
                 return Err(r.fail(r.at, format!("more slot versions than the {versions} the header gives")));
             }
@@ -393,6 +439,7 @@ impl SetsHeader {
         begin_offsets.push(0u32);
         let cap = (beginnings as usize).min(r.left());
         let (mut begin_level, mut begin_slot) = (Vec::with_capacity(cap), Vec::with_capacity(cap));
+        let mut last_start = 0i64;
         for s in 0..self.strips as usize {
             let (lo, hi) = (strip_slots[s], strip_slots[s + 1]);
             let code = r.varint("a strip's beginning count")?;
@@ -406,11 +453,20 @@ impl SetsHeader {
             }
             r.need(extra * 2, "a strip's beginnings")?;
             begin_level.push(0);
+            let empty0 = empty0 && lo < hi;
             begin_slot.push(if lo < hi && !empty0 { lo } else { END });
-            for _ in 0..extra {
-                let step = r.index(u32::MAX, "a beginning's level step")?;
-                let level = begin_level.last().copied().unwrap_or(0) as u64 + step as u64;
-                if step == 0 || level > levels as u64 {
+            for k in 0..extra {
+                let before = begin_level.last().copied().unwrap_or(0) as i64;
+                let (step, level) = if empty0 && k == 0 {
+                    // Against the previous re-stripped strip's first beginning.
+                    let level = last_start.saturating_add(unzigzag(r.varint("a beginning's level")?));
+                    last_start = level;
+                    (level - before, level)
+                } else {
+                    let step = r.index(u32::MAX, "a beginning's level step")? as i64;
+                    (step, before + step)
+                };
+                if step <= 0 || level > levels as i64 {
                     return Err(r.fail(r.at, format!("strip {s}: beginning levels must ascend within 1..={levels}")));
                 }
                 let slot = match r.varint("a beginning's slot")? {
@@ -542,6 +598,132 @@ fn seal(out: &mut Vec<u8>) {
     crc.update(out);
     let sum = crc.sum();
     out.extend_from_slice(&sum.to_le_bytes());
+}
+
+/// Recent vertices a version-3 level-0 vertex may name by its place.
+const RECENT: usize = 64;
+/// Slots on each side of an earlier occurrence whose vertices are candidates.
+const NEAR: usize = 3;
+/// Candidates of a version-3 level-0 vertex: near the earlier occurrences of the two
+/// vertices before it.
+const CANDIDATES: usize = 4 * NEAR;
+
+/// The version-3 coding of the level-0 vertices, slot after slot. A strip runs
+/// beside an earlier one and shares its vertices: the vertex of a slot is most often
+/// within [`NEAR`] slots of where the previous slot's or the one before's vertex last
+/// occurred before them. Such a vertex is coded as its place among those
+/// [`CANDIDATES`] (gathered in a fixed order: previous slot first, nearest first,
+/// after before before); else, if among the [`RECENT`] vertices named last (most
+/// recent first), as `CANDIDATES` plus its place there; else as `CANDIDATES +
+/// RECENT` plus the zigzag difference from the last vertex so coded. Every vertex
+/// then becomes the most recent. Most slots take one byte.
+#[derive(Default)]
+struct LabelCoder {
+    /// The vertices so far.
+    labels: Vec<u32>,
+    /// Per slot, the slot where its vertex occurred last before it, or [`END`].
+    before: Vec<u32>,
+    /// Per vertex, its last slot.
+    last: std::collections::HashMap<u32, u32>,
+    recent: Vec<u32>,
+    last_new: u32,
+    candidates: Vec<u32>,
+}
+
+impl LabelCoder {
+    /// Gathers the candidates of the next slot.
+    fn gather(&mut self) {
+        self.candidates.clear();
+        let x = self.labels.len();
+        for back in 1..=2 {
+            let Some(&p) = x.checked_sub(back).map(|y| &self.before[y]) else { break };
+            if p == END {
+                continue;
+            }
+            let p = p as usize;
+            for d in 1..=NEAR {
+                if p + d < x {
+                    self.candidates.push(self.labels[p + d]);
+                }
+                if p >= d {
+                    self.candidates.push(self.labels[p - d]);
+                }
+            }
+        }
+    }
+
+    /// The code of the next slot's vertex `v`.
+    fn code(&mut self, v: u32) -> u64 {
+        self.gather();
+        let code = if let Some(c) = self.candidates.iter().position(|&w| w == v) {
+            c as u64
+        } else if let Some(p) = self.recent.iter().position(|&w| w == v) {
+            (CANDIDATES + p) as u64
+        } else {
+            let code = (CANDIDATES + RECENT) as u64 + zigzag(v as i64 - self.last_new as i64);
+            self.last_new = v;
+            code
+        };
+        self.push(v);
+        code
+    }
+
+    /// The next slot's vertex from its `code`, below `vertices`, or `None`.
+    fn vertex(&mut self, code: u64, vertices: u32) -> Option<u32> {
+        self.gather();
+        let v = if code < CANDIDATES as u64 {
+            *self.candidates.get(code as usize)?
+        } else if code < (CANDIDATES + RECENT) as u64 {
+            *self.recent.get(code as usize - CANDIDATES)?
+        } else {
+            let v = (self.last_new as i64).checked_add(unzigzag(code - (CANDIDATES + RECENT) as u64))?;
+            let v = u32::try_from(v).ok().filter(|&v| v < vertices)?;
+            self.last_new = v;
+            v
+        };
+        self.push(v);
+        Some(v)
+    }
+
+    fn push(&mut self, v: u32) {
+        let x = self.labels.len() as u32;
+        self.before.push(self.last.insert(v, x).unwrap_or(END));
+        self.labels.push(v);
+        match self.recent.iter().position(|&w| w == v) {
+            Some(p) => self.recent[..=p].rotate_right(1),
+            None => {
+                self.recent.truncate(RECENT - 1);
+                self.recent.insert(0, v);
+            }
+        }
+    }
+}
+
+/// A version-3 slot's version count at or past this is stored as a varint of the
+/// rest before its versions.
+const COUNT_ESCAPE: u8 = 3;
+
+/// Version 3: every slot's version count (after level 0), two bits each, four to a
+/// byte, low bits first; [`COUNT_ESCAPE`] for three or more.
+fn pack_counts(out: &mut Vec<u8>, counts: &[usize]) {
+    for four in counts.chunks(4) {
+        let byte = four.iter().enumerate().fold(0u8, |b, (i, &n)| b | (n.min(COUNT_ESCAPE as usize) as u8) << (2 * i));
+        out.push(byte);
+    }
+}
+
+/// Reads [`pack_counts`]'s bytes for `slots` slots (the unused bits of the last
+/// byte must be 0).
+fn unpack_counts(r: &mut Reader, slots: usize) -> Result<Vec<u8>> {
+    let len = slots.div_ceil(4);
+    r.need(len, "the slots' version counts")?;
+    let bytes = &r.bytes[r.at..r.at + len];
+    if slots % 4 != 0 && bytes[len - 1] >> (2 * (slots % 4)) != 0 {
+        return Err(r.fail(r.at + len - 1, "bits set past the last slot's version count".into()));
+    }
+    let counts = (0..slots).map(|x| bytes[x / 4] >> (2 * (x % 4)) & 3).collect();
+    r.at += len;
+    Ok(counts)
 }
 
 fn varint(out: &mut Vec<u8>, mut v: u64) {
@@ -902,3 +1084,4 @@ fn read_back<T: PartialEq>(model: &T, back: T, ext: &str) -> Result<()> {
     }
     Ok(())
 }
+
