@@ -8,6 +8,7 @@
 // For a `.lodseq` page, --frames writes OUT.frames.json ({"F:L": {"frame", "level",
 // "strips", "positions"}: the runtime's strips and the frame's decoded positions}) and
 // --play=MS presses play for MS milliseconds, adding "play": {"played", "frame"} to the line.
+// A `.lodseq` page's line has "frame": [the frame shown first, the frame slider's value].
 // For a --cull page, --eyes=X,Y,Z;X,Y,Z;... adds "cull": [{"segments", "drawn",
 // "culled", "visited"} per eye] (eyes in the input's units) to the line.
 // For a `.sets` page, --levels writes OUT.levels.json ({"L": strips, ...}: the page's
@@ -63,12 +64,14 @@ try {
         await tab.waitForFunction(() => window.stripkitView && window.stripkitView.ready, null, { timeout: 60000 });
         const r = await tab.evaluate(() => {
             const v = window.stripkitView, c = document.getElementById('view');
-            return { width: c.width, height: c.height, first_frame_ms: v.firstFrameMs, setup_ms: v.setupMs, renderer: v.renderer, pixels: v.pixels() };
+            const frame = v.frames ? [v.played().frame, Number(document.getElementById('frame').value)] : undefined;
+            return { width: c.width, height: c.height, first_frame_ms: v.firstFrameMs, setup_ms: v.setupMs, renderer: v.renderer, pixels: v.pixels(), frame };
         });
         const row = r.width * 4, flipped = Buffer.alloc(r.pixels.length);
         for (let y = 0; y < r.height; y++) flipped.set(r.pixels.slice((r.height - 1 - y) * row, (r.height - y) * row), y * row);
         fs.writeFileSync(out, flipped);
         const line = { page, width: r.width, height: r.height, first_frame_ms: r.first_frame_ms, setup_ms: r.setup_ms, renderer: r.renderer, errors, requests };
+        if (r.frame) line.frame = r.frame;
         if (options.eyes) {
             const eyes = options.eyes.split(';').map((e) => e.split(',').map(Number));
             line.cull = await tab.evaluate((es) => es.map((e) => { const c = window.stripkitView.cull(e); delete c.ranges; return c; }), eyes);

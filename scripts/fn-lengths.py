@@ -12,6 +12,12 @@ and nested functions count inside their function (a nested `fn` is also listed a
 Skipped: `tests/` folders, `#[cfg(test)]` items and `#[test]` functions; `fuzz/` is not a crate
 of the workspace. Comments and string literals are removed before the braces are
 matched. Python 3 standard library only.
+
+JavaScript files (`.js` and `.mjs` under the crates' `src/` and under `js/`, without
+`node_modules`) are listed too, under `== js`: every function body, named or not
+(`function`, methods, arrow functions with a block), from its first line to its closing
+brace, a nested function counting inside its enclosing one and listed alone too.
+Anonymous ones are named `<anonymous>` or by the `const`/key they are assigned to.
 """
 
 import argparse
@@ -85,6 +91,121 @@ def crate_files(crate_dir):
                 yield os.path.join(root, f)
 
 
+JS_KEYWORDS = {"if", "for", "while", "switch", "catch", "function", "return", "with", "do", "else", "typeof", "await", "new", "yield", "delete", "void", "in", "of"}
+JS_FN = re.compile(r"\bfunction\b\s*\*?\s*([A-Za-z_$][\w$]*)?\s*\(")
+JS_METHOD = re.compile(r"(?:^|(?<=[\s,{;}]))(?:(?:async|static|get|set)\s+)*([A-Za-z_$][\w$]*)\s*\(")
+JS_ARROW = re.compile(r"=>\s*\{")
+JS_NAMED = re.compile(r"(?:\b(?:const|let|var)\s+([A-Za-z_$][\w$]*)\s*=|([A-Za-z_$][\w$]*)\s*:)\s*(?:async\s*)?[^=;{}]*$")
+
+
+def js_clean(raw):
+    """`raw` with comments and the insides of string, template and regex literals
+    blanked (newlines kept). A `/` starts a regex where an operand is expected."""
+    out, i, n = list(raw), 0, len(raw)
+
+    def blank(a, b):
+        for k in range(a, b):
+            if out[k] != "\n":
+                out[k] = " "
+
+    last = ""  # the last significant character before i
+    while i < n:
+        c = raw[i]
+        if raw.startswith("//", i):
+            j = raw.find("\n", i)
+            j = n if j < 0 else j
+            blank(i, j)
+            i = j
+        elif raw.startswith("/*", i):
+            j = raw.find("*/", i + 2)
+            j = n if j < 0 else j + 2
+            blank(i, j)
+            i = j
+        elif c in "'\"`" or (c == "/" and (last == "" or last in "(,=:[!&|?{};+-*%<>~^")):
+            j = i + 1
+            in_class = False
+            while j < n and (raw[j] != c or in_class):
+                if raw[j] == "\\":
+                    j += 1
+                elif c == "/" and raw[j] == "[":
+                    in_class = True
+                elif c == "/" and raw[j] == "]":
+                    in_class = False
+                elif c != "`" and raw[j] == "\n":
+                    break
+                j += 1
+            blank(i + 1, min(j, n))
+            i = j + 1
+            last = "a"
+        else:
+            if not c.isspace():
+                last = c
+            i += 1
+    return "".join(out)
+
+
+def js_functions(path):
+    """(name, first line, line count) of every function body in the JavaScript file `path`."""
+    clean = js_clean(open(path, encoding="utf-8").read())
+    found = {}
+
+    def body_after_params(open_paren):
+        depth, j = 0, open_paren
+        while j < len(clean):
+            if clean[j] == "(":
+                depth += 1
+            elif clean[j] == ")":
+                depth -= 1
+                if depth == 0:
+                    break
+            j += 1
+        k = j + 1
+        while k < len(clean) and clean[k].isspace():
+            k += 1
+        if clean.startswith("=>", k):
+            m = JS_ARROW.match(clean, k)
+            return m.end() - 1 if m else -1
+        return k if k < len(clean) and clean[k] == "{" else -1
+
+    def add(name, start, brace):
+        if brace < 0 or brace in found:
+            return
+        end = imports.match_brace(clean, brace)
+        first = clean.count("\n", 0, start) + 1
+        last = clean.count("\n", 0, end - 1) + 1
+        found[brace] = (name, first, last - first + 1)
+
+    def assigned(pos):
+        line = clean[clean.rfind("\n", 0, pos) + 1: pos]
+        m = JS_NAMED.search(line)
+        return (m.group(1) or m.group(2)) if m else "<anonymous>"
+
+    for m in JS_FN.finditer(clean):
+        add(m.group(1) or assigned(m.start()), m.start(), body_after_params(m.end() - 1))
+    for m in JS_METHOD.finditer(clean):
+        if m.group(1) not in JS_KEYWORDS:
+            add(m.group(1), m.start(1), body_after_params(m.end() - 1))
+    for m in JS_ARROW.finditer(clean):
+        add(assigned(m.start()), m.start(), m.end() - 1)
+    return sorted(found.values(), key=lambda r: r[1])
+
+
+def js_files():
+    """The JavaScript files of the crates' sources and of js/, links to them once."""
+    seen = set()
+    for top in [os.path.join(ROOT, "js"), os.path.join(ROOT, "crates")]:
+        for root, dirs, files in os.walk(top):
+            dirs[:] = sorted(d for d in dirs if d not in ("node_modules", "target", "tests", "test"))
+            if top.endswith("crates") and os.sep + "src" not in root[len(top):]:
+                continue
+            for f in sorted(files):
+                path = os.path.join(root, f)
+                real = os.path.realpath(path)
+                if f.endswith((".js", ".mjs")) and real not in seen:
+                    seen.add(real)
+                    yield path
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("-n", type=int, default=5, help="functions listed per crate (default 5)")
@@ -104,6 +225,15 @@ def main():
             if args.over is not None:
                 note = "  (file top says why)" if says_why(os.path.join(ROOT, f), count) else "  (NO REASON AT FILE TOP)"
             print(f"  {count:5} {f}:{line} {name}{note}")
+    found = [(count, os.path.relpath(f, ROOT), line, name) for f in js_files() for name, line, count in js_functions(f)]
+    found.sort(key=lambda x: (-x[0], x[1], x[2]))
+    print("== js")
+    rows = [r for r in found if r[0] > args.over] if args.over is not None else found[: args.n]
+    for count, f, line, name in rows:
+        note = ""
+        if args.over is not None:
+            note = "  (file top says why)" if says_why(os.path.join(ROOT, f), count) else "  (NO REASON AT FILE TOP)"
+        print(f"  {count:5} {f}:{line} {name}{note}")
 
 
 if __name__ == "__main__":

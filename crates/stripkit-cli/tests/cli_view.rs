@@ -368,3 +368,40 @@ fn the_pages_lodseq_runtime_gives_lod_extracts_strips_and_the_frames_positions()
         assert!(lit > 3000 && far * 1000 <= lit * allowed_per_mille(report, software), "{name}: {far} of {lit} lit pixels differ");
     }
 }
+
+#[test]
+fn a_lodseq_page_opens_at_its_frame() {
+    // The rippling torus: the wave has moved between frames 0 and 4, so that the
+    // pictures of the two frames differ.
+    let ripple = rippling_torus(6);
+    let file = tmp("view-frame", "ripple.lodseq");
+    let args = ["lod", "build-seq", ripple.to_str().unwrap(), "-o", file.to_str().unwrap(), "--samples", "500", "--json"];
+    support::json(&stripkit(&args));
+    let (f, html) = (file.to_str().unwrap(), tmp("view-frame", "ripple.html"));
+    // Bad frames and --frame on a mesh are refused, nothing written.
+    for (input, frame) in [(f, "6"), (f, "-1"), (repo_root().join("assets/spot.obj").to_str().unwrap(), "0")] {
+        let run = stripkit(&["view", input, "--frame", frame, "-o", html.to_str().unwrap()]);
+        assert_eq!(run.status.code(), Some(2), "--frame {frame}: {}", String::from_utf8_lossy(&run.stderr));
+        assert!(!html.exists());
+    }
+    let view = support::json(&stripkit(&["view", f, "--frame", "4", "-o", html.to_str().unwrap(), "--size", "256x256", "--json"]));
+    assert!(view["page_bytes"].as_u64().unwrap() > 1000, "{view}");
+    if let Some(why) = chromium_missing(&["playwright-core"]) {
+        eprintln!("skip: {why}");
+        return;
+    }
+    let rgba = tmp("view-frame", "ripple.rgba");
+    let report = &open_pages(&[], &[format!("{}={}", html.display(), rgba.display())])[0];
+    assert_eq!(report["frame"], serde_json::json!([4, 4]), "{report}");
+    let mut lit_far = Vec::new();
+    for frame in ["4", "0"] {
+        let png = tmp("view-frame", &format!("ripple-{frame}.png"));
+        let run = stripkit(&["render", f, "--frame", frame, "-o", png.to_str().unwrap(), "--size", "256x256"]);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        lit_far.push(differing(&rgba, &png));
+    }
+    let [(lit4, far4), (lit0, far0)] = [lit_far[0], lit_far[1]];
+    eprintln!("frame 4: {far4} of {lit4} lit pixels differ from render --frame 4, {far0} of {lit0} from --frame 0");
+    assert!(lit4 > 3000 && far4 * 1000 <= lit4 * allowed_per_mille(report, 20), "{far4} of {lit4} lit pixels differ");
+    assert!(far0 * 1000 > lit0 * 50, "frame 0's picture is too close: {far0} of {lit0}");
+}

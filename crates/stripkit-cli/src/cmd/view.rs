@@ -21,11 +21,22 @@ use super::strip::StripArgs;
 const PAGE: &str = include_str!("view/page.html");
 /// The page's style.
 const STYLE: &str = include_str!("view/viewer.css");
-/// The page's script: decoding, buffers, camera, drawing, panel.
+/// The page's script: the main function, with the runtime and the pieces at `/*MODULES*/`.
 const SCRIPT: &str = include_str!("view/viewer.js");
+/// The script's pieces, inlined in this order after the runtime (each a few functions
+/// over the page's state; viewer.js says which does what).
+const PIECES: [&str; 7] = [
+    include_str!("view/decode.js"),
+    include_str!("view/colours.js"),
+    include_str!("view/gl.js"),
+    include_str!("view/camera.js"),
+    include_str!("view/cull.js"),
+    include_str!("view/panel.js"),
+    include_str!("view/hooks.js"),
+];
 /// The `.sets` runtime (an ES module of its own, js/sets-runtime; `view/sets-runtime.js`
 /// is a link to it, which `cargo package` copies), inlined into the page's script at
-/// `/*RUNTIME*/` with its `export` keywords dropped.
+/// `/*MODULES*/` with its `export` keywords dropped.
 const RUNTIME: &str = include_str!("view/sets-runtime.js");
 
 /// Arguments of `stripkit view`.
@@ -61,6 +72,10 @@ pub struct Args {
     /// culled ranges. For one strip, as `stripkit cull`: `--algo single --weights cull`.
     #[arg(long)]
     pub cull: bool,
+    /// A `.lodseq` input: the frame the page opens at (its camera frames that frame, as
+    /// `stripkit render --frame F`). Default 0.
+    #[arg(long, value_name = "F")]
+    pub frame: Option<usize>,
     /// Print one JSON object (counts, page size) on stdout instead of the summary.
     #[arg(long)]
     pub json: bool,
@@ -97,6 +112,8 @@ struct Model {
     scale: f32,
     /// `--cull`: the segment tree, or `None`.
     tree: Option<Tree>,
+    /// A `.lodseq` input: the frame the page opens at.
+    frame: usize,
 }
 
 impl Model {
@@ -120,6 +137,7 @@ impl Model {
             lodseq: String::new(),
             scale,
             tree: None,
+            frame: 0,
         }
     }
 }
@@ -218,7 +236,8 @@ fn check(args: &Args) -> anyhow::Result<()> {
 /// occur (base64, numbers and the file name escaped below), so the block ends where it should.
 fn page(model: &Model) -> anyhow::Result<String> {
     let json = serde_json::to_string(model)?.replace("</", "<\\/");
-    let script = SCRIPT.replacen("/*RUNTIME*/", &RUNTIME.replace("\nexport ", "\n"), 1);
+    let modules = [RUNTIME.replace("\nexport ", "\n")].into_iter().chain(PIECES.map(String::from)).collect::<Vec<_>>();
+    let script = SCRIPT.replacen("/*MODULES*/", &modules.join("\n"), 1);
     Ok(PAGE.replacen("/*STYLE*/", STYLE, 1).replacen("/*SCRIPT*/", &script, 1).replacen("/*MODEL*/", &json, 1))
 }
 
@@ -262,12 +281,19 @@ fn sets_model(args: &Args, sets: &stripkit::lod::Sets) -> anyhow::Result<Model> 
 }
 
 /// The page's model for a `.lodseq` file: the file, and the figures, camera and scale
-/// of frame 0 at level 0 (the scale stays for every frame, so that the animation moves).
+/// of the first frame (`--frame`) at level 0 (the scale stays for every frame, so that
+/// the animation moves).
 fn seq_model(args: &Args, seq: &stripkit::lod::LodSeq) -> anyhow::Result<Model> {
-    let positions = seq.positions(0);
-    let (figures, camera, scale) = level0_view(args, &seq.models()[seq.model_of(0)].strips_at(0), positions)?;
+    let frame = args.frame.unwrap_or(0);
+    if frame >= seq.frame_count() {
+        let why = format!("--frame {frame}: the animation has {} frames (0 to {})", seq.frame_count(), seq.frame_count() - 1);
+        return Err(Error::Invalid(why).into());
+    }
+    let positions = seq.positions(frame);
+    let (figures, camera, scale) = level0_view(args, &seq.models()[seq.model_of(frame)].strips_at(0), positions)?;
     Ok(Model {
         lodseq: base64(&std::fs::read(&args.input)?),
+        frame,
         ..Model::new(args, "lodseq", &figures, positions.len(), camera, scale)
     })
 }
@@ -310,6 +336,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let refuse = |why: &str| Err(Error::Invalid(format!("{}: {why}", args.input.display())).into());
     let model = match stripkit::lod::Model::try_read(&args.input)? {
         Some(_) if args.cull => return refuse("--cull applies to meshes, not to .sets or .lodseq models"),
+        Some(stripkit::lod::Model::Sets(_)) | None if args.frame.is_some() => return refuse("--frame applies to .lodseq animations"),
         Some(stripkit::lod::Model::Sets(sets)) => sets_model(&args, &sets)?,
         Some(stripkit::lod::Model::Seq(seq)) => seq_model(&args, &seq)?,
         None => mesh_model(&args)?,
