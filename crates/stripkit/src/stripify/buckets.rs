@@ -17,7 +17,8 @@ pub(super) struct Buckets {
     stacks: [Vec<u32>; 4],
     /// Free dual neighbours of each triangle (valid while it is free).
     pub(super) degree: Vec<u8>,
-    /// Not yet in a strip.
+    /// Not yet in a strip (empty when built by [`Buckets::without_flags`], whose user
+    /// knows that itself).
     pub(super) free: Vec<bool>,
 }
 
@@ -26,7 +27,7 @@ impl Buckets {
         Buckets {
             stacks: std::array::from_fn(|_| Vec::with_capacity(n)),
             degree: vec![0; n],
-            free: vec![false; n],
+            free: Vec::new(),
         }
     }
 
@@ -38,15 +39,22 @@ impl Buckets {
 
     /// As [`Buckets::of`], triangle `t` having `degree(t)` dual neighbours.
     pub(super) fn with_degrees(tris: &[[u32; 3]], degree: impl Fn(usize) -> u8) -> Self {
+        let mut b = Self::without_flags(tris, degree);
+        b.free = tris.iter().map(|t| !is_degenerate(t)).collect();
+        b
+    }
+
+    /// As [`Buckets::with_degrees`], without the `free` flags: for a user that knows
+    /// which triangles are free and calls [`Buckets::compact_by`] and
+    /// [`Buckets::lowest_by`] (one byte per triangle less).
+    pub(super) fn without_flags(tris: &[[u32; 3]], degree: impl Fn(usize) -> u8) -> Self {
         let n = tris.len();
         let mut b = Buckets::new(n);
         // Inserted in reverse so that each bucket starts in input order.
         for t in (0..n).rev() {
-            if is_degenerate(&tris[t]) {
-                continue;
+            if !is_degenerate(&tris[t]) {
+                b.push_front(t as u32, degree(t));
             }
-            b.free[t] = true;
-            b.push_front(t as u32, degree(t));
         }
         b
     }
@@ -64,20 +72,29 @@ impl Buckets {
     }
 
     /// Drops the stale entries (the order of the others kept: [`Buckets::lowest`]
-    /// answers as before) and gives back the memory they held.
-    pub(super) fn compact(&mut self) {
-        let (free, degree) = (&self.free, &self.degree);
+    /// answers as before) and gives back the memory they held; `is_free` says which
+    /// triangles are free.
+    pub(super) fn compact_by(&mut self, is_free: impl Fn(u32) -> bool) {
+        let degree = &self.degree;
         for (d, stack) in self.stacks.iter_mut().enumerate() {
-            stack.retain(|&t| free[t as usize] && degree[t as usize] as usize == d);
+            stack.retain(|&t| is_free(t) && degree[t as usize] as usize == d);
             stack.shrink_to_fit();
         }
     }
 
     /// The first free triangle of the lowest degree, dropping stale entries on the way.
     pub(super) fn lowest(&mut self) -> Option<u32> {
+        let free = std::mem::take(&mut self.free);
+        let t = self.lowest_by(|t| free[t as usize]);
+        self.free = free;
+        t
+    }
+
+    /// As [`Buckets::lowest`], `is_free` saying which triangles are free.
+    pub(super) fn lowest_by(&mut self, is_free: impl Fn(u32) -> bool) -> Option<u32> {
         for d in 0..4 {
             while let Some(&t) = self.stacks[d].last() {
-                if self.free[t as usize] && self.degree[t as usize] as usize == d {
+                if is_free(t) && self.degree[t as usize] as usize == d {
                     return Some(t);
                 }
                 self.stacks[d].pop();

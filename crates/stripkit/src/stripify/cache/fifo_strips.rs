@@ -36,9 +36,10 @@
 //! walk that found the chosen strip is kept, not walked again.
 //!
 //! Memory (4.4M triangles, 2.2M vertices): the links 12 bytes per triangle, the
-//! vertex-to-triangle lists 14 and their start cursors 2, the vertex records 10, marks
-//! 8, buckets 6 to 10, the FIFO's stamps 2, the output 5; the walks (4) only where the
-//! local search needs them.
+//! vertex-to-triangle lists 14 (a list's start kept in its first slot once it moves),
+//! the free count per vertex 2 (a walk's own records in a table of about `4 * max_len`
+//! slots), marks 8, buckets 6 to 10, the FIFO's stamps 2, the output 5; the walks
+//! (4) only where the local search needs them.
 
 use super::links::{nbr, opp, twin};
 use super::CacheOptions;
@@ -53,7 +54,10 @@ pub(super) const TAKEN: u32 = u32::MAX;
 /// The bit of `mark` that says a triangle was offered as a candidate (see
 /// [`State::consider`]); the other bits hold an epoch, always below `EPOCHS`.
 pub(super) const OFFERED: u32 = 1 << 31;
-/// `vs` fields not set in the record's epoch.
+/// The bit of a vertex list's first slot that says the list starts further on, by
+/// the distance in the other bits (triangle ids, below 2^30, never have it).
+const MOVED: u32 = 1 << 31;
+/// [`WalkTable`] fields not set in the walk.
 const UNSET: u32 = u32::MAX;
 /// Epochs run from 1 to `EPOCHS - 1` (`EPOCHS | OFFERED` would read as TAKEN).
 const EPOCHS: u32 = OFFERED - 1;
@@ -61,16 +65,60 @@ const EPOCHS: u32 = OFFERED - 1;
 pub(super) const NEXT: [usize; 3] = [1, 2, 0];
 pub(super) const PREV: [usize; 3] = [2, 0, 1];
 
-/// What a walk reads and writes: the per-vertex records, the triangle marks, the
-/// walk's epoch, the FIFO (read only: the walk's own pushes go to its private copy in
-/// the records) and the walk's pushes so far.
+/// What a walk reads and writes: its own records ([`WalkTable`]), the free triangle
+/// count of every vertex, the triangle marks, the walk's epoch, the FIFO (read only:
+/// the walk's own pushes go to its private copy in the records) and the walk's pushes
+/// so far.
 pub(super) struct Walk<'s> {
-    pub(super) vs: &'s mut [[u32; 4]],
+    pub(super) table: &'s mut WalkTable,
+    pub(super) vfree: &'s [u32],
     pub(super) mark: &'s mut [u32],
     pub(super) epoch: u32,
     pub(super) fifo: &'s Fifo,
     pub(super) c: u32,
     pub(super) pushes: u32,
+}
+
+/// The records of the vertices one walk has seen, in a small open-addressed table
+/// (linear probing, at most half full) rather than one record per vertex of the mesh:
+/// a walk sees at most `max_len + 3` vertices. Each slot holds `[epoch, vertex, push,
+/// covered]`: a slot of an older epoch is empty; in the walk of its epoch, `push` is
+/// the walk's push count when it pushed the vertex in its private copy of the FIFO
+/// and `covered` how many of the vertex's free triangles the walk covers (each UNSET
+/// until then).
+pub(super) struct WalkTable {
+    slots: Vec<[u32; 4]>,
+    shift: u32,
+}
+
+impl WalkTable {
+    /// A table for walks of at most `max_len` triangles.
+    pub(super) fn new(max_len: u32) -> Self {
+        let size = (2 * (max_len as usize + 3)).next_power_of_two().max(16);
+        WalkTable {
+            slots: vec![[0, 0, UNSET, UNSET]; size],
+            shift: 32 - size.trailing_zeros(),
+        }
+    }
+
+    /// The slot of `v` in the walk of `epoch`, or the empty slot where it goes.
+    #[inline(always)]
+    fn find(&self, v: u32, epoch: u32) -> usize {
+        let mask = self.slots.len() - 1;
+        let mut i = (v.wrapping_mul(0x9e37_79b1) >> self.shift) as usize;
+        loop {
+            let s = &self.slots[i];
+            if s[0] != epoch || s[1] == v {
+                return i;
+            }
+            i = (i + 1) & mask;
+        }
+    }
+
+    /// Empties every slot (when the epochs start again).
+    fn clear(&mut self) {
+        self.slots.iter_mut().for_each(|s| s[0] = 0);
+    }
 }
 
 impl Walk<'_> {
@@ -84,11 +132,23 @@ impl Walk<'_> {
     /// Whether `v` is in the FIFO after the walk's pushes so far.
     #[inline(always)]
     fn cached_after(&self, v: u32) -> bool {
-        let [mark, local, ..] = self.vs[v as usize];
+        let [mark, _, local, _] = self.table.slots[self.table.find(v, self.epoch)];
         if mark == self.epoch && local != UNSET {
             return self.pushes - local <= self.c;
         }
         self.fifo.contains_after(v, self.pushes)
+    }
+
+    /// The record of `v` in this walk, started (nothing pushed, nothing covered) when
+    /// new.
+    #[inline(always)]
+    fn record(&mut self, v: u32) -> &mut [u32; 4] {
+        let i = self.table.find(v, self.epoch);
+        let e = &mut self.table.slots[i];
+        if e[0] != self.epoch {
+            *e = [self.epoch, v, UNSET, UNSET];
+        }
+        e
     }
 
     /// Feeds `v` to the walk's private copy of the FIFO; true on a miss.
@@ -97,12 +157,8 @@ impl Walk<'_> {
         if self.cached_after(v) {
             return false;
         }
-        let e = &mut self.vs[v as usize];
-        if e[0] != self.epoch {
-            e[0] = self.epoch;
-            e[2] = UNSET;
-        }
-        e[1] = self.pushes;
+        let pushes = self.pushes;
+        self.record(v)[2] = pushes;
         self.pushes += 1;
         true
     }
@@ -110,11 +166,9 @@ impl Walk<'_> {
     /// Starts the count of `v`'s triangles covered by the walk, unless started.
     #[inline(always)]
     fn uncover(&mut self, v: u32) {
-        let e = &mut self.vs[v as usize];
-        if e[0] != self.epoch {
-            *e = [self.epoch, UNSET, 0, e[3]];
-        } else if e[2] == UNSET {
-            e[2] = 0;
+        let e = self.record(v);
+        if e[3] == UNSET {
+            e[3] = 0;
         }
     }
 
@@ -122,9 +176,10 @@ impl Walk<'_> {
     /// started); true when that was its last one.
     #[inline(always)]
     fn cover(&mut self, v: u32) -> bool {
-        let e = &mut self.vs[v as usize];
-        e[2] += 1;
-        e[2] == e[3]
+        let free = self.vfree[v as usize];
+        let e = self.record(v);
+        e[3] += 1;
+        e[3] == free
     }
 }
 
@@ -253,18 +308,17 @@ pub(super) struct State<'a> {
     pub(super) opt: CacheOptions,
     /// Free triangles by free degree (the greedy stripifier's buckets).
     pub(super) b: Buckets,
-    /// Vertex -> its triangles: the list of vertex `v` is `vlist[vstart[v]..voff[v + 1]]`,
+    /// Vertex -> its triangles: the list of vertex `v` is `vlist[start..voff[v + 1]]`
+    /// ([`State::list_start`]: `voff[v]` moved on past the taken triangles dropped),
     /// in triangle order; it holds every free triangle of `v` (and taken ones not yet
     /// dropped: [`State::scan`] drops those it passes, moving the free ones it
     /// offered up to the rest of the list).
     pub(super) vlist: Vec<u32>,
     pub(super) voff: Vec<u32>,
-    pub(super) vstart: Vec<u32>,
-    /// Per vertex, in one record: `[0]` the epoch of the last walk that pushed it in
-    /// its private copy of the FIFO or counted its triangles; in that walk, `[1]` the
-    /// walk's push count when it pushed the vertex and `[2]` how many of its free
-    /// triangles the walk covers (each UNSET until then); `[3]` its free triangles.
-    pub(super) vs: Vec<[u32; 4]>,
+    /// Per vertex, its free triangles.
+    pub(super) vfree: Vec<u32>,
+    /// The records of the current walk's vertices.
+    pub(super) table: WalkTable,
     /// The FIFO the emitted strips went through; its pushes are their misses.
     pub(super) fifo: Fifo,
     /// TAKEN for triangles in strips, else the epoch of the last walk through them,
@@ -319,7 +373,8 @@ impl<'a> State<'a> {
         let vtris = vtris.unwrap_or_else(|| vertex_triangles(tris, vcount));
         let (voff, vlist) = vtris.into_parts();
         let degree = |t: usize| links[t].iter().filter(|&&l| l != n as u32).count() as u8;
-        let b = Buckets::with_degrees(tris, degree);
+        // Free is read from the marks.
+        let b = Buckets::without_flags(tris, degree);
         let mut out = StripSet::new();
         out.indices.reserve(n + n / 2);
         State {
@@ -327,8 +382,8 @@ impl<'a> State<'a> {
             adj: links,
             opt,
             b,
-            vs: (0..vcount).map(|v| [0, UNSET, UNSET, voff[v + 1] - voff[v]]).collect(),
-            vstart: voff[..vcount].to_vec(),
+            vfree: (0..vcount).map(|v| voff[v + 1] - voff[v]).collect(),
+            table: WalkTable::new(opt.max_len),
             voff,
             vlist,
             fifo: Fifo::new(opt.cache_size, vcount),
@@ -380,7 +435,7 @@ impl<'a> State<'a> {
                 *m = 0;
             }
             self.round = 1;
-            self.vs.iter_mut().for_each(|x| x[0] = 0);
+            self.table.clear();
             self.epoch = 1;
         }
     }
@@ -393,7 +448,8 @@ impl<'a> State<'a> {
         let w = self.opt.miss_weight;
         let fb = self.opt.finish_bonus;
         let mut k = Walk {
-            vs: &mut self.vs,
+            table: &mut self.table,
+            vfree: &self.vfree,
             mark: &mut self.mark,
             epoch: self.epoch,
             fifo: &self.fifo,
@@ -568,15 +624,15 @@ impl<'a> State<'a> {
     }
 
     fn take(&mut self, t: u32) {
-        self.b.free[t as usize] = false;
+        self.mark[t as usize] = TAKEN;
         self.free_count -= 1;
         // The buckets' stale entries held at most about as many as the free ones.
         if self.b.held() > 2 * self.free_count + (1 << 16) {
-            self.b.compact();
+            let mark = &self.mark;
+            self.b.compact_by(|t| mark[t as usize] != TAKEN);
         }
-        self.mark[t as usize] = TAKEN;
         for &v in &self.tris[t as usize] {
-            self.vs[v as usize][3] -= 1;
+            self.vfree[v as usize] -= 1;
         }
         for k in 0..3 {
             let m = nbr(self.adj[t as usize][k]);
@@ -628,7 +684,8 @@ impl<'a> State<'a> {
                 }
             }
             if best.t == NONE {
-                match self.b.lowest() {
+                let mark = &self.mark;
+                match self.b.lowest_by(|t| mark[t as usize] != TAKEN) {
                     Some(t) => {
                         self.next_round();
                         self.consider(t, 0, &mut best);
@@ -647,13 +704,13 @@ impl<'a> State<'a> {
         let live = self.fifo.len();
         for i in (live.saturating_sub(entries)..live).rev() {
             let v = self.fifo.newest(i) as usize;
-            if self.vs[v][3] == 0 {
+            if self.vfree[v] == 0 {
                 continue;
             }
             // The list's taken triangles passed are dropped: the free ones offered
             // move up to the part not read (order kept), so a vertex of high valence
             // costs O(1) per strip, not O(valence).
-            let (start, end) = (self.vstart[v] as usize, self.voff[v + 1] as usize);
+            let (start, end) = (self.list_start(v), self.voff[v + 1] as usize);
             let (mut read, mut kept) = (start, start);
             let mut offered = 0;
             while read < end && offered < FAN_CANDIDATES {
@@ -670,8 +727,24 @@ impl<'a> State<'a> {
             if kept < read {
                 let moved = kept - start;
                 self.vlist.copy_within(start..kept, read - moved);
-                self.vstart[v] = (read - moved) as u32;
+                // The new start is past the list's first slot, no longer read: it
+                // holds the distance.
+                let base = self.voff[v] as usize;
+                self.vlist[base] = MOVED | (read - moved - base) as u32;
             }
+        }
+    }
+
+    /// Where the list of `v` starts: its first slot, or past it by the distance that
+    /// slot holds with the MOVED bit (see [`State::scan`]).
+    #[inline]
+    fn list_start(&self, v: usize) -> usize {
+        let base = self.voff[v] as usize;
+        match self.vlist.get(base) {
+            Some(&h) if base < self.voff[v + 1] as usize && h & MOVED != 0 => {
+                base + (h & !MOVED) as usize
+            }
+            _ => base,
         }
     }
 
@@ -739,5 +812,81 @@ impl<'a> State<'a> {
         if self.record_walks {
             self.walks.end_walk();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashMap;
+
+    #[test]
+    fn the_walk_table_keeps_one_record_per_vertex() {
+        // A walk's records in the small table read as one record per vertex did: up to
+        // eight vertices in 16 slots (ids chosen to collide), over many epochs (a
+        // record of an older walk reads as none), against a map of the same records.
+        let (c, vcount) = (4u32, 200usize);
+        let mut fifo = Fifo::new(c, vcount);
+        for v in [3, 17, 40, 99] {
+            fifo.touch(v);
+        }
+        let vfree: Vec<u32> = (0..vcount as u32).map(|v| 1 + v % 3).collect();
+        let mut mark = vec![0u32; 4];
+        let mut table = WalkTable::new(1);
+        assert_eq!(table.slots.len(), 16);
+        let mut seed = 12345u64;
+        let mut rand = |n: u64| {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 33) % n
+        };
+        let mut finished = 0;
+        for epoch in 1..200u32 {
+            let pool: Vec<u32> = (0..8).map(|_| (rand(12) * 16 + rand(2)) as u32).collect();
+            let mut k = Walk {
+                table: &mut table,
+                vfree: &vfree,
+                mark: &mut mark,
+                epoch,
+                fifo: &fifo,
+                c,
+                pushes: 0,
+            };
+            // Per vertex: the walk's push count when pushed, its covered count.
+            let mut model: HashMap<u32, (Option<u32>, Option<u32>)> = HashMap::new();
+            for _ in 0..30 {
+                let v = pool[rand(8) as usize];
+                let e = model.entry(v).or_default();
+                match rand(3) {
+                    0 => {
+                        let cached = match e.0 {
+                            Some(local) => k.pushes - local <= c,
+                            None => fifo.contains_after(v, k.pushes),
+                        };
+                        if !cached {
+                            e.0 = Some(k.pushes);
+                        }
+                        assert_eq!(k.touch(v), !cached, "epoch {epoch} v {v}");
+                    }
+                    _ => {
+                        k.uncover(v);
+                        let n = e.1.unwrap_or(0) + 1;
+                        e.1 = Some(n);
+                        let last = k.cover(v);
+                        assert_eq!(last, n == vfree[v as usize], "epoch {epoch} v {v}");
+                        finished += usize::from(last);
+                    }
+                }
+                for &u in &pool {
+                    let want = match model.get(&u).and_then(|e| e.0) {
+                        Some(local) => k.pushes - local <= c,
+                        None => fifo.contains_after(u, k.pushes),
+                    };
+                    assert_eq!(k.cached_after(u), want, "epoch {epoch} u {u}");
+                }
+            }
+        }
+        assert!(finished > 100, "{finished}");
+        table.clear();
+        assert!(table.slots.iter().all(|s| s[0] == 0));
     }
 }
