@@ -41,27 +41,42 @@ pub struct Cursor<'a> {
     sets: &'a Sets,
     level: u32,
     restart: u32,
-    /// Per strip: the index in the model's change lists of its first change past
-    /// the current level; the change before it and this one bound the levels where
-    /// its current sequence holds (its validity interval).
-    next_change: Vec<u32>,
-    /// Per strip: `[lo, hi)` of levels where its current sequence holds (read from
-    /// `next_change`, kept flat for the scan of a far jump).
-    valid: Vec<(u32, u32)>,
-    lens: Vec<u32>,
+    /// Per strip, one record (a move reads one cache line of it per strip).
+    state: Vec<StripState>,
     buffer: Vec<u32>,
     /// Parallel to `buffer`: the slot each current vertex came from (ascending
     /// within a strip's range), where a partial re-walk resumes.
     slot_at: Vec<u32>,
-    /// Per strip: the offsets in its range that the last re-walk wrote.
-    written: Vec<(u32, u32)>,
     changed: Vec<u32>,
-    /// Per strip: the move that last listed it (a move lists each strip once).
-    stamp: Vec<u32>,
     moves: u32,
-    /// Scratch of a move: the changed slot spans of a strip, and its old walk.
+    /// Scratch of a move: the changed slots of every changed strip, ascending
+    /// per strip (`span_counts` of them each), where each one's walk starts and
+    /// the slot it resumes after, and the plan of one walk.
     spans: Vec<u32>,
+    span_counts: Vec<u32>,
+    todo: Vec<(u32, u32)>,
     plan: Vec<Piece>,
+}
+
+/// Where a strip stands at the cursor's level.
+#[derive(Clone, Copy, Debug, Default)]
+struct StripState {
+    /// Where its range starts in the buffer.
+    base: u32,
+    /// Its current length.
+    len: u32,
+    /// The index in the model's change lists of its first change past the current
+    /// level, and the end of its list.
+    next: u32,
+    end: u32,
+    /// `[lo, hi)`: the levels where its current sequence holds (its validity
+    /// interval, bounded by the change before `next` and `next`).
+    lo: u32,
+    hi: u32,
+    /// The offsets in its range that its last re-walk wrote.
+    written: (u32, u32),
+    /// The move that last listed it (a move lists each strip once).
+    stamp: u32,
 }
 
 /// A piece of a partial re-walk: a slot walked and its vertex, or a run
@@ -87,6 +102,22 @@ impl Piece {
 /// past that it re-walks the strip whole.
 const PARTIAL_SCAN: usize = 4;
 
+/// A hint that `x` will be read soon (nothing on targets without one).
+#[inline(always)]
+fn prefetch<T>(x: &T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch only loads a cache line; `x` is a valid reference.
+    unsafe {
+        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(x as *const T as *const i8)
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = x;
+}
+
+/// The most versions of a strip walked whole that a move asks for ahead (every
+/// fifth: a cache line holds 5.3 of them).
+const WHOLE_PREFETCH: usize = 320;
+
 impl Sets {
     /// A cursor at `level` (clamped to the coarsest), every strip walked once, with
     /// restart index `u32::MAX`.
@@ -96,23 +127,26 @@ impl Sets {
             sets: self,
             level: level.min(self.levels()),
             restart: crate::strip::DEFAULT_RESTART,
-            next_change: Vec::with_capacity(strips),
-            valid: vec![(0, 0); strips],
-            lens: vec![0; strips],
+            state: (0..strips)
+                .map(|s| StripState {
+                    base: self.strip_slots[s] + s as u32,
+                    end: self.change_offsets[s + 1],
+                    ..StripState::default()
+                })
+                .collect(),
             buffer: vec![crate::strip::DEFAULT_RESTART; self.slot_count() + strips],
             slot_at: vec![super::END; self.slot_count() + strips],
-            written: vec![(0, 0); strips],
             changed: Vec::with_capacity(strips),
-            stamp: vec![0; strips],
             moves: 0,
             spans: Vec::new(),
+            span_counts: Vec::new(),
+            todo: Vec::new(),
             plan: Vec::new(),
         };
         for s in 0..strips {
             let r = self.change_offsets[s] as usize..self.change_offsets[s + 1] as usize;
-            c.next_change.push((r.start + self.change_level[r].partition_point(|&l| l <= c.level)) as u32);
-            c.spans.clear();
-            c.rewalk(s, 0, true);
+            c.state[s].next = (r.start + self.change_level[r].partition_point(|&l| l <= c.level)) as u32;
+            c.rewalk(s, 0, 0..0, true);
         }
         c
     }
@@ -145,31 +179,73 @@ impl<'a> Cursor<'a> {
         // The strips that change at a level in (lo, hi]: from the per-level lists
         // when they hold fewer entries than there are strips, else by a scan.
         let listed = (sets.level_offsets[hi + 1] - sets.level_offsets[lo + 1]) as usize;
-        if listed < self.lens.len() {
+        if listed < self.state.len() {
             self.moves = self.moves.wrapping_add(1);
             if self.moves == 0 {
-                self.stamp.fill(0);
+                self.state.iter_mut().for_each(|st| st.stamp = 0);
                 self.moves = 1;
             }
             for &s in &sets.level_strips[sets.level_offsets[lo + 1] as usize..sets.level_offsets[hi + 1] as usize] {
-                if self.stamp[s as usize] != self.moves {
-                    self.stamp[s as usize] = self.moves;
+                let st = &mut self.state[s as usize];
+                if st.stamp != self.moves {
+                    st.stamp = self.moves;
                     self.changed.push(s);
                 }
             }
             self.changed.sort_unstable();
         } else {
-            for s in 0..self.valid.len() {
-                let (a, b) = self.valid[s];
-                if level < a || level >= b {
+            for (s, st) in self.state.iter().enumerate() {
+                if level < st.lo || level >= st.hi {
                     self.changed.push(s as u32);
                 }
             }
         }
+        // Three passes, so that the slot versions a move reads (two dependent
+        // loads each, far apart: what a move waits on) are fetched together: the
+        // changed slots of every strip, with a hint for their version offsets;
+        // a hint for the versions they point to; then the walks.
+        self.spans.clear();
+        self.todo.clear();
+        self.span_counts.clear();
+        let sets = self.sets;
         for i in 0..self.changed.len() {
             let s = self.changed[i] as usize;
+            let start = self.spans.len();
             let from = self.first_change(s, lo as u32, hi as u32, level > old);
-            self.rewalk(s, from, level > old);
+            let resume = if from > 0 { self.slot_at[self.state[s].base as usize + from - 1] } else { super::END };
+            for &x in std::iter::once(&resume).chain(&self.spans[start..]) {
+                if x != super::END {
+                    prefetch(&sets.version_offsets[x as usize + 1]);
+                }
+            }
+            self.todo.push((from as u32, resume));
+        }
+        for &(_, resume) in &self.todo {
+            if resume != super::END {
+                prefetch(&sets.versions[sets.version_offsets[resume as usize + 1] as usize - 1]);
+            }
+        }
+        for &x in &self.spans {
+            prefetch(&sets.versions[sets.version_offsets[x as usize + 1] as usize - 1]);
+        }
+        // A strip walked whole reads its slots' versions in order: they lie
+        // together, so the first lines of them are asked for.
+        for i in 0..self.changed.len() {
+            if self.todo[i].0 == 0 && self.span_counts[i] == 0 {
+                let s = self.changed[i] as usize;
+                let first = sets.version_offsets[sets.strip_slots[s] as usize] as usize;
+                let last = sets.version_offsets[sets.strip_slots[s + 1] as usize] as usize;
+                for at in (first..last.min(first + WHOLE_PREFETCH)).step_by(5) {
+                    prefetch(&sets.versions[at]);
+                }
+            }
+        }
+        let mut start = 0;
+        for i in 0..self.changed.len() {
+            let s = self.changed[i] as usize;
+            let count = self.span_counts[i] as usize;
+            self.rewalk(s, self.todo[i].0 as usize, start..start + count, level > old);
+            start += count;
         }
         &self.changed
     }
@@ -179,59 +255,74 @@ impl<'a> Cursor<'a> {
         &self.changed
     }
 
-    /// Where strip `s`'s walk changes between levels `lo` and `hi`: gathers into
-    /// `self.spans` the slots that change in `(lo, hi]`, ascending, moves its next
+    /// Where strip `s`'s walk changes between levels `lo` and `hi`: appends to
+    /// `self.spans` the slots that change in `(lo, hi]`, ascending (their count to
+    /// `self.span_counts`), moves its next
     /// change past the new level, and returns the offset in its range of the first
     /// changed slot; 0 and no slots (a whole walk) when too many changes lie
     /// between. The changes crossed are read from the strip's next change on, in
     /// the direction of the move, so a near move searches nothing.
     fn first_change(&mut self, s: usize, lo: u32, hi: u32, coarser: bool) -> usize {
         let sets = self.sets;
-        let r = sets.change_offsets[s] as usize..sets.change_offsets[s + 1] as usize;
+        let st = self.state[s];
         let levels = &sets.change_level;
-        let cap = self.lens[s] as usize / PARTIAL_SCAN;
-        let at = self.next_change[s] as usize;
+        let cap = st.len as usize / PARTIAL_SCAN;
+        let at = st.next as usize;
+        let end = st.end as usize;
         // The changes crossed: `levels[a..b]`, those in (lo, hi].
         let (mut a, mut b) = (at, at);
         if coarser {
-            while b < r.end && levels[b] <= hi && b - a <= cap {
+            while b < end && levels[b] <= hi && b - a <= cap {
                 b += 1;
             }
             if b - a > cap {
-                b += levels[b..r.end].partition_point(|&l| l <= hi);
+                b += levels[b..end].partition_point(|&l| l <= hi);
             }
-            self.next_change[s] = b as u32;
+            self.state[s].next = b as u32;
         } else {
-            while a > r.start && levels[a - 1] > lo && b - a <= cap {
+            // Every list starts at level 0, at or below `lo`: the scan stops there.
+            while levels[a - 1] > lo && b - a <= cap {
                 a -= 1;
             }
             if b - a > cap {
-                a = r.start + levels[r.start..a].partition_point(|&l| l <= lo);
+                let start = sets.change_offsets[s] as usize;
+                a = start + levels[start..a].partition_point(|&l| l <= lo);
             }
-            self.next_change[s] = a as u32;
+            self.state[s].next = a as u32;
         }
-        self.spans.clear();
+        let start = self.spans.len();
         if b - a > cap {
+            self.span_counts.push(0);
             return 0;
         }
         self.spans.extend_from_slice(&sets.change_slot[a..b]);
-        self.spans.sort_unstable();
-        self.spans.dedup();
-        let first = self.spans.first().copied().unwrap_or(super::END);
-        let base = sets.strip_slots[s] as usize + s;
-        self.slot_at[base..base + self.lens[s] as usize].partition_point(|&x| x < first)
+        let tail = &mut self.spans[start..];
+        tail.sort_unstable();
+        let mut n = 0;
+        for i in 0..tail.len() {
+            if n == 0 || tail[i] != tail[n - 1] {
+                tail[n] = tail[i];
+                n += 1;
+            }
+        }
+        self.spans.truncate(start + n);
+        self.span_counts.push(n as u32);
+        let first = self.spans.get(start).copied().unwrap_or(super::END);
+        let base = st.base as usize;
+        self.slot_at[base..base + st.len as usize].partition_point(|&x| x < first)
     }
 
     /// Walks strip `s` at the current level into its range from offset `from` on
-    /// (the slots before it unchanged since the last walk). With the changed spans of `self.spans` (empty: walk the whole
+    /// (the slots before it unchanged since the last walk). With its changed slots,
+    /// `self.spans[spans]` (empty: walk the whole
     /// rest), the runs of the old walk between them are copied instead of walked:
     /// a slot outside every span has the same vertex and successor at both levels,
     /// so once the walk meets a slot the old walk had, the two go on alike until
     /// the next span.
-    fn rewalk(&mut self, s: usize, from: usize, coarser: bool) {
+    fn rewalk(&mut self, s: usize, from: usize, spans: Range<usize>, coarser: bool) {
         let sets = self.sets;
-        let base = sets.strip_slots[s] as usize + s;
-        let old = self.lens[s] as usize;
+        let base = self.state[s].base as usize;
+        let old = self.state[s].len as usize;
         let mut x = if from == 0 {
             sets.head_at(s, self.level)
         } else {
@@ -239,7 +330,7 @@ impl<'a> Cursor<'a> {
         };
         let level = self.level;
         let mut pos = base + from;
-        if self.spans.is_empty() {
+        if spans.is_empty() {
             // Nothing of the old walk is reused: straight into the range.
             let (buffer, slot_at) = (&mut self.buffer, &mut self.slot_at);
             sets.walk_slots(x, level, |y, v| {
@@ -253,7 +344,7 @@ impl<'a> Cursor<'a> {
         // First the plan: the walk's changed slots and the runs of the old walk
         // it reuses, read from the range as it is.
         self.plan.clear();
-        let (spans, old_slots) = (&self.spans, &self.slot_at[base + from..base + old]);
+        let (spans, old_slots) = (&self.spans[spans], &self.slot_at[base + from..base + old]);
         let (mut j, mut k, mut len) = (0, 0, from);
         while x != super::END {
             while j < spans.len() && spans[j] < x {
@@ -318,23 +409,24 @@ impl<'a> Cursor<'a> {
         }
         self.finish_walk(s, from, len, old);
         if len == old {
-            self.written[s].1 = differs as u32;
+            self.state[s].written.1 = differs as u32;
         }
     }
 
     /// After a walk of strip `s` from offset `from` to its new length `len`
     /// (`old` before): restarts where it shrank, and what was written.
     fn finish_walk(&mut self, s: usize, from: usize, len: usize, old: usize) {
-        let sets = self.sets;
-        let base = sets.strip_slots[s] as usize + s;
+        let levels = &self.sets.change_level;
+        let st = &mut self.state[s];
+        let base = st.base as usize;
         if len < old {
             self.buffer[base + len..base + old].fill(self.restart);
         }
-        self.lens[s] = len as u32;
-        self.written[s] = (from as u32, len.max(old) as u32);
-        let k = self.next_change[s] as usize;
-        let next = if k < sets.change_offsets[s + 1] as usize { sets.change_level[k] } else { u32::MAX };
-        self.valid[s] = (sets.change_level[k - 1], next);
+        st.len = len as u32;
+        st.written = (from as u32, len.max(old) as u32);
+        let k = st.next as usize;
+        st.lo = levels[k - 1];
+        st.hi = if k < st.end as usize { levels[k] } else { u32::MAX };
     }
 
     /// The part of strip `s`'s range ([`Cursor::strip_range`]) that the last
@@ -342,8 +434,8 @@ impl<'a> Cursor<'a> {
     /// what changed (from its first changed vertex to the end of the longer of its
     /// old and new sequences).
     pub fn changed_range(&self, s: usize) -> Range<usize> {
-        let base = self.sets.strip_slots[s] as usize + s;
-        let (a, b) = self.written[s];
+        let base = self.state[s].base as usize;
+        let (a, b) = self.state[s].written;
         base + a as usize..base + b as usize
     }
 
@@ -360,15 +452,15 @@ impl<'a> Cursor<'a> {
 
     /// Strip `s` at the current level.
     pub fn strip(&self, s: usize) -> &[u32] {
-        let base = self.sets.strip_slots[s] as usize + s;
-        &self.buffer[base..base + self.lens[s] as usize]
+        let st = &self.state[s];
+        &self.buffer[st.base as usize..(st.base + st.len) as usize]
     }
 
     /// The non-empty strips at the current level.
     pub fn strips(&self) -> StripSet {
         let mut out = StripSet::new();
-        for s in 0..self.lens.len() {
-            if self.lens[s] > 0 {
+        for s in 0..self.state.len() {
+            if self.state[s].len > 0 {
                 out.push(self.strip(s));
             }
         }
@@ -378,8 +470,8 @@ impl<'a> Cursor<'a> {
     /// The tight buffer: non-empty strips separated by `restart`.
     pub fn compact(&self, restart: u32, out: &mut Vec<u32>) {
         out.clear();
-        for s in 0..self.lens.len() {
-            if self.lens[s] > 0 {
+        for s in 0..self.state.len() {
+            if self.state[s].len > 0 {
                 if !out.is_empty() {
                     out.push(restart);
                 }
@@ -390,6 +482,6 @@ impl<'a> Cursor<'a> {
 
     /// Indices of the non-empty strips at the current level (without restarts).
     pub fn index_count(&self) -> usize {
-        self.lens.iter().map(|&l| l as usize).sum()
+        self.state.iter().map(|st| st.len as usize).sum()
     }
 }
