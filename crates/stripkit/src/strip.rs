@@ -451,6 +451,34 @@ pub fn verify_decoded_with(expected: &[[u32; 3]], got: Vec<[u32; 3]>, threads: c
     compare_sorted(&sorted_expected(expected, threads), got, threads)
 }
 
+/// Whether `joined` draws exactly the triangles of `strips`, shown without sorting:
+/// true when the two sets are equal, or when `joined` decodes to the triangles of each
+/// strip in turn, each strip's run forward or backward (what stitching does), up to
+/// rotation. False says nothing (a joined form may legally draw them in another
+/// order): the caller then runs the full check. O(n), the decoding in parallel when
+/// `threads` allows, the walk on one thread; the same answer at any thread count.
+pub(crate) fn draws_in_order(strips: &StripSet, joined: &StripSet, threads: crate::parallel::Threads) -> bool {
+    if strips == joined {
+        return true;
+    }
+    let got = decode_with(joined, threads);
+    let mut at = 0;
+    let mut mine: Vec<[u32; 3]> = Vec::new();
+    for s in strips.iter() {
+        mine.clear();
+        for_each_triangle(s, |t| mine.push(canonical(t)));
+        let Some(run) = got.get(at..at + mine.len()) else {
+            return false;
+        };
+        let same = |a: &[u32; 3], b: &[u32; 3]| canonical(*a) == *b;
+        if !run.iter().zip(&mine).all(|(a, b)| same(a, b)) && !run.iter().rev().zip(&mine).all(|(a, b)| same(a, b)) {
+            return false;
+        }
+        at += mine.len();
+    }
+    at == got.len()
+}
+
 /// The expected side of the check, ready for [`compare_sorted`].
 pub(crate) struct SortedExpected {
     /// The non-degenerate expected triangles, canonical and sorted.
@@ -600,6 +628,45 @@ mod tests {
         let one = encode_stitched(&set);
         assert_eq!(one.len(), 3 + 2 + 7);
         assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
+    }
+
+    #[test]
+    fn a_joined_form_in_strip_order_is_shown_without_sorting() {
+        use crate::parallel::Threads;
+        // Odd starts re-encoded (the fan), a strip of two indices, one with degenerates.
+        let set = StripSet::from_strips(&[
+            vec![0, 1, 2, 3],
+            vec![4, 5, 6],
+            vec![7, 8, 9, 10, 11],
+            vec![1, 2, 0, 3, 0, 4, 5],
+            vec![12, 13],
+            vec![4, 5, 6, 6, 8, 8, 9, 10],
+        ]);
+        for joined in [
+            StripSet::from_strips(&[encode_stitched(&set)]),
+            decode_restart(&encode_restart(&set, 99), 99),
+            StripSet::from_strips(&encode_separate(&set)),
+        ] {
+            assert!(verify(&decode(&set), &joined).ok());
+            for t in [Threads::SERIAL, Threads::new(3)] {
+                assert!(draws_in_order(&set, &joined, t));
+            }
+        }
+        // The same triangles in another strip order: not shown (the full check decides).
+        let two = StripSet::from_strips(&[vec![0, 1, 2, 3], vec![4, 5, 6]]);
+        let swapped = StripSet::from_strips(&[vec![4, 5, 6], vec![0, 1, 2, 3]]);
+        assert!(verify(&decode(&two), &swapped).ok());
+        assert!(!draws_in_order(&two, &swapped, Threads::SERIAL));
+        // A flipped, a lost and an added triangle are never shown.
+        for bad in [
+            vec![vec![0, 2, 1, 3], vec![4, 5, 6]],
+            vec![vec![0, 1, 2], vec![4, 5, 6]],
+            vec![vec![0, 1, 2, 3], vec![4, 5, 6, 7]],
+        ] {
+            let bad = StripSet::from_strips(&bad);
+            assert!(!verify(&decode(&two), &bad).ok());
+            assert!(!draws_in_order(&two, &bad, Threads::SERIAL));
+        }
     }
 
     #[test]

@@ -108,15 +108,29 @@ fn fail(what: &str, v: &strip::Verification) -> Error {
 }
 
 /// The door's body, with the options already checked: per group where the mesh's
-/// faces fall in several.
+/// faces fall in several. Every parallel step inside shares one pool of
+/// `options.threads` (made once here, not once per step).
 fn run(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
+    options.threads.install(|| run_in_pool(mesh, options))
+}
+
+/// [`run`] inside its pool.
+fn run_in_pool(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     mesh.check_faces()?;
     if options.weld {
-        if let Some((welded, moved)) = mesh.welded_with(options.threads) {
-            let mut strips = run_welded(&welded, options)?;
-            strips.welded = moved;
-            return Ok(strips);
-        }
+        let start = Instant::now();
+        let welded = mesh.welded_with(options.threads);
+        let weld_time = start.elapsed();
+        let mut strips = match welded {
+            Some((welded, moved)) => {
+                let mut strips = run_welded(&welded, options)?;
+                strips.welded = moved;
+                strips
+            }
+            None => run_welded(mesh, options)?,
+        };
+        strips.phases.insert(0, ("weld", weld_time));
+        return Ok(strips);
     }
     run_welded(mesh, options)
 }
@@ -235,6 +249,7 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
         Algorithm::Auto(_) => unreachable!("resolved above"),
     };
     let stripify_time = stripify_time_single.unwrap_or_else(|| start.elapsed());
+    let check_start = Instant::now();
     let triangles = match fan {
         Some(tris) => tris,
         None => {
@@ -249,15 +264,22 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
     if !figures.verified {
         return Err(fail("the strips", &strip::verify_with(&triangles, &strips, options.threads)));
     }
+    let figures_time = check_start.elapsed();
     // The joined form is checked here and rebuilt on demand (`Strips::joined`): for
     // two of the three joins it is the strips themselves.
     // Bound first: the encoded buffer it is read back from is dropped before the check.
+    let joined_start = Instant::now();
     let joined_form = joined(&strips, std::slice::from_ref(&(0..strips.len())), options.join, options.restart_index);
-    let v = strip::verify_with(&triangles, &joined_form, options.threads);
-    drop(joined_form);
-    if !v.ok() {
-        return Err(fail(&format!("the strips joined by {}", options.join.name()), &v));
+    // The strips were just verified: a joined form drawing their triangles strip by
+    // strip needs no second sort; any other order gets the full check.
+    if !strip::draws_in_order(&strips, &joined_form, options.threads) {
+        let v = strip::verify_with(&triangles, &joined_form, options.threads);
+        if !v.ok() {
+            return Err(fail(&format!("the strips joined by {}", options.join.name()), &v));
+        }
     }
+    drop(joined_form);
+    let phases = vec![("stripify", stripify_time), ("figures", figures_time), ("joined", joined_start.elapsed())];
     let strips_len = strips.len();
     Ok(Strips {
         strips,
@@ -274,5 +296,6 @@ fn run_one(mesh: &Mesh, options: &StripOptions) -> Result<Strips> {
         added_from,
         group_ranges: std::iter::once(0..strips_len).collect(),
         welded: 0,
+        phases,
     })
 }

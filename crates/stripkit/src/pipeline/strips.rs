@@ -56,6 +56,11 @@ pub struct Strips {
     /// vertex of lower id (0 with welding off or nothing to weld); they are still in
     /// the mesh, unused by the strips (a first-use order leaves them out).
     pub welded: usize,
+    /// Wall time of the door's steps, in order: `weld` (with welding on), `stripify`
+    /// ([`Strips::stripify_time`]), `figures` (the figures and the check of the strips)
+    /// and `joined` (the joined form encoded, read back and checked); a mesh of several
+    /// face groups reports its stripify time alone. For `strip --timings`.
+    pub phases: Vec<(&'static str, Duration)>,
 }
 
 impl Strips {

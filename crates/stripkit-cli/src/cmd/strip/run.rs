@@ -186,7 +186,7 @@ pub fn run(args: Args, batch: Option<&cmd::BatchText>) -> anyhow::Result<()> {
     let write_start = std::time::Instant::now();
     cmd::write_output(&args.output, &bytes)?;
     if args.timings {
-        print_timings(read_time, strip_time, encode_time, write_start.elapsed());
+        print_timings(read_time, (strip_time, &strips.phases), encode_time, write_start.elapsed());
     }
     progress.finish_and_clear();
     // The notes are not data: never where --json data goes to standard error (-o -).
@@ -206,15 +206,21 @@ pub fn run(args: Args, batch: Option<&cmd::BatchText>) -> anyhow::Result<()> {
     })
 }
 
-/// `--timings`: the seconds of each phase, on standard error.
+/// `--timings`: the seconds of each phase on standard error, the strip phase's own
+/// steps (the library's `Strips::phases`) in brackets after it.
 fn print_timings(
     read: std::time::Duration,
-    strip: std::time::Duration,
+    (strip, steps): (std::time::Duration, &[(&str, std::time::Duration)]),
     encode: std::time::Duration,
     write: std::time::Duration,
 ) {
-    let phases = [("read", read), ("strip", strip), ("encode", encode), ("write", write)];
-    let text: Vec<String> = phases.iter().map(|(name, t)| format!("{name} {:.3}", t.as_secs_f64())).collect();
+    let secs = |(name, t): &(&str, std::time::Duration)| format!("{name} {:.3}", t.as_secs_f64());
+    let mut strip_text = secs(&("strip", strip));
+    if !steps.is_empty() {
+        let inner: Vec<String> = steps.iter().map(secs).collect();
+        strip_text = format!("{strip_text} ({})", inner.join(", "));
+    }
+    let text = [secs(&("read", read)), strip_text, secs(&("encode", encode)), secs(&("write", write))];
     eprintln!("timings (s): {}", text.join(", "));
 }
 
@@ -322,7 +328,7 @@ fn strip_scene(
     cmd::write_output(&args.output, &bytes)?;
     let write_ms = start.elapsed().as_secs_f64() * 1e3;
     if args.timings {
-        print_timings(read_time, strip_time, encode_time, start.elapsed() - encode_time);
+        print_timings(read_time, (strip_time, &[]), encode_time, start.elapsed() - encode_time);
     }
     progress.finish_and_clear();
     if batch.is_none() && !(args.json && cmd::is_dash(&args.output)) {

@@ -20,7 +20,9 @@ pub(super) struct Canonical {
 }
 
 impl Canonical {
-    pub(super) fn of(mesh: &crate::mesh::Mesh) -> Canonical {
+    /// The order of `mesh`'s vertices; the keys are made and sorted in parallel when
+    /// `threads` allows (every key is distinct: the same order at any thread count).
+    pub(super) fn of(mesh: &crate::mesh::Mesh, threads: crate::parallel::Threads) -> Canonical {
         // f32 bits in an order that sorts like the numbers (a total order).
         let k = |x: f32| {
             let b = x.to_bits();
@@ -43,17 +45,13 @@ impl Canonical {
             x = (x | x << 4) & 0x10c30c30c30c30c3;
             (x | x << 2) & 0x1249249249249249
         };
-        let mut keys: Vec<u128> = mesh
-            .positions
-            .iter()
-            .enumerate()
-            .map(|(v, p)| {
-                let m = spread(q(p[0], 0)) | spread(q(p[1], 1)) << 1 | spread(q(p[2], 2)) << 2;
-                let exact = k(p[0]) ^ k(p[1]).rotate_left(11) ^ k(p[2]).rotate_left(22);
-                u128::from(m) << 64 | u128::from(exact) << 32 | v as u128
-            })
-            .collect();
-        keys.sort_unstable();
+        let mut keys: Vec<u128> = crate::parallel::map_range(threads, mesh.positions.len(), |v| {
+            let p = mesh.positions[v];
+            let m = spread(q(p[0], 0)) | spread(q(p[1], 1)) << 1 | spread(q(p[2], 2)) << 2;
+            let exact = k(p[0]) ^ k(p[1]).rotate_left(11) ^ k(p[2]).rotate_left(22);
+            u128::from(m) << 64 | u128::from(exact) << 32 | v as u128
+        });
+        crate::parallel::sort_unstable(threads, &mut keys);
         let old: Vec<u32> = keys.iter().map(|&key| key as u32).collect();
         let mut new = vec![0u32; old.len()];
         for (i, &v) in old.iter().enumerate() {
@@ -65,13 +63,14 @@ impl Canonical {
     /// The fan of every face (from the face's own first corner), in new ids, each
     /// triangle starting at its lowest id, sorted: the same list for any face order,
     /// any vertex ids and any rotation of a triangle.
-    pub(super) fn fan(&self, mesh: &crate::mesh::Mesh) -> Vec<[u32; 3]> {
+    /// The renumbering runs in parallel when `threads` allows.
+    pub(super) fn fan(&self, mesh: &crate::mesh::Mesh, threads: crate::parallel::Threads) -> Vec<[u32; 3]> {
         let mut tris = mesh.triangulate().tris;
-        for t in &mut tris {
+        crate::parallel::for_each_mut(threads, &mut tris, |t| {
             *t = [self.new[t[0] as usize], self.new[t[1] as usize], self.new[t[2] as usize]];
             let r = (0..3).min_by_key(|&i| t[i]).unwrap_or(0);
             t.rotate_left(r);
-        }
+        });
         // Sorted: bucketed by the first (lowest) id, each bucket (about two triangles)
         // sorted on its own. O(triangles + vertices) for bounded valence, O(t log t)
         // at worst.

@@ -364,9 +364,9 @@ pub fn stripify_mesh(
     // The same strips whatever the order of the faces, their rotation (but for the
     // fan of a polygon, which is another split) and the vertex ids: run in a canonical
     // order, map back.
-    let mut canon = Canonical::of(mesh);
+    let mut canon = Canonical::of(mesh, threads);
     let vc = mesh.vertex_count();
-    let fan_tris = fan.then(|| canon.fan(mesh));
+    let fan_tris = fan.then(|| canon.fan(mesh, threads));
     if !qstrip {
         // The new ids have served (the strips go back through the old ones).
         canon.forget_new();
