@@ -139,11 +139,6 @@ pub struct Scene {
     /// Threads for the read-back check of written strips ([`Scene::set_threads`]).
     threads: crate::parallel::Threads,
     notes: Vec<String>,
-    /// Views whose bytes are left out of the buffer, made again from the primitives'
-    /// meshes when the scene is encoded (a scene made from a mesh; `held.rs`).
-    held: Vec<super::held::HeldView>,
-    /// With `held`: the views as the document was made (buffer 0 whole).
-    made_views: Vec<View>,
 }
 
 impl std::fmt::Debug for Scene {
@@ -185,24 +180,8 @@ impl Scene {
             Format::Gltf => (parse_json(src, data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data), 0)?, None),
             other => return Err(Error::Invalid(format!("a scene is glTF or GLB, not {other:?}"))),
         };
-        Scene::from_document(path, json, bin.map(Cow::Borrowed), options, true)
-    }
-
-    /// The scene of a parsed document and its binary chunk (let go of once the buffers
-    /// hold its bytes, before the primitives are decoded); without `faces` the
-    /// primitives' faces are not decoded (a document made from a mesh, whose faces the
-    /// caller sets).
-    fn from_document(
-        path: &Path,
-        json: Value,
-        bin: Option<Cow<[u8]>>,
-        options: &ReadOptions,
-        faces: bool,
-    ) -> Result<Scene> {
-        let src = Src { path };
         let (buffers, views, primitives) = {
-            let (doc, mut budget) = open(src, &json, bin.as_deref(), options, PRIMITIVES_ALLOWANCE)?;
-            drop(bin);
+            let (doc, mut budget) = open(src, &json, bin, options, PRIMITIVES_ALLOWANCE)?;
             let mut primitives = Vec::new();
             for (m, jm) in array(src, &json, "meshes")?.iter().enumerate() {
                 let prims = match jm.get("primitives") {
@@ -210,7 +189,7 @@ impl Scene {
                     _ => return Err(src.err(at("meshes", m), "'primitives' must be an array")),
                 };
                 for (p, prim) in prims.iter().enumerate() {
-                    if let Some(sp) = decode_primitive(&doc, &json, m, p, prim, &mut budget, faces)? {
+                    if let Some(sp) = decode_primitive(&doc, &json, m, p, prim, &mut budget)? {
                         primitives.push(sp);
                     }
                 }
@@ -227,8 +206,6 @@ impl Scene {
             compress: false,
             threads: crate::parallel::Threads::SERIAL,
             notes: Vec::new(),
-            held: Vec::new(),
-            made_views: Vec::new(),
         })
     }
 
@@ -251,19 +228,8 @@ impl Scene {
     pub fn from_mesh_with(mesh: &Mesh, materials: &crate::mesh::io::Materials) -> Result<Scene> {
         let doc = super::from_mesh::mesh_document(mesh, materials)?;
         let options = ReadOptions::default().max_decoded_bytes(Some(u64::MAX));
-        // The document is decoded as a file would be, without a GLB container around it.
-        let mut scene =
-            Scene::from_document(Path::new("<mesh as glTF>"), doc.json, Some(Cow::Owned(doc.bin)), &options, false)?;
-        // Each primitive's mesh holds its positions and faces: their bytes leave the
-        // buffer, to be made again when the scene is encoded (held.rs).
-        if scene.buffers.len() == 1 && scene.primitives.len() == doc.group_of_primitive.len() {
-            let (buffers, views) = super::held::compact(&scene.buffers, &scene.views, &doc.held);
-            scene.made_views = std::mem::replace(&mut scene.views, views);
-            scene.buffers = buffers;
-            scene.held = doc.held;
-        }
-        for ((sp, &g), faces) in scene.primitives.iter_mut().zip(&doc.group_of_primitive).zip(doc.faces) {
-            let (offsets, indices) = faces.unwrap_or_else(|| (mesh.face_offsets.clone(), mesh.face_indices.clone()));
+        let mut scene = Scene::from_bytes(Path::new("<mesh as glTF>"), Format::Glb, &doc.glb, &options)?;
+        for ((sp, &g), (offsets, indices)) in scene.primitives.iter_mut().zip(&doc.group_of_primitive).zip(doc.faces) {
             sp.mesh.face_offsets = offsets;
             sp.mesh.face_indices = indices;
             if let Some(group) = mesh.groups.get(g as usize) {
@@ -312,19 +278,8 @@ impl Scene {
         }
         lists
             .iter()
-            .map(|list| {
-                list.iter().all(|(_, _, a)| {
-                    users[a] == 1 && (self.is_held(*a) || doc.read_packed(*a, &mut |_| Ok(())).is_ok())
-                })
-            })
+            .map(|list| list.iter().all(|(_, _, a)| users[a] == 1 && doc.read_packed(*a, &mut |_| Ok(())).is_ok()))
             .collect()
-    }
-
-    /// Whether accessor `a` reads a held-out view (plain data the scene made itself).
-    fn is_held(&self, a: usize) -> bool {
-        let view = self.json.pointer(&format!("/accessors/{a}/bufferView")).and_then(Value::as_u64);
-        self.json.pointer(&format!("/accessors/{a}/sparse")).is_none()
-            && view.is_some_and(|v| self.held.iter().any(|h| h.view == v as usize))
     }
 
     /// The triangle primitives, for the stripping above the door (`crate::scene`) to
@@ -419,12 +374,7 @@ impl Scene {
         if !stripped.is_empty() {
             // Reordered primitives: their vertex data gathered in the strips' order.
             // One reader for all of them (making one copies the views' list).
-            let doc = Doc {
-                src: Src { path: &self.name },
-                buffers: out.buffers.clone(),
-                views: out.views.clone(),
-                accessors: self.json.get("accessors").and_then(Value::as_array).map_or(&[], Vec::as_slice),
-            };
+            let doc = self.doc();
             let mut remapped: Vec<Option<StripSet>> = Vec::with_capacity(stripped.len());
             for sp in &stripped {
                 remapped.push(match &sp.order {
@@ -704,9 +654,6 @@ struct Garbage {
 struct Build<'s> {
     scene: &'s Scene,
     garbage: Garbage,
-    /// The scene's buffers and views with its held-out views' bytes made again.
-    buffers: Vec<Buffer>,
-    views: Vec<View>,
     json: Value,
     bin: Vec<u8>,
     /// Dead views' numbers, which new views take first.
@@ -717,20 +664,7 @@ impl<'s> Build<'s> {
     fn new(scene: &'s Scene) -> Build<'s> {
         let garbage = scene.garbage();
         let free_views = garbage.dead_views.iter().copied().collect();
-        let whole = (!garbage.collect && !scene.held.is_empty()).then_some(scene.made_views.as_slice());
-        let (buffers, views) = if scene.held.is_empty() {
-            (scene.buffers.clone(), scene.views.clone())
-        } else {
-            super::held::restore(
-                &scene.buffers,
-                &scene.views,
-                &scene.held,
-                &scene.primitives,
-                &garbage.dead_views,
-                whole,
-            )
-        };
-        Build { scene, garbage, buffers, views, json: scene.json.clone(), bin: Vec::new(), free_views }
+        Build { scene, garbage, json: scene.json.clone(), bin: Vec::new(), free_views }
     }
 
     /// Merges the buffers into `bin`, rewriting the views' `buffer` and `byteOffset`:
@@ -738,27 +672,26 @@ impl<'s> Build<'s> {
     /// index data of stripped primitives, and bytes no view covers, are left out),
     /// else every old buffer whole.
     fn merge_buffers(&mut self) {
-        let collect = self.garbage.collect;
-        let (buffers, scene_views) = (&self.buffers, &self.views);
+        let (scene, collect) = (self.scene, self.garbage.collect);
         let bin = &mut self.bin;
         // Where each old buffer starts in `bin`, when they are copied whole.
         let mut base = Vec::new();
         if !collect {
-            for b in buffers {
+            for b in &scene.buffers {
                 pad4(bin);
                 base.push(bin.len());
                 bin.extend_from_slice(b);
             }
         }
         let Some(Value::Array(views)) = self.json.get_mut("bufferViews") else { return };
-        for (k, (v, view)) in views.iter_mut().zip(scene_views).enumerate() {
+        for (k, (v, view)) in views.iter_mut().zip(&scene.views).enumerate() {
             let offset = if collect {
                 if self.garbage.dead_views.binary_search(&k).is_ok() {
                     continue;
                 }
                 pad4(bin);
                 let offset = bin.len();
-                bin.extend_from_slice(&buffers[view.buffer][view.offset..view.offset + view.length]);
+                bin.extend_from_slice(&scene.buffers[view.buffer][view.offset..view.offset + view.length]);
                 offset
             } else {
                 base[view.buffer] + view.offset
@@ -1030,7 +963,7 @@ impl<'s> Build<'s> {
     /// The JSON with its one buffer described (the first buffer's other properties
     /// kept, its `uri` left for the container to set), and the buffer's bytes.
     fn finish(mut self) -> (Value, Vec<u8>) {
-        if self.bin.is_empty() && self.buffers.is_empty() {
+        if self.bin.is_empty() && self.scene.buffers.is_empty() {
             return (self.json, self.bin);
         }
         let mut buffer = match self.scene.json.pointer("/buffers/0") {
