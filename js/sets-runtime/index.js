@@ -14,6 +14,9 @@
 //
 // Versions: decodeSets reads the header, then hands the rest to the decoder of the
 // file's version (DECODERS); a new version is one more entry there.
+//
+// decodeBody is about 150 lines long: it reads the sections in file order, checking
+// each as lod/file.rs does, so that the two readers can be compared line by line.
 
 /** The restart index the buffers use (WebGL2's fixed one for 32-bit indices). */
 export const SETS_RESTART = 0xffffffff;

@@ -72,18 +72,7 @@ pub fn run(args: Args, batch: Option<&cmd::BatchText>) -> anyhow::Result<()> {
     // Arguments are checked before the file is read.
     args.strip.validate(|o| args.with_join(o))?;
     let options = args.with_join(args.strip.options()?);
-    let vertex_order = match (args.vertex_order, &kind) {
-        (Some(VertexOrder::FirstUse), OutKind::Json) => {
-            return Err(Error::Invalid(format!(
-                "--vertex-order first-use applies to mesh outputs; {} holds no vertices",
-                args.output.display()
-            ))
-            .into())
-        }
-        (Some(order), _) => order,
-        (None, OutKind::Mesh(Format::Gltf | Format::Glb)) => VertexOrder::FirstUse,
-        (None, _) => VertexOrder::Input,
-    };
+    let vertex_order = vertex_order_for(&args, &kind)?;
     if args.compress && !matches!(kind, OutKind::Mesh(Format::Gltf | Format::Glb)) {
         return Err(Error::Invalid("--compress applies to .gltf and .glb outputs".into()).into());
     }
@@ -203,6 +192,23 @@ pub fn run(args: Args, batch: Option<&cmd::BatchText>) -> anyhow::Result<()> {
     cmd::print_report_to(&sink, args.json, &report, |out, r| match batch {
         Some(_) => report::print_line(out, r),
         None => report::print_summary(out, r),
+    })
+}
+
+/// The vertex order of the output: `--vertex-order` as given (first use only where the
+/// output holds vertices), else first use for glTF and the input's order otherwise.
+fn vertex_order_for(args: &Args, kind: &OutKind) -> anyhow::Result<VertexOrder> {
+    Ok(match (args.vertex_order, kind) {
+        (Some(VertexOrder::FirstUse), OutKind::Json) => {
+            return Err(Error::Invalid(format!(
+                "--vertex-order first-use applies to mesh outputs; {} holds no vertices",
+                args.output.display()
+            ))
+            .into())
+        }
+        (Some(order), _) => order,
+        (None, OutKind::Mesh(Format::Gltf | Format::Glb)) => VertexOrder::FirstUse,
+        (None, _) => VertexOrder::Input,
     })
 }
 

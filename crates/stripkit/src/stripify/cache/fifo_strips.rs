@@ -2,6 +2,9 @@
 //! exactly the FIFO of docs/metrics.md (a hit does not reorder, a miss evicts the oldest
 //! entry):
 //!
+//! `evaluate` is about 155 lines long: it scores one candidate walk in one loop whose
+//! steps share the walk's FIFO copy and counters, and it is the stripifier's hot path.
+//!
 //! * **Candidates.** Every free triangle around one of the oldest `scan_entries`
 //!   entries of the FIFO that has at least `min_cached` cached vertices, with each of
 //!   its three exit edges; and the end of the last strip, which may go on (a turn
