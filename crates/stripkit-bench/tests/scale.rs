@@ -86,7 +86,9 @@ fn quick_scale_run_measures_every_phase_and_matches_the_library() {
                     assert_eq!(mesh_bytes, 12 * (mesh.vertex_count() + triangles) as u64);
                     assert!(peak > mesh_bytes, "{label} {phase}: peak {peak} <= mesh {mesh_bytes}");
                     let before = rep["rss_before"].as_u64().unwrap();
-                    assert!(before > 0 && peak >= before, "{label} {phase}: {before} before, {peak} peak");
+                    // `before` is read just ahead of the peak's reset, and pages freed in
+                    // between (a few KiB) leave the reset peak slightly below it.
+                    assert!(before > 0 && peak + (1 << 20) >= before, "{label} {phase}: {before} before, {peak} peak");
                     if phase != "read" {
                         // The phase's inputs (the mesh at least) were resident before it.
                         assert!(before > mesh_bytes, "{label} {phase}: {before} before <= mesh {mesh_bytes}");
