@@ -217,17 +217,16 @@ def main():
         for f in crate_files(os.path.join(base, crate)):
             for name, line, count in functions(f):
                 found.append((count, os.path.relpath(f, ROOT), line, name))
-        found.sort(key=lambda x: (-x[0], x[1], x[2]))
-        print(f"== {crate}")
-        rows = [r for r in found if r[0] > args.over] if args.over is not None else found[: args.n]
-        for count, f, line, name in rows:
-            note = ""
-            if args.over is not None:
-                note = "  (file top says why)" if says_why(os.path.join(ROOT, f), count) else "  (NO REASON AT FILE TOP)"
-            print(f"  {count:5} {f}:{line} {name}{note}")
+        print_section(crate, found, args)
     found = [(count, os.path.relpath(f, ROOT), line, name) for f in js_files() for name, line, count in js_functions(f)]
+    print_section("js", found, args)
+
+
+def print_section(title, found, args):
+    """Prints one section: the longest functions (or those over `--over`, each with
+    whether its file's top says why)."""
     found.sort(key=lambda x: (-x[0], x[1], x[2]))
-    print("== js")
+    print(f"== {title}")
     rows = [r for r in found if r[0] > args.over] if args.over is not None else found[: args.n]
     for count, f, line, name in rows:
         note = ""
