@@ -490,12 +490,7 @@ pub(crate) struct SortedExpected {
 /// The non-degenerate `expected` triangles, canonical and sorted (in parallel when
 /// `threads` allows).
 pub(crate) fn sorted_expected(expected: &[[u32; 3]], threads: crate::parallel::Threads) -> SortedExpected {
-    let dropped_degenerate = expected.iter().filter(|t| is_degenerate(t)).count();
-    let mut want: Vec<[u32; 3]> = Vec::with_capacity(expected.len() - dropped_degenerate);
-    want.extend(expected.iter().filter(|t| !is_degenerate(t)));
-    crate::parallel::for_each_mut(threads, &mut want, |t| *t = canonical(*t));
-    crate::parallel::sort_unstable(threads, &mut want);
-    SortedExpected { want, dropped_degenerate }
+    sorted_expected_owned(expected.to_vec(), threads)
 }
 
 /// [`sorted_expected`] of a list the caller gives up: sorted in place, no copy.
