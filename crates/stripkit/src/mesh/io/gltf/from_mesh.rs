@@ -1,7 +1,7 @@
 //! A [`Mesh`] with attributes and groups as a glTF document: one mesh, one node, one
 //! TRIANGLES primitive per group (with its material, named after the group's), every
-//! primitive drawing from the same vertex accessors. [`super::Scene::from_mesh`] reads
-//! it back as a scene, so that each group is stripped on its own.
+//! primitive drawing from the same vertex accessors. [`super::Scene::from_mesh`] makes
+//! a scene of it, so that each group is stripped on its own.
 //!
 //! Attributes go out under their glTF semantics when their shape fits one (`NORMAL`
 //! VEC3, `TANGENT` VEC4, `TEXCOORD_n` VEC2, `COLOR_n` VEC3/VEC4, `JOINTS_n` VEC4 of
@@ -14,18 +14,24 @@
 //! took, are dropped and named in the notes. Every vertex element is padded to 4 bytes
 //! (`byteStride`), as glTF asks of vertex attributes.
 
-use super::glb_container;
+use super::held::{fan, Held, HeldView};
 use crate::error::{Error, Result};
 use crate::mesh::io::mtl::{Material, Materials, Texture};
 use crate::mesh::{Attribute, Mesh, Scalar};
 use serde_json::{json, Map, Value};
 
-/// The GLB bytes of a mesh, and per primitive the group it holds.
+/// The glTF document of a mesh (JSON and binary buffer), and per primitive the group
+/// it holds.
 pub(super) struct MeshDocument {
-    pub glb: Vec<u8>,
+    pub json: Value,
+    pub bin: Vec<u8>,
     pub group_of_primitive: Vec<u32>,
-    /// Per primitive its polygon faces (offsets, indices), over its own vertices.
-    pub faces: Vec<(Vec<u32>, Vec<u32>)>,
+    /// Per primitive its polygon faces (offsets, indices), over its own vertices;
+    /// `None` for the one primitive of a mesh of one group (the mesh's own faces).
+    pub faces: Vec<Option<(Vec<u32>, Vec<u32>)>>,
+    /// Each primitive's positions and indices views, which its decoded mesh holds
+    /// again (`held.rs`).
+    pub held: Vec<HeldView>,
     /// Attributes dropped, each with the reason.
     pub notes: Vec<String>,
 }
@@ -262,6 +268,7 @@ pub(super) fn mesh_document(mesh: &Mesh, library: &Materials) -> Result<MeshDocu
     let mut primitives = Vec::new();
     let mut group_of_primitive = Vec::new();
     let mut faces = Vec::new();
+    let mut held = Vec::new();
     for (g, part) in &parts {
         // The fan's indices go straight into the buffer (no list of them first).
         let count = 3 * part.triangle_count();
@@ -271,20 +278,13 @@ pub(super) fn mesh_document(mesh: &Mesh, library: &Materials) -> Result<MeshDocu
         let wide = part.vertex_count() >= u16::MAX as usize;
         let attribute_bytes: usize = part.attributes.iter().map(|a| a.data.len()).sum();
         bin.reserve(part.positions.len() * 12 + attribute_bytes + 8 + count * if wide { 4 } else { 2 });
+        let primitive = primitives.len();
+        held.push(HeldView { primitive, view: views.len(), held: Held::Positions });
         let attributes = write_vertices(part, &mut bin, &mut views, &mut accessors, &mut notes);
         bin.resize(bin.len().next_multiple_of(4), 0);
         let start = bin.len();
-        for face in part.faces() {
-            for i in 1..face.len().saturating_sub(1) {
-                for v in [face[0], face[i], face[i + 1]] {
-                    if wide {
-                        bin.extend_from_slice(&v.to_le_bytes());
-                    } else {
-                        bin.extend_from_slice(&(v as u16).to_le_bytes());
-                    }
-                }
-            }
-        }
+        fan(part, wide, &mut bin);
+        held.push(HeldView { primitive, view: views.len(), held: Held::Indices { wide } });
         views.push(json!({"buffer": 0, "byteOffset": start, "byteLength": bin.len() - start, "target": 34963}));
         accessors.push(json!({"bufferView": views.len() - 1, "componentType": if wide { 5125 } else { 5123 },
             "count": count, "type": "SCALAR"}));
@@ -302,7 +302,10 @@ pub(super) fn mesh_document(mesh: &Mesh, library: &Materials) -> Result<MeshDocu
         }
         primitives.push(prim);
         group_of_primitive.push(*g);
-        faces.push((part.face_offsets.clone(), part.face_indices.clone()));
+        faces.push(match part {
+            std::borrow::Cow::Borrowed(_) => None,
+            std::borrow::Cow::Owned(p) => Some((p.face_offsets.clone(), p.face_indices.clone())),
+        });
     }
     notes.sort();
     notes.dedup();
@@ -339,7 +342,7 @@ pub(super) fn mesh_document(mesh: &Mesh, library: &Materials) -> Result<MeshDocu
             json["samplers"] = json!([{}]);
         }
     }
-    Ok(MeshDocument { glb: glb_container(&json, bin)?, group_of_primitive, faces, notes })
+    Ok(MeshDocument { json, bin, group_of_primitive, faces, held, notes })
 }
 
 /// The images and textures of the materials written so far (each file once).

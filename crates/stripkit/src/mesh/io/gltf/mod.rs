@@ -48,6 +48,7 @@ use buffers::load_buffers;
 mod compress;
 mod extensions;
 mod from_mesh;
+mod held;
 pub(crate) mod meshopt;
 mod nodes;
 mod primitive;

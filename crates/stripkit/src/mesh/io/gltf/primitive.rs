@@ -204,6 +204,7 @@ pub(super) fn decode_primitive(
     p: usize,
     prim: &Value,
     budget: &mut Budget,
+    faces: bool,
 ) -> Result<Option<ScenePrimitive>> {
     let src = doc.src;
     let place = || format!("meshes[{m}].primitives[{p}]");
@@ -238,8 +239,15 @@ pub(super) fn decode_primitive(
     }
     mesh.attributes = read_attributes(doc, prim, count, &place, budget)?;
     let mut indices = Vec::new();
-    super::read_primitive_indices(src, doc, prim, &place, budget, mode, (pos, count), &mut indices)?;
-    super::push_primitive_faces(src, &place, &mut mesh, mode, &indices)?;
+    let indices_read = if faces {
+        super::read_primitive_indices(src, doc, prim, &place, budget, mode, (pos, count), &mut indices)?;
+        super::push_primitive_faces(src, &place, &mut mesh, mode, &indices)?;
+        indices.len()
+    } else {
+        // A document made from a mesh: the caller sets the faces (its own polygons).
+        let accessor = prim.get("indices").and_then(Value::as_u64);
+        accessor.and_then(|a| json["accessors"][a as usize]["count"].as_u64()).map_or(count, |n| n as usize)
+    };
     let mesh_name = json["meshes"][m].get("name").and_then(Value::as_str).map_or(format!("mesh {m}"), String::from);
     let material = uint(src, prim, "material", &place)?.map(|k| {
         json.get("materials")
@@ -262,7 +270,7 @@ pub(super) fn decode_primitive(
         primitive_index: p,
         mode: mode as u8,
         targets,
-        indices_read: indices.len(),
+        indices_read,
         mesh,
         strips: None,
         drawn: Vec::new(),

@@ -143,6 +143,11 @@ pub struct Scene {
     /// Threads for the read-back check of written strips ([`Scene::set_threads`]).
     threads: crate::parallel::Threads,
     notes: Vec<String>,
+    /// Views whose bytes are left out of the buffer, made again from the primitives'
+    /// meshes when the scene is encoded (a scene made from a mesh; `held.rs`).
+    held: Vec<super::held::HeldView>,
+    /// With `held`: the views as the document was made (buffer 0 whole).
+    made_views: Vec<View>,
 }
 
 impl std::fmt::Debug for Scene {
@@ -184,8 +189,24 @@ impl Scene {
             Format::Gltf => (parse_json(src, data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data), 0)?, None),
             other => return Err(Error::Invalid(format!("a scene is glTF or GLB, not {other:?}"))),
         };
+        Scene::from_document(path, json, bin.map(Cow::Borrowed), options, true)
+    }
+
+    /// The scene of a parsed document and its binary chunk (let go of once the buffers
+    /// hold its bytes, before the primitives are decoded); without `faces` the
+    /// primitives' faces are not decoded (a document made from a mesh, whose faces the
+    /// caller sets).
+    fn from_document(
+        path: &Path,
+        json: Value,
+        bin: Option<Cow<[u8]>>,
+        options: &ReadOptions,
+        faces: bool,
+    ) -> Result<Scene> {
+        let src = Src { path };
         let (buffers, views, primitives) = {
-            let (doc, mut budget) = open(src, &json, bin, options, PRIMITIVES_ALLOWANCE)?;
+            let (doc, mut budget) = open(src, &json, bin.as_deref(), options, PRIMITIVES_ALLOWANCE)?;
+            drop(bin);
             let mut primitives = Vec::new();
             for (m, jm) in array(src, &json, "meshes")?.iter().enumerate() {
                 let prims = match jm.get("primitives") {
@@ -193,7 +214,7 @@ impl Scene {
                     _ => return Err(src.err(at("meshes", m), "'primitives' must be an array")),
                 };
                 for (p, prim) in prims.iter().enumerate() {
-                    if let Some(sp) = decode_primitive(&doc, &json, m, p, prim, &mut budget)? {
+                    if let Some(sp) = decode_primitive(&doc, &json, m, p, prim, &mut budget, faces)? {
                         primitives.push(sp);
                     }
                 }
@@ -210,6 +231,8 @@ impl Scene {
             compress: false,
             threads: crate::parallel::Threads::SERIAL,
             notes: Vec::new(),
+            held: Vec::new(),
+            made_views: Vec::new(),
         })
     }
 
@@ -232,8 +255,19 @@ impl Scene {
     pub fn from_mesh_with(mesh: &Mesh, materials: &crate::mesh::io::Materials) -> Result<Scene> {
         let doc = super::from_mesh::mesh_document(mesh, materials)?;
         let options = ReadOptions::default().max_decoded_bytes(Some(u64::MAX));
-        let mut scene = Scene::from_bytes(Path::new("<mesh as glTF>"), Format::Glb, &doc.glb, &options)?;
-        for ((sp, &g), (offsets, indices)) in scene.primitives.iter_mut().zip(&doc.group_of_primitive).zip(doc.faces) {
+        // The document is decoded as a file would be, without a GLB container around it.
+        let mut scene =
+            Scene::from_document(Path::new("<mesh as glTF>"), doc.json, Some(Cow::Owned(doc.bin)), &options, false)?;
+        // Each primitive's mesh holds its positions and faces: their bytes leave the
+        // buffer, to be made again when the scene is encoded (held.rs).
+        if scene.buffers.len() == 1 && scene.primitives.len() == doc.group_of_primitive.len() {
+            let (buffers, views) = super::held::compact(&scene.buffers, &scene.views, &doc.held);
+            scene.made_views = std::mem::replace(&mut scene.views, views);
+            scene.buffers = buffers;
+            scene.held = doc.held;
+        }
+        for ((sp, &g), faces) in scene.primitives.iter_mut().zip(&doc.group_of_primitive).zip(doc.faces) {
+            let (offsets, indices) = faces.unwrap_or_else(|| (mesh.face_offsets.clone(), mesh.face_indices.clone()));
             sp.mesh.face_offsets = offsets;
             sp.mesh.face_indices = indices;
             if let Some(group) = mesh.groups.get(g as usize) {
@@ -282,8 +316,19 @@ impl Scene {
         }
         lists
             .iter()
-            .map(|list| list.iter().all(|(_, _, a)| users[a] == 1 && doc.read_packed(*a, &mut |_| Ok(())).is_ok()))
+            .map(|list| {
+                list.iter().all(|(_, _, a)| {
+                    users[a] == 1 && (self.is_held(*a) || doc.read_packed(*a, &mut |_| Ok(())).is_ok())
+                })
+            })
             .collect()
+    }
+
+    /// Whether accessor `a` reads a held-out view (plain data the scene made itself).
+    fn is_held(&self, a: usize) -> bool {
+        let view = self.json.pointer(&format!("/accessors/{a}/bufferView")).and_then(Value::as_u64);
+        self.json.pointer(&format!("/accessors/{a}/sparse")).is_none()
+            && view.is_some_and(|v| self.held.iter().any(|h| h.view == v as usize))
     }
 
     /// The triangle primitives, for the stripping above the door (`crate::scene`) to
@@ -378,7 +423,12 @@ impl Scene {
         if !stripped.is_empty() {
             // Reordered primitives: their vertex data gathered in the strips' order.
             // One reader for all of them (making one copies the views' list).
-            let doc = self.doc();
+            let doc = Doc {
+                src: Src { path: &self.name },
+                buffers: out.buffers.clone(),
+                views: out.views.clone(),
+                accessors: self.json.get("accessors").and_then(Value::as_array).map_or(&[], Vec::as_slice),
+            };
             let mut remapped: Vec<Option<StripSet>> = Vec::with_capacity(stripped.len());
             for sp in &stripped {
                 remapped.push(match &sp.order {

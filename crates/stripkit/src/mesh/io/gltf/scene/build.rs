@@ -9,6 +9,9 @@ use super::*;
 pub(super) struct Build<'s> {
     scene: &'s Scene,
     garbage: Garbage,
+    /// The scene's buffers and views with its held-out views' bytes made again.
+    pub(super) buffers: Vec<Buffer>,
+    pub(super) views: Vec<View>,
     json: Value,
     bin: Vec<u8>,
     /// Dead views' numbers, which new views take first.
@@ -19,7 +22,20 @@ impl<'s> Build<'s> {
     pub(super) fn new(scene: &'s Scene) -> Build<'s> {
         let garbage = scene.garbage();
         let free_views = garbage.dead_views.iter().copied().collect();
-        Build { scene, garbage, json: scene.json.clone(), bin: Vec::new(), free_views }
+        let whole = (!garbage.collect && !scene.held.is_empty()).then_some(scene.made_views.as_slice());
+        let (buffers, views) = if scene.held.is_empty() {
+            (scene.buffers.clone(), scene.views.clone())
+        } else {
+            super::super::held::restore(
+                &scene.buffers,
+                &scene.views,
+                &scene.held,
+                &scene.primitives,
+                &garbage.dead_views,
+                whole,
+            )
+        };
+        Build { scene, garbage, buffers, views, json: scene.json.clone(), bin: Vec::new(), free_views }
     }
 
     /// Merges the buffers into `bin`, rewriting the views' `buffer` and `byteOffset`:
@@ -27,32 +43,36 @@ impl<'s> Build<'s> {
     /// index data of stripped primitives, and bytes no view covers, are left out),
     /// else every old buffer whole.
     pub(super) fn merge_buffers(&mut self) {
-        let (scene, collect) = (self.scene, self.garbage.collect);
+        let collect = self.garbage.collect;
+        let (buffers, scene_views) = (&self.buffers, &self.views);
+        // The offsets the JSON names: a held view's bytes are made again at offset 0 of
+        // a buffer of their own, while its JSON keeps the offset it was made at.
+        let named = if self.scene.held.is_empty() { &self.scene.views } else { &self.scene.made_views };
         let bin = &mut self.bin;
         // Where each old buffer starts in `bin`, when they are copied whole.
         let mut base = Vec::new();
         if !collect {
-            for b in &scene.buffers {
+            for b in buffers {
                 pad4(bin);
                 base.push(bin.len());
                 bin.extend_from_slice(b);
             }
         }
         let Some(Value::Array(views)) = self.json.get_mut("bufferViews") else { return };
-        for (k, (v, view)) in views.iter_mut().zip(&scene.views).enumerate() {
+        for (k, (v, view)) in views.iter_mut().zip(scene_views).enumerate() {
             let offset = if collect {
                 if self.garbage.dead_views.binary_search(&k).is_ok() {
                     continue;
                 }
                 pad4(bin);
                 let offset = bin.len();
-                bin.extend_from_slice(&scene.buffers[view.buffer][view.offset..view.offset + view.length]);
+                bin.extend_from_slice(&buffers[view.buffer][view.offset..view.offset + view.length]);
                 offset
             } else {
                 base[view.buffer] + view.offset
             };
             v["buffer"] = 0.into();
-            if offset != view.offset {
+            if offset != named[k].offset {
                 v["byteOffset"] = offset.into();
             }
         }
@@ -318,7 +338,7 @@ impl<'s> Build<'s> {
     /// The JSON with its one buffer described (the first buffer's other properties
     /// kept, its `uri` left for the container to set), and the buffer's bytes.
     pub(super) fn finish(mut self) -> (Value, Vec<u8>) {
-        if self.bin.is_empty() && self.scene.buffers.is_empty() {
+        if self.bin.is_empty() && self.buffers.is_empty() {
             return (self.json, self.bin);
         }
         let mut buffer = match self.scene.json.pointer("/buffers/0") {
