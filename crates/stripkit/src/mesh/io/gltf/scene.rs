@@ -373,13 +373,26 @@ impl Scene {
     /// primitives' faces and strips) is let go before the check reads the bytes back,
     /// so the file and its reading back are not held beside them. The same bytes.
     pub fn into_bytes(mut self, format: Format) -> Result<Vec<u8>> {
+        // Encoding reads a stripped primitive's strips, not its faces, unless its held
+        // index bytes are written again (a view garbage collection keeps): the faces
+        // go first, so that they are not held beside the file being made.
+        let garbage = self.garbage();
+        let mut remade: Vec<usize> = (self.held.iter())
+            .filter(|h| matches!(h.held, super::held::Held::Indices { .. }))
+            .filter(|h| !garbage.collect || garbage.dead_views.binary_search(&h.view).is_err())
+            .map(|h| h.primitive)
+            .collect();
+        remade.sort_unstable();
+        for (k, sp) in self.primitives.iter_mut().enumerate() {
+            if sp.strips.is_some() && remade.binary_search(&k).is_err() {
+                free_faces(&mut sp.mesh);
+            }
+        }
         let bytes = self.encode(format)?;
         self.buffers = Vec::new();
         for sp in self.primitives.iter_mut().filter(|sp| sp.strips.is_some()) {
             sp.strips = Some(StripSet::new());
-            sp.mesh.face_offsets = vec![0];
-            sp.mesh.face_indices = Vec::new();
-            sp.mesh.face_groups = Vec::new();
+            free_faces(&mut sp.mesh);
         }
         self.check_written(format, &bytes)?;
         Ok(bytes)
@@ -684,6 +697,13 @@ impl Scene {
 /// a triangle (strips read back) the offsets go first and the indices are regrouped,
 /// so at most the indices and the triangles are alive at once; otherwise
 /// [`Mesh::triangulate`].
+/// Lets a mesh's faces go (its positions and attributes stay).
+fn free_faces(mesh: &mut Mesh) {
+    mesh.face_offsets = vec![0];
+    mesh.face_indices = Vec::new();
+    mesh.face_groups = Vec::new();
+}
+
 fn take_triangles(mesh: &mut Mesh) -> Vec<[u32; 3]> {
     if !mesh.face_offsets.windows(2).all(|w| w[1].wrapping_sub(w[0]) == 3) {
         return mesh.triangulate().tris;
