@@ -147,8 +147,11 @@ impl<'s> Build<'s> {
         }
         let new_id = ids_of(order, sp.mesh.vertex_count());
         let set = sp.strips.as_ref().expect("only stripped primitives are written");
-        let strips: Vec<Vec<u32>> = set.iter().map(|s| s.iter().map(|&v| new_id[v as usize]).collect()).collect();
-        Ok(StripSet::from_strips(&strips))
+        // The same strips renamed in place of a list of lists (one allocation per strip).
+        Ok(StripSet {
+            indices: set.indices.iter().map(|&v| new_id[v as usize]).collect(),
+            offsets: set.offsets.clone(),
+        })
     }
 
     /// Writes every stripped primitive's stitched indices (mode 5, taking its old index
@@ -165,6 +168,17 @@ impl<'s> Build<'s> {
             None => push_array(&mut self.json, "bufferViews", Value::Null),
         };
         let mut groups = Vec::new();
+        // Room for every index at once (stitching adds at most 3 per strip, restart 1),
+        // so that the binary is not grown by doubling while they are appended.
+        let room: usize = (stripped.iter().zip(remapped))
+            .map(|(sp, remapped)| {
+                let set = remapped.as_ref().or(sp.strips.as_ref()).expect("only stripped primitives are written");
+                let vertices = sp.order.as_ref().map_or(sp.mesh.vertex_count(), Vec::len);
+                let copies = if self.scene.restart_groups && sp.targets == 0 { 2 } else { 1 };
+                copies * (set.indices.len() + 3 * set.len() + 2) * if vertices >= u16::MAX as usize { 4 } else { 2 }
+            })
+            .sum();
+        self.bin.reserve(room);
         for (sp, remapped) in stripped.iter().zip(remapped) {
             let set = remapped.as_ref().or(sp.strips.as_ref()).expect("only stripped primitives are written");
             // 65535 is the u16 restart value, never a vertex id.
@@ -179,8 +193,12 @@ impl<'s> Build<'s> {
             prim["mode"] = 5.into();
             if self.scene.restart_groups && sp.targets == 0 {
                 let restart = if wide { u32::MAX } else { u16::MAX as u32 };
-                let list: StripSet = StripSet::from_strips(&set.iter().filter(|s| s.len() >= 3).collect::<Vec<_>>());
-                let acc = self.add_indices(at, &strip::encode_restart(&list, restart), None);
+                // Strips of fewer than 3 indices draw nothing and are left out (a copy
+                // of the set only where there are any).
+                let short = set.iter().any(|s| s.len() < 3);
+                let list =
+                    short.then(|| StripSet::from_strips(&set.iter().filter(|s| s.len() >= 3).collect::<Vec<_>>()));
+                let acc = self.add_indices(at, &strip::encode_restart(list.as_ref().unwrap_or(set), restart), None);
                 groups.push([sp.mesh_index, sp.primitive_index, acc]);
             }
         }
