@@ -390,11 +390,17 @@ impl Scene {
         }
         let bytes = self.encode(format)?;
         self.buffers = Vec::new();
-        for sp in self.primitives.iter_mut().filter(|sp| sp.strips.is_some()) {
-            sp.strips = Some(StripSet::new());
-            free_faces(&mut sp.mesh);
+        // The reference triangles go to the check, which sorts them in place (no
+        // sorted copy beside them).
+        let mut drawn = Vec::with_capacity(self.primitives.len());
+        for sp in self.primitives.iter_mut() {
+            drawn.push(sp.strips.is_some().then(|| std::mem::take(&mut sp.drawn)));
+            if sp.strips.is_some() {
+                sp.strips = Some(StripSet::new());
+                free_faces(&mut sp.mesh);
+            }
         }
-        self.check_written(format, &bytes)?;
+        self.check_written_taking(format, &bytes, drawn)?;
         Ok(bytes)
     }
 
@@ -566,6 +572,17 @@ impl Scene {
 
     /// Reads `bytes` back and compares every primitive with this scene's.
     fn check_written(&self, format: Format, bytes: &[u8]) -> Result<()> {
+        self.check_written_taking(format, bytes, Vec::new())
+    }
+
+    /// [`Scene::check_written`] with, per primitive, its reference triangles taken out
+    /// of the scene where `drawn` has them (`None` or missing: the scene's own).
+    fn check_written_taking(
+        &self,
+        format: Format,
+        bytes: &[u8],
+        mut drawn: Vec<Option<Vec<[u32; 3]>>>,
+    ) -> Result<()> {
         let name = PathBuf::from(format!("the {format:?} bytes to be written"));
         // The input was accepted under the caller's budget; the output decodes to the same.
         let options = ReadOptions::default().max_decoded_bytes(Some(u64::MAX));
@@ -603,7 +620,7 @@ impl Scene {
                 }
             }
         }
-        for (a, b) in self.primitives.iter().zip(back_primitives.iter_mut()) {
+        for (k, (a, b)) in self.primitives.iter().zip(back_primitives.iter_mut()).enumerate() {
             if (a.mesh_index, a.primitive_index) != (b.mesh_index, b.primitive_index) {
                 return Err(fail(
                     a,
@@ -635,11 +652,19 @@ impl Scene {
                 }
                 continue;
             }
-            let want: Cow<[[u32; 3]]> = match &a.order {
-                None => Cow::Borrowed(&a.drawn),
-                Some(order) => {
+            let taken = drawn.get_mut(k).and_then(Option::take);
+            let want: Cow<[[u32; 3]]> = match (&a.order, taken) {
+                (None, None) => Cow::Borrowed(&a.drawn),
+                (None, Some(list)) => Cow::Owned(list),
+                (Some(order), taken) => {
                     let new_id = ids_of(order, a.mesh.vertex_count());
-                    Cow::Owned(a.drawn.iter().map(|t| t.map(|v| new_id[v as usize])).collect())
+                    Cow::Owned(match taken {
+                        Some(mut list) => {
+                            list.iter_mut().for_each(|t| *t = t.map(|v| new_id[v as usize]));
+                            list
+                        }
+                        None => a.drawn.iter().map(|t| t.map(|v| new_id[v as usize])).collect(),
+                    })
                 }
             };
             // Sorted once for both checks below.
@@ -709,8 +734,20 @@ fn take_triangles(mesh: &mut Mesh) -> Vec<[u32; 3]> {
         return mesh.triangulate().tris;
     }
     drop(std::mem::take(&mut mesh.face_offsets));
-    let indices = std::mem::take(&mut mesh.face_indices);
-    indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+    let mut indices = std::mem::take(&mut mesh.face_indices);
+    // Taken from the end a part at a time, the list shrunk after each part, so that
+    // the list and the triangles are not both held whole (53 MB each on 4.4M
+    // triangles); the triangles come out reversed and are turned round at the end.
+    const PART: usize = 3 << 18;
+    let mut tris = Vec::with_capacity(indices.len() / 3);
+    while !indices.is_empty() {
+        let start = indices.len().saturating_sub(PART);
+        tris.extend(indices[start..].chunks_exact(3).rev().map(|c| [c[0], c[1], c[2]]));
+        indices.truncate(start);
+        indices.shrink_to_fit();
+    }
+    tris.reverse();
+    tris
 }
 
 /// See [`Scene::garbage`].
