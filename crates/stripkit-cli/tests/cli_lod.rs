@@ -294,6 +294,7 @@ fn animations_build_extract_and_bench() {
             _ => {}
         }
         assert!(row["changes"].as_u64().unwrap() > 0 && row["max_us"].as_f64() >= row["mean_us"].as_f64(), "{row}");
+        assert!(row["max_us"].as_f64() >= row["p99_us"].as_f64() && row["p99_us"].as_f64() >= row["median_us"].as_f64(), "{row}");
     }
     // Quantized positions: a smaller file that still extracts.
     let small = tmp("lod", "anim_q.lodseq");

@@ -1,6 +1,6 @@
 //! Recovery of levels with coherence.
 
-use super::sets::Sets;
+use super::sets::{Sets, Version, AMBIGUOUS_VERSION, NO_VERSION};
 use crate::strip::StripSet;
 use std::ops::Range;
 
@@ -50,12 +50,16 @@ pub struct Cursor<'a> {
     changed: Vec<u32>,
     moves: u32,
     /// Scratch of a move: the changed slots of every changed strip, ascending
-    /// per strip (`span_counts` of them each), where each one's walk starts and
-    /// the slot it resumes after, and the plan of one walk.
+    /// per strip (`span_counts` of them each), with each one's version at the new
+    /// level (an index in the model's versions, or [`NO_VERSION`]: look it up),
+    /// where each strip's walk starts, the plan of one walk, and the changes of
+    /// one strip as (slot, version) keys.
     spans: Vec<u32>,
+    span_versions: Vec<u32>,
     span_counts: Vec<u32>,
-    todo: Vec<(u32, u32)>,
+    todo: Vec<u32>,
     plan: Vec<Piece>,
+    keys: Vec<u64>,
 }
 
 /// Where a strip stands at the cursor's level.
@@ -139,9 +143,11 @@ impl Sets {
             changed: Vec::with_capacity(strips),
             moves: 0,
             spans: Vec::new(),
+            span_versions: Vec::new(),
             span_counts: Vec::new(),
             todo: Vec::new(),
             plan: Vec::new(),
+            keys: Vec::new(),
         };
         for s in 0..strips {
             let r = self.change_offsets[s] as usize..self.change_offsets[s + 1] as usize;
@@ -200,11 +206,12 @@ impl<'a> Cursor<'a> {
                 }
             }
         }
-        // Three passes, so that the slot versions a move reads (two dependent
-        // loads each, far apart: what a move waits on) are fetched together: the
-        // changed slots of every strip, with a hint for their version offsets;
-        // a hint for the versions they point to; then the walks.
+        // Two passes, so that the versions a move reads (what a move waits on)
+        // are fetched together: the changed slots of every strip, each with its
+        // version at the new level taken from the change lists (one load, asked
+        // for ahead); then the walks.
         self.spans.clear();
+        self.span_versions.clear();
         self.todo.clear();
         self.span_counts.clear();
         let sets = self.sets;
@@ -212,26 +219,17 @@ impl<'a> Cursor<'a> {
             let s = self.changed[i] as usize;
             let start = self.spans.len();
             let from = self.first_change(s, lo as u32, hi as u32, level > old);
-            let resume = if from > 0 { self.slot_at[self.state[s].base as usize + from - 1] } else { super::END };
-            for &x in std::iter::once(&resume).chain(&self.spans[start..]) {
-                if x != super::END {
-                    prefetch(&sets.version_offsets[x as usize + 1]);
+            for &v in &self.span_versions[start..] {
+                if v != NO_VERSION {
+                    prefetch(&sets.versions[v as usize]);
                 }
             }
-            self.todo.push((from as u32, resume));
-        }
-        for &(_, resume) in &self.todo {
-            if resume != super::END {
-                prefetch(&sets.versions[sets.version_offsets[resume as usize + 1] as usize - 1]);
-            }
-        }
-        for &x in &self.spans {
-            prefetch(&sets.versions[sets.version_offsets[x as usize + 1] as usize - 1]);
+            self.todo.push(from as u32);
         }
         // A strip walked whole reads its slots' versions in order: they lie
         // together, so the first lines of them are asked for.
         for i in 0..self.changed.len() {
-            if self.todo[i].0 == 0 && self.span_counts[i] == 0 {
+            if self.todo[i] == 0 && self.span_counts[i] == 0 {
                 let s = self.changed[i] as usize;
                 let first = sets.version_offsets[sets.strip_slots[s] as usize] as usize;
                 let last = sets.version_offsets[sets.strip_slots[s + 1] as usize] as usize;
@@ -244,7 +242,7 @@ impl<'a> Cursor<'a> {
         for i in 0..self.changed.len() {
             let s = self.changed[i] as usize;
             let count = self.span_counts[i] as usize;
-            self.rewalk(s, self.todo[i].0 as usize, start..start + count, level > old);
+            self.rewalk(s, self.todo[i] as usize, start..start + count, level > old);
             start += count;
         }
         &self.changed
@@ -295,18 +293,40 @@ impl<'a> Cursor<'a> {
             self.span_counts.push(0);
             return 0;
         }
-        self.spans.extend_from_slice(&sets.change_slot[a..b]);
-        let tail = &mut self.spans[start..];
-        tail.sort_unstable();
-        let mut n = 0;
-        for i in 0..tail.len() {
-            if n == 0 || tail[i] != tail[n - 1] {
-                tail[n] = tail[i];
-                n += 1;
+        // Per changed slot, its version at the new level: coarser, the last one
+        // crossed; finer, the one before the first crossed. A slot whose crossed
+        // changes start no version (a beginning) or are ambiguous is looked up.
+        self.keys.clear();
+        self.keys
+            .extend((a..b).map(|i| (sets.change_slot[i] as u64) << 32 | sets.change_version[i] as u64));
+        self.keys.sort_unstable();
+        let mut i = 0;
+        while i < self.keys.len() {
+            let slot = (self.keys[i] >> 32) as u32;
+            let mut j = i;
+            while j < self.keys.len() && (self.keys[j] >> 32) as u32 == slot {
+                j += 1;
             }
+            let first_v = self.keys[i] as u32;
+            // Versions ascending, then AMBIGUOUS_VERSION, then NO_VERSION.
+            let group = &self.keys[i..j];
+            let ambiguous = group.iter().any(|&k| k as u32 == AMBIGUOUS_VERSION);
+            let real = group.iter().rev().map(|&k| k as u32).find(|&v| v < AMBIGUOUS_VERSION);
+            let v = match real {
+                Some(last) if !ambiguous => {
+                    if coarser {
+                        last
+                    } else {
+                        first_v - 1
+                    }
+                }
+                _ => NO_VERSION,
+            };
+            self.spans.push(slot);
+            self.span_versions.push(v);
+            i = j;
         }
-        self.spans.truncate(start + n);
-        self.span_counts.push(n as u32);
+        self.span_counts.push((self.spans.len() - start) as u32);
         let first = self.spans.get(start).copied().unwrap_or(super::END);
         let base = st.base as usize;
         self.slot_at[base..base + st.len as usize].partition_point(|&x| x < first)
@@ -323,10 +343,13 @@ impl<'a> Cursor<'a> {
         let sets = self.sets;
         let base = self.state[s].base as usize;
         let old = self.state[s].len as usize;
+        // The slot before `from` did not change: its successor is the old walk's.
         let mut x = if from == 0 {
             sets.head_at(s, self.level)
+        } else if from < old {
+            self.slot_at[base + from]
         } else {
-            sets.version_at(self.slot_at[base + from - 1], self.level).next
+            super::END
         };
         let level = self.level;
         let mut pos = base + from;
@@ -344,7 +367,8 @@ impl<'a> Cursor<'a> {
         // First the plan: the walk's changed slots and the runs of the old walk
         // it reuses, read from the range as it is.
         self.plan.clear();
-        let (spans, old_slots) = (&self.spans[spans], &self.slot_at[base + from..base + old]);
+        let (span_versions, spans) = (&self.span_versions[spans.clone()], &self.spans[spans]);
+        let old_slots = &self.slot_at[base + from..base + old];
         let (mut j, mut k, mut len) = (0, 0, from);
         while x != super::END {
             while j < spans.len() && spans[j] < x {
@@ -368,7 +392,14 @@ impl<'a> Cursor<'a> {
                     continue;
                 }
             }
-            let v = sets.version_at(x, level);
+            let v = match span_versions.get(j) {
+                Some(&v) if v != NO_VERSION && spans[j] == x => {
+                    let v: Version = sets.versions[v as usize];
+                    debug_assert_eq!(v, sets.version_at(x, level));
+                    v
+                }
+                _ => sets.version_at(x, level),
+            };
             self.plan.push(Piece::Walked(x, v.label));
             len += 1;
             x = v.next;

@@ -205,6 +205,7 @@ impl Sets {
             change_offsets: Vec::new(),
             change_level: Vec::new(),
             change_slot: Vec::new(),
+            change_version: Vec::new(),
             level_offsets: Vec::new(),
             level_strips: Vec::new(),
             triangles_at: Vec::new(),

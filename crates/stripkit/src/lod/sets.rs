@@ -32,6 +32,11 @@ use crate::strip::{canonical, StripSet};
 /// beginning).
 pub const END: u32 = u32::MAX;
 
+/// A change entry that starts no version of its slot (a strip's new beginning).
+pub(crate) const NO_VERSION: u32 = u32::MAX;
+/// A change entry whose slot starts several versions at its level.
+pub(crate) const AMBIGUOUS_VERSION: u32 = u32::MAX - 1;
+
 /// Slots gathered on each side of a renamed slot when looking for removals.
 const REACH: usize = 8;
 /// How much worse than when they were made (indices per triangle) the strips must
@@ -106,6 +111,11 @@ pub struct Sets {
     /// re-reads these slots; any other slot has the same vertex and successor on
     /// both sides, so the old walk's runs of them are reused (derived).
     pub(crate) change_slot: Vec<u32>,
+    /// Parallel to `change_level`: the index in `versions` of the slot's version
+    /// that starts there ([`NO_VERSION`] for a beginning alone,
+    /// [`AMBIGUOUS_VERSION`] when several start at one level), so that a move
+    /// reads a changed slot's version with one load (derived).
+    pub(crate) change_version: Vec<u32>,
     /// `level_strips[level_offsets[l]..level_offsets[l + 1]]`: the strips whose
     /// sequence changes at level `l` (derived), so that a move between near levels
     /// finds them without looking at every strip.
@@ -253,31 +263,47 @@ impl Sets {
         let strips = self.strip_count();
         // (level, slot) of every change of a strip: its beginnings (from its first
         // slot) and its slots' versions.
-        let mut events: Vec<(u32, u32)> = Vec::new();
+        let mut events: Vec<(u32, u32, u32)> = Vec::new();
         self.change_offsets = Vec::with_capacity(strips + 1);
         self.change_offsets.push(0);
         self.change_level.clear();
         self.change_slot.clear();
+        self.change_version.clear();
         for s in 0..strips {
             events.clear();
             let first = self.strip_slots[s];
             events.extend(
                 self.begin_level[self.begin_offsets[s] as usize..self.begin_offsets[s + 1] as usize]
                     .iter()
-                    .map(|&l| (l, first)),
+                    .map(|&l| (l, first, NO_VERSION)),
             );
             let slots = self.strip_slots[s] as usize..self.strip_slots[s + 1] as usize;
             for x in slots {
                 let r = self.version_offsets[x] as usize..self.version_offsets[x + 1] as usize;
-                events.extend(self.versions[r].iter().map(|v| (v.level, x as u32)));
+                events.extend(r.map(|i| (self.versions[i].level, x as u32, i as u32)));
             }
             events.sort_unstable();
-            events.dedup();
+            // One entry per (level, slot): the version that starts there, when one
+            // and only one does.
+            let mut n = 0;
+            for i in 0..events.len() {
+                let (l, x, v) = events[i];
+                if n > 0 && (events[n - 1].0, events[n - 1].1) == (l, x) {
+                    if v != NO_VERSION {
+                        events[n - 1].2 = if events[n - 1].2 == NO_VERSION { v } else { AMBIGUOUS_VERSION };
+                    }
+                } else {
+                    events[n] = (l, x, v);
+                    n += 1;
+                }
+            }
+            events.truncate(n);
             // Level 0 once (every slot has a version there), then every change.
             let at_zero = events.partition_point(|e| e.0 == 0);
-            for &(l, x) in events[at_zero.saturating_sub(1)..].iter() {
+            for &(l, x, v) in events[at_zero.saturating_sub(1)..].iter() {
                 self.change_level.push(l);
                 self.change_slot.push(x);
+                self.change_version.push(v);
             }
             self.change_offsets.push(self.change_level.len() as u32);
         }
@@ -427,7 +453,7 @@ impl Sets {
             + self.version_offsets.len()
             + 3 * self.versions.len()
             + self.change_offsets.len()
-            + 2 * self.change_level.len()
+            + 3 * self.change_level.len()
             + self.level_offsets.len()
             + self.level_strips.len()
             + self.triangles_at.len())
@@ -916,6 +942,7 @@ impl Builder {
             change_offsets: Vec::new(),
             change_level: Vec::new(),
             change_slot: Vec::new(),
+            change_version: Vec::new(),
             level_offsets: Vec::new(),
             level_strips: Vec::new(),
             triangles_at: Vec::new(),

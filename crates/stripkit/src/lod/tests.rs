@@ -281,3 +281,34 @@ fn ribbon_levels_check() {
         assert_eq!(drawn as u32, back.triangles_at(level), "level {level}");
     }
 }
+
+/// The derived change lists name, per (level, slot) change, the slot's version that
+/// starts there: every version past level 0 once, each at its own level and slot.
+#[test]
+fn change_versions_name_the_version_starting_there() {
+    use super::sets::{AMBIGUOUS_VERSION, NO_VERSION};
+    let mesh = crate::gen::icosphere(3);
+    for restrip in [None, Some(1.6)] {
+        let options = BuildOptions { restrip, ..BuildOptions::default() };
+        let sets = build(&mesh, &options, &mut |_| {}).unwrap().sets;
+        let mut named = vec![0u32; sets.versions.len()];
+        for s in 0..sets.strip_count() {
+            let r = sets.change_offsets[s] as usize + 1..sets.change_offsets[s + 1] as usize;
+            for i in r {
+                let (level, slot, v) = (sets.change_level[i], sets.change_slot[i], sets.change_version[i]);
+                assert_ne!(v, AMBIGUOUS_VERSION, "one version per level and slot here");
+                if v != NO_VERSION {
+                    let own = sets.version_offsets[slot as usize]..sets.version_offsets[slot as usize + 1];
+                    assert!(own.contains(&v), "strip {s}: version {v} is not slot {slot}'s");
+                    assert_eq!(sets.versions[v as usize].level, level);
+                    named[v as usize] += 1;
+                }
+            }
+        }
+        for x in 0..sets.version_offsets.len() - 1 {
+            let r = sets.version_offsets[x] as usize..sets.version_offsets[x + 1] as usize;
+            assert_eq!(named[r.start], 0, "level 0 is no change");
+            assert!(named[r.start + 1..r.end].iter().all(|&n| n == 1), "slot {x}: a version unnamed or named twice");
+        }
+    }
+}

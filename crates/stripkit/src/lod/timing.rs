@@ -127,6 +127,10 @@ pub struct SeqRow {
     pub changes: usize,
     /// Mean microseconds per change.
     pub mean_us: f64,
+    /// Median change (the upper one of an even count), microseconds.
+    pub median_us: f64,
+    /// 99th percentile of the changes, microseconds.
+    pub p99_us: f64,
     /// Slowest change, microseconds.
     pub max_us: f64,
     /// Mean strips re-uploaded per change.
@@ -143,31 +147,40 @@ pub struct SeqTimings {
     pub from_scratch_us: f64,
 }
 
-/// Times `cursor.set` over `steps`, `rounds` times: mean and max microseconds and
-/// mean strips changed per timed step. A step whose flag is false only positions
-/// the cursor (untimed).
-fn time_changes(cursor: &mut super::SeqCursor<'_>, steps: &[(usize, LevelSpec, bool)], rounds: usize) -> (f64, f64, f64) {
-    let (mut total, mut max, mut changed, mut n) = (0.0f64, 0.0f64, 0usize, 0usize);
+/// The figures of one [`seq`] test: every timed change's microseconds, and the
+/// strips changed in all.
+struct Changes {
+    us: Vec<f64>,
+    changed: usize,
+}
+
+/// Times `cursor.set` over `steps`, `rounds` times. A step whose flag is false only
+/// positions the cursor (untimed).
+fn time_changes(cursor: &mut super::SeqCursor<'_>, steps: &[(usize, LevelSpec, bool)], rounds: usize) -> Changes {
+    let mut out = Changes { us: Vec::with_capacity(steps.len() * rounds.max(1)), changed: 0 };
     for _ in 0..rounds.max(1) {
         for &(f, spec, timed) in steps {
             let t = Instant::now();
             let c = cursor.set(f, spec).len();
             let us = t.elapsed().as_secs_f64() * 1e6;
             if timed {
-                total += us;
-                max = max.max(us);
-                changed += c;
-                n += 1;
+                out.us.push(us);
+                out.changed += c;
             }
         }
     }
-    let n = n.max(1) as f64;
-    (total / n, max, changed as f64 / n)
+    out
 }
 
-/// A row of [`seq`] from `time_changes`' figures.
-fn row(test: &'static str, at: String, changes: usize, (mean_us, max_us, strips_changed): (f64, f64, f64)) -> SeqRow {
-    SeqRow { test, at, changes, mean_us, max_us, strips_changed }
+/// A row of [`seq`] from `time_changes`' figures: mean, median, p99, max, mean
+/// strips changed.
+fn row(test: &'static str, at: String, changes: usize, mut t: Changes) -> SeqRow {
+    let n = t.us.len().max(1) as f64;
+    let mean_us = t.us.iter().sum::<f64>() / n;
+    let median_us = median(&mut t.us);
+    let p99_us = t.us.get((t.us.len() * 99 / 100).min(t.us.len().saturating_sub(1))).copied().unwrap_or(0.0);
+    let max_us = t.us.last().copied().unwrap_or(0.0);
+    SeqRow { test, at, changes, mean_us, median_us, p99_us, max_us, strips_changed: t.changed as f64 / n }
 }
 
 /// Extraction timings of an animation, `rounds` passes each: every frame in turn at

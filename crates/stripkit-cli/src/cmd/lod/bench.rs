@@ -107,14 +107,14 @@ fn bench_seq(args: &BenchArgs, seq: &LodSeq) -> anyhow::Result<()> {
         )?;
         writeln!(
             w,
-            "{:>6} {:>22} {:>8} {:>10} {:>10} {:>14}",
-            "test", "at", "changes", "mean", "max", "strips changed"
+            "{:>6} {:>22} {:>8} {:>10} {:>10} {:>10} {:>10} {:>14}",
+            "test", "at", "changes", "mean", "median", "p99", "max", "strips changed"
         )?;
         for r in &o.rows {
             writeln!(
                 w,
-                "{:>6} {:>22} {:>8} {:>10.1} {:>10.1} {:>14.1}",
-                r.test, r.at, r.changes, r.mean_us, r.max_us, r.strips_changed
+                "{:>6} {:>22} {:>8} {:>10.1} {:>10.1} {:>10.1} {:>10.1} {:>14.1}",
+                r.test, r.at, r.changes, r.mean_us, r.median_us, r.p99_us, r.max_us, r.strips_changed
             )?;
         }
         writeln!(w, "a cursor from scratch (every strip walked): {:.1} us", o.from_scratch_us)
