@@ -4,10 +4,13 @@
 //!
 //! Our time is the door's stripify time (canonical order, the stripifier and the
 //! joins; not the read, nor the door's verification); theirs is the reorder plus the
-//! stripify call. Figures by stripkit's decoder and metrics (FIFO of 16), both
+//! stripify call. `--threads` gives our door threads (the partitioned mode's parts run
+//! side by side; meshoptimizer stays on one); `--partition-above` its threshold
+//! (default the library's; `0` the whole-mesh run). Figures by stripkit's decoder and metrics (FIFO of 16), both
 //! outputs verified against the mesh's triangles. Each time is given as wall and as
 //! the process's CPU time (user + system, from `/proc/self/stat` in ticks of 10 ms;
-//! both sides run on one thread): on a shared machine the CPU time is the steadier.
+//! both sides run on one thread unless `--threads` says otherwise): on a shared
+//! machine the CPU time is the steadier.
 
 use anyhow::Context;
 use std::path::PathBuf;
@@ -22,6 +25,12 @@ pub struct Args {
     /// Turns (each runs ours, then theirs).
     #[arg(long, default_value_t = 3)]
     pub runs: usize,
+    /// Threads of our door (meshoptimizer runs on one).
+    #[arg(long, default_value_t = 1)]
+    pub threads: usize,
+    /// Our partition threshold in triangles (`0`: the whole-mesh run).
+    #[arg(long, default_value_t = stripkit::DEFAULT_PARTITION_ABOVE)]
+    pub partition_above: u32,
 }
 
 /// The process's user + system time in seconds (`/proc/self/stat`, USER_HZ = 100),
@@ -47,7 +56,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let mesh = crate::common::read_surface(&args.mesh).with_context(|| format!("reading {}", args.mesh.display()))?;
     let tris = mesh.triangulate().tris;
     let n = mesh.vertex_count();
-    let options = StripOptions::default().algorithm(Algorithm::cache());
+    let options = StripOptions::default()
+        .algorithm(Algorithm::cache())
+        .partition_above(args.partition_above)
+        .threads(stripkit::parallel::Threads::new(args.threads.max(1)));
     let (mut ours, mut theirs, mut reorder) = (Vec::new(), Vec::new(), Vec::new());
     let (mut ours_cpu, mut theirs_cpu) = (Vec::new(), Vec::new());
     let (mut ours_fig, mut theirs_fig) = (None, None);

@@ -65,7 +65,9 @@ pub fn options(phase: &str, threads: Threads) -> Option<StripOptions> {
     let base = StripOptions::default().threads(threads);
     Some(match phase {
         "cache-parts" => base.algorithm(Algorithm::cache()).partition_above(PARTS_ABOVE),
-        "greedy" | "cache" | "balanced" | "batch" | "single" => base.algorithm(phase.parse().ok()?),
+        // The whole-mesh run, whatever the library's default threshold.
+        "cache" => base.algorithm(Algorithm::cache()).partition_above(0),
+        "greedy" | "balanced" | "batch" | "single" => base.algorithm(phase.parse().ok()?),
         _ => return None,
     })
 }

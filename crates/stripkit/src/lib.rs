@@ -104,7 +104,7 @@ pub use mesh::{io, weld_map, weld_map_with, Attribute, Group, Mesh, Scalar, Tria
 pub use metrics::{acmr, cache_misses, figures, figures_with, swaps, BatchModel, CacheKind, CacheModel, Figures};
 pub use pipeline::{
     is_quad_dominant, stripify, stripify_bound, stripify_indices, unstripify, Algorithm, AutoOptions, Join, Split,
-    StripOptions, Stripifier, Strips, MAX_CACHE_SIZE, MAX_TUNNEL_CUTS, QUAD_DOMINANT,
+    StripOptions, Stripifier, Strips, DEFAULT_PARTITION_ABOVE, MAX_CACHE_SIZE, MAX_TUNNEL_CUTS, QUAD_DOMINANT,
 };
 pub use strip::{
     decode, decode_restart, degenerate_windows, encode_restart, encode_separate, encode_stitched, for_each_triangle,

@@ -37,7 +37,7 @@ use strips::joined;
 
 pub use indices::{stripify_bound, stripify_indices, unstripify};
 pub use options::{
-    is_quad_dominant, Algorithm, AutoOptions, Join, Split, StripOptions, MAX_CACHE_SIZE, MAX_TUNNEL_CUTS, QUAD_DOMINANT,
+    is_quad_dominant, Algorithm, AutoOptions, Join, Split, StripOptions, DEFAULT_PARTITION_ABOVE, MAX_CACHE_SIZE, MAX_TUNNEL_CUTS, QUAD_DOMINANT,
 };
 pub use strips::Strips;
 

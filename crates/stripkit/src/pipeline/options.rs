@@ -260,12 +260,19 @@ pub struct StripOptions {
     /// mode, where ranges of about 262,144 triangles of the canonical (Z-order) list
     /// are stripified on their own, in parallel when [`StripOptions::threads`]
     /// allows, and joined across their borders. The parts depend on the mesh only:
-    /// the strips are the same at any thread count; `0` never cuts. Default `0`: the
-    /// parts cost indices and misses (measured: +0.17% indices and +0.004 ACMR on a
-    /// 4.4M-triangle subdivided bunny, but +1.2% and +0.008 on a 1.3M-triangle
-    /// icosphere), for about half the peak memory.
+    /// the strips are the same at any thread count; `0` never cuts. Default
+    /// [`DEFAULT_PARTITION_ABOVE`] (1,000,000): the parts cost a few indices and misses
+    /// (measured: +0.17% indices and +0.004 ACMR on a 4.4M-triangle subdivided bunny,
+    /// but +1.2% and +0.008 on a 1.3M-triangle icosphere), for about half the peak
+    /// memory and, on two threads, about half the stripifier's time.
     pub partition_above: u32,
 }
+
+/// The default of [`StripOptions::partition_above`]: meshes of more than 1,000,000
+/// triangles are cut into parts. Every shared model (at most 100,000 triangles) and
+/// every test mesh stays whole; above it the whole-mesh stripifier takes about half a
+/// second or more, which two threads halve.
+pub const DEFAULT_PARTITION_ABOVE: u32 = 1_000_000;
 
 impl Default for StripOptions {
     fn default() -> Self {
@@ -277,7 +284,7 @@ impl Default for StripOptions {
             restart_index: strip::DEFAULT_RESTART,
             weld: true,
             threads: crate::parallel::Threads::SERIAL,
-            partition_above: 0,
+            partition_above: DEFAULT_PARTITION_ABOVE,
         }
     }
 }

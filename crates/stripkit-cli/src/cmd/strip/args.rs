@@ -33,7 +33,7 @@ pub struct StripArgs {
     /// Cache: then refine the strips with balanced's local search (fewer indices and misses, much slower).
     #[arg(long)]
     pub refine: bool,
-    /// Cache: cut meshes of more triangles than N into parts of about 262,144 (Z-order ranges), stripified in parallel and joined across their borders (the same strips at any --threads): about half the memory, for +0.2% to +1.2% indices; 0 never. Default 0.
+    /// Cache: cut meshes of more triangles than N into parts of about 262,144 (Z-order ranges), stripified in parallel and joined across their borders (the same strips at any --threads): about half the memory and, on 2 threads, half the stripifier's time, for +0.2% to +1.2% indices; 0 never (the whole-mesh run). Default 1000000.
     #[arg(long, value_name = "N")]
     pub partition_above: Option<u32>,
     /// Simulate an LRU cache for the acmr figure instead of FIFO.

@@ -126,19 +126,15 @@ impl Canonical {
         self.new = Vec::new();
     }
 
-    pub(super) fn strips_back(&self, mut s: StripSet) -> StripSet {
-        for v in &mut s.indices {
-            *v = self.old[*v as usize];
-        }
+    /// The strips in input ids (in parallel when `threads` allows; each index on its own).
+    pub(super) fn strips_back(&self, mut s: StripSet, threads: crate::parallel::Threads) -> StripSet {
+        crate::parallel::for_each_mut(threads, &mut s.indices, |v| *v = self.old[*v as usize]);
         s
     }
 
-    pub(super) fn triangles_back(&self, mut t: Vec<[u32; 3]>) -> Vec<[u32; 3]> {
-        for tri in &mut t {
-            for v in tri {
-                *v = self.old[*v as usize];
-            }
-        }
+    /// The triangles in input ids (in parallel when `threads` allows).
+    pub(super) fn triangles_back(&self, mut t: Vec<[u32; 3]>, threads: crate::parallel::Threads) -> Vec<[u32; 3]> {
+        crate::parallel::for_each_mut(threads, &mut t, |tri| *tri = tri.map(|v| self.old[v as usize]));
         t
     }
 }

@@ -387,8 +387,8 @@ pub fn stripify_mesh(
             }
         };
         MeshStrips {
-            strips: canon.strips_back(strips),
-            triangles: canon.triangles_back(tris),
+            strips: canon.strips_back(strips, threads),
+            triangles: canon.triangles_back(tris, threads),
             qstrip_diagonals,
             miss_weight,
             acmr,

@@ -104,6 +104,17 @@ mod tests {
     }
 
     #[test]
+    fn the_default_threshold_cuts_only_meshes_above_a_million_triangles() {
+        // The door's default: every shared model (at most 100,000 triangles) and every
+        // test mesh stays whole; a mesh just above the threshold gets four parts.
+        let above = crate::DEFAULT_PARTITION_ABOVE;
+        assert_eq!(crate::StripOptions::default().partition_above, above);
+        assert_eq!(parts(1_000_000, above), vec![0..1_000_000]);
+        assert_eq!(parts(1_000_001, above).len(), 4);
+        assert_eq!(parts(4_444_864, above).len(), 17);
+    }
+
+    #[test]
     fn small_parts_verify_and_are_the_same_at_any_thread_count() {
         // A shuffled grid with random diagonals in ranges of 300 triangles: every
         // output verified, the same strips at 1, 2 and 4 threads, and the borders
