@@ -38,6 +38,13 @@ pub struct Args {
     /// balanced, batch and single run only on meshes up to this many triangles.
     #[arg(long, value_name = "TRIANGLES", default_value_t = 300_000)]
     pub slow_limit: usize,
+    /// Runs each row this many times (each in a fresh process) and keeps the run of
+    /// median time: single runs on a busy machine differ by tens of percent.
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    pub rounds: u32,
+    /// Only these phases (comma-separated names of the table; default: all).
+    #[arg(long, value_name = "PHASES", value_delimiter = ',')]
+    pub phases: Vec<String>,
 }
 
 /// One row of the table: a phase on a mesh at a thread count.
@@ -95,6 +102,13 @@ fn run_phase(phase: &str, mesh: &Path, threads: usize, work: &Path) -> anyhow::R
     serde_json::from_str(line.trim()).with_context(|| format!("phase {phase}: report {line:?}"))
 }
 
+/// The report of median time among `rounds` runs (the lower middle one for an even count).
+fn median_run(rounds: u32, mut run: impl FnMut() -> anyhow::Result<Report>) -> anyhow::Result<Report> {
+    let mut reports = (0..rounds.max(1)).map(|_| run()).collect::<anyhow::Result<Vec<Report>>>()?;
+    reports.sort_by_key(|r| r.ns);
+    Ok(reports.swap_remove((reports.len() - 1) / 2))
+}
+
 /// Runs the bench.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let base = match &args.base {
@@ -103,6 +117,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .map(|d| d.join("bunny.obj"))
             .context("no research meshes (set STRIPKIT_MODELS) and no --base model")?,
     };
+    if let Some(p) = args.phases.iter().find(|p| !PHASES.contains(&p.as_str())) {
+        anyhow::bail!("unknown phase {p}; one of {}", PHASES.join(", "));
+    }
     let threads = args.threads.unwrap_or_else(|| stripkit::parallel::Threads::ALL.count()).max(1);
     let thread_counts: Vec<usize> = if threads == 1 { vec![1] } else { vec![1, threads] };
     let levels = if args.quick { 1 } else { 3 };
@@ -146,13 +163,16 @@ fn measure(args: &Args, base: &Path, levels: u32, thread_counts: &[usize], work:
             stripkit::io::write(&file, &mesh, None).with_context(|| format!("writing {}", file.display()))?;
             eprintln!("{name}: {} triangles", mesh.triangle_count());
             for phase in PHASES {
+                if !args.phases.is_empty() && !args.phases.iter().any(|p| p == phase) {
+                    continue;
+                }
                 if SLOW.contains(phase) && mesh.triangle_count() > args.slow_limit {
                     continue;
                 }
                 // meshoptimizer's calls use one thread whatever the count.
                 let counts = if *phase == "meshopt" { &thread_counts[..1] } else { thread_counts };
                 for &t in counts {
-                    let report = run_phase(phase, &file, t, work)?;
+                    let report = median_run(args.rounds, || run_phase(phase, &file, t, work))?;
                     eprintln!("  {phase} x{t}: {:.1} ms, {:.0} MB", report.ns as f64 / 1e6, report.peak_bytes as f64 / 1e6);
                     rows.push(Row { mesh: name.clone(), model: model.clone(), phase: phase.to_string(), threads: t, report });
                 }

@@ -12,6 +12,8 @@
 //!   (2 extra indices per join when the next strip lands on an even position, 3 otherwise);
 //! * [`encode_separate`]: one list per strip.
 
+mod order;
+
 /// A set of triangle strips, stored flat.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct StripSet {
@@ -421,7 +423,9 @@ impl std::fmt::Display for Verification {
 /// Checks strips against the triangles they should draw: the multiset of oriented,
 /// non-degenerate triangles decoded by the strip reading rule (docs/metrics.md) must equal the multiset of
 /// the non-degenerate `expected` triangles, up to rotation. Degenerate expected
-/// triangles are counted in `dropped_degenerate` and not required. O(n log n).
+/// triangles are counted in `dropped_degenerate` and not required. O(n) on a mesh:
+/// both lists are ordered by a counting sort on each triangle's lowest index (see
+/// `strip/order.rs`), then merged.
 pub fn verify(expected: &[[u32; 3]], strips: &StripSet) -> Verification {
     verify_decoded(expected, decode(strips))
 }
@@ -445,10 +449,12 @@ pub fn verify_with(expected: &[[u32; 3]], strips: &StripSet, threads: crate::par
     verify_decoded_with(expected, decode_with(strips, threads), threads)
 }
 
-/// [`verify_decoded`] with its sorting in parallel when `threads` allows; the same
-/// result at any thread count.
+/// [`verify_decoded`] with its ordering in parallel when `threads` allows (the two
+/// lists side by side, each one's buckets in parts); the same result at any thread
+/// count.
 pub fn verify_decoded_with(expected: &[[u32; 3]], got: Vec<[u32; 3]>, threads: crate::parallel::Threads) -> Verification {
-    compare_sorted(&sorted_expected(expected, threads), got, threads)
+    let (want, got) = crate::parallel::join(threads, || sorted_expected(expected, threads), || sorted_got(got, threads));
+    merge_sorted(&want, &got)
 }
 
 /// Whether `joined` draws exactly the triangles of `strips`, shown without sorting:
@@ -499,22 +505,29 @@ pub(crate) fn sorted_expected_owned(mut expected: Vec<[u32; 3]>, threads: crate:
     expected.retain(|t| !is_degenerate(t));
     let dropped_degenerate = before - expected.len();
     crate::parallel::for_each_mut(threads, &mut expected, |t| *t = canonical(*t));
-    crate::parallel::sort_unstable(threads, &mut expected);
+    order::sort_triangles(threads, &mut expected);
     SortedExpected { want: expected, dropped_degenerate }
 }
 
 /// The check's comparison: `got` (decoded triangles, in any order) made canonical and
 /// sorted in place, then merged with the expected list on one thread.
-pub(crate) fn compare_sorted(
-    expected: &SortedExpected,
-    mut got: Vec<[u32; 3]>,
-    threads: crate::parallel::Threads,
-) -> Verification {
-    let SortedExpected { want, dropped_degenerate } = expected;
-    let dropped_degenerate = *dropped_degenerate;
+pub(crate) fn compare_sorted(expected: &SortedExpected, got: Vec<[u32; 3]>, threads: crate::parallel::Threads) -> Verification {
+    merge_sorted(expected, &sorted_got(got, threads))
+}
+
+/// The non-degenerate decoded triangles, canonical and sorted in place.
+fn sorted_got(mut got: Vec<[u32; 3]>, threads: crate::parallel::Threads) -> Vec<[u32; 3]> {
     got.retain(|t| !is_degenerate(t));
     crate::parallel::for_each_mut(threads, &mut got, |t| *t = canonical(*t));
-    crate::parallel::sort_unstable(threads, &mut got);
+    order::sort_triangles(threads, &mut got);
+    got
+}
+
+/// Merges the two sorted lists on one thread: what is only on one side is lost or
+/// added, a lost triangle found reversed among the added ones is a flip.
+fn merge_sorted(expected: &SortedExpected, got: &[[u32; 3]]) -> Verification {
+    let SortedExpected { want, dropped_degenerate } = expected;
+    let dropped_degenerate = *dropped_degenerate;
     let mut v = Verification { expected: want.len(), dropped_degenerate, decoded: got.len(), ..Verification::default() };
     let (mut lost, mut added) = (Vec::new(), Vec::new());
     let (mut i, mut j) = (0, 0);

@@ -153,3 +153,84 @@ fn the_check_counts_the_same_at_1_and_4_threads() {
     assert_eq!(verify_with(&tris, &set, Threads::new(3)), serial);
     assert_eq!(stripkit::decode_with(&set, Threads::new(4)), stripkit::decode(&set));
 }
+
+/// The check's counts by hashing: the multiset difference of canonical triangles, a
+/// lost one matched with an added reversed one being a flip.
+fn reference_check(expected: &[[u32; 3]], got: &[[u32; 3]]) -> (usize, usize, usize) {
+    let canonical = |t: [u32; 3]| {
+        let r = (0..3).min_by_key(|&i| t[i]).unwrap();
+        [t[r], t[(r + 1) % 3], t[(r + 2) % 3]]
+    };
+    let mut diff: HashMap<[u32; 3], i64> = HashMap::new();
+    for t in expected.iter().filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) {
+        *diff.entry(canonical(*t)).or_default() += 1;
+    }
+    for t in got.iter().filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) {
+        *diff.entry(canonical(*t)).or_default() -= 1;
+    }
+    let lost: i64 = diff.values().filter(|d| **d > 0).sum();
+    let added: i64 = -diff.values().filter(|d| **d < 0).sum::<i64>();
+    let flipped: i64 = diff
+        .iter()
+        .filter(|(_, d)| **d > 0)
+        .map(|(t, d)| (*d).min(-diff.get(&canonical([t[0], t[2], t[1]])).copied().unwrap_or(0)).max(0))
+        .sum();
+    ((lost - flipped) as usize, (added - flipped) as usize, flipped as usize)
+}
+
+#[test]
+fn the_linear_check_rejects_lost_added_flipped_and_duplicated_triangles() {
+    // A grid of 2 x 300 x 300 triangles (one part of the bucket sort and more),
+    // decoded triangles shuffled and rotated: accepted; then each kind of error
+    // planted alone and all together, counted as the hashing reference counts them,
+    // at 1, 2 and 4 threads, from a list and from one-triangle strips.
+    let want = gen::grid(300, 300).triangulate().tris;
+    assert_eq!(want.len(), 180_000);
+    let mut rng = XorShift64(7);
+    let mut good = want.clone();
+    rng.shuffle(&mut good);
+    for t in good.iter_mut() {
+        t.rotate_left(rng.below(3));
+    }
+    let plant = |kind: usize, list: &mut Vec<[u32; 3]>, rng: &mut XorShift64| match kind {
+        0 => {
+            list.swap_remove(rng.below(list.len())); // lost
+        }
+        1 => list.push([1_000_000, 5, 6]), // added (an index beyond the mesh)
+        2 => {
+            let i = rng.below(list.len());
+            list[i].swap(1, 2); // flipped
+        }
+        3 => {
+            let i = rng.below(list.len());
+            list.push(list[i]); // duplicated
+        }
+        _ => {
+            let i = rng.below(list.len());
+            list[i] = [list[i][0], list[i][1], list[(i + 1) % list.len()][2]]; // moved corner
+        }
+    };
+    let cases: Vec<Vec<usize>> = vec![vec![], vec![0], vec![1], vec![2], vec![3], vec![4], vec![0, 1, 2, 3, 4, 2, 0, 3]];
+    for kinds in cases {
+        let mut got = good.clone();
+        for &k in &kinds {
+            plant(k, &mut got, &mut rng);
+        }
+        let (lost, added, flipped) = reference_check(&want, &got);
+        let strips = StripSet::from_strips(&got.iter().map(|t| t.to_vec()).collect::<Vec<_>>());
+        for threads in [Threads::SERIAL, Threads::new(2), Threads::new(4)] {
+            for v in [stripkit::verify_decoded_with(&want, got.clone(), threads), verify_with(&want, &strips, threads)] {
+                assert_eq!((v.lost, v.added, v.flipped), (lost, added, flipped), "{kinds:?} at {threads} threads");
+                assert_eq!(v.ok(), kinds.is_empty(), "{kinds:?}: {v}");
+                assert_eq!((v.expected, v.decoded), (180_000, got.len()));
+            }
+        }
+        match kinds.as_slice() {
+            [] => assert_eq!((lost, added, flipped), (0, 0, 0)),
+            [0] => assert_eq!((lost, added, flipped), (1, 0, 0)),
+            [1] | [3] => assert_eq!((lost, added, flipped), (0, 1, 0)),
+            [2] => assert_eq!((lost, added, flipped), (0, 0, 1)),
+            _ => assert!(lost + added + flipped > 0),
+        }
+    }
+}

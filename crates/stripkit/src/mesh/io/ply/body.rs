@@ -181,22 +181,36 @@ impl<'a> Binary<'a> {
 
     #[inline]
     fn value(&mut self, s: Scalar) -> Result<f64, String> {
-        macro_rules! num {
-            ($t:ty, $n:literal) => {{
-                let b = self.bytes::<$n>()?;
-                (if self.big { <$t>::from_be_bytes(b) } else { <$t>::from_le_bytes(b) }) as f64
-            }};
-        }
-        Ok(match s {
-            Scalar::I8 => num!(i8, 1),
-            Scalar::U8 => num!(u8, 1),
-            Scalar::I16 => num!(i16, 2),
-            Scalar::U16 => num!(u16, 2),
-            Scalar::I32 => num!(i32, 4),
-            Scalar::U32 => num!(u32, 4),
-            Scalar::F32 => num!(f32, 4),
-            Scalar::F64 => num!(f64, 8),
-        })
+        let end = self.pos + s.size();
+        let b = self
+            .data
+            .get(self.pos..end)
+            .ok_or_else(|| format!("the file ends early (truncated at byte {})", self.data.len()))?;
+        self.pos = end;
+        Ok(number(b, s, self.big))
+    }
+}
+
+/// A binary value of type `s` at the start of `b` (which holds at least `s.size()`
+/// bytes), big- or little-endian: the one decoding of a scalar, for the value-by-value
+/// reader and the whole-record path alike.
+#[inline]
+pub(super) fn number(b: &[u8], s: Scalar, big: bool) -> f64 {
+    macro_rules! num {
+        ($t:ty, $n:literal) => {{
+            let bytes: [u8; $n] = b[..$n].try_into().unwrap_or([0; $n]);
+            (if big { <$t>::from_be_bytes(bytes) } else { <$t>::from_le_bytes(bytes) }) as f64
+        }};
+    }
+    match s {
+        Scalar::I8 => num!(i8, 1),
+        Scalar::U8 => num!(u8, 1),
+        Scalar::I16 => num!(i16, 2),
+        Scalar::U16 => num!(u16, 2),
+        Scalar::I32 => num!(i32, 4),
+        Scalar::U32 => num!(u32, 4),
+        Scalar::F32 => num!(f32, 4),
+        Scalar::F64 => num!(f64, 8),
     }
 }
 

@@ -6,30 +6,9 @@
 //! position as they were: the value-by-value readers then read the element again and
 //! report the fault in their words, so errors are the same either way.
 
-use super::body::Body;
+use super::body::{number, Body};
 use super::{flip_texcoord, vertex_attributes, Element, Kind};
 use crate::mesh::{Mesh, Scalar};
-
-/// A value of type `s` at the start of `b` (which holds at least `s.size()` bytes).
-#[inline]
-fn number(b: &[u8], s: Scalar, big: bool) -> f64 {
-    macro_rules! num {
-        ($t:ty, $n:literal) => {{
-            let bytes: [u8; $n] = b[..$n].try_into().unwrap_or([0; $n]);
-            (if big { <$t>::from_be_bytes(bytes) } else { <$t>::from_le_bytes(bytes) }) as f64
-        }};
-    }
-    match s {
-        Scalar::I8 => num!(i8, 1),
-        Scalar::U8 => num!(u8, 1),
-        Scalar::I16 => num!(i16, 2),
-        Scalar::U16 => num!(u16, 2),
-        Scalar::I32 => num!(i32, 4),
-        Scalar::U32 => num!(u32, 4),
-        Scalar::F32 => num!(f32, 4),
-        Scalar::F64 => num!(f64, 8),
-    }
-}
 
 /// A coordinate as the value-by-value reader makes it (`f32` kept, others through `f64`).
 #[inline]
