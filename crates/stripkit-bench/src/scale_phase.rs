@@ -117,7 +117,7 @@ fn phase(args: &Args, threads: Threads) -> anyhow::Result<Report> {
         let ns = match name {
             "verify" => {
                 let s = strips.as_ref().expect("made above");
-                let check = stripkit::verify(&s.triangles, &s.strips);
+                let check = stripkit::verify_with(&s.triangles, &s.strips, threads);
                 let ns = t.elapsed().as_nanos() as u64;
                 anyhow::ensure!(check.ok(), "verify failed on the greedy strips");
                 ns
