@@ -3,7 +3,7 @@
 //! each opened once, its containment checked on the opened descriptor and its bytes
 //! read from it (see [`super::ReadOptions`] for the rules and budgets).
 
-use super::{array, at, base64_decode, required, Buffer};
+use super::{array, at, base64_decode, required, Buffer, Shared};
 use std::collections::HashMap;
 use std::io::Read;
 use crate::error::{Error, Result};
@@ -11,16 +11,15 @@ use crate::mesh::io::common::Src;
 use crate::mesh::io::ReadOptions;
 use serde_json::Value;
 use std::path::{Component, Path, PathBuf};
-use std::sync::Arc;
 
 /// Reads every buffer of the document: the GLB binary chunk, `data:` URIs, and
 /// external files under the rules of [`ReadOptions`]. External files are resolved
 /// first (every URI checked before anything is read), each distinct file is then read
 /// once, up to the largest `byteLength` that names it, and the buffers naming it share
 /// those bytes.
-pub(super) fn load_buffers(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Vec<Buffer>> {
+pub(super) fn load_buffers(src: Src, json: &Value, bin: Option<Shared>, options: &ReadOptions) -> Result<Vec<Buffer>> {
     enum Source {
-        Bytes(Arc<[u8]>),
+        Bytes(Shared),
         File(usize),
     }
     struct External {
@@ -39,16 +38,16 @@ pub(super) fn load_buffers(src: Src, json: &Value, bin: Option<&[u8]>, options: 
         let place = || at("buffers", i);
         let length = required(src, b, "byteLength", &place)?;
         let source = match b.get("uri") {
-            None if i == 0 && bin.is_some() => Source::Bytes(Arc::from(bin.unwrap_or_default())),
+            None if i == 0 && bin.is_some() => Source::Bytes(bin.clone().unwrap_or_default()),
             // A fallback buffer of EXT_meshopt_compression holds no data: only the
             // compressed views name it, and they are decoded from their own buffers.
             None if b.pointer("/extensions/EXT_meshopt_compression/fallback") == Some(&Value::Bool(true)) => {
-                sources.push((Source::Bytes(Arc::from(Vec::new())), 0));
+                sources.push((Source::Bytes(Shared::from(Vec::new())), 0));
                 continue;
             }
             None => return Err(src.err(place(), "buffer without a 'uri' (only GLB buffer 0 may omit it)")),
             Some(Value::String(uri)) => match uri.strip_prefix("data:") {
-                Some(rest) => Source::Bytes(Arc::from(decode_data_uri(src, rest, &place)?)),
+                Some(rest) => Source::Bytes(Shared::from(decode_data_uri(src, rest, &place)?)),
                 None => {
                     if length > options.max_external_bytes {
                         return Err(src.err(
@@ -104,7 +103,7 @@ pub(super) fn load_buffers(src: Src, json: &Value, bin: Option<&[u8]>, options: 
     for (i, (source, length)) in sources.into_iter().enumerate() {
         let bytes = match source {
             Source::Bytes(b) => b,
-            Source::File(k) => Arc::clone(&read[k]),
+            Source::File(k) => read[k].clone(),
         };
         if (bytes.len() as u64) < length {
             return Err(src.err(
@@ -255,7 +254,7 @@ impl Folders {
 /// `uri`. The file is opened once; its place ([`Folders::check_opened`]), type and
 /// size are checked on the opened file and its bytes read from it, so nothing
 /// swapped in after a check is read.
-fn read_external(src: Src, dirs: &Folders, path: &Path, len: u64, i: usize, uri: &str) -> Result<Arc<[u8]>> {
+fn read_external(src: Src, dirs: &Folders, path: &Path, len: u64, i: usize, uri: &str) -> Result<Shared> {
     let at = || format!("buffers[{i}].uri");
     let fail = |e: std::io::Error| src.err(at(), format!("cannot read {uri:?}: {e}"));
     let not_regular =
@@ -292,7 +291,7 @@ fn read_external(src: Src, dirs: &Folders, path: &Path, len: u64, i: usize, uri:
     if (bytes.len() as u64) < len {
         return Err(src.err(at(), format!("byteLength is {len} but {uri:?} holds {} bytes (truncated)", bytes.len())));
     }
-    Ok(Arc::from(bytes))
+    Ok(Shared::from(bytes))
 }
 
 #[cfg(test)]

@@ -7,9 +7,8 @@
 //! stripifier.
 
 use super::primitive::ScenePrimitive;
-use super::{Buffer, View};
+use super::{Buffer, Shared, View};
 use crate::mesh::Mesh;
-use std::sync::Arc;
 
 /// What a held-out view holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -95,8 +94,8 @@ pub(super) fn compact(buffers: &[Buffer], views: &[View], held: &[HeldView]) -> 
         })
         .collect();
     let mut out = buffers.to_vec();
-    out[0] = Buffer { len: kept.len(), bytes: Arc::from(kept) };
-    out.push(Buffer { len: 0, bytes: Arc::from(Vec::new()) });
+    out[0] = Buffer { len: kept.len(), bytes: Shared::from(kept) };
+    out.push(Buffer { len: 0, bytes: Shared::from(Vec::new()) });
     (out, moved)
 }
 
@@ -130,7 +129,7 @@ pub(super) fn restore(
             out.extend_from_slice(&bytes);
         }
         out.extend_from_slice(&compacted[at..]);
-        buffers[0] = Buffer { len: out.len(), bytes: Arc::from(out) };
+        buffers[0] = Buffer { len: out.len(), bytes: Shared::from(out) };
         buffers.pop(); // the empty one `compact` appended
         return (buffers, original.to_vec());
     }
@@ -141,7 +140,7 @@ pub(super) fn restore(
         if let Some(bytes) = made(h) {
             views[h.view] =
                 View { buffer: buffers.len(), offset: 0, length: bytes.len(), stride: views[h.view].stride };
-            buffers.push(Buffer { len: bytes.len(), bytes: Arc::from(bytes) });
+            buffers.push(Buffer { len: bytes.len(), bytes: Shared::from(bytes) });
         }
     }
     (buffers, views)

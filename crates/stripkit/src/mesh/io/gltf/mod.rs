@@ -190,11 +190,43 @@ impl Accessor {
     }
 }
 
+/// Bytes that buffers share without a copy: `all[start..end]`. A buffer made for
+/// itself holds a whole `Vec` (`From<Vec<u8>>`); a GLB's binary chunk may be a range of
+/// the file's bytes, so that the file is not held twice (see `Scene::into_bytes`).
+#[derive(Clone, Default)]
+struct Shared {
+    all: Arc<Vec<u8>>,
+    start: usize,
+    end: usize,
+}
+
+impl Shared {
+    /// The range `range` of `all` (which must lie inside it).
+    fn range(all: &Arc<Vec<u8>>, range: std::ops::Range<usize>) -> Shared {
+        debug_assert!(range.start <= range.end && range.end <= all.len());
+        Shared { all: Arc::clone(all), start: range.start, end: range.end }
+    }
+}
+
+impl From<Vec<u8>> for Shared {
+    fn from(bytes: Vec<u8>) -> Shared {
+        let end = bytes.len();
+        Shared { all: Arc::new(bytes), start: 0, end }
+    }
+}
+
+impl std::ops::Deref for Shared {
+    type Target = [u8];
+    fn deref(&self) -> &[u8] {
+        &self.all[self.start..self.end]
+    }
+}
+
 /// A buffer's bytes: the first `len` bytes of `bytes`, which several buffers share
 /// when they name the same external file.
 #[derive(Clone)]
 struct Buffer {
-    bytes: Arc<[u8]>,
+    bytes: Shared,
     len: usize,
 }
 
@@ -220,7 +252,7 @@ struct Doc<'a> {
 fn open<'a>(
     src: Src<'a>,
     json: &'a Value,
-    bin: Option<&[u8]>,
+    bin: Option<Shared>,
     options: &ReadOptions,
     scene_allowance: u64,
 ) -> Result<(Doc<'a>, Budget)> {
@@ -304,7 +336,7 @@ fn decode_compressed_views(doc: &mut Doc, json: &Value, budget: &mut Budget) -> 
         budget.charge(src, &place(), view_length as u64, || format!("bufferViews[{i}]: {view_length} bytes"))?;
         let bytes = meshopt::decode(data, count, stride, mode, filter)
             .map_err(|(at, what)| src.err(format!("{} {at} of its stream", place()), what))?;
-        doc.buffers.push(Buffer { len: bytes.len(), bytes: Arc::from(bytes) });
+        doc.buffers.push(Buffer { len: bytes.len(), bytes: Shared::from(bytes) });
         let stride = doc.views[i].stride;
         doc.views[i] = View { buffer: doc.buffers.len() - 1, offset: 0, length: view_length, stride };
     }
@@ -312,7 +344,7 @@ fn decode_compressed_views(doc: &mut Doc, json: &Value, budget: &mut Budget) -> 
 }
 
 fn load(src: Src, json: &Value, bin: Option<&[u8]>, options: &ReadOptions) -> Result<Mesh> {
-    let (doc, mut budget) = open(src, json, bin, options, 0)?;
+    let (doc, mut budget) = open(src, json, bin.map(|b| Shared::from(b.to_vec())), options, 0)?;
 
     let mut mesh = Mesh::new();
     // POSITION accessor -> (first vertex id, vertex count).

@@ -242,7 +242,10 @@ pub(super) fn decode_primitive(
     let indices_read = if faces {
         super::read_primitive_indices(src, doc, prim, &place, budget, mode, (pos, count), &mut indices)?;
         super::push_primitive_faces(src, &place, &mut mesh, mode, &indices)?;
-        indices.len()
+        // Let go of as soon as it is decoded, not held beside the rest of the primitive.
+        let n = indices.len();
+        drop(indices);
+        n
     } else {
         // A document made from a mesh: the caller sets the faces (its own polygons).
         let accessor = prim.get("indices").and_then(Value::as_u64);

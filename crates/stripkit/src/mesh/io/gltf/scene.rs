@@ -73,7 +73,7 @@
 //! (`compress.rs`); `KHR_mesh_quantization` attributes are written as stored.
 
 use super::primitive::{bounds, decode_primitive, vertex_accessors, ScenePrimitive, PRIMITIVE_BYTES};
-use super::{array, at, glb_container, open, parse_glb, parse_json, Buffer, Doc, View};
+use super::{array, at, glb_container, open, parse_glb, parse_json, Buffer, Doc, Shared, View};
 use crate::error::{Error, Result};
 use crate::mesh::io::common::Src;
 use crate::mesh::io::{encode_checked, write_checked, Format, ReadOptions};
@@ -84,6 +84,7 @@ use serde_json::{json, Value};
 use std::borrow::Cow;
 use std::collections::{BTreeMap, HashMap, VecDeque};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 mod build;
 
@@ -177,7 +178,8 @@ impl Scene {
         } else {
             raw
         };
-        Scene::from_bytes(path, format, &data, options)
+        // A GLB's binary chunk is read in place, not copied beside the file's bytes.
+        Scene::from_shared(path, format, &Arc::new(data), options)
     }
 
     /// Parses a scene held in memory (uncompressed) as `format` (`Gltf` or `Glb`);
@@ -189,24 +191,38 @@ impl Scene {
             Format::Gltf => (parse_json(src, data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data), 0)?, None),
             other => return Err(Error::Invalid(format!("a scene is glTF or GLB, not {other:?}"))),
         };
-        Scene::from_document(path, json, bin.map(Cow::Borrowed), options, true)
+        Scene::from_document(path, json, bin.map(|b| Shared::from(b.to_vec())), options, true)
     }
 
-    /// The scene of a parsed document and its binary chunk (let go of once the buffers
-    /// hold its bytes, before the primitives are decoded); without `faces` the
+    /// [`Scene::from_bytes`] of bytes the scene may share: a GLB's binary chunk is
+    /// read in place (its buffer a range of `data`), not copied. Once the scene and
+    /// everything read from its buffers are gone, `data` is held by the caller alone.
+    fn from_shared(path: &Path, format: Format, data: &Arc<Vec<u8>>, options: &ReadOptions) -> Result<Scene> {
+        if !matches!(format, Format::Glb) {
+            return Scene::from_bytes(path, format, data, options);
+        }
+        let (json, bin) = parse_glb(Src { path }, data)?;
+        let bin = bin.map(|b| {
+            let start = b.as_ptr() as usize - data.as_ptr() as usize;
+            Shared::range(data, start..start + b.len())
+        });
+        Scene::from_document(path, json, bin, options, true)
+    }
+
+    /// The scene of a parsed document and its binary chunk (which buffer 0 holds as
+    /// given, without a copy); without `faces` the
     /// primitives' faces are not decoded (a document made from a mesh, whose faces the
     /// caller sets).
     fn from_document(
         path: &Path,
         json: Value,
-        bin: Option<Cow<[u8]>>,
+        bin: Option<Shared>,
         options: &ReadOptions,
         faces: bool,
     ) -> Result<Scene> {
         let src = Src { path };
         let (buffers, views, primitives) = {
-            let (doc, mut budget) = open(src, &json, bin.as_deref(), options, PRIMITIVES_ALLOWANCE)?;
-            drop(bin);
+            let (doc, mut budget) = open(src, &json, bin, options, PRIMITIVES_ALLOWANCE)?;
             let mut primitives = Vec::new();
             for (m, jm) in array(src, &json, "meshes")?.iter().enumerate() {
                 let prims = match jm.get("primitives") {
@@ -257,7 +273,7 @@ impl Scene {
         let options = ReadOptions::default().max_decoded_bytes(Some(u64::MAX));
         // The document is decoded as a file would be, without a GLB container around it.
         let mut scene =
-            Scene::from_document(Path::new("<mesh as glTF>"), doc.json, Some(Cow::Owned(doc.bin)), &options, false)?;
+            Scene::from_document(Path::new("<mesh as glTF>"), doc.json, Some(Shared::from(doc.bin)), &options, false)?;
         // Each primitive's mesh holds its positions and faces: their bytes leave the
         // buffer, to be made again when the scene is encoded (held.rs).
         if scene.buffers.len() == 1 && scene.primitives.len() == doc.group_of_primitive.len() {
@@ -388,7 +404,9 @@ impl Scene {
                 free_faces(&mut sp.mesh);
             }
         }
-        let bytes = self.encode(format)?;
+        // Shared with the scene read back for the check, whose buffer 0 is its binary
+        // chunk in place (no copy of it beside the file); held alone again afterwards.
+        let bytes = Arc::new(self.encode(format)?);
         self.buffers = Vec::new();
         // The reference triangles go to the check, which sorts them in place (no
         // sorted copy beside them).
@@ -400,8 +418,10 @@ impl Scene {
                 free_faces(&mut sp.mesh);
             }
         }
-        self.check_written_taking(format, &bytes, drawn)?;
-        Ok(bytes)
+        let (name, options) = read_back(format);
+        let back = Scene::from_shared(&name, format, &bytes, &options)?;
+        self.check_read_back(&name, back, drawn)?;
+        Ok(Arc::try_unwrap(bytes).unwrap_or_else(|shared| shared.to_vec()))
     }
 
     /// Writes the scene to `path` (`.gltf` or `.glb`, optionally `.gz`), atomically,
@@ -572,21 +592,16 @@ impl Scene {
 
     /// Reads `bytes` back and compares every primitive with this scene's.
     fn check_written(&self, format: Format, bytes: &[u8]) -> Result<()> {
-        self.check_written_taking(format, bytes, Vec::new())
+        let (name, options) = read_back(format);
+        let back = Scene::from_bytes(&name, format, bytes, &options)?;
+        self.check_read_back(&name, back, Vec::new())
     }
 
-    /// [`Scene::check_written`] with, per primitive, its reference triangles taken out
-    /// of the scene where `drawn` has them (`None` or missing: the scene's own).
-    fn check_written_taking(
-        &self,
-        format: Format,
-        bytes: &[u8],
-        mut drawn: Vec<Option<Vec<[u32; 3]>>>,
-    ) -> Result<()> {
-        let name = PathBuf::from(format!("the {format:?} bytes to be written"));
-        // The input was accepted under the caller's budget; the output decodes to the same.
-        let options = ReadOptions::default().max_decoded_bytes(Some(u64::MAX));
-        let mut back = Scene::from_bytes(&name, format, bytes, &options)?;
+    /// Compares every primitive of `back`, the written bytes read back (under the name
+    /// and options of [`read_back`]), with this scene's; per primitive, its reference
+    /// triangles are taken out of the scene where `drawn` has them (`None` or missing:
+    /// the scene's own). `back` is let go of before this returns.
+    fn check_read_back(&self, name: &Path, mut back: Scene, mut drawn: Vec<Option<Vec<[u32; 3]>>>) -> Result<()> {
         let fail = |sp: &ScenePrimitive, what: String| {
             Error::Verification(format!(
                 "{}, read back: meshes[{}].primitives[{}]: {what}",
@@ -750,6 +765,14 @@ fn take_triangles(mesh: &mut Mesh) -> Vec<[u32; 3]> {
     tris
 }
 
+/// The name the written bytes go by in the messages of their check, and the options
+/// they are read back with: the input was accepted under the caller's budget, and the
+/// output decodes to the same.
+fn read_back(format: Format) -> (PathBuf, ReadOptions) {
+    let name = PathBuf::from(format!("the {format:?} bytes to be written"));
+    (name, ReadOptions::default().max_decoded_bytes(Some(u64::MAX)))
+}
+
 /// See [`Scene::garbage`].
 struct Garbage {
     /// Whether views are copied one by one, leaving out the dead ones' bytes.
@@ -773,4 +796,67 @@ fn array_len(json: &Value, outer: &str, inner: &str) -> usize {
     json.get(outer)
         .and_then(Value::as_array)
         .map_or(0, |l| l.iter().map(|m| m.get(inner).and_then(Value::as_array).map_or(0, Vec::len)).sum())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::SceneOptions;
+    use crate::StripOptions;
+
+    fn stripped() -> Scene {
+        let mut scene = Scene::from_mesh(&crate::gen::icosphere(2)).unwrap();
+        let report = scene.strip(&StripOptions::default(), &SceneOptions::default()).unwrap();
+        assert_eq!(report.triangles, 320);
+        scene
+    }
+
+    /// The check reads a GLB's binary chunk in place: the buffer read back is a range of
+    /// the written bytes, and once the check is over the bytes are held by the caller
+    /// alone (so `into_bytes` hands back the same allocation, without a copy).
+    #[test]
+    fn the_read_back_shares_the_binary_chunk_and_lets_it_go() {
+        let scene = stripped();
+        let bytes = Arc::new(scene.encode(Format::Glb).unwrap());
+        let (name, options) = read_back(Format::Glb);
+        let back = Scene::from_shared(&name, Format::Glb, &bytes, &options).unwrap();
+        let chunk = back.buffers[0].as_ptr() as usize - bytes.as_ptr() as usize;
+        assert_eq!(chunk, 12 + 8 + u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize + 8);
+        assert_eq!(back.buffers[0].len(), bytes.len() - chunk);
+        assert_eq!(Arc::strong_count(&bytes), 2);
+        scene.check_read_back(&name, back, Vec::new()).unwrap();
+        assert_eq!(Arc::strong_count(&bytes), 1);
+        // The same bytes by either write path.
+        let want = scene.to_bytes(Format::Glb).unwrap();
+        assert_eq!(*bytes, want);
+        assert_eq!(scene.into_bytes(Format::Glb).unwrap(), want);
+    }
+
+    /// A wrong index in the written bytes is caught by the check reading the chunk in
+    /// place, as by the one reading a copy.
+    #[test]
+    fn a_wrong_index_in_the_shared_chunk_is_caught() {
+        let scene = stripped();
+        let mut bytes = scene.encode(Format::Glb).unwrap();
+        let (json, bin) = parse_glb(Src { path: Path::new("x.glb") }, &bytes).unwrap();
+        let chunk = bin.unwrap().as_ptr() as usize - bytes.as_ptr() as usize;
+        let prim = &json["meshes"][0]["primitives"][0];
+        assert_eq!(prim["mode"], 5);
+        let accessor = &json["accessors"][prim["indices"].as_u64().unwrap() as usize];
+        assert_eq!(accessor["componentType"], 5123);
+        let view = &json["bufferViews"][accessor["bufferView"].as_u64().unwrap() as usize];
+        let at = chunk
+            + view.get("byteOffset").and_then(Value::as_u64).unwrap_or(0) as usize
+            + accessor.get("byteOffset").and_then(Value::as_u64).unwrap_or(0) as usize;
+        // 162 vertices: flipping the lowest bit keeps the index in range.
+        bytes[at] ^= 1;
+        let bytes = Arc::new(bytes);
+        let (name, options) = read_back(Format::Glb);
+        let back = Scene::from_shared(&name, Format::Glb, &bytes, &options).unwrap();
+        let err = scene.check_read_back(&name, back, Vec::new()).unwrap_err();
+        assert!(matches!(err, Error::Verification(_)), "{err}");
+        assert!(err.to_string().contains("read back: meshes[0].primitives[0]"), "{err}");
+        let err = scene.check_written(Format::Glb, &bytes).unwrap_err();
+        assert!(matches!(err, Error::Verification(_)), "{err}");
+    }
 }
