@@ -20,3 +20,16 @@ pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 pub fn tri_normal(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
     cross(sub(b, a), sub(c, a))
 }
+
+/// Unit vectors from the origin to each position, flattened (x, y, z per vertex): a
+/// NORMAL attribute that is right for spheres and close for tori, so that tests have a
+/// second attribute whose values differ per vertex.
+pub fn radial_normals(positions: &[[f32; 3]]) -> Vec<f32> {
+    positions
+        .iter()
+        .flat_map(|p| {
+            let l = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+            [p[0] / l, p[1] / l, p[2] / l]
+        })
+        .collect()
+}

@@ -469,14 +469,7 @@ fn grouped_torus(quads: bool) -> stripkit::Mesh {
     shuffle(&mut faces, 3);
     let mut mesh = stripkit::Mesh::from_polygons(base.positions.clone(), &faces);
     let n = mesh.vertex_count();
-    let normals: Vec<f32> = base
-        .positions
-        .iter()
-        .flat_map(|p| {
-            let l = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-            [p[0] / l, p[1] / l, p[2] / l]
-        })
-        .collect();
+    let normals = stripkit_testkit::geom::radial_normals(&base.positions);
     mesh.attributes.push(Attribute::from_f32("NORMAL", 3, &normals));
     let uv: Vec<f32> = (0..n).flat_map(|v| [v as f32 / n as f32, 0.25]).collect();
     mesh.attributes.push(Attribute::from_f32("TEXCOORD_0", 2, &uv));

@@ -23,14 +23,7 @@ fn shuffled(mesh: &Mesh, seed: u64) -> Mesh {
 /// A torus in two groups (by the smallest vertex id's parity) with normals.
 fn two_groups() -> Mesh {
     let mut mesh = shuffled(&gen::torus(16, 10, 1.0, 0.3), 5);
-    let normals: Vec<f32> = mesh
-        .positions
-        .iter()
-        .flat_map(|p| {
-            let l = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-            [p[0] / l, p[1] / l, p[2] / l]
-        })
-        .collect();
+    let normals = stripkit_testkit::geom::radial_normals(&mesh.positions);
     mesh.attributes.push(Attribute::from_f32("NORMAL", 3, &normals));
     mesh.face_groups = (0..mesh.face_count()).map(|f| mesh.face(f).iter().min().unwrap() % 2).collect();
     mesh.groups = vec![Group { name: "even".into(), material: None }, Group { name: "odd".into(), material: None }];
