@@ -240,27 +240,13 @@ impl Body for Binary<'_> {
     }
     #[inline]
     fn int(&mut self, s: Scalar) -> Result<i64, String> {
-        macro_rules! int {
-            ($t:ty, $n:literal) => {{
-                let b = self.bytes::<$n>()?;
-                Ok((if self.big { <$t>::from_be_bytes(b) } else { <$t>::from_le_bytes(b) }) as i64)
-            }};
+        // Through the one decoding of a scalar: every integer type of PLY (at most 32
+        // bits) is exact as f64; a float must hold a whole number.
+        let v = self.value(s)?;
+        if matches!(s, Scalar::F32 | Scalar::F64) && (v.fract() != 0.0 || v.abs() >= 1e15) {
+            return Err(format!("{v} is not an integer"));
         }
-        match s {
-            Scalar::I8 => int!(i8, 1),
-            Scalar::U8 => int!(u8, 1),
-            Scalar::I16 => int!(i16, 2),
-            Scalar::U16 => int!(u16, 2),
-            Scalar::I32 => int!(i32, 4),
-            Scalar::U32 => int!(u32, 4),
-            Scalar::F32 | Scalar::F64 => {
-                let v = self.value(s)?;
-                if v.fract() != 0.0 || v.abs() >= 1e15 {
-                    return Err(format!("{v} is not an integer"));
-                }
-                Ok(v as i64)
-            }
-        }
+        Ok(v as i64)
     }
     #[inline]
     fn skip(&mut self, s: Scalar) -> Result<(), String> {
