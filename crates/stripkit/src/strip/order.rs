@@ -96,14 +96,6 @@ fn place(v: &mut [[u32; 3]], starts: &[u32], key: impl Fn(&[u32; 3]) -> usize) {
 mod tests {
     use super::*;
 
-    /// A small deterministic generator (xorshift), so the tests need no crate.
-    fn lcg(seed: &mut u64) -> u32 {
-        *seed ^= *seed << 13;
-        *seed ^= *seed >> 7;
-        *seed ^= *seed << 17;
-        (*seed >> 16) as u32
-    }
-
     fn check(list: Vec<[u32; 3]>) {
         let mut want = list.clone();
         want.sort_unstable();
@@ -116,16 +108,16 @@ mod tests {
 
     #[test]
     fn the_same_slice_as_a_comparison_sort() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15;
+        let mut next = crate::test_support::xorshift(0x9e37_79b9_7f4a_7c15);
         // Dense canonical triangles (a mesh's shape: n/2 vertices), with repeats,
         // shuffled; short lists; sparse first indices (the comparison fallback); one
         // vertex in every triangle (a fan: one big bucket); a list over several parts.
         for (n, vertices) in [(5_000, 2_500), (300, 150), (3_000, 1 << 30), (200_000, 100_000)] {
             let list: Vec<[u32; 3]> = (0..n)
                 .map(|_| {
-                    let mut t = [lcg(&mut seed) % vertices, lcg(&mut seed) % vertices, lcg(&mut seed) % vertices];
+                    let mut t = [next(vertices), next(vertices), next(vertices)];
                     t.sort_unstable();
-                    if lcg(&mut seed) % 2 == 0 {
+                    if next(2) == 0 {
                         t.swap(1, 2);
                     }
                     t
