@@ -462,12 +462,7 @@ impl Scene {
         if !stripped.is_empty() {
             // Reordered primitives: their vertex data gathered in the strips' order.
             // One reader for all of them (making one copies the views' list).
-            let doc = Doc {
-                src: Src { path: &self.name },
-                buffers: out.buffers.clone(),
-                views: out.views.clone(),
-                accessors: self.json.get("accessors").and_then(Value::as_array).map_or(&[], Vec::as_slice),
-            };
+            let doc = self.doc_over(out.buffers.clone(), out.views.clone());
             let mut remapped: Vec<Option<StripSet>> = Vec::with_capacity(stripped.len());
             for sp in &stripped {
                 remapped.push(match &sp.order {
@@ -724,19 +719,21 @@ impl Scene {
 
     /// A reader over the scene's own buffers.
     fn doc(&self) -> Doc<'_> {
+        self.doc_over(self.buffers.clone(), self.views.clone())
+    }
+
+    /// A reader of this scene's accessors over `buffers` and `views` (the scene's own,
+    /// or the merged ones of a file being built).
+    fn doc_over(&self, buffers: Vec<Buffer>, views: Vec<View>) -> Doc<'_> {
         Doc {
             src: Src { path: &self.name },
-            buffers: self.buffers.clone(),
-            views: self.views.clone(),
+            buffers,
+            views,
             accessors: self.json.get("accessors").and_then(Value::as_array).map_or(&[], Vec::as_slice),
         }
     }
 }
 
-/// The faces of a mesh read back, as triangles, taken out of it: where every face is
-/// a triangle (strips read back) the offsets go first and the indices are regrouped,
-/// so at most the indices and the triangles are alive at once; otherwise
-/// [`Mesh::triangulate`].
 /// Lets a mesh's faces go (its positions and attributes stay).
 fn free_faces(mesh: &mut Mesh) {
     mesh.face_offsets = vec![0];
@@ -744,6 +741,10 @@ fn free_faces(mesh: &mut Mesh) {
     mesh.face_groups = Vec::new();
 }
 
+/// The faces of a mesh read back, as triangles, taken out of it: where every face is
+/// a triangle (strips read back) the offsets go first and the indices are regrouped,
+/// so at most the indices and the triangles are alive at once; otherwise
+/// [`Mesh::triangulate`].
 fn take_triangles(mesh: &mut Mesh) -> Vec<[u32; 3]> {
     if !mesh.face_offsets.windows(2).all(|w| w[1].wrapping_sub(w[0]) == 3) {
         return mesh.triangulate().tris;
