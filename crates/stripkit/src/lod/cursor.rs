@@ -21,7 +21,10 @@ use std::ops::Range;
 /// unchanged slots between them are copied from the old walk (moved within the
 /// range where the strip got shorter or longer), and the slots before the first
 /// change stay. A far jump (many changes in a strip) re-walks the changed strips
-/// whole, as a new cursor would. [`Cursor::changed_range`] is what a renderer must
+/// whole, as a new cursor would, except a strip that appears whole between the two
+/// levels (it begins at a re-strip level, or ends at one when moving finer): it
+/// starts from the walk the model keeps for it there, copied in, and moves on from
+/// that level as a near move. [`Cursor::changed_range`] is what a renderer must
 /// upload again.
 ///
 /// ```
@@ -60,6 +63,10 @@ pub struct Cursor<'a> {
     todo: Vec<u32>,
     plan: Vec<Piece>,
     keys: Vec<u64>,
+    /// Per changed strip, 1 + its length before a kept walk was copied in (0:
+    /// none was), and the one of the strip at hand.
+    widened: Vec<u32>,
+    widen: u32,
 }
 
 /// Where a strip stands at the cursor's level.
@@ -148,6 +155,8 @@ impl Sets {
             todo: Vec::new(),
             plan: Vec::new(),
             keys: Vec::new(),
+            widened: Vec::new(),
+            widen: 0,
         };
         for s in 0..strips {
             let r = self.change_offsets[s] as usize..self.change_offsets[s + 1] as usize;
@@ -214,11 +223,15 @@ impl<'a> Cursor<'a> {
         self.span_versions.clear();
         self.todo.clear();
         self.span_counts.clear();
+        self.widened.clear();
         let sets = self.sets;
+        let coarser = level > old;
         for i in 0..self.changed.len() {
             let s = self.changed[i] as usize;
             let start = self.spans.len();
-            let from = self.first_change(s, lo as u32, hi as u32, level > old);
+            self.widen = 0;
+            let from = self.first_change(s, lo as u32, hi as u32, coarser);
+            self.widened.push(self.widen);
             for &v in &self.span_versions[start..] {
                 if v != NO_VERSION {
                     prefetch(&sets.versions[v as usize]);
@@ -242,8 +255,14 @@ impl<'a> Cursor<'a> {
         for i in 0..self.changed.len() {
             let s = self.changed[i] as usize;
             let count = self.span_counts[i] as usize;
-            self.rewalk(s, self.todo[i] as usize, start..start + count, level > old);
+            self.rewalk(s, self.todo[i] as usize, start..start + count, coarser);
             start += count;
+            // A kept walk copied in wrote the range from its start; past the
+            // longer of the old and new sequences it is restarts again.
+            if self.widened[i] > 0 {
+                let st = &mut self.state[s];
+                st.written = (0, st.len.max(self.widened[i] - 1));
+            }
         }
         &self.changed
     }
@@ -290,6 +309,25 @@ impl<'a> Cursor<'a> {
         }
         let start = self.spans.len();
         if b - a > cap {
+            // A strip that appears whole between the two levels (a re-strip level)
+            // starts from its kept walk there, then moves on as a near move.
+            if let Some(snap) = sets.snapshots.find(s, lo, hi, coarser) {
+                let (base, n, prior) = (st.base as usize, snap.labels.len(), st.len as usize);
+                self.buffer[base..base + n].copy_from_slice(snap.labels);
+                self.slot_at[base..base + n].copy_from_slice(snap.slots);
+                if prior > n {
+                    self.buffer[base + n..base + prior].fill(self.restart);
+                }
+                if self.widen == 0 {
+                    self.widen = prior as u32 + 1;
+                }
+                let first = sets.change_offsets[s] as usize;
+                let st = &mut self.state[s];
+                st.next = (first + levels[first..end].partition_point(|&l| l <= snap.level)) as u32;
+                st.len = n as u32;
+                let (lo, hi) = if coarser { (snap.level, hi) } else { (lo, snap.level) };
+                return self.first_change(s, lo, hi, coarser);
+            }
             self.span_counts.push(0);
             return 0;
         }

@@ -208,6 +208,7 @@ impl Sets {
             change_version: Vec::new(),
             level_offsets: Vec::new(),
             level_strips: Vec::new(),
+            snapshots: Default::default(),
             triangles_at: Vec::new(),
         };
         sets.derive().map_err(|e| fmt(body, e.to_string()))?;

@@ -30,6 +30,7 @@ mod file;
 mod model;
 mod seq;
 mod sets;
+mod snap;
 pub mod timing;
 mod track;
 

@@ -312,3 +312,51 @@ fn change_versions_name_the_version_starting_there() {
         }
     }
 }
+
+/// The walks kept for the strips that appear at a re-strip level are those strips'
+/// walks there, and cursor moves across each re-strip level (from near and far,
+/// both ways) that start from them equal fresh cursors, every changed index
+/// reported.
+#[test]
+fn kept_walks_at_restrip_levels() {
+    let mesh = crate::gen::icosphere(3);
+    let options = BuildOptions { restrip: Some(1.5), ..BuildOptions::default() };
+    let sets = build(&mesh, &options, &mut |_| {}).unwrap().sets;
+    let mut restrip: Vec<u32> = (0..sets.strip_count())
+        .filter(|&s| sets.begin_slot[sets.begin_offsets[s] as usize] == END)
+        .flat_map(|s| sets.begin_level[sets.begin_offsets[s] as usize + 1..sets.begin_offsets[s + 1] as usize].to_vec())
+        .collect();
+    restrip.sort_unstable();
+    restrip.dedup();
+    assert!(restrip.len() >= 2, "re-strip levels {restrip:?}");
+    let mut kept = 0;
+    for s in 0..sets.strip_count() {
+        for coarser in [true, false] {
+            let Some(snap) = sets.snapshots.find(s, 0, sets.levels() + 1, coarser) else { continue };
+            let mut want = Vec::new();
+            sets.walk(s, snap.level, |v| want.push(v));
+            assert_eq!(snap.labels, &want[..], "strip {s} at level {}", snap.level);
+            assert!(restrip.contains(&snap.level) || restrip.contains(&(snap.level + 1)));
+            kept += 1;
+        }
+    }
+    assert!(kept > 20, "{kept} kept walks");
+    let last = sets.levels();
+    for &l in &restrip {
+        let (l1, l2, l5) = (l - 1, l.saturating_sub(2), l.saturating_sub(5));
+        for (from, to) in [(l1, l), (l, l1), (0, l + 3), (l + 3, l2), (last, l1), (l1, last), (l5, l)] {
+            let (from, to) = (from.min(last), to.min(last));
+            let mut c = sets.cursor(from);
+            let before = c.buffer().to_vec();
+            let changed = c.set_level(to).to_vec();
+            assert_eq!(c.buffer(), sets.cursor(to).buffer(), "{from} -> {to}");
+            let mut written = vec![false; before.len()];
+            for &s in &changed {
+                written[c.changed_range(s as usize)].fill(true);
+            }
+            for (i, (&a, &z)) in before.iter().zip(c.buffer()).enumerate() {
+                assert!(written[i] || a == z, "{from} -> {to}: index {i} changed unreported");
+            }
+        }
+    }
+}
