@@ -225,9 +225,12 @@ pub fn decode_restart(buffer: &[u32], restart: u32) -> StripSet {
     set
 }
 
-/// Length of [`encode_stitched`]'s buffer.
+/// Length of [`encode_stitched`]'s buffer, counted without writing it (the figures
+/// ask for it on every stripify call).
 pub fn stitched_len(strips: &StripSet) -> usize {
-    encode_stitched(strips).len()
+    let mut len = Count(0);
+    stitch(strips, &mut len);
+    len.0
 }
 
 /// All strips stitched into one strip with degenerate triangles, every triangle keeping
@@ -240,26 +243,67 @@ pub fn stitched_len(strips: &StripSet) -> usize {
 /// Strips of fewer than 3 indices draw nothing and are left out. O(total length).
 pub fn encode_stitched(strips: &StripSet) -> Vec<u32> {
     let mut out: Vec<u32> = Vec::with_capacity(strips.indices.len() + 3 * strips.len());
+    stitch(strips, &mut out);
+    out
+}
+
+/// Where [`stitch`] puts the stitched strip: a buffer, or a count of its length.
+trait Stitched {
+    fn len(&self) -> usize;
+    /// The last index put (any value where only the length is kept).
+    fn last(&self) -> u32;
+    fn put(&mut self, indices: &[u32]);
+}
+
+impl Stitched for Vec<u32> {
+    fn len(&self) -> usize {
+        Vec::len(self)
+    }
+    fn last(&self) -> u32 {
+        self[self.len() - 1]
+    }
+    fn put(&mut self, indices: &[u32]) {
+        self.extend_from_slice(indices);
+    }
+}
+
+/// The length of a stitched strip, nothing written.
+struct Count(usize);
+
+impl Stitched for Count {
+    fn len(&self) -> usize {
+        self.0
+    }
+    fn last(&self) -> u32 {
+        0
+    }
+    fn put(&mut self, indices: &[u32]) {
+        self.0 += indices.len();
+    }
+}
+
+/// The stitching of [`encode_stitched`] into `out`.
+fn stitch(strips: &StripSet, out: &mut impl Stitched) {
     let mut tris: Vec<[u32; 3]> = Vec::new();
     let mut odd: Vec<u32> = Vec::new();
     for s in strips.iter().filter(|s| s.len() >= 3) {
-        if let Some(&last) = out.last() {
+        if out.len() > 0 {
+            let last = out.last();
             if out.len() & 1 == 0 {
-                out.extend_from_slice(&[last, s[0]]);
+                out.put(&[last, s[0]]);
             } else {
                 tris.clear();
                 for_each_triangle(s, |t| tris.push(t));
                 if encode_odd_start(&tris, &mut odd) && odd.len() < s.len() + 1 {
-                    out.extend_from_slice(&[last, odd[0]]);
-                    out.extend_from_slice(&odd);
+                    out.put(&[last, odd[0]]);
+                    out.put(&odd);
                     continue;
                 }
-                out.extend_from_slice(&[last, last, s[0]]);
+                out.put(&[last, last, s[0]]);
             }
         }
-        out.extend_from_slice(s);
+        out.put(s);
     }
-    out
 }
 
 /// Encodes the triangle walk `tris` (each sharing an edge with the next, consistently
@@ -620,12 +664,14 @@ mod tests {
         let set = StripSet::from_strips(&[vec![0, 1, 2], vec![4, 5, 6]]);
         let one = encode_stitched(&set);
         assert_eq!(one, vec![0, 1, 2, 2, 4, 4, 6, 5]);
+        assert_eq!(stitched_len(&set), one.len());
         assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
         // A strip that is not one walk (two triangles without a shared edge) cannot be
         // re-encoded: 3 extra.
         let set = StripSet::from_strips(&[vec![0, 1, 2], vec![4, 5, 6, 6, 8, 8, 9, 10]]);
         let one = encode_stitched(&set);
         assert_eq!(one, vec![0, 1, 2, 2, 2, 4, 4, 5, 6, 6, 8, 8, 9, 10]);
+        assert_eq!(stitched_len(&set), one.len());
         assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
         // A fan of four around 0 needs one swap from either end and at either parity:
         // at an odd position it still costs 7 indices, joined with 2 extra.
@@ -635,6 +681,7 @@ mod tests {
         let set = StripSet::from_strips(&[vec![7, 8, 9], fan_strip]);
         let one = encode_stitched(&set);
         assert_eq!(one.len(), 3 + 2 + 7);
+        assert_eq!(stitched_len(&set), one.len());
         assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
     }
 
