@@ -442,11 +442,47 @@ pub fn verify_decoded(expected: &[[u32; 3]], got: Vec<[u32; 3]>) -> Verification
     verify_decoded_with(expected, got, crate::parallel::Threads::SERIAL)
 }
 
-/// [`verify`] with its decoding and sorting in parallel when `threads` allows; the
-/// same result at any thread count (the sorted lists are the same, and the
-/// comparison after them runs on one thread).
+/// [`verify`] in parallel when `threads` allows (the two sides side by side, each
+/// one's buckets in parts); the same result at any thread count (the sorted lists are
+/// the same, and the comparison after them runs on one thread). Each side is written
+/// straight into its buckets, the strips as they are decoded and the expected
+/// triangles as they are read: no unsorted list or copy is made.
 pub fn verify_with(expected: &[[u32; 3]], strips: &StripSet, threads: crate::parallel::Threads) -> Verification {
-    verify_decoded_with(expected, decode_with(strips, threads), threads)
+    let (want, got) = crate::parallel::join(
+        threads,
+        || sorted_expected(expected, threads),
+        || {
+            let keys = strips.indices.iter().copied().max().map_or(0, |i| i as usize + 1);
+            order::sorted_from(threads, &Decoded(strips), keys)
+        },
+    );
+    merge_sorted(&want, &got)
+}
+
+/// The triangles `strips` draw, canonical: the decoded side of [`verify_with`],
+/// decoded straight into its buckets (no unsorted list).
+struct Decoded<'a>(&'a StripSet);
+
+impl order::Source for Decoded<'_> {
+    fn for_each(&self, mut emit: impl FnMut([u32; 3])) {
+        for s in self.0.iter() {
+            for_each_triangle(s, |t| emit(canonical(t)));
+        }
+    }
+}
+
+/// The non-degenerate expected triangles, canonical: the expected side of the check,
+/// written straight into its buckets (no copy of the caller's list).
+struct NonDegenerate<'a>(&'a [[u32; 3]]);
+
+impl order::Source for NonDegenerate<'_> {
+    fn for_each(&self, mut emit: impl FnMut([u32; 3])) {
+        for &t in self.0 {
+            if !is_degenerate(&t) {
+                emit(canonical(t));
+            }
+        }
+    }
 }
 
 /// [`verify_decoded`] with its ordering in parallel when `threads` allows (the two
@@ -496,15 +532,19 @@ pub(crate) struct SortedExpected {
 /// The non-degenerate `expected` triangles, canonical and sorted (in parallel when
 /// `threads` allows).
 pub(crate) fn sorted_expected(expected: &[[u32; 3]], threads: crate::parallel::Threads) -> SortedExpected {
-    sorted_expected_owned(expected.to_vec(), threads)
+    let keys = expected.as_flattened().iter().copied().max().map_or(0, |i| i as usize + 1);
+    let want = order::sorted_from(threads, &NonDegenerate(expected), keys);
+    SortedExpected { dropped_degenerate: expected.len() - want.len(), want }
 }
 
 /// [`sorted_expected`] of a list the caller gives up: sorted in place, no copy.
 pub(crate) fn sorted_expected_owned(mut expected: Vec<[u32; 3]>, threads: crate::parallel::Threads) -> SortedExpected {
     let before = expected.len();
-    expected.retain(|t| !is_degenerate(t));
+    expected.retain_mut(|t| {
+        *t = canonical(*t);
+        !is_degenerate(t)
+    });
     let dropped_degenerate = before - expected.len();
-    crate::parallel::for_each_mut(threads, &mut expected, |t| *t = canonical(*t));
     order::sort_triangles(threads, &mut expected);
     SortedExpected { want: expected, dropped_degenerate }
 }
@@ -517,8 +557,10 @@ pub(crate) fn compare_sorted(expected: &SortedExpected, got: Vec<[u32; 3]>, thre
 
 /// The non-degenerate decoded triangles, canonical and sorted in place.
 fn sorted_got(mut got: Vec<[u32; 3]>, threads: crate::parallel::Threads) -> Vec<[u32; 3]> {
-    got.retain(|t| !is_degenerate(t));
-    crate::parallel::for_each_mut(threads, &mut got, |t| *t = canonical(*t));
+    got.retain_mut(|t| {
+        *t = canonical(*t);
+        !is_degenerate(t)
+    });
     order::sort_triangles(threads, &mut got);
     got
 }
