@@ -427,12 +427,15 @@ impl std::fmt::Display for Verification {
 /// both lists are ordered by a counting sort on each triangle's lowest index (see
 /// `strip/order.rs`), then merged.
 pub fn verify(expected: &[[u32; 3]], strips: &StripSet) -> Verification {
-    verify_decoded(expected, decode(strips))
+    verify_with(expected, strips, crate::parallel::Threads::SERIAL)
 }
 
 /// [`verify`] for an already decoded triangle list (degenerate entries are skipped).
+/// Both lists are read straight into their buckets: no copy of either is sorted.
 pub fn verify_triangles(expected: &[[u32; 3]], decoded: &[[u32; 3]]) -> Verification {
-    verify_decoded(expected, decoded.to_vec())
+    let threads = crate::parallel::Threads::SERIAL;
+    let keys = decoded.as_flattened().iter().copied().max().map_or(0, |i| i as usize + 1);
+    merge_sorted(&sorted_expected(expected, threads), &order::sorted_from(threads, &NonDegenerate(decoded), keys))
 }
 
 /// [`verify_triangles`] taking the decoded list by value: it is canonicalized and
