@@ -29,8 +29,7 @@ fn cli_indices(cli: &Path, mesh: &Path, algo: &str, dir: &Path) -> usize {
 
 #[test]
 fn quick_scale_run_measures_every_phase_and_matches_the_library() {
-    let dir = std::env::temp_dir().join(format!("stripkit-bench-scale-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = stripkit_testkit::scratch_dir("bench-scale-test");
     let ico = gen::icosphere(3);
     let torus = gen::torus(24, 12, 1.0, 0.3);
     let (ico_path, torus_path) = (dir.join("ico.ply"), dir.join("torus.ply"));

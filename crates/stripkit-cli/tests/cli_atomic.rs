@@ -10,10 +10,7 @@ use support::stripkit;
 
 /// A fresh, empty folder for one test.
 fn fresh_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stripkit-cli-atomic-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    stripkit_testkit::fresh_scratch_dir(&format!("cli-atomic-{name}"))
 }
 
 fn names(dir: &Path) -> Vec<String> {

@@ -10,9 +10,7 @@ fn stripkit() -> Command {
 }
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stripkit-cli-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    stripkit_testkit::scratch_dir(&format!("cli-{name}"))
 }
 
 fn stats_json(path: &std::path::Path) -> serde_json::Value {

@@ -111,8 +111,7 @@ fn png_is_written_and_decodes() {
     let mut scene = Scene::new(renderer(), &mesh.positions, None);
     let p = DrawParams { cull_back: true, ..DrawParams::new(camera(&mesh.positions, [0.35, 0.45, 1.0])) };
     let image = scene.picture(&flat(&mesh.triangulate().tris), Topology::Triangles, IndexWidth::U32, &p);
-    let dir = std::env::temp_dir().join(format!("stripkit-render-png-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temporary folder");
+    let dir = stripkit_testkit::scratch_dir("render-png");
     let path = dir.join("sphere.png");
     image.write_png(&path).expect("writes the PNG");
     let bytes = std::fs::read(&path).expect("reads the PNG back");

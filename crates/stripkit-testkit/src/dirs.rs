@@ -46,3 +46,35 @@ pub fn model_with<M, E: std::fmt::Display>(name: &str, read: impl Fn(&Path) -> R
         }
     }
 }
+
+/// Where tests write their files: `tmp/stripkit-tests` in the build folder that holds the
+/// running test binary (`target/tmp`, beside `target/debug`), so that each run replaces
+/// the files of the run before instead of leaving a folder per process in the system's
+/// temporary folder. A binary outside a cargo build folder (a doctest) gets
+/// `stripkit-tests` in the system's temporary folder.
+pub fn scratch_root() -> PathBuf {
+    let exe = std::env::current_exe().ok();
+    // target/<profile>/deps/<test binary>: three folders up is the build folder.
+    let built = exe.as_deref().and_then(|e| {
+        let deps = e.parent()?;
+        (deps.file_name()? == "deps").then_some(())?;
+        Some(deps.parent()?.parent()?.join("tmp"))
+    });
+    built.unwrap_or_else(std::env::temp_dir).join("stripkit-tests")
+}
+
+/// The folder `name` under [`scratch_root`], made if missing and kept as it is otherwise
+/// (tests that share it write files of their own names). Name it after the test file so
+/// that two test binaries never share one.
+pub fn scratch_dir(name: &str) -> PathBuf {
+    let dir = scratch_root().join(name);
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("making {}: {e}", dir.display()));
+    dir
+}
+
+/// [`scratch_dir`], emptied first: for one test that lists what it finds there.
+pub fn fresh_scratch_dir(name: &str) -> PathBuf {
+    let dir = scratch_root().join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    scratch_dir(name)
+}

@@ -18,5 +18,5 @@ mod rng;
 
 pub use base64::encode_base64;
 pub use glb::{glb, unglb};
-pub use dirs::{assets_dir, model_with, models_dir, models_path, repo_root};
+pub use dirs::{assets_dir, fresh_scratch_dir, model_with, models_dir, models_path, repo_root, scratch_dir, scratch_root};
 pub use rng::{Lcg, XorShift64, XorShift64Star};

@@ -225,9 +225,12 @@ pub fn decode_restart(buffer: &[u32], restart: u32) -> StripSet {
     set
 }
 
-/// Length of [`encode_stitched`]'s buffer.
+/// Length of [`encode_stitched`]'s buffer, counted without writing it (the figures
+/// ask for it on every stripify call).
 pub fn stitched_len(strips: &StripSet) -> usize {
-    encode_stitched(strips).len()
+    let mut len = Count(0);
+    stitch(strips, &mut len);
+    len.0
 }
 
 /// All strips stitched into one strip with degenerate triangles, every triangle keeping
@@ -240,26 +243,67 @@ pub fn stitched_len(strips: &StripSet) -> usize {
 /// Strips of fewer than 3 indices draw nothing and are left out. O(total length).
 pub fn encode_stitched(strips: &StripSet) -> Vec<u32> {
     let mut out: Vec<u32> = Vec::with_capacity(strips.indices.len() + 3 * strips.len());
+    stitch(strips, &mut out);
+    out
+}
+
+/// Where [`stitch`] puts the stitched strip: a buffer, or a count of its length.
+trait Stitched {
+    fn len(&self) -> usize;
+    /// The last index put (any value where only the length is kept).
+    fn last(&self) -> u32;
+    fn put(&mut self, indices: &[u32]);
+}
+
+impl Stitched for Vec<u32> {
+    fn len(&self) -> usize {
+        Vec::len(self)
+    }
+    fn last(&self) -> u32 {
+        self[self.len() - 1]
+    }
+    fn put(&mut self, indices: &[u32]) {
+        self.extend_from_slice(indices);
+    }
+}
+
+/// The length of a stitched strip, nothing written.
+struct Count(usize);
+
+impl Stitched for Count {
+    fn len(&self) -> usize {
+        self.0
+    }
+    fn last(&self) -> u32 {
+        0
+    }
+    fn put(&mut self, indices: &[u32]) {
+        self.0 += indices.len();
+    }
+}
+
+/// The stitching of [`encode_stitched`] into `out`.
+fn stitch(strips: &StripSet, out: &mut impl Stitched) {
     let mut tris: Vec<[u32; 3]> = Vec::new();
     let mut odd: Vec<u32> = Vec::new();
     for s in strips.iter().filter(|s| s.len() >= 3) {
-        if let Some(&last) = out.last() {
+        if out.len() > 0 {
+            let last = out.last();
             if out.len() & 1 == 0 {
-                out.extend_from_slice(&[last, s[0]]);
+                out.put(&[last, s[0]]);
             } else {
                 tris.clear();
                 for_each_triangle(s, |t| tris.push(t));
                 if encode_odd_start(&tris, &mut odd) && odd.len() < s.len() + 1 {
-                    out.extend_from_slice(&[last, odd[0]]);
-                    out.extend_from_slice(&odd);
+                    out.put(&[last, odd[0]]);
+                    out.put(&odd);
                     continue;
                 }
-                out.extend_from_slice(&[last, last, s[0]]);
+                out.put(&[last, last, s[0]]);
             }
         }
-        out.extend_from_slice(s);
+        out.put(s);
     }
-    out
 }
 
 /// Encodes the triangle walk `tris` (each sharing an edge with the next, consistently
@@ -427,12 +471,15 @@ impl std::fmt::Display for Verification {
 /// both lists are ordered by a counting sort on each triangle's lowest index (see
 /// `strip/order.rs`), then merged.
 pub fn verify(expected: &[[u32; 3]], strips: &StripSet) -> Verification {
-    verify_decoded(expected, decode(strips))
+    verify_with(expected, strips, crate::parallel::Threads::SERIAL)
 }
 
 /// [`verify`] for an already decoded triangle list (degenerate entries are skipped).
+/// Both lists are read straight into their buckets: no copy of either is sorted.
 pub fn verify_triangles(expected: &[[u32; 3]], decoded: &[[u32; 3]]) -> Verification {
-    verify_decoded(expected, decoded.to_vec())
+    let threads = crate::parallel::Threads::SERIAL;
+    let keys = decoded.as_flattened().iter().copied().max().map_or(0, |i| i as usize + 1);
+    merge_sorted(&sorted_expected(expected, threads), &order::sorted_from(threads, &NonDegenerate(decoded), keys))
 }
 
 /// [`verify_triangles`] taking the decoded list by value: it is canonicalized and
@@ -442,11 +489,86 @@ pub fn verify_decoded(expected: &[[u32; 3]], got: Vec<[u32; 3]>) -> Verification
     verify_decoded_with(expected, got, crate::parallel::Threads::SERIAL)
 }
 
-/// [`verify`] with its decoding and sorting in parallel when `threads` allows; the
-/// same result at any thread count (the sorted lists are the same, and the
-/// comparison after them runs on one thread).
+/// [`verify`] in parallel when `threads` allows (the two sides side by side, each
+/// one's buckets in parts); the same result at any thread count (the sorted lists are
+/// the same, and the comparison after them runs on one thread). Each side is written
+/// straight into its buckets, the strips as they are decoded and the expected
+/// triangles as they are read: no unsorted list or copy is made.
 pub fn verify_with(expected: &[[u32; 3]], strips: &StripSet, threads: crate::parallel::Threads) -> Verification {
-    verify_decoded_with(expected, decode_with(strips, threads), threads)
+    let (want, got) = crate::parallel::join(
+        threads,
+        || sorted_expected(expected, threads),
+        || {
+            let keys = strips.indices.iter().copied().max().map_or(0, |i| i as usize + 1);
+            order::sorted_from(threads, &Decoded(strips), keys)
+        },
+    );
+    merge_sorted(&want, &got)
+}
+
+/// [`verify_decoded_with`] for the triangles of polygon faces (`offsets` into
+/// `indices`, as a [`crate::Mesh`] holds them, each face a fan from its first corner):
+/// the faces are written straight into their buckets and freed before the expected
+/// side is made, so the check holds the faces and one sorted list, or two sorted
+/// lists, at a time (and no unsorted list of triangles). The sides are made one after
+/// the other, each one's buckets finished in parallel when `threads` allows; the same
+/// result at any thread count.
+pub(crate) fn verify_faces_with(
+    expected: &[[u32; 3]],
+    (offsets, indices): (Vec<u32>, Vec<u32>),
+    threads: crate::parallel::Threads,
+) -> Verification {
+    let keys = indices.iter().copied().max().map_or(0, |i| i as usize + 1);
+    let got = order::sorted_from(threads, &Fans { offsets: &offsets, indices: &indices }, keys);
+    drop((offsets, indices));
+    merge_sorted(&sorted_expected(expected, threads), &got)
+}
+
+/// The non-degenerate fan triangles of polygon faces, canonical: the decoded side of
+/// [`verify_faces_with`].
+struct Fans<'a> {
+    offsets: &'a [u32],
+    indices: &'a [u32],
+}
+
+impl order::Source for Fans<'_> {
+    fn for_each(&self, mut emit: impl FnMut([u32; 3])) {
+        for w in self.offsets.windows(2) {
+            let face = &self.indices[w[0] as usize..w[1] as usize];
+            for i in 1..face.len().saturating_sub(1) {
+                let t = [face[0], face[i], face[i + 1]];
+                if !is_degenerate(&t) {
+                    emit(canonical(t));
+                }
+            }
+        }
+    }
+}
+
+/// The triangles `strips` draw, canonical: the decoded side of [`verify_with`],
+/// decoded straight into its buckets (no unsorted list).
+struct Decoded<'a>(&'a StripSet);
+
+impl order::Source for Decoded<'_> {
+    fn for_each(&self, mut emit: impl FnMut([u32; 3])) {
+        for s in self.0.iter() {
+            for_each_triangle(s, |t| emit(canonical(t)));
+        }
+    }
+}
+
+/// The non-degenerate expected triangles, canonical: the expected side of the check,
+/// written straight into its buckets (no copy of the caller's list).
+struct NonDegenerate<'a>(&'a [[u32; 3]]);
+
+impl order::Source for NonDegenerate<'_> {
+    fn for_each(&self, mut emit: impl FnMut([u32; 3])) {
+        for &t in self.0 {
+            if !is_degenerate(&t) {
+                emit(canonical(t));
+            }
+        }
+    }
 }
 
 /// [`verify_decoded`] with its ordering in parallel when `threads` allows (the two
@@ -496,15 +618,19 @@ pub(crate) struct SortedExpected {
 /// The non-degenerate `expected` triangles, canonical and sorted (in parallel when
 /// `threads` allows).
 pub(crate) fn sorted_expected(expected: &[[u32; 3]], threads: crate::parallel::Threads) -> SortedExpected {
-    sorted_expected_owned(expected.to_vec(), threads)
+    let keys = expected.as_flattened().iter().copied().max().map_or(0, |i| i as usize + 1);
+    let want = order::sorted_from(threads, &NonDegenerate(expected), keys);
+    SortedExpected { dropped_degenerate: expected.len() - want.len(), want }
 }
 
 /// [`sorted_expected`] of a list the caller gives up: sorted in place, no copy.
 pub(crate) fn sorted_expected_owned(mut expected: Vec<[u32; 3]>, threads: crate::parallel::Threads) -> SortedExpected {
     let before = expected.len();
-    expected.retain(|t| !is_degenerate(t));
+    expected.retain_mut(|t| {
+        *t = canonical(*t);
+        !is_degenerate(t)
+    });
     let dropped_degenerate = before - expected.len();
-    crate::parallel::for_each_mut(threads, &mut expected, |t| *t = canonical(*t));
     order::sort_triangles(threads, &mut expected);
     SortedExpected { want: expected, dropped_degenerate }
 }
@@ -517,8 +643,10 @@ pub(crate) fn compare_sorted(expected: &SortedExpected, got: Vec<[u32; 3]>, thre
 
 /// The non-degenerate decoded triangles, canonical and sorted in place.
 fn sorted_got(mut got: Vec<[u32; 3]>, threads: crate::parallel::Threads) -> Vec<[u32; 3]> {
-    got.retain(|t| !is_degenerate(t));
-    crate::parallel::for_each_mut(threads, &mut got, |t| *t = canonical(*t));
+    got.retain_mut(|t| {
+        *t = canonical(*t);
+        !is_degenerate(t)
+    });
     order::sort_triangles(threads, &mut got);
     got
 }
@@ -620,12 +748,14 @@ mod tests {
         let set = StripSet::from_strips(&[vec![0, 1, 2], vec![4, 5, 6]]);
         let one = encode_stitched(&set);
         assert_eq!(one, vec![0, 1, 2, 2, 4, 4, 6, 5]);
+        assert_eq!(stitched_len(&set), one.len());
         assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
         // A strip that is not one walk (two triangles without a shared edge) cannot be
         // re-encoded: 3 extra.
         let set = StripSet::from_strips(&[vec![0, 1, 2], vec![4, 5, 6, 6, 8, 8, 9, 10]]);
         let one = encode_stitched(&set);
         assert_eq!(one, vec![0, 1, 2, 2, 2, 4, 4, 5, 6, 6, 8, 8, 9, 10]);
+        assert_eq!(stitched_len(&set), one.len());
         assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
         // A fan of four around 0 needs one swap from either end and at either parity:
         // at an odd position it still costs 7 indices, joined with 2 extra.
@@ -635,6 +765,7 @@ mod tests {
         let set = StripSet::from_strips(&[vec![7, 8, 9], fan_strip]);
         let one = encode_stitched(&set);
         assert_eq!(one.len(), 3 + 2 + 7);
+        assert_eq!(stitched_len(&set), one.len());
         assert!(verify(&decode(&set), &StripSet::from_strips(&[one])).ok());
     }
 
@@ -708,5 +839,65 @@ mod tests {
         assert_eq!((owned.expected, owned.dropped_degenerate, owned.decoded), (4, 1, 5));
         assert_eq!((owned.lost, owned.added, owned.flipped), (0, 1, 1));
         assert!(verify_decoded(&expected[..4], vec![[3, 4, 5], [1, 2, 0], [6, 7, 5], [3, 2, 1]]).ok());
+    }
+
+    #[test]
+    fn faces_count_as_their_fan_triangles() {
+        // A shuffled grid of 2 x 60 x 60 triangles (past the short-list fallback), read
+        // back as faces: triangles, some pairs joined into quads (two fan triangles),
+        // degenerate faces, then errors planted; the counts are those of the fans'
+        // list, at 1 and 3 threads.
+        let w = 61u32;
+        let mut next = crate::test_support::xorshift(0x51_7cc1_b727_220a);
+        let mut want: Vec<[u32; 3]> = Vec::new();
+        for y in 0..60 {
+            for x in 0..60 {
+                let a = y * w + x;
+                want.push([a, a + 1, a + w]);
+                want.push([a + 1, a + w + 1, a + w]);
+            }
+        }
+        for plant in 0..4 {
+            let mut faces: Vec<Vec<u32>> = Vec::new();
+            let mut k = 0;
+            while k < want.len() {
+                let [a, b, c] = want[k];
+                if k % 7 == 0 && k % 2 == 0 {
+                    // The quad b, d, c, a: fans (b, d, c) and (b, c, a), the grid's own two.
+                    faces.push(vec![b, want[k + 1][1], c, a]);
+                    k += 2;
+                    continue;
+                }
+                faces.push(vec![b, c, a]);
+                k += 1;
+            }
+            faces.push(vec![3, 3, 4]);
+            match plant {
+                1 => faces.push(vec![7, 8, 9]),
+                2 => {
+                    faces.swap_remove(next(faces.len() as u32) as usize);
+                }
+                3 => faces[next(100) as usize].swap(0, 1),
+                _ => (),
+            };
+            for i in (1..faces.len()).rev() {
+                faces.swap(i, next(i as u32 + 1) as usize);
+            }
+            let mut offsets = vec![0u32];
+            let mut indices = Vec::new();
+            for f in &faces {
+                indices.extend_from_slice(f);
+                offsets.push(indices.len() as u32);
+            }
+            let fans: Vec<[u32; 3]> = faces
+                .iter()
+                .flat_map(|f| (1..f.len() - 1).map(move |i| [f[0], f[i], f[i + 1]]))
+                .collect();
+            let reference = verify_decoded(&want, fans);
+            assert_eq!(reference.ok(), plant == 0, "{reference}");
+            for threads in [crate::parallel::Threads::SERIAL, crate::parallel::Threads::new(3)] {
+                assert_eq!(verify_faces_with(&want, (offsets.clone(), indices.clone()), threads), reference);
+            }
+        }
     }
 }

@@ -19,9 +19,7 @@ use stripkit_testkit::{glb, unglb, Lcg};
 
 
 fn out_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stripkit-gltf-compressed-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    stripkit_testkit::scratch_dir(&format!("gltf-compressed-{name}"))
 }
 
 /// Element `k` of accessor `a` as its stored bytes (one buffer, view stride honoured).

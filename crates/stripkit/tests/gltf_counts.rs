@@ -55,8 +55,7 @@ fn quad(extra: Value, short: usize) -> Vec<u8> {
 }
 
 fn write(name: &str, bytes: &[u8]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stripkit-gltf-counts-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = stripkit_testkit::scratch_dir("gltf-counts");
     let path = dir.join(name);
     std::fs::write(&path, bytes).unwrap();
     path

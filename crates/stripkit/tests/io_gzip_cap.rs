@@ -10,8 +10,7 @@ use stripkit::io::{self, ReadOptions, DEFAULT_MAX_DECOMPRESSED_BYTES};
 use stripkit::Error;
 
 fn gz_file(name: &str, content: &[u8]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stripkit-gzip-cap-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = stripkit_testkit::scratch_dir("gzip-cap");
     let path = dir.join(name);
     let mut enc = GzEncoder::new(Vec::new(), Compression::best());
     enc.write_all(content).unwrap();

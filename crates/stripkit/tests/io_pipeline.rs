@@ -183,7 +183,8 @@ fn the_linear_check_rejects_lost_added_flipped_and_duplicated_triangles() {
     // A grid of 2 x 300 x 300 triangles (one part of the bucket sort and more),
     // decoded triangles shuffled and rotated: accepted; then each kind of error
     // planted alone and all together, counted as the hashing reference counts them,
-    // at 1, 2 and 4 threads, from a list and from one-triangle strips.
+    // at 1, 2 and 4 threads, from a list (owned and borrowed) and from one-triangle
+    // strips.
     let want = gen::grid(300, 300).triangulate().tris;
     assert_eq!(want.len(), 180_000);
     let mut rng = XorShift64(7);
@@ -219,7 +220,12 @@ fn the_linear_check_rejects_lost_added_flipped_and_duplicated_triangles() {
         let (lost, added, flipped) = reference_check(&want, &got);
         let strips = StripSet::from_strips(&got.iter().map(|t| t.to_vec()).collect::<Vec<_>>());
         for threads in [Threads::SERIAL, Threads::new(2), Threads::new(4)] {
-            for v in [stripkit::verify_decoded_with(&want, got.clone(), threads), verify_with(&want, &strips, threads)] {
+            let checks = [
+                stripkit::verify_decoded_with(&want, got.clone(), threads),
+                verify_with(&want, &strips, threads),
+                stripkit::verify_triangles(&want, &got),
+            ];
+            for v in checks {
                 assert_eq!((v.lost, v.added, v.flipped), (lost, added, flipped), "{kinds:?} at {threads} threads");
                 assert_eq!(v.ok(), kinds.is_empty(), "{kinds:?}: {v}");
                 assert_eq!((v.expected, v.decoded), (180_000, got.len()));

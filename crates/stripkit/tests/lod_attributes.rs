@@ -60,13 +60,7 @@ fn seamed_torus() -> Mesh {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "stripkit-lod-attributes-{name}-{}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    stripkit_testkit::fresh_scratch_dir(&format!("lod-attributes-{name}"))
 }
 
 /// Every corner of `triangles` (over `attributes`) carries, attribute by attribute,

@@ -13,9 +13,7 @@ use stripkit_testkit::XorShift64;
 /// A torus that bends and swells over `frames` frames, written as OBJ files (and a
 /// reference pose) into a fresh folder.
 fn animation(name: &str, frames: usize) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stripkit-lodseq-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = stripkit_testkit::fresh_scratch_dir(&format!("lodseq-{name}"));
     let base = gen::torus(28, 10, 1.0, 0.3);
     let pose = |t: f32| -> Mesh {
         let mut m = base.clone();

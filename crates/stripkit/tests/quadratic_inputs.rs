@@ -9,8 +9,7 @@ use stripkit::{io, stripify, Algorithm, Attribute, Group, Mesh, MeshFacts, Strip
 use stripkit_testkit::XorShift64;
 
 fn temp_file(name: &str, bytes: &[u8]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stripkit-quadratic-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = stripkit_testkit::scratch_dir("quadratic");
     let path = dir.join(name);
     std::fs::write(&path, bytes).unwrap();
     path

@@ -56,8 +56,7 @@ fn replaying_any_prefix_gives_the_simplifiers_mesh() {
 fn sequence_files_round_trip() {
     let mesh = bumpy_sphere(3);
     let s = run(&mesh, Placement::Optimal, Target::Ratio(0.2), None);
-    let dir = std::env::temp_dir().join(format!("stripkit-seq-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = stripkit_testkit::scratch_dir("seq");
     for name in ["seq.json", "seq.bin"] {
         let path = dir.join(name);
         s.sequence.write(&path).unwrap();

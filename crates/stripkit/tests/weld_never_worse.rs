@@ -165,8 +165,7 @@ fn isolated_triangles(n: u32, seed: u64) -> Mesh {
 
 #[test]
 fn scene_primitives_never_take_more_index_bytes_than_their_source() {
-    let dir = std::env::temp_dir().join(format!("stripkit-weld-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = stripkit_testkit::scratch_dir("weld");
     // One primitive of an unindexed torus with UVs, one of isolated triangles.
     let torus = deindexed(&with_uv(gen::torus(48, 24, 1.0, 0.3)), 7);
     let mut isolated = isolated_triangles(300, 5);

@@ -19,8 +19,7 @@ pub fn stripkit(args: &[&str]) -> Output {
 /// A path for file `name` in this test binary's own temporary folder `group`.
 #[allow(dead_code)]
 pub fn tmp(group: &str, name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stripkit-cli-{group}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = stripkit_testkit::scratch_dir(&format!("cli-{group}"));
     dir.join(name)
 }
 

@@ -56,9 +56,7 @@ fn empty_model_round_trips() {
 
 /// A scratch folder of this test process, removed by the caller.
 fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("stripkit-lod-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    stripkit_testkit::scratch_dir(&format!("lod-{name}"))
 }
 
 /// A file is told apart by its magic: a model reads, anything else is a format error

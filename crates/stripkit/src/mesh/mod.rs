@@ -304,6 +304,12 @@ impl Mesh {
         tris
     }
 
+    /// The faces alone (`face_offsets`, `face_indices`), the mesh consumed and the rest
+    /// of it freed: what a check of a big mesh's triangles reads them from.
+    pub(crate) fn into_faces(self) -> (Vec<u32>, Vec<u32>) {
+        (self.face_offsets, self.face_indices)
+    }
+
     /// Axis-aligned bounding box `(min, max)`; `None` for a mesh without vertices.
     pub fn bounds(&self) -> Option<([f32; 3], [f32; 3])> {
         let first = *self.positions.first()?;

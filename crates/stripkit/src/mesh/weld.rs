@@ -5,7 +5,7 @@
 //! strips can follow (docs/experiments/weld-and-materials.md).
 
 use super::Mesh;
-use crate::parallel::{for_each_mut, sort_unstable_by, Threads};
+use crate::parallel::{map_range, sort_unstable, sort_unstable_by, Threads};
 
 /// For every vertex, the lowest vertex id bit-identical to it (itself where none is
 /// lower), and how many vertices map to another. Cost: one pass over the vertex data
@@ -37,8 +37,17 @@ pub fn weld_map_with(mesh: &Mesh, threads: Threads) -> (Vec<u32>, usize) {
         }
     }
     let key = |v: u32| &keys[v as usize * stride..(v as usize + 1) * stride];
-    let mut order: Vec<(u64, u32)> = (0..n as u32).map(|v| (0, v)).collect();
-    for_each_mut(threads, &mut order, |(hash, v)| *hash = hash_key(key(*v)));
+    let hashes: Vec<u64> = map_range(threads, n, |v| hash_key(key(v as u32)));
+    // Big meshes mostly have no twins at all: all hashes distinct proves it with a
+    // sort of the bare hashes, cheaper than the sort by (hash, key, id) below, and the
+    // map is then every vertex itself.
+    let mut sorted = hashes.clone();
+    sort_unstable(threads, &mut sorted);
+    if sorted.windows(2).all(|w| w[0] != w[1]) {
+        return ((0..n as u32).collect(), 0);
+    }
+    drop(sorted);
+    let mut order: Vec<(u64, u32)> = hashes.into_iter().zip(0..n as u32).collect();
     sort_unstable_by(threads, &mut order, |a, b| {
         a.0.cmp(&b.0).then_with(|| key(a.1).cmp(key(b.1))).then(a.1.cmp(&b.1))
     });

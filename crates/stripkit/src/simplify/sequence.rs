@@ -358,8 +358,7 @@ mod tests {
 
     #[test]
     fn write_reads_back_in_both_layouts_and_writes_nothing_it_cannot_read() {
-        let dir = std::env::temp_dir().join(format!("stripkit-sequence-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = stripkit_testkit::scratch_dir("sequence");
         for name in ["s.seq", "s.json"] {
             let path = dir.join(name);
             sequence(0.25).write(&path).unwrap();

@@ -293,8 +293,7 @@ fn io_error(path: &Path, source: std::io::Error) -> Error {
 /// anything that names a file: `&str`, `String`, `&Path`, `PathBuf`.
 ///
 /// ```
-/// # let dir = std::env::temp_dir().join(format!("stripkit-doc-read-{}", std::process::id()));
-/// # std::fs::create_dir_all(&dir).unwrap();
+/// # let dir = stripkit_testkit::scratch_dir("doc-read");
 /// # let name = dir.join("triangle.obj").display().to_string();
 /// # std::fs::write(&name, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
 /// let path: String = name; // a String, as a command line or a config gives it
@@ -733,10 +732,7 @@ mod tests {
     }
 
     fn scratch(name: &str) -> std::path::PathBuf {
-        let dir = std::env::temp_dir().join(format!("stripkit-atomic-{}-{name}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
+        stripkit_testkit::fresh_scratch_dir(&format!("atomic-{name}"))
     }
 
     fn entries(dir: &Path) -> Vec<String> {

@@ -255,8 +255,7 @@ mod tests {
 
     #[test]
     fn statements_become_pbr_values_and_the_rest_a_note() {
-        let dir = std::env::temp_dir().join(format!("stripkit-mtl-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = stripkit_testkit::scratch_dir("mtl");
         let mtl = "newmtl red\nKd 1 0 0\nd 0.5\nNs 98\nKs 0.5 0.5 0.5\nillum 2\nKa 0 0 0\nnewmtl plain\nKd 0 0 1\nTr 0.25\nKs 0 0 0\nNs 10\n";
         std::fs::write(dir.join("a.mtl"), mtl).unwrap();
         let m = Materials::read_for_obj(&dir.join("m.obj"), &["a.mtl".into(), "missing.mtl".into()], &ReadOptions::default())

@@ -133,43 +133,75 @@ impl Walk<'_> {
     }
 
     /// Whether `v` is in the FIFO after the walk's pushes so far.
+    #[cfg(test)]
     #[inline(always)]
     fn cached_after(&self, v: u32) -> bool {
-        let [mark, _, local, _] = self.table.slots[self.table.find(v, self.epoch)];
+        self.cached_at(self.table.find(v, self.epoch), v)
+    }
+
+    /// Whether `v`, whose slot ([`WalkTable::find`]) is `i`, is in the FIFO after the
+    /// walk's pushes so far: a slot of an older walk holds nothing of this one.
+    #[inline(always)]
+    fn cached_at(&self, i: usize, v: u32) -> bool {
+        let [mark, _, local, _] = self.table.slots[i];
         if mark == self.epoch && local != UNSET {
             return self.pushes - local <= self.c;
         }
         self.fifo.contains_after(v, self.pushes)
     }
 
-    /// The record of `v` in this walk, started (nothing pushed, nothing covered) when
-    /// new.
+    /// The slot of `v`'s record in this walk, the record started (nothing pushed,
+    /// nothing covered) when new. The walk keeps the slots of its current triangle's
+    /// vertices: a slot does not move while the walk lasts (nothing is removed).
     #[inline(always)]
-    fn record(&mut self, v: u32) -> &mut [u32; 4] {
+    fn slot(&mut self, v: u32) -> usize {
         let i = self.table.find(v, self.epoch);
+        self.start_record(i, v);
+        i
+    }
+
+    /// Starts the record of `v` in slot `i` (where [`WalkTable::find`] put it, no
+    /// record having been made since) unless it holds it already.
+    #[inline(always)]
+    fn start_record(&mut self, i: usize, v: u32) {
         let e = &mut self.table.slots[i];
         if e[0] != self.epoch {
             *e = [self.epoch, v, UNSET, UNSET];
         }
-        e
     }
 
     /// Feeds `v` to the walk's private copy of the FIFO; true on a miss.
+    #[cfg(test)]
     #[inline(always)]
     fn touch(&mut self, v: u32) -> bool {
-        if self.cached_after(v) {
+        let i = self.slot(v);
+        self.touch_at(i, v)
+    }
+
+    /// Feeds `v`, whose record is in slot `i`, to the walk's private copy of the FIFO;
+    /// true on a miss.
+    #[inline(always)]
+    fn touch_at(&mut self, i: usize, v: u32) -> bool {
+        if self.cached_at(i, v) {
             return false;
         }
-        let pushes = self.pushes;
-        self.record(v)[2] = pushes;
+        self.table.slots[i][2] = self.pushes;
         self.pushes += 1;
         true
     }
 
     /// Starts the count of `v`'s triangles covered by the walk, unless started.
+    #[cfg(test)]
     #[inline(always)]
     fn uncover(&mut self, v: u32) {
-        let e = self.record(v);
+        let i = self.slot(v);
+        self.uncover_at(i);
+    }
+
+    /// Starts the covered count of the record in slot `i`, unless started.
+    #[inline(always)]
+    fn uncover_at(&mut self, i: usize) {
+        let e = &mut self.table.slots[i];
         if e[3] == UNSET {
             e[3] = 0;
         }
@@ -177,10 +209,19 @@ impl Walk<'_> {
 
     /// Counts one more of `v`'s free triangles as covered by the walk (its count
     /// started); true when that was its last one.
+    #[cfg(test)]
     #[inline(always)]
     fn cover(&mut self, v: u32) -> bool {
+        let i = self.slot(v);
+        self.cover_at(i, v)
+    }
+
+    /// Counts one more of the free triangles of `v` (its record in slot `i`, its count
+    /// started) as covered by the walk; true when that was its last one.
+    #[inline(always)]
+    fn cover_at(&mut self, i: usize, v: u32) -> bool {
         let free = self.vfree[v as usize];
-        let e = self.record(v);
+        let e = &mut self.table.slots[i];
         e[3] += 1;
         e[3] == free
     }
@@ -188,8 +229,8 @@ impl Walk<'_> {
 
 /// Where a walk stands after its first step (see [`State::evaluate`]): its cost so far,
 /// its new triangles, the triangle it is at, the slot it entered that triangle by,
-/// whether the natural exit is `NEXT[entry]`, and the triangle's vertices from the
-/// entry slot on.
+/// whether the natural exit is `NEXT[entry]`, the triangle's vertices from the
+/// entry slot on and the slots of their records in the walk's table.
 pub(super) struct Head {
     total: f32,
     len: u32,
@@ -197,6 +238,7 @@ pub(super) struct Head {
     entry: usize,
     fwd: bool,
     r: [u32; 3],
+    rs: [usize; 3],
 }
 
 impl Walk<'_> {
@@ -216,18 +258,21 @@ impl Walk<'_> {
             PREV[nat]
         };
         let entry = 3 - nat - swp;
+        let s = tri.map(|v| self.slot(v));
         if fb != 0.0 {
-            for v in tri {
-                self.uncover(v);
+            for i in s {
+                self.uncover_at(i);
             }
         }
+        let order = [entry, NEXT[entry], PREV[entry]];
         Head {
             total: 0.0,
             len: 0,
             cur: t,
             entry,
             fwd: nat == NEXT[entry],
-            r: [tri[entry], tri[NEXT[entry]], tri[PREV[entry]]],
+            r: order.map(|k| tri[k]),
+            rs: order.map(|k| s[k]),
         }
     }
 
@@ -235,19 +280,22 @@ impl Walk<'_> {
     /// the restart, the misses of its vertices at `w` each, `fb` off for each vertex
     /// it finishes, and `penalty` for the free neighbours it leaves behind.
     fn start(&mut self, t: u32, tri: [u32; 3], slot: usize, w: f32, fb: f32, penalty: f32) -> Head {
-        let [x, u, v] = start_of(tri, slot);
+        let r = start_of(tri, slot);
+        let rs = r.map(|v| self.slot(v));
         let mut total = 4.0;
-        for y in [x, u, v] {
-            if self.touch(y) {
+        for k in 0..3 {
+            if self.touch_at(rs[k], r[k]) {
                 total += w;
             }
         }
         // `t` was offered: `State::consider` set its OFFERED bit.
         self.mark[t as usize] = self.epoch | OFFERED;
         if fb != 0.0 {
-            for v in tri {
-                self.uncover(v);
-                if self.cover(v) {
+            // Each vertex's count apart: the order does not matter.
+            for k in 0..3 {
+                let i = rs[k];
+                self.uncover_at(i);
+                if self.cover_at(i, r[k]) {
                     total -= fb;
                 }
             }
@@ -261,7 +309,8 @@ impl Walk<'_> {
             cur: t,
             entry: PREV[slot],
             fwd: true,
-            r: [x, u, v],
+            r,
+            rs,
         }
     }
 }
@@ -473,6 +522,7 @@ impl<'a> State<'a> {
             mut entry,
             mut fwd,
             mut r,
+            mut rs,
         } = if slot == CONTINUE {
             let n = self.out.indices.len();
             let end = (self.out.indices[n - 2], self.out.indices[n - 1]);
@@ -521,6 +571,9 @@ impl<'a> State<'a> {
             // The exit: `nat` when open, or `swp` (one swap) where `nat` is blocked or
             // where its new vertex would miss and the swap's would hit.
             let nat_ok = k.is_open(nbr(adj[nat]));
+            // The table slot of the exit's new vertex where the choice looked it up
+            // (no record is made between that lookup and the step's).
+            let mut found = None;
             let (e, swap) = if swaps >= max_swaps {
                 if !nat_ok {
                     break;
@@ -529,10 +582,21 @@ impl<'a> State<'a> {
             } else {
                 let swp_ok = k.is_open(nbr(adj[swp]));
                 if nat_ok && swp_ok {
-                    if !k.cached_after(opp(tris, adj[nat])) && k.cached_after(opp(tris, adj[swp])) {
-                        (swp, true)
-                    } else {
+                    let yn = opp(tris, adj[nat]);
+                    let i = k.table.find(yn, k.epoch);
+                    if k.cached_at(i, yn) {
+                        found = Some(i);
                         (nat, false)
+                    } else {
+                        let ys = opp(tris, adj[swp]);
+                        let j = k.table.find(ys, k.epoch);
+                        if k.cached_at(j, ys) {
+                            found = Some(j);
+                            (swp, true)
+                        } else {
+                            found = Some(i);
+                            (nat, false)
+                        }
                     }
                 } else if nat_ok {
                     (nat, false)
@@ -544,8 +608,15 @@ impl<'a> State<'a> {
             };
             let n = nbr(adj[e]);
             let j = twin(adj[e]);
-            // The new vertex of `n`, opposite the edge it shares with `cur`.
+            // The new vertex of `n`, opposite the edge it shares with `cur`, and its record.
             let y = tris[n as usize][PREV[j]];
+            let sy = match found {
+                Some(i) => {
+                    k.start_record(i, y);
+                    i
+                }
+                None => k.slot(y),
+            };
             total += 1.0;
             if swap {
                 swaps += 1;
@@ -566,27 +637,27 @@ impl<'a> State<'a> {
                 (true, false) => r[0],
             };
             wpath[(len - first) as usize] = (n, p, y);
-            r = if via_next {
-                [r[2], r[1], y]
+            (r, rs) = if via_next {
+                ([r[2], r[1], y], [rs[2], rs[1], sy])
             } else {
-                [r[0], r[2], y]
+                ([r[0], r[2], y], [rs[0], rs[2], sy])
             };
             // The other two vertices belong to the triangle just fed, so (but for a
             // hit evicted by that triangle's own pushes, which the emission counts
             // exactly) only `y` can miss.
-            if k.touch(y) {
+            if k.touch_at(sy, y) {
                 total += w;
             }
             if fb != 0.0 {
                 // r[0] and r[1] were vertices of `cur`: already seen by this walk.
-                if k.cover(r[0]) {
+                if k.cover_at(rs[0], r[0]) {
                     total -= fb;
                 }
-                if k.cover(r[1]) {
+                if k.cover_at(rs[1], r[1]) {
                     total -= fb;
                 }
-                k.uncover(y);
-                if k.cover(y) {
+                k.uncover_at(sy);
+                if k.cover_at(sy, y) {
                     total -= fb;
                 }
             }

@@ -329,7 +329,7 @@ mod tests {
     /// swapped back by a race): it is refused. Before, only the name was checked.
     #[test]
     fn a_file_opened_outside_the_folder_is_refused_whatever_its_name() {
-        let root = std::env::temp_dir().join(format!("stripkit-gltf-opened-{}", std::process::id()));
+        let root = stripkit_testkit::scratch_dir("gltf-opened");
         let (asset, outside) = (root.join("asset"), root.join("outside"));
         std::fs::create_dir_all(asset.join("sub")).unwrap();
         std::fs::create_dir_all(&outside).unwrap();
