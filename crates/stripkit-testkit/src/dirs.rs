@@ -63,18 +63,26 @@ pub fn scratch_root() -> PathBuf {
     built.unwrap_or_else(std::env::temp_dir).join("stripkit-tests")
 }
 
-/// The folder `name` under [`scratch_root`], made if missing and kept as it is otherwise
-/// (tests that share it write files of their own names). Name it after the test file so
-/// that two test binaries never share one.
+/// The folder `name` under [`scratch_root`], emptied the first time this process asks
+/// for it (what an earlier run left is gone, as a folder named by process id gave) and
+/// kept as it is after that (tests that share it write files of their own names). Name
+/// it after the test file so that two test binaries never share one.
 pub fn scratch_dir(name: &str) -> PathBuf {
+    static EMPTIED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
     let dir = scratch_root().join(name);
+    let mut emptied = EMPTIED.lock().unwrap_or_else(|e| e.into_inner());
+    if !emptied.contains(&dir) {
+        let _ = std::fs::remove_dir_all(&dir);
+        emptied.push(dir.clone());
+    }
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("making {}: {e}", dir.display()));
     dir
 }
 
 /// [`scratch_dir`], emptied first: for one test that lists what it finds there.
 pub fn fresh_scratch_dir(name: &str) -> PathBuf {
-    let dir = scratch_root().join(name);
+    let dir = scratch_dir(name);
     let _ = std::fs::remove_dir_all(&dir);
-    scratch_dir(name)
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("making {}: {e}", dir.display()));
+    dir
 }
