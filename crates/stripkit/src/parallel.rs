@@ -103,6 +103,38 @@ pub fn map_range<R: Send>(threads: Threads, n: usize, f: impl Fn(usize) -> R + S
     (0..n).map(f).collect()
 }
 
+/// Runs `f(i)` for every `i` of `order`, handing the items out one at a time, in
+/// that order, to the pool's threads as each becomes free: put the longest first and
+/// no thread is left with a long item at the end (longest first scheduling). Serial
+/// settings run them in `order` on the caller's thread. What `f` does with an item
+/// must not depend on which thread runs it; results are the caller's to gather.
+pub fn for_each_queued(threads: Threads, order: &[usize], f: impl Fn(usize) + Sync) {
+    #[cfg(feature = "parallel")]
+    if !threads.is_serial() && order.len() > 1 {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        let next = AtomicUsize::new(0);
+        let work = || loop {
+            let k = next.fetch_add(1, Ordering::Relaxed);
+            match order.get(k) {
+                Some(&i) => f(i),
+                None => break,
+            }
+        };
+        threads.install(|| {
+            let workers = rayon::current_num_threads().min(order.len());
+            rayon::scope(|s| {
+                for _ in 1..workers {
+                    s.spawn(|_| work());
+                }
+                work();
+            })
+        });
+        return;
+    }
+    let _ = threads;
+    order.iter().for_each(|&i| f(i));
+}
+
 /// Runs `a` and `b`, in parallel when `threads` allows, and returns both results.
 pub fn join<A: Send, B: Send>(threads: Threads, a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
     #[cfg(feature = "parallel")]
@@ -225,6 +257,27 @@ mod tests {
         assert_eq!(table[7][9], 63);
         let (a, b) = join(t, || map_range(t, 5, |i| i).len(), || 2);
         assert_eq!((a, b), (5, 2));
+    }
+
+    #[test]
+    fn queued_items_run_once_each_at_any_count() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        let order: Vec<usize> = (0..200).map(|i| (i * 37) % 200).collect();
+        for n in [1, 2, 3, 8] {
+            let runs: Vec<AtomicUsize> = (0..200).map(|_| AtomicUsize::new(0)).collect();
+            let started = std::sync::Mutex::new(Vec::new());
+            for_each_queued(Threads::new(n), &order, |i| {
+                started.lock().unwrap().push(i);
+                runs[i].fetch_add(1, Ordering::Relaxed);
+            });
+            assert!(runs.iter().all(|r| r.load(Ordering::Relaxed) == 1), "{n} threads");
+            let started = started.into_inner().unwrap();
+            if n == 1 {
+                assert_eq!(started, order, "the serial path runs them in the order given");
+            }
+            // Handed out in order: the first item given is among the first n started.
+            assert!(started[..n.min(200)].contains(&order[0]), "{n} threads");
+        }
     }
 
     #[test]

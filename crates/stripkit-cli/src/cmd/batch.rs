@@ -114,7 +114,13 @@ pub fn run_folder(
     let bar = super::progress_bar(true, what);
     bar.set_length(files.len() as u64);
     let order = std::sync::Mutex::new(InOrder { next: 0, done: (0..files.len()).map(|_| None).collect(), failed: Vec::new() });
-    stripkit::parallel::map_range(super::threads(), files.len(), |i| {
+    // The biggest files first (by bytes on disk), so that no thread is left alone
+    // with a big one at the end; reports still come out in input order.
+    let sizes: Vec<u64> = files.iter().map(|f| std::fs::metadata(f).map_or(0, |m| m.len())).collect();
+    let mut by_size: Vec<usize> = (0..files.len()).collect();
+    by_size.sort_by_key(|&i| std::cmp::Reverse(sizes[i]));
+    let order_of_work = if super::threads().is_serial() { (0..files.len()).collect() } else { by_size };
+    stripkit::parallel::for_each_queued(super::threads(), &order_of_work, |i| {
         let text = super::BatchText::default();
         let result = one(&files[i], &outputs[i], &text);
         let text = std::mem::take(&mut *text.lock().unwrap_or_else(|e| e.into_inner()));
