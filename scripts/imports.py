@@ -41,6 +41,7 @@ import sys
 LAYERS = [
     "error",
     "vec3",
+    "hint",  # processor hints (prefetch) that change no result
     "parallel",  # thread counts and the ordered map: used by every layer that splits work
     "strip",  # index sequences only: no Mesh, so files can carry strips
     "mesh",  # mesh/ and mesh/io/: files to and from Mesh (and StripSet, for PLY tristrips)

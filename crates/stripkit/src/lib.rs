@@ -75,6 +75,7 @@
 pub struct ReadmeDoctests;
 
 mod error;
+mod hint;
 mod improve;
 mod mesh;
 mod metrics;

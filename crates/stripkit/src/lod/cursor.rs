@@ -1,5 +1,6 @@
 //! Recovery of levels with coherence.
 
+use crate::hint::prefetch;
 use super::sets::{Sets, Version, AMBIGUOUS_VERSION, NO_VERSION};
 use crate::strip::StripSet;
 use std::ops::Range;
@@ -112,18 +113,6 @@ impl Piece {
 /// changes lie all along a strip, so copying the runs between them would not pay);
 /// past that it re-walks the strip whole.
 const PARTIAL_SCAN: usize = 4;
-
-/// A hint that `x` will be read soon (nothing on targets without one).
-#[inline(always)]
-fn prefetch<T>(x: &T) {
-    #[cfg(target_arch = "x86_64")]
-    // SAFETY: a prefetch only loads a cache line; `x` is a valid reference.
-    unsafe {
-        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(x as *const T as *const i8)
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = x;
-}
 
 /// The most versions of a strip walked whole that a move asks for ahead (every
 /// fifth: a cache line holds 5.3 of them).

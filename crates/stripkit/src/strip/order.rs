@@ -21,6 +21,7 @@
 //! mesh size; the coarse buckets (256, up to 4,096 from a million vertices on) are
 //! chosen so that a mesh of up to 4 million vertices takes two passes in all.
 
+use crate::hint::prefetch;
 use crate::parallel::{fill_parts, Threads};
 
 /// Lists shorter than this are sorted by comparison (faster than counting there).
@@ -200,19 +201,6 @@ fn place(v: &mut [[u32; 3]], starts: &[u32], key: impl Fn(&[u32; 3]) -> usize, a
         }
         next[b] = end as u32;
     }
-}
-
-/// A hint that `x` will be read soon (nothing on targets without one).
-#[inline(always)]
-fn prefetch<T>(x: &T) {
-    #[cfg(target_arch = "x86_64")]
-    // SAFETY: a prefetch hint only loads a cache line and never faults; `x` is a
-    // valid reference.
-    unsafe {
-        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(x as *const T as *const i8)
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = x;
 }
 
 #[cfg(test)]
