@@ -132,13 +132,6 @@ impl Walk<'_> {
         m != TAKEN && m & EPOCHS != self.epoch
     }
 
-    /// Whether `v` is in the FIFO after the walk's pushes so far.
-    #[cfg(test)]
-    #[inline(always)]
-    fn cached_after(&self, v: u32) -> bool {
-        self.cached_at(self.table.find(v, self.epoch), v)
-    }
-
     /// Whether `v`, whose slot ([`WalkTable::find`]) is `i`, is in the FIFO after the
     /// walk's pushes so far: a slot of an older walk holds nothing of this one.
     #[inline(always)]
@@ -170,14 +163,6 @@ impl Walk<'_> {
         }
     }
 
-    /// Feeds `v` to the walk's private copy of the FIFO; true on a miss.
-    #[cfg(test)]
-    #[inline(always)]
-    fn touch(&mut self, v: u32) -> bool {
-        let i = self.slot(v);
-        self.touch_at(i, v)
-    }
-
     /// Feeds `v`, whose record is in slot `i`, to the walk's private copy of the FIFO;
     /// true on a miss.
     #[inline(always)]
@@ -190,14 +175,6 @@ impl Walk<'_> {
         true
     }
 
-    /// Starts the count of `v`'s triangles covered by the walk, unless started.
-    #[cfg(test)]
-    #[inline(always)]
-    fn uncover(&mut self, v: u32) {
-        let i = self.slot(v);
-        self.uncover_at(i);
-    }
-
     /// Starts the covered count of the record in slot `i`, unless started.
     #[inline(always)]
     fn uncover_at(&mut self, i: usize) {
@@ -205,15 +182,6 @@ impl Walk<'_> {
         if e[3] == UNSET {
             e[3] = 0;
         }
-    }
-
-    /// Counts one more of `v`'s free triangles as covered by the walk (its count
-    /// started); true when that was its last one.
-    #[cfg(test)]
-    #[inline(always)]
-    fn cover(&mut self, v: u32) -> bool {
-        let i = self.slot(v);
-        self.cover_at(i, v)
     }
 
     /// Counts one more of the free triangles of `v` (its record in slot `i`, its count
@@ -573,42 +541,39 @@ impl<'a> State<'a> {
             let nat_ok = k.is_open(nbr(adj[nat]));
             // The table slot of the exit's new vertex where the choice looked it up
             // (no record is made between that lookup and the step's).
-            let mut found = None;
-            let (e, swap) = if swaps >= max_swaps {
+            let (e, swap, found) = if swaps >= max_swaps {
                 if !nat_ok {
                     break;
                 }
-                (nat, false)
+                (nat, false, None)
             } else {
                 let swp_ok = k.is_open(nbr(adj[swp]));
                 if nat_ok && swp_ok {
                     let yn = opp(tris, adj[nat]);
                     let i = k.table.find(yn, k.epoch);
                     if k.cached_at(i, yn) {
-                        found = Some(i);
-                        (nat, false)
+                        (nat, false, Some(i))
                     } else {
                         let ys = opp(tris, adj[swp]);
                         let j = k.table.find(ys, k.epoch);
                         if k.cached_at(j, ys) {
-                            found = Some(j);
-                            (swp, true)
+                            (swp, true, Some(j))
                         } else {
-                            found = Some(i);
-                            (nat, false)
+                            (nat, false, Some(i))
                         }
                     }
                 } else if nat_ok {
-                    (nat, false)
+                    (nat, false, None)
                 } else if swp_ok {
-                    (swp, true)
+                    (swp, true, None)
                 } else {
                     break;
                 }
             };
             let n = nbr(adj[e]);
             let j = twin(adj[e]);
-            // The new vertex of `n`, opposite the edge it shares with `cur`, and its record.
+            // The new vertex of `n`, opposite the edge it shares with `cur`, and its
+            // record: in the slot the choice found, else looked up now.
             let y = tris[n as usize][PREV[j]];
             let sy = match found {
                 Some(i) => {
@@ -893,6 +858,34 @@ impl<'a> State<'a> {
 mod tests {
     use super::*;
     use std::collections::HashMap;
+
+    /// The walk's operations by vertex, each looking up the vertex's slot: what the
+    /// walk does with the slots it keeps, for the table test below.
+    impl Walk<'_> {
+        /// Whether `v` is in the FIFO after the walk's pushes so far.
+        fn cached_after(&self, v: u32) -> bool {
+            self.cached_at(self.table.find(v, self.epoch), v)
+        }
+
+        /// Feeds `v` to the walk's private copy of the FIFO; true on a miss.
+        fn touch(&mut self, v: u32) -> bool {
+            let i = self.slot(v);
+            self.touch_at(i, v)
+        }
+
+        /// Starts the count of `v`'s triangles covered by the walk, unless started.
+        fn uncover(&mut self, v: u32) {
+            let i = self.slot(v);
+            self.uncover_at(i);
+        }
+
+        /// Counts one more of `v`'s free triangles as covered by the walk (its count
+        /// started); true when that was its last one.
+        fn cover(&mut self, v: u32) -> bool {
+            let i = self.slot(v);
+            self.cover_at(i, v)
+        }
+    }
 
     #[test]
     fn the_walk_table_keeps_one_record_per_vertex() {
