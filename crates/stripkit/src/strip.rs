@@ -478,7 +478,7 @@ pub fn verify(expected: &[[u32; 3]], strips: &StripSet) -> Verification {
 /// Both lists are read straight into their buckets: no copy of either is sorted.
 pub fn verify_triangles(expected: &[[u32; 3]], decoded: &[[u32; 3]]) -> Verification {
     let threads = crate::parallel::Threads::SERIAL;
-    let keys = decoded.as_flattened().iter().copied().max().map_or(0, |i| i as usize + 1);
+    let keys = keys_above(decoded.as_flattened());
     merge_sorted(&sorted_expected(expected, threads), &order::sorted_from(threads, &NonDegenerate(decoded), keys))
 }
 
@@ -499,8 +499,7 @@ pub fn verify_with(expected: &[[u32; 3]], strips: &StripSet, threads: crate::par
         threads,
         || sorted_expected(expected, threads),
         || {
-            let keys = strips.indices.iter().copied().max().map_or(0, |i| i as usize + 1);
-            order::sorted_from(threads, &Decoded(strips), keys)
+            order::sorted_from(threads, &Decoded(strips), keys_above(&strips.indices))
         },
     );
     merge_sorted(&want, &got)
@@ -518,8 +517,7 @@ pub(crate) fn verify_faces_with(
     (offsets, indices): (Vec<u32>, Vec<u32>),
     threads: crate::parallel::Threads,
 ) -> Verification {
-    let keys = indices.iter().copied().max().map_or(0, |i| i as usize + 1);
-    let got = order::sorted_from(threads, &Fans { offsets: &offsets, indices: &indices }, keys);
+    let got = order::sorted_from(threads, &Fans { offsets: &offsets, indices: &indices }, keys_above(&indices));
     drop((offsets, indices));
     merge_sorted(&sorted_expected(expected, threads), &got)
 }
@@ -618,8 +616,7 @@ pub(crate) struct SortedExpected {
 /// The non-degenerate `expected` triangles, canonical and sorted (in parallel when
 /// `threads` allows).
 pub(crate) fn sorted_expected(expected: &[[u32; 3]], threads: crate::parallel::Threads) -> SortedExpected {
-    let keys = expected.as_flattened().iter().copied().max().map_or(0, |i| i as usize + 1);
-    let want = order::sorted_from(threads, &NonDegenerate(expected), keys);
+    let want = order::sorted_from(threads, &NonDegenerate(expected), keys_above(expected.as_flattened()));
     SortedExpected { dropped_degenerate: expected.len() - want.len(), want }
 }
 
@@ -641,14 +638,16 @@ pub(crate) fn compare_sorted(expected: &SortedExpected, got: Vec<[u32; 3]>, thre
     merge_sorted(expected, &sorted_got(got, threads))
 }
 
-/// The non-degenerate decoded triangles, canonical and sorted in place.
-fn sorted_got(mut got: Vec<[u32; 3]>, threads: crate::parallel::Threads) -> Vec<[u32; 3]> {
-    got.retain_mut(|t| {
-        *t = canonical(*t);
-        !is_degenerate(t)
-    });
-    order::sort_triangles(threads, &mut got);
-    got
+/// The non-degenerate decoded triangles, canonical and sorted in place: the same
+/// preparation as the expected side's.
+fn sorted_got(got: Vec<[u32; 3]>, threads: crate::parallel::Threads) -> Vec<[u32; 3]> {
+    sorted_expected_owned(got, threads).want
+}
+
+/// One more than the largest of `indices` (0 for none): the bound [`order::sorted_from`]
+/// buckets first indices under.
+fn keys_above(indices: &[u32]) -> usize {
+    indices.iter().copied().max().map_or(0, |i| i as usize + 1)
 }
 
 /// Merges the two sorted lists on one thread: what is only on one side is lost or

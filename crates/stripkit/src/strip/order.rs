@@ -62,7 +62,7 @@ const AHEAD: usize = 16;
 pub(crate) fn sort_triangles(threads: Threads, v: &mut [[u32; 3]]) {
     let n = v.len();
     let keys = v.iter().map(|t| t[0] as usize + 1).max().unwrap_or(0);
-    if n < SMALL || n >= u32::MAX as usize || keys > 2 * n + 1024 {
+    if !counting_pays(n, keys) {
         crate::parallel::sort_unstable(threads, v);
         return;
     }
@@ -97,15 +97,13 @@ pub(crate) fn sorted_from(threads: Threads, source: &impl Source, keys: usize) -
         starts[key(&t) + 1] += 1;
         n += 1;
     });
-    if n < SMALL || n >= u32::MAX as usize || keys > 2 * n + 1024 {
+    if !counting_pays(n, keys) {
         let mut v = Vec::with_capacity(n);
         source.for_each(|t| v.push(t));
         crate::parallel::sort_unstable(threads, &mut v);
         return v;
     }
-    for k in 0..starts.len() - 1 {
-        starts[k + 1] += starts[k];
-    }
+    prefix_sums(&mut starts);
     let mut v = vec![[0u32; 3]; n];
     let mut next: Vec<u32> = starts[..starts.len() - 1].to_vec();
     source.for_each(|t| {
@@ -165,10 +163,23 @@ fn bucket_starts(v: &[[u32; 3]], buckets: usize, key: impl Fn(&[u32; 3]) -> usiz
     for t in v {
         starts[key(t) + 1] += 1;
     }
-    for k in 0..buckets {
-        starts[k + 1] += starts[k];
-    }
+    prefix_sums(&mut starts);
     starts
+}
+
+/// Turns per-bucket counts (bucket `k`'s in `starts[k + 1]`, `starts[0]` = 0) into
+/// where each bucket starts.
+fn prefix_sums(starts: &mut [u32]) {
+    for k in 1..starts.len() {
+        starts[k] += starts[k - 1];
+    }
+}
+
+/// Whether `n` triangles with first indices below `keys` are worth counting sorts:
+/// not a short list (a comparison sort is faster there), not sparse first indices
+/// (`keys` above 2n + 1024), and counts that fit `u32`.
+fn counting_pays(n: usize, keys: usize) -> bool {
+    n >= SMALL && n < u32::MAX as usize && keys <= 2 * n + 1024
 }
 
 /// Moves every triangle into its bucket in place: each one moves at most once to a
