@@ -18,7 +18,8 @@ use std::ops::Range;
 /// strips whose interval does not hold the new level. A move between near levels
 /// finds those strips from the model's per-level lists instead of looking at every
 /// strip, reads each strip's changes from where the last move left it (no search),
-/// and re-reads only the slots that change between the two levels: the runs of
+/// and re-reads only the slots that change between the two levels (the first of
+/// them found at the rank its change entry keeps, without a search): the runs of
 /// unchanged slots between them are copied from the old walk (moved within the
 /// range where the strip got shorter or longer), and the slots before the first
 /// change stay. A far jump (many changes in a strip) re-walks the changed strips
@@ -68,6 +69,9 @@ pub struct Cursor<'a> {
     /// none was), and the one of the strip at hand.
     widened: Vec<u32>,
     widen: u32,
+    /// One bit per strip, all clear between moves: a move that lists many strips
+    /// marks them here (made on the first such move).
+    marks: Vec<u64>,
 }
 
 /// Where a strip stands at the cursor's level.
@@ -114,6 +118,10 @@ impl Piece {
 /// past that it re-walks the strip whole.
 const PARTIAL_SCAN: usize = 4;
 
+/// A move whose per-level lists hold more entries than this marks its strips in a
+/// bit set (read back in order) instead of stamping them and sorting the list.
+pub(super) const SMALL_LIST: usize = 64;
+
 /// The most versions of a strip walked whole that a move asks for ahead (every
 /// fifth: a cache line holds 5.3 of them).
 const WHOLE_PREFETCH: usize = 320;
@@ -146,6 +154,7 @@ impl Sets {
             keys: Vec::new(),
             widened: Vec::new(),
             widen: 0,
+            marks: Vec::new(),
         };
         for s in 0..strips {
             let r = self.change_offsets[s] as usize..self.change_offsets[s + 1] as usize;
@@ -183,13 +192,30 @@ impl<'a> Cursor<'a> {
         // The strips that change at a level in (lo, hi]: from the per-level lists
         // when they hold fewer entries than there are strips, else by a scan.
         let listed = (sets.level_offsets[hi + 1] - sets.level_offsets[lo + 1]) as usize;
-        if listed < self.state.len() {
+        let list = &sets.level_strips[sets.level_offsets[lo + 1] as usize..sets.level_offsets[hi + 1] as usize];
+        if listed < self.state.len() && listed > SMALL_LIST {
+            // Many strips: marked in a bit set, read back ascending (no sort), the
+            // marks cleared as they are read.
+            if self.marks.is_empty() {
+                self.marks = vec![0; self.state.len().div_ceil(64)];
+            }
+            for &s in list {
+                self.marks[s as usize / 64] |= 1 << (s % 64);
+            }
+            for (w, word) in self.marks.iter_mut().enumerate() {
+                let mut m = std::mem::take(word);
+                while m != 0 {
+                    self.changed.push((w * 64) as u32 + m.trailing_zeros());
+                    m &= m - 1;
+                }
+            }
+        } else if listed < self.state.len() {
             self.moves = self.moves.wrapping_add(1);
             if self.moves == 0 {
                 self.state.iter_mut().for_each(|st| st.stamp = 0);
                 self.moves = 1;
             }
-            for &s in &sets.level_strips[sets.level_offsets[lo + 1] as usize..sets.level_offsets[hi + 1] as usize] {
+            for &s in list {
                 let st = &mut self.state[s as usize];
                 if st.stamp != self.moves {
                     st.stamp = self.moves;
@@ -277,8 +303,9 @@ impl<'a> Cursor<'a> {
         let end = st.end as usize;
         // The changes crossed: `levels[a..b]`, those in (lo, hi].
         let (mut a, mut b) = (at, at);
+        let changes = &sets.changes;
         if coarser {
-            while b < end && levels[b] <= hi && b - a <= cap {
+            while b < end && changes[b].level <= hi && b - a <= cap {
                 b += 1;
             }
             if b - a > cap {
@@ -287,7 +314,7 @@ impl<'a> Cursor<'a> {
             self.state[s].next = b as u32;
         } else {
             // Every list starts at level 0, at or below `lo`: the scan stops there.
-            while levels[a - 1] > lo && b - a <= cap {
+            while changes[a - 1].level > lo && b - a <= cap {
                 a -= 1;
             }
             if b - a > cap {
@@ -324,8 +351,10 @@ impl<'a> Cursor<'a> {
         // crossed; finer, the one before the first crossed. A slot whose crossed
         // changes start no version (a beginning) or are ambiguous is looked up.
         self.keys.clear();
-        self.keys
-            .extend((a..b).map(|i| (sets.change_slot[i] as u64) << 32 | sets.change_version[i] as u64));
+        self.keys.extend(changes[a..b].iter().map(|c| (c.slot as u64) << 32 | c.version as u64));
+        // No crossed change lies below the first changed slot, so the slots before
+        // it are the same at every level between: its rank is where it stands now.
+        let rank = changes[a..b].iter().min_by_key(|c| c.slot).map_or(st.len, |c| c.rank.min(st.len));
         self.keys.sort_unstable();
         let mut i = 0;
         while i < self.keys.len() {
@@ -354,9 +383,12 @@ impl<'a> Cursor<'a> {
             i = j;
         }
         self.span_counts.push((self.spans.len() - start) as u32);
-        let first = self.spans.get(start).copied().unwrap_or(super::END);
-        let base = st.base as usize;
-        self.slot_at[base..base + st.len as usize].partition_point(|&x| x < first)
+        debug_assert_eq!(rank as usize, {
+            let first = self.spans.get(start).copied().unwrap_or(super::END);
+            let base = st.base as usize;
+            self.slot_at[base..base + st.len as usize].partition_point(|&x| x < first)
+        });
+        rank as usize
     }
 
     /// Walks strip `s` at the current level into its range from offset `from` on
@@ -474,7 +506,8 @@ impl<'a> Cursor<'a> {
     /// After a walk of strip `s` from offset `from` to its new length `len`
     /// (`old` before): restarts where it shrank, and what was written.
     fn finish_walk(&mut self, s: usize, from: usize, len: usize, old: usize) {
-        let levels = &self.sets.change_level;
+        // From the change records a near move read last (the same lines).
+        let changes = &self.sets.changes;
         let st = &mut self.state[s];
         let base = st.base as usize;
         if len < old {
@@ -483,8 +516,8 @@ impl<'a> Cursor<'a> {
         st.len = len as u32;
         st.written = (from as u32, len.max(old) as u32);
         let k = st.next as usize;
-        st.lo = levels[k - 1];
-        st.hi = if k < st.end as usize { levels[k] } else { u32::MAX };
+        st.lo = changes[k - 1].level;
+        st.hi = if k < st.end as usize { changes[k].level } else { u32::MAX };
     }
 
     /// The part of strip `s`'s range ([`Cursor::strip_range`]) that the last

@@ -59,6 +59,28 @@ pub(crate) struct Version {
     pub(crate) next: u32,
 }
 
+/// One entry of a strip's derived change list: at `level`, slot `slot` changes.
+/// A walk that moves across the level re-reads these slots; any other slot has the
+/// same vertex and successor on both sides, so the old walk's runs of them are
+/// reused.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Change {
+    pub(crate) level: u32,
+    /// The slot whose version changes there (the strip's first slot for a new
+    /// beginning).
+    pub(crate) slot: u32,
+    /// The index in `versions` of the slot's version that starts there
+    /// ([`NO_VERSION`] for a beginning alone, [`AMBIGUOUS_VERSION`] when several
+    /// start at one level), so that a move reads a changed slot's version with one
+    /// load.
+    pub(crate) version: u32,
+    /// How many slots of the strip's walk at `level - 1` come before `slot`: where
+    /// the slot stands in a cursor's range at any level from which a move crosses
+    /// this change with no change of a lower slot (the first changed slot of a move),
+    /// so that the move finds it without a search (0 for the level-0 entry).
+    pub(crate) rank: u32,
+}
+
 /// Which level to recover: [`Sets::level_of`], [`crate::lod::SeqCursor::set`],
 /// [`crate::lod::Model::extract`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -108,16 +130,10 @@ pub struct Sets {
     /// starting with 0 (derived, not stored).
     pub(crate) change_offsets: Vec<u32>,
     pub(crate) change_level: Vec<u32>,
-    /// Parallel to `change_level`: the slot whose version changes there (the
-    /// strip's first slot for a new beginning). A walk that moves across the level
-    /// re-reads these slots; any other slot has the same vertex and successor on
-    /// both sides, so the old walk's runs of them are reused (derived).
-    pub(crate) change_slot: Vec<u32>,
-    /// Parallel to `change_level`: the index in `versions` of the slot's version
-    /// that starts there ([`NO_VERSION`] for a beginning alone,
-    /// [`AMBIGUOUS_VERSION`] when several start at one level), so that a move
-    /// reads a changed slot's version with one load (derived).
-    pub(crate) change_version: Vec<u32>,
+    /// Parallel to `change_level`: each change as one record ([`Change`]), so that a
+    /// move reads a strip's crossed changes from one run of cache lines (derived;
+    /// the level is repeated there, `change_level` stays for the searches).
+    pub(crate) changes: Vec<Change>,
     /// `level_strips[level_offsets[l]..level_offsets[l + 1]]`: the strips whose
     /// sequence changes at level `l` (derived), so that a move between near levels
     /// finds them without looking at every strip.
@@ -271,8 +287,9 @@ impl Sets {
         self.change_offsets = Vec::with_capacity(strips + 1);
         self.change_offsets.push(0);
         self.change_level.clear();
-        self.change_slot.clear();
-        self.change_version.clear();
+        self.changes.clear();
+        let mut walk: Vec<u32> = Vec::new();
+        let mut at: Vec<u32> = Vec::new();
         for s in 0..strips {
             events.clear();
             let first = self.strip_slots[s];
@@ -304,11 +321,15 @@ impl Sets {
             events.truncate(n);
             // Level 0 once (every slot has a version there), then every change.
             let at_zero = events.partition_point(|e| e.0 == 0);
-            for &(l, x, v) in events[at_zero.saturating_sub(1)..].iter() {
+            let events = &events[at_zero.saturating_sub(1)..];
+            for &(l, x, v) in events {
                 self.change_level.push(l);
-                self.change_slot.push(x);
-                self.change_version.push(v);
+                self.changes.push(Change { level: l, slot: x, version: v, rank: 0 });
             }
+            let here = self.changes.len() - events.len();
+            let mut changes = std::mem::take(&mut self.changes);
+            self.rank_changes(s, &mut changes[here..], &mut walk, &mut at);
+            self.changes = changes;
             self.change_offsets.push(self.change_level.len() as u32);
         }
         // The strips changing at each level past 0, by a counting sort.
@@ -350,6 +371,59 @@ impl Sets {
         }
         self.snapshots = self.kept_walks();
         Ok(())
+    }
+
+    /// Fills the ranks of strip `s`'s change list `list` (levels ascending): the
+    /// strip is walked at the level before each level of its changes, from the
+    /// lowest slot that changed at the previous one up to the highest slot changing
+    /// there, each slot's version read on from where the previous walk left it (the
+    /// levels only go up). A walk that leaves the strip's
+    /// slots stops there (a damaged model, refused by the later checks).
+    fn rank_changes(&self, s: usize, list: &mut [Change], walk: &mut Vec<u32>, at: &mut Vec<u32>) {
+        let (first, end) = (self.strip_slots[s] as usize, self.strip_slots[s + 1] as usize);
+        at.clear();
+        at.extend_from_slice(&self.version_offsets[first..end]);
+        walk.clear();
+        // The walk at hand holds the slots below `low` at the level before the next
+        // level of changes too (nothing below the lowest slot changing at a level
+        // moves there): only the rest is walked again.
+        let mut low = 0;
+        let mut i = 0;
+        while i < list.len() {
+            let level = list[i].level;
+            let mut j = i;
+            let (mut top, mut bottom) = (0, END);
+            while j < list.len() && list[j].level == level {
+                top = top.max(list[j].slot);
+                bottom = bottom.min(list[j].slot);
+                j += 1;
+            }
+            if level > 0 {
+                let below = level - 1;
+                walk.truncate(walk.partition_point(|&y| y < low));
+                low = bottom;
+                let mut x = match walk.last() {
+                    Some(&p) => self.versions[at[p as usize - first] as usize].next,
+                    None => self.head_at(s, below),
+                };
+                while x != END && x < top && (first..end).contains(&(x as usize)) && walk.len() < end - first {
+                    let k = x as usize - first;
+                    let last = self.version_offsets[x as usize + 1] as usize;
+                    if at[k] as usize >= last {
+                        break;
+                    }
+                    while (at[k] as usize) + 1 < last && self.versions[at[k] as usize + 1].level <= below {
+                        at[k] += 1;
+                    }
+                    walk.push(x);
+                    x = self.versions[at[k] as usize].next;
+                }
+                for c in &mut list[i..j] {
+                    c.rank = walk.partition_point(|&y| y < c.slot) as u32;
+                }
+            }
+            i = j;
+        }
     }
 
     /// The walks a cursor copies for the strips that appear at a re-strip level
@@ -511,7 +585,7 @@ impl Sets {
             + self.version_offsets.len()
             + 3 * self.versions.len()
             + self.change_offsets.len()
-            + 3 * self.change_level.len()
+            + 5 * self.change_level.len()
             + self.level_offsets.len()
             + self.level_strips.len()
             + self.triangles_at.len())
@@ -1000,8 +1074,7 @@ impl Builder {
             versions,
             change_offsets: Vec::new(),
             change_level: Vec::new(),
-            change_slot: Vec::new(),
-            change_version: Vec::new(),
+            changes: Vec::new(),
             level_offsets: Vec::new(),
             level_strips: Vec::new(),
             snapshots: Default::default(),

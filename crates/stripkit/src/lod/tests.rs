@@ -293,7 +293,9 @@ fn change_versions_name_the_version_starting_there() {
         for s in 0..sets.strip_count() {
             let r = sets.change_offsets[s] as usize + 1..sets.change_offsets[s + 1] as usize;
             for i in r {
-                let (level, slot, v) = (sets.change_level[i], sets.change_slot[i], sets.change_version[i]);
+                let c = sets.changes[i];
+                let (level, slot, v) = (c.level, c.slot, c.version);
+                assert_eq!(level, sets.change_level[i]);
                 assert_ne!(v, AMBIGUOUS_VERSION, "one version per level and slot here");
                 if v != NO_VERSION {
                     let own = sets.version_offsets[slot as usize]..sets.version_offsets[slot as usize + 1];
@@ -356,5 +358,48 @@ fn kept_walks_at_restrip_levels() {
                 assert!(written[i] || a == z, "{from} -> {to}: index {i} changed unreported");
             }
         }
+    }
+}
+
+/// Moves of 1% of the triangles and of one level, down and back, and jumps, equal fresh cursors,
+/// with both ways of listing the changed strips (stamps and a sort for short
+/// per-level lists, the bit set for long ones) taken: each move's changed strips
+/// ascending, once each, and every strip whose indices changed among them. (The
+/// first changed slot of each strip, read from its change entry's rank, is checked
+/// against a search by a debug assertion.)
+#[test]
+fn moves_list_changed_strips_in_order() {
+    // Many pieces, so many strips: a 1% move lists fewer entries than strips.
+    let piece = crate::gen::icosphere(1);
+    let mesh = crate::gen::disjoint_union(&vec![&piece; 300]);
+    for restrip in [None, Some(1.6)] {
+        let options = BuildOptions { restrip, ..BuildOptions::default() };
+        let sets = build(&mesh, &options, &mut |_| {}).unwrap().sets;
+        let down: Vec<u32> = (0..=99).map(|j| sets.level_for_ratio(1.0 - j as f64 / 100.0)).collect();
+        let mut path: Vec<u32> = down.iter().copied().chain(down.iter().rev().copied()).collect();
+        path.extend((1..=10).chain((0..10).rev()));
+        path.extend([sets.levels(), 0, sets.levels() / 2, 3]);
+        let (mut short, mut long) = (0, 0);
+        let mut c = sets.cursor(0);
+        for &to in &path {
+            let from = c.level();
+            let (lo, hi) = (from.min(to) as usize, from.max(to) as usize);
+            let listed = (sets.level_offsets[hi + 1] - sets.level_offsets[lo + 1]) as usize;
+            if from != to && listed < sets.strip_count() {
+                if listed > super::cursor::SMALL_LIST {
+                    long += 1;
+                } else {
+                    short += 1;
+                }
+            }
+            let before: Vec<Vec<u32>> = (0..sets.strip_count()).map(|s| c.strip(s).to_vec()).collect();
+            let changed = c.set_level(to).to_vec();
+            assert!(changed.windows(2).all(|w| w[0] < w[1]), "{from} -> {to}: changed strips not ascending");
+            for (s, b) in before.iter().enumerate() {
+                assert!(c.strip(s) == &b[..] || changed.binary_search(&(s as u32)).is_ok(), "{from} -> {to}: strip {s} unlisted");
+            }
+            assert_eq!(c.buffer(), sets.cursor(to).buffer(), "{from} -> {to}");
+        }
+        assert!(short > 5 && long > 5, "restrip {restrip:?}: {short} short and {long} long listings of {} strips", sets.strip_count());
     }
 }
