@@ -61,10 +61,14 @@ pub struct Cursor<'a> {
     /// one strip as (slot, version) keys.
     spans: Vec<u32>,
     span_versions: Vec<u32>,
+    /// Parallel to `spans`: a guess of where each changed slot stands in the old
+    /// walk (the rank its nearest crossed change keeps), where a run's end is looked
+    /// for first.
+    span_ranks: Vec<u32>,
     span_counts: Vec<u32>,
     todo: Vec<u32>,
     plan: Vec<Piece>,
-    keys: Vec<u64>,
+    keys: Vec<u128>,
     /// Per changed strip, 1 + its length before a kept walk was copied in (0:
     /// none was), and the one of the strip at hand.
     widened: Vec<u32>,
@@ -126,6 +130,27 @@ pub(super) const SMALL_LIST: usize = 64;
 /// fifth: a cache line holds 5.3 of them).
 const WHOLE_PREFETCH: usize = 320;
 
+/// The end of the run of `old` from `k` (its slot below `next`): the first offset
+/// past `k` whose slot is `next` or above, looked for around `guess` first (a few
+/// steps either way), then by a search.
+pub(super) fn run_end(old: &[u32], k: usize, guess: usize, next: u32) -> usize {
+    let mut e = guess.clamp(k + 1, old.len());
+    for _ in 0..4 {
+        if e > k + 1 && old[e - 1] >= next {
+            e -= 1;
+        } else if e < old.len() && old[e] < next {
+            e += 1;
+        } else {
+            return e;
+        }
+    }
+    if e < old.len() && old[e] < next {
+        e + old[e..].partition_point(|&y| y < next)
+    } else {
+        k + 1 + old[k + 1..e].partition_point(|&y| y < next)
+    }
+}
+
 impl Sets {
     /// A cursor at `level` (clamped to the coarsest), every strip walked once, with
     /// restart index `u32::MAX`.
@@ -148,6 +173,7 @@ impl Sets {
             moves: 0,
             spans: Vec::new(),
             span_versions: Vec::new(),
+            span_ranks: Vec::new(),
             span_counts: Vec::new(),
             todo: Vec::new(),
             plan: Vec::new(),
@@ -236,6 +262,7 @@ impl<'a> Cursor<'a> {
         // for ahead); then the walks.
         self.spans.clear();
         self.span_versions.clear();
+        self.span_ranks.clear();
         self.todo.clear();
         self.span_counts.clear();
         self.widened.clear();
@@ -351,23 +378,28 @@ impl<'a> Cursor<'a> {
         // crossed; finer, the one before the first crossed. A slot whose crossed
         // changes start no version (a beginning) or are ambiguous is looked up.
         self.keys.clear();
-        self.keys.extend(changes[a..b].iter().map(|c| (c.slot as u64) << 32 | c.version as u64));
+        self.keys
+            .extend(changes[a..b].iter().map(|c| (c.slot as u128) << 64 | (c.version as u128) << 32 | c.rank as u128));
         // No crossed change lies below the first changed slot, so the slots before
         // it are the same at every level between: its rank is where it stands now.
         let rank = changes[a..b].iter().min_by_key(|c| c.slot).map_or(st.len, |c| c.rank.min(st.len));
         self.keys.sort_unstable();
         let mut i = 0;
         while i < self.keys.len() {
-            let slot = (self.keys[i] >> 32) as u32;
+            let slot = (self.keys[i] >> 64) as u32;
             let mut j = i;
-            while j < self.keys.len() && (self.keys[j] >> 32) as u32 == slot {
+            while j < self.keys.len() && (self.keys[j] >> 64) as u32 == slot {
                 j += 1;
             }
-            let first_v = self.keys[i] as u32;
+            let first_v = (self.keys[i] >> 32) as u32;
             // Versions ascending, then AMBIGUOUS_VERSION, then NO_VERSION.
             let group = &self.keys[i..j];
-            let ambiguous = group.iter().any(|&k| k as u32 == AMBIGUOUS_VERSION);
-            let real = group.iter().rev().map(|&k| k as u32).find(|&v| v < AMBIGUOUS_VERSION);
+            let ambiguous = group.iter().any(|&k| (k >> 32) as u32 == AMBIGUOUS_VERSION);
+            let real = group.iter().rev().map(|&k| (k >> 32) as u32).find(|&v| v < AMBIGUOUS_VERSION);
+            // The change nearest the old level: the first crossed moving coarser,
+            // the last moving finer.
+            let near = if coarser { group[0] } else { group[group.len() - 1] };
+            self.span_ranks.push(near as u32);
             let v = match real {
                 Some(last) if !ambiguous => {
                     if coarser {
@@ -426,6 +458,7 @@ impl<'a> Cursor<'a> {
         // First the plan: the walk's changed slots and the runs of the old walk
         // it reuses, read from the range as it is.
         self.plan.clear();
+        let span_ranks = &self.span_ranks[spans.clone()];
         let (span_versions, spans) = (&self.span_versions[spans.clone()], &self.spans[spans]);
         let old_slots = &self.slot_at[base + from..base + old];
         let (mut j, mut k, mut len) = (0, 0, from);
@@ -441,7 +474,7 @@ impl<'a> Cursor<'a> {
                 }
                 if k < old_slots.len() && old_slots[k] == x {
                     let end = match spans.get(j) {
-                        Some(&next) => k + old_slots[k..].partition_point(|&y| y < next),
+                        Some(&next) => run_end(old_slots, k, (span_ranks[j] as usize).saturating_sub(from), next),
                         None => old_slots.len(),
                     };
                     self.plan.push(Piece::Old(k as u32, end as u32));

@@ -403,3 +403,18 @@ fn moves_list_changed_strips_in_order() {
         assert!(short > 5 && long > 5, "restrip {restrip:?}: {short} short and {long} long listings of {} strips", sets.strip_count());
     }
 }
+
+/// A run's end looked for from a guess is the search's answer for every start,
+/// guess (near, far, past the end) and bound.
+#[test]
+fn run_end_from_any_guess_is_the_search() {
+    let old: Vec<u32> = (0..40u32).map(|i| 3 * i + i % 2).collect();
+    for k in 0..old.len() {
+        for next in old[k] + 1..old[old.len() - 1] + 3 {
+            let want = k + old[k..].partition_point(|&y| y < next);
+            for guess in 0..old.len() + 3 {
+                assert_eq!(super::cursor::run_end(&old, k, guess, next), want, "k {k} next {next} guess {guess}");
+            }
+        }
+    }
+}
