@@ -21,8 +21,8 @@
 //!
 //! One file of about 1,100 lines on purpose: the model, its builder and the removal
 //! rules share the slot and version layout, and the builder's steps (rename, shorten,
-//! re-strip past a threshold) and the lists derived on load (change lists, the kept
-//! walks handed to `snap.rs`) read best beside the invariants above.
+//! re-strip past a threshold) and the lists derived on load (change lists, the walks
+//! `snap.rs` makes its re-strip tables of) read best beside the invariants above.
 
 use crate::error::{Error, Result};
 use crate::mesh::Attribute;
