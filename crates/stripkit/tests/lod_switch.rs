@@ -115,3 +115,39 @@ fn one_level_steps_touch_few_strips() {
     assert!(most <= 8, "a one-level step changed {most} strips");
     assert_eq!(c.buffer(), sets.cursor(0).buffer());
 }
+
+/// Steps of 1% of the triangles down to the coarsest and back, and one level at a
+/// time around each re-strip level's neighbourhood, on re-stripped strips: they
+/// cross every re-strip level both ways (the cursor copies the model's tables there
+/// and goes on as a near move), and every step equals a fresh cursor, with ascending
+/// changed strips and every changed index reported.
+#[test]
+fn one_percent_steps_across_restrip_levels_equal_fresh_cursors() {
+    let mesh = shuffled(&bumpy_sphere(4), 7);
+    for (restrip, placement) in [(Some(1.5), Placement::Endpoint), (Some(1.6), Placement::Optimal)] {
+        let sets = sets(&mesh, restrip, placement);
+        assert!(sets.restripped_strips() > 0, "{placement:?}: re-stripped");
+        let down: Vec<u32> = (0..=100).map(|j| sets.level_for_ratio(1.0 - j as f64 / 100.0)).collect();
+        let mut c = sets.cursor(0);
+        let mut big = 0;
+        for (step, &level) in down.iter().chain(down.iter().rev()).enumerate() {
+            let before = c.buffer().to_vec();
+            let changed = c.set_level(level).to_vec();
+            let fresh = sets.cursor(level);
+            assert_eq!(c.buffer(), fresh.buffer(), "{placement:?}: step {step}, level {level}");
+            assert!(changed.windows(2).all(|w| w[0] < w[1]), "{placement:?}: changed strips ascending, once each");
+            let mut written = vec![false; before.len()];
+            for &s in &changed {
+                written[c.changed_range(s as usize)].fill(true);
+            }
+            for (i, (&a, &z)) in before.iter().zip(c.buffer()).enumerate() {
+                assert!(written[i] || a == z, "{placement:?}: step {step}: buffer index {i} changed unreported");
+            }
+            let v = stripkit::verify_triangles(&lod_triangles(&sets, level), &stripkit::decode(&c.strips()));
+            assert!(v.ok(), "{placement:?}: level {level}: {v}");
+            // A step across a re-strip level ends every live strip and begins others.
+            big += (changed.len() * 2 > sets.strip_count() / 4) as usize;
+        }
+        assert!(big >= 2, "{placement:?}: {big} steps across a re-strip level");
+    }
+}

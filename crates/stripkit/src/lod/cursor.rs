@@ -25,8 +25,11 @@ use std::ops::Range;
 /// whole, as a new cursor would, except a strip that appears whole between the two
 /// levels (it begins at a re-strip level, or ends at one when moving finer): it
 /// starts from the walk the model keeps for it there, copied in, and moves on from
-/// that level as a near move. [`Cursor::changed_range`] is what a renderer must
-/// upload again.
+/// that level as a near move. A move across re-strip levels (which end every live
+/// strip and begin new ones) first puts the cursor at the re-strip level nearest its
+/// destination with the model's tables (one fill of restarts, one copy of the new
+/// strips' ranges and of their states), then moves on as a near move.
+/// [`Cursor::changed_range`] is what a renderer must upload again.
 ///
 /// ```
 /// use stripkit::{gen, lod, StripOptions};
@@ -52,6 +55,9 @@ pub struct Cursor<'a> {
     /// within a strip's range), where a partial re-walk resumes.
     slot_at: Vec<u32>,
     changed: Vec<u32>,
+    /// Scratch of a move across re-strip levels: the strips its copies changed,
+    /// each with the end of what they wrote.
+    crossed: Vec<(u32, u32)>,
     moves: u32,
     /// Scratch of a move: the changed slots of every changed strip, ascending
     /// per strip (`span_counts` of them each), with each one's version at the new
@@ -137,6 +143,7 @@ impl Sets {
             buffer: vec![crate::strip::DEFAULT_RESTART; self.slot_count() + strips],
             slot_at: vec![super::END; self.slot_count() + strips],
             changed: Vec::with_capacity(strips),
+            crossed: Vec::new(),
             moves: 0,
             spans: Vec::new(),
             span_versions: Vec::new(),
@@ -174,6 +181,9 @@ impl<'a> Cursor<'a> {
         let sets = self.sets;
         let level = level.min(sets.levels());
         let old = self.level;
+        if let Some(kept) = sets.snapshots.crossing(old, level) {
+            return self.cross(kept, level);
+        }
         self.changed.clear();
         self.level = level;
         if level == old {
@@ -541,5 +551,76 @@ impl<'a> Cursor<'a> {
     /// Indices of the non-empty strips at the current level (without restarts).
     pub fn index_count(&self) -> usize {
         self.state.iter().map(|st| st.len as usize).sum()
+    }
+}
+
+impl<'a> Cursor<'a> {
+    /// A move to `level` across re-strip levels (see `snap.rs`): to the level `kept`
+    /// by the model's tables (the range of the generation live before filled with
+    /// restarts, the block of the one live at `kept` copied in, the states of the
+    /// generations between copied), then on to `level` as a near move; the strips
+    /// changed by either part, ascending.
+    fn cross(&mut self, kept: u32, level: u32) -> &[u32] {
+        let snaps = &self.sets.snapshots;
+        let (was, now) = (snaps.generation(self.level), snaps.generation(kept));
+        self.crossed.clear();
+        for k in was.min(now)..=was.max(now) {
+            let strips = snaps.strips(k);
+            let range = snaps.range(k);
+            if k == was {
+                for s in strips.clone() {
+                    if self.state[s].len > 0 {
+                        self.crossed.push((s as u32, self.state[s].len));
+                    }
+                }
+                self.buffer[range.clone()].fill(self.restart);
+            } else if k == now {
+                let (labels, slots) = snaps.block(k, kept);
+                self.buffer[range.clone()].copy_from_slice(labels);
+                self.slot_at[range].copy_from_slice(slots);
+            }
+            for (i, kept_state) in snaps.states(k, kept).iter().enumerate() {
+                let st = &mut self.state[strips.start + i];
+                if k == now && kept_state.len > 0 {
+                    self.crossed.push(((strips.start + i) as u32, kept_state.len));
+                }
+                st.len = kept_state.len;
+                st.next = kept_state.next;
+                st.lo = kept_state.lo;
+                st.hi = kept_state.hi;
+            }
+        }
+        // The generations ascend with the strips' numbers: sorted, once each.
+        if was > now {
+            self.crossed.sort_unstable();
+        }
+        for &(s, end) in &self.crossed {
+            self.state[s as usize].written = (0, end);
+        }
+        self.level = kept;
+        self.set_level(level);
+        // Both parts' strips, ascending, once each; a strip in both wrote from its
+        // start to the furthest end of the two.
+        let near = std::mem::take(&mut self.changed);
+        let mut merged = Vec::with_capacity(near.len() + self.crossed.len());
+        let (mut i, mut j) = (0, 0);
+        while i < near.len() || j < self.crossed.len() {
+            let a = near.get(i).copied().unwrap_or(u32::MAX);
+            let (b, end) = self.crossed.get(j).copied().unwrap_or((u32::MAX, 0));
+            if a < b {
+                merged.push(a);
+                i += 1;
+            } else {
+                if a == b {
+                    let st = &mut self.state[a as usize];
+                    st.written = (0, st.written.1.max(end));
+                    i += 1;
+                }
+                merged.push(b);
+                j += 1;
+            }
+        }
+        self.changed = merged;
+        &self.changed
     }
 }

@@ -21,8 +21,8 @@
 //!
 //! One file of about 1,100 lines on purpose: the model, its builder and the removal
 //! rules share the slot and version layout, and the builder's steps (rename, shorten,
-//! re-strip past a threshold) and the lists derived on load (change lists, the kept
-//! walks handed to `snap.rs`) read best beside the invariants above.
+//! re-strip past a threshold) and the lists derived on load (change lists, the walks
+//! `snap.rs` makes its re-strip tables of) read best beside the invariants above.
 
 use crate::error::{Error, Result};
 use crate::mesh::Attribute;
@@ -123,7 +123,7 @@ pub struct Sets {
     /// finds them without looking at every strip.
     pub(crate) level_offsets: Vec<u32>,
     pub(crate) level_strips: Vec<u32>,
-    /// The walks of the strips that begin or end at a re-strip level (derived).
+    /// The cursor's state at the re-strip levels, per generation of strips (derived).
     pub(crate) snapshots: Snapshots,
     /// Triangles at each level (derived, not stored).
     pub(crate) triangles_at: Vec<u32>,
@@ -348,61 +348,34 @@ impl Sets {
                 .ok_or_else(|| Error::Invalid(format!("collapse {i} removes {r} triangles, more than the {t} left")))?;
             self.triangles_at.push(t);
         }
-        self.snapshots = self.kept_walks();
-        Ok(())
-    }
-
-    /// The walks a cursor copies for the strips that appear at a re-strip level
-    /// (none without re-strip levels): for every beginning at a re-strip level, the
-    /// strip at that level when it begins there and at the level before when it
-    /// ends there.
-    fn kept_walks(&self) -> Snapshots {
-        let strips = self.strip_count();
-        let beginnings = |s: usize| self.begin_offsets[s] as usize..self.begin_offsets[s + 1] as usize;
-        // The re-strip levels: where a strip that is empty at level 0 begins.
-        let mut restrip: Vec<u32> = (0..strips)
-            .filter(|&s| self.begin_slot[self.begin_offsets[s] as usize] == END)
-            .flat_map(|s| beginnings(s).skip(1).map(|k| self.begin_level[k]))
-            .filter(|&l| l > 0)
-            .collect();
-        restrip.sort_unstable();
-        restrip.dedup();
-        if restrip.is_empty() {
-            return Snapshots::none();
-        }
-        let mut out = Snapshots::start();
-        let (mut labels, mut slots) = (Vec::new(), Vec::new());
-        for s in 0..strips {
-            let mut last = None;
-            for k in beginnings(s) {
-                let b = self.begin_level[k];
-                if restrip.binary_search(&b).is_err() {
-                    continue;
+        let model = super::snap::Model {
+            strip_slots: &self.strip_slots,
+            begin_offsets: &self.begin_offsets,
+            begin_level: &self.begin_level,
+            begin_slot: &self.begin_slot,
+            change_offsets: &self.change_offsets,
+            change_level: &self.change_level,
+        };
+        // A walk that leaves the strip's slots or visits more of them than it has
+        // (a damaged model, refused by the later checks) leaves the tables out.
+        let snapshots = Snapshots::derive(model, |s, level, labels, slots| {
+            labels.clear();
+            slots.clear();
+            let (first, end) = (self.strip_slots[s], self.strip_slots[s + 1]);
+            let mut x = self.head_at(s, level);
+            while x != END {
+                if x < first || x >= end || slots.len() >= (end - first) as usize {
+                    return false;
                 }
-                let at = if self.begin_slot[k] == END { b - 1 } else { b };
-                if last == Some(at) {
-                    continue;
-                }
-                last = Some(at);
-                // A walk that leaves the strip's slots or visits more of them than
-                // it has (a damaged model, refused by the later checks) is left out.
-                let (first, end) = (self.strip_slots[s], self.strip_slots[s + 1]);
-                labels.clear();
-                slots.clear();
-                let mut x = self.head_at(s, at);
-                while x != END && x >= first && x < end && slots.len() < (end - first) as usize {
-                    let v = self.version_at(x, at);
-                    labels.push(v.label);
-                    slots.push(x);
-                    x = v.next;
-                }
-                if x == END {
-                    out.push(at, &labels, &slots);
-                }
+                let v = self.version_at(x, level);
+                labels.push(v.label);
+                slots.push(x);
+                x = v.next;
             }
-            out.end_strip();
-        }
-        out
+            true
+        });
+        self.snapshots = snapshots;
+        Ok(())
     }
 
     /// Number of levels beyond level 0 (the collapses): levels are `0..=levels()`,

@@ -358,3 +358,57 @@ fn kept_walks_at_restrip_levels() {
         }
     }
 }
+
+/// Moves onto, off and across every re-strip level (near and far, both ways, from
+/// fresh cursors and in one chain, so that a state the tables set wrongly shows in
+/// the moves after) take the tables' path and equal fresh cursors, ascending changed
+/// strips, every changed index reported.
+#[test]
+fn moves_across_restrip_levels_copy_the_tables() {
+    let meshes = [(crate::gen::icosphere(3), 1.5, Placement::Endpoint), (crate::gen::icosphere(3), 1.6, Placement::Optimal)];
+    for (mesh, threshold, placement) in meshes {
+        let options = BuildOptions { restrip: Some(threshold), placement, ..BuildOptions::default() };
+        let sets = build(&mesh, &options, &mut |_| {}).unwrap().sets;
+        let mut births: Vec<u32> = (0..sets.strip_count())
+            .filter(|&s| sets.begin_slot[sets.begin_offsets[s] as usize] == END)
+            .map(|s| sets.begin_level[sets.begin_offsets[s] as usize + 1])
+            .collect();
+        births.sort_unstable();
+        births.dedup();
+        assert!(births.len() >= 2, "{placement:?}: re-strip levels {births:?}");
+        assert_eq!(sets.snapshots.restrip_levels(), &births[..], "{placement:?}: tables kept for every re-strip level");
+        let last = sets.levels();
+        let check = |c: &mut Cursor, to: u32, crossings: &mut usize| {
+            let from = c.level();
+            *crossings += sets.snapshots.crossing(from, to).is_some() as usize;
+            let before = c.buffer().to_vec();
+            let changed = c.set_level(to).to_vec();
+            assert_eq!(c.buffer(), sets.cursor(to).buffer(), "{placement:?}: {from} -> {to}");
+            assert!(changed.windows(2).all(|w| w[0] < w[1]), "{from} -> {to}: changed strips ascending, once each");
+            let mut written = vec![false; before.len()];
+            for &s in &changed {
+                written[c.changed_range(s as usize)].fill(true);
+            }
+            for (i, (&a, &z)) in before.iter().zip(c.buffer()).enumerate() {
+                assert!(written[i] || a == z, "{placement:?}: {from} -> {to}: index {i} changed unreported");
+            }
+        };
+        let mut crossings = 0;
+        let mut chain = sets.cursor(0);
+        for &l in &births {
+            let near = [l - 1, l, l.saturating_sub(6), l + 4, l.saturating_sub(2), l + 1];
+            let far = [0, last, births[0], births[births.len() - 1] - 1];
+            let stops: Vec<u32> = near.iter().chain(&far).map(|&x| x.min(last)).collect();
+            for &from in &stops {
+                for &to in &stops {
+                    let mut c = sets.cursor(from);
+                    check(&mut c, to, &mut crossings);
+                }
+            }
+            for to in [l - 1, l, l - 1, l + 4, l.saturating_sub(6), l, l + 1, l.saturating_sub(2), 0, l, last, l - 1, l + 2] {
+                check(&mut chain, to.min(last), &mut crossings);
+            }
+        }
+        assert!(crossings > 60 * births.len(), "{placement:?}: {crossings} moves across re-strip levels");
+    }
+}
