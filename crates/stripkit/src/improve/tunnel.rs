@@ -117,8 +117,9 @@ struct State<'a> {
     /// `stamp[t] == now` marks the triangles touched by the candidate being scored.
     stamp: Vec<u32>,
     now: u32,
-    /// Scratch: links and pivots of the touched triangles after the change.
-    redo: Vec<(u32, [u32; 2], u32)>,
+    /// Scratch, beside `touched`: the index in `log` of each touched triangle's first
+    /// entry (its links and pivot before the change).
+    first: Vec<usize>,
     /// Work of the current search: undo-log entries scored (it stops past
     /// `options.max_work`).
     work: usize,
@@ -209,9 +210,10 @@ impl State<'_> {
     }
 
     /// Twice the swaps on the links at the touched triangles (linked pairs with equal
-    /// pivots): a pair with both ends touched is seen from both, one with one touched
-    /// end is counted twice from it.
-    fn local_swaps2(&mut self) -> i32 {
+    /// pivots) under the current links: a pair with both ends touched is seen from
+    /// both, one with one touched end is counted twice from it. Stops once the count
+    /// reaches `bound` (it only grows).
+    fn local_swaps2(&mut self, bound: i32) -> i32 {
         let mut s = 0;
         for i in 0..self.touched.len() {
             let t = self.touched[i];
@@ -224,34 +226,101 @@ impl State<'_> {
                     s += if self.stamp[u as usize] == self.now { 1 } else { 2 };
                 }
             }
+            if s >= bound {
+                break;
+            }
+        }
+        s
+    }
+
+    /// The pivot of touched triangle `touched[i]` before the change, from its first
+    /// log entry (computed there once when not known).
+    #[inline]
+    fn old_piv(&mut self, i: usize) -> u32 {
+        let k = self.first[i];
+        let (t, l, p) = self.log[k];
+        if p != UNKNOWN {
+            return p;
+        }
+        let p = self.pivot_of(t, l);
+        self.log[k].2 = p;
+        p
+    }
+
+    /// [`State::local_swaps2`] before the change: the touched triangles' links and
+    /// pivots are read from their first log entries, the others are unchanged.
+    fn old_swaps2(&mut self) -> i32 {
+        let mut s = 0;
+        for i in 0..self.touched.len() {
+            let pt = self.old_piv(i);
+            if pt == NONE {
+                continue;
+            }
+            for u in self.log[self.first[i]].1 {
+                if u == NONE {
+                    continue;
+                }
+                if self.stamp[u as usize] == self.now {
+                    let j = self.touched.iter().position(|&x| x == u).expect("touched");
+                    if self.old_piv(j) == pt {
+                        s += 1;
+                    }
+                } else if self.piv(u) == pt {
+                    s += 2;
+                }
+            }
         }
         s
     }
 
     /// True when the strip through `a` (which has a link to `b`) closes into a cycle.
+    ///
+    /// It walks from `a` both ways at once, a step each in turn: a path shows an end
+    /// after twice the steps to its nearer end (often a short strip just joined),
+    /// a cycle shows itself where the two walks meet.
     fn on_cycle(&self, a: u32, b: u32) -> bool {
-        let (mut prev, mut cur) = (a, b);
-        let limit = self.links.len();
-        for _ in 0..limit {
-            if cur == a {
-                return true;
-            }
+        let step = |prev: u32, cur: u32| {
             let l = self.links[cur as usize];
-            let next = if l[0] == prev { l[1] } else { l[0] };
-            if next == NONE {
+            if l[0] == prev {
+                l[1]
+            } else {
+                l[0]
+            }
+        };
+        // Forward from `a` through `b`, backward from `a` through its other link.
+        let (mut p1, mut c1) = (a, b);
+        let (mut p2, mut c2) = (b, a);
+        for _ in 0..self.links.len() {
+            let n1 = step(p1, c1);
+            if n1 == NONE {
                 return false;
             }
-            prev = cur;
-            cur = next;
+            (p1, c1) = (c1, n1);
+            let n2 = step(p2, c2);
+            if n2 == NONE {
+                return false;
+            }
+            (p2, c2) = (c2, n2);
+            // On a path the two walks stay on either side of `a` and never meet; on a
+            // cycle they meet at a triangle or cross on a link.
+            if c1 == c2 || c1 == p2 {
+                return true;
+            }
         }
         true
     }
 
-    /// Scores the tentative change made since `mark` (links now in place): the index
-    /// change it brings, or None when it closes a cycle.
-    fn score(&mut self, mark: usize, strips_saved: i32, new_links: &[(u32, u32)]) -> Option<i32> {
+    /// Whether the tentative change made since `mark` (links now in place) lowers the
+    /// index count (swaps added minus `strips_saved` strips) without closing a cycle.
+    ///
+    /// The swaps before the change are read from the undo log (the first entry of each
+    /// touched triangle holds its old links and pivot), so the links are not rolled
+    /// back and forth; the swaps after it are counted only up to the point where the
+    /// change can no longer pay.
+    fn improves(&mut self, mark: usize, strips_saved: i32, new_links: &[(u32, u32)]) -> bool {
         self.work += self.log.len() - mark;
         self.touched.clear();
+        self.first.clear();
         self.now = self.now.wrapping_add(1);
         if self.now == 0 {
             self.stamp.fill(0);
@@ -262,34 +331,37 @@ impl State<'_> {
             if self.stamp[t as usize] != self.now {
                 self.stamp[t as usize] = self.now;
                 self.touched.push(t);
+                self.first.push(k);
             }
         }
-        let after = self.local_swaps2();
-        self.redo.clear();
-        for &t in &self.touched {
-            self.redo
-                .push((t, self.links[t as usize], self.pivots[t as usize]));
+        // It pays when after - before - 2 * saved * strip_cost < 0 (all doubled).
+        let bound = self.old_swaps2() + 2 * strips_saved * self.options.strip_cost;
+        if bound <= 0 || self.local_swaps2(bound) >= bound {
+            return false;
         }
-        // Old state: the first logged value of every touched triangle, so undo the log
-        // backwards.
-        for k in (mark..self.log.len()).rev() {
-            let (t, l, p) = self.log[k];
-            self.links[t as usize] = l;
-            self.pivots[t as usize] = p;
-        }
-        let before = self.local_swaps2();
-        for &(t, l, p) in &self.redo {
-            self.links[t as usize] = l;
-            self.pivots[t as usize] = p;
-        }
-        let delta = after - before - 2 * strips_saved * self.options.strip_cost;
-        if delta >= 0 {
-            return Some(delta);
-        }
-        if new_links.iter().any(|&(a, b)| self.on_cycle(a, b)) {
-            return None;
-        }
-        Some(delta)
+        !new_links.iter().any(|&(a, b)| self.on_cycle(a, b))
+    }
+
+    /// Whether `t` has a swap with one of its links under the current links (equal
+    /// pivots).
+    fn has_swap(&mut self, t: u32) -> bool {
+        let p = self.piv(t);
+        p != NONE && self.links[t as usize].into_iter().any(|u| u != NONE && self.piv(u) == p)
+    }
+
+    /// Whether the search from `y` after the cut of link (x, y) and the new link
+    /// (c, x), on a path that is `[c, x, y]`, would find a strip end to close with:
+    /// read on the links before that change, which differ only at `c`, `x` and `y`.
+    fn closes_from(&self, y: u32, c: u32, x: u32) -> bool {
+        self.nbr[y as usize].iter().any(|&z| {
+            z != NO_NEIGHBOR
+                && z != y
+                && z != c
+                && z != x
+                && self.member[z as usize]
+                && !self.linked(y, z)
+                && self.deg(z) < 2
+        })
     }
 
     /// Depth-first search for an improving alternating path from `c`, which has a free
@@ -315,10 +387,8 @@ impl State<'_> {
                 let m = self.log.len();
                 self.add_link(c, x);
                 new_links.push((c, x));
-                if let Some(d) = self.score(mark, 1, new_links) {
-                    if d < 0 {
-                        return true;
-                    }
+                if self.improves(mark, 1, new_links) {
+                    return true;
                 }
                 new_links.pop();
                 self.undo_to(m);
@@ -328,8 +398,19 @@ impl State<'_> {
                 continue;
             }
             let lx = self.links[x as usize];
+            // At one cut (the default) with the default budget: relinking (x, y) cannot
+            // pay where neither `x` nor `y` has a swap to remove (no other links
+            // change) and the search from `y` finds no strip end to close with. Such
+            // a relinking is skipped, neither made nor scored, its work counted as
+            // its scoring would (4 log entries): the walks are the full search's.
+            let first_of_one = cuts == 0 && self.options.max_cuts == 1 && self.options.max_work >= SEARCH_BUDGET;
+            let x_swaps = first_of_one && self.has_swap(x);
             for y in lx {
                 if self.path.contains(&y) || self.work >= self.options.max_work {
+                    continue;
+                }
+                if first_of_one && !x_swaps && !self.has_swap(y) && !self.closes_from(y, c, x) {
+                    self.work += 4;
                     continue;
                 }
                 let m = self.log.len();
@@ -339,10 +420,8 @@ impl State<'_> {
                 self.path.push(x);
                 self.path.push(y);
                 // Stopping here keeps the strip count: accept when swaps fall.
-                if let Some(d) = self.score(mark, 0, new_links) {
-                    if d < 0 {
-                        return true;
-                    }
+                if self.improves(mark, 0, new_links) {
+                    return true;
                 }
                 if self.search(y, cuts + 1, new_links, mark) {
                     return true;
@@ -406,7 +485,7 @@ fn tunnel_walks_peak(tris: &[[u32; 3]], graph: &DualGraph, walks: &Walks, option
         options: *options,
         stamp: vec![0; n],
         now: 0,
-        redo: Vec::new(),
+        first: Vec::new(),
         work: 0,
     };
     // Every strip end is searched once; a change puts the ends it touched (and the
@@ -525,6 +604,29 @@ mod tests {
         let plain = crate::stripify::greedy::GreedyOptions { tunnel_cuts: None, ..Default::default() };
         let walks = crate::stripify::greedy::walks_with_graph(&tris, &graph, &plain);
         (tris, graph, walks)
+    }
+
+    #[test]
+    fn skipping_relinkings_that_cannot_pay_keeps_the_walks_and_the_work() {
+        // At one cut with the default budget a relinking that removes no swap and opens
+        // no strip end to close with is skipped unscored; a budget below the default
+        // (yet above the 132 a one-cut search can do) turns the skip off. Both must
+        // give the same walks and count the same work.
+        for seed in [1, 7, 12345] {
+            let (tris, graph, walks) = random_diagonals(24, 16, seed);
+            let all: Vec<u32> = (0..tris.len() as u32).collect();
+            for strip_cost in [3, 1 << 16] {
+                let skip = TunnelOptions { max_cuts: 1, strip_cost, ..TunnelOptions::default() };
+                let full = TunnelOptions { max_work: 1_000, ..skip };
+                let (a, peak_a) = tunnel_walks_peak(&tris, &graph, &walks, &skip);
+                let (b, peak_b) = tunnel_walks_peak(&tris, &graph, &walks, &full);
+                assert_eq!(a, b, "seed {seed}, strip cost {strip_cost}");
+                assert_eq!(peak_a, peak_b, "seed {seed}, strip cost {strip_cost}");
+                let indices = |w: &Walks| w.encode(&tris, &graph).restart_len();
+                assert!(indices(&a) < indices(&walks), "seed {seed}: {} from {}", indices(&a), indices(&walks));
+                check_walks(&graph, &a, &all);
+            }
+        }
     }
 
     #[test]
