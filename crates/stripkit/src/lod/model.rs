@@ -168,7 +168,11 @@ impl Extracted {
                 self.levels
             )));
         }
-        let (mesh, strips, triangles) = self.used_vertices(&triangles);
+        let written = match format {
+            Format::Gltf | Format::Glb => encode_stitched(&self.strips),
+            _ => Vec::new(),
+        };
+        let (mesh, strips, triangles) = self.used_vertices(&triangles, &written);
         let to_write = match format {
             Format::Ply => Some(strips.clone()),
             Format::Gltf | Format::Glb => Some(StripSet::from_strips(&[encode_stitched(&strips)])),
@@ -216,13 +220,17 @@ impl Extracted {
         .map(drop)
     }
 
-    /// The vertices the level's strips use, renumbered in the order the strips first
-    /// name them (the order glTF asks for), with their positions and attributes, as
-    /// a mesh of `triangles`; and the strips and `triangles` renumbered the same way.
-    pub(crate) fn used_vertices(&self, triangles: &[[u32; 3]]) -> (Mesh, StripSet, Vec<[u32; 3]>) {
+    /// The vertices the level's strips use, renumbered in the order `written` first
+    /// names them (the order glTF asks for; `written` is what the file will hold: the
+    /// strips, or their stitched strip, which may read a strip from its end), with their
+    /// positions and attributes, as a mesh of `triangles`; and the strips and
+    /// `triangles` renumbered the same way.
+    pub(crate) fn used_vertices(&self, triangles: &[[u32; 3]], written: &[u32]) -> (Mesh, StripSet, Vec<[u32; 3]>) {
         let mut new_id = vec![u32::MAX; self.positions.len()];
         let mut order = Vec::new();
-        for &v in &self.strips.indices {
+        // Then the strips' own order, for vertices `written` leaves out (strips too
+        // short to draw).
+        for &v in written.iter().chain(&self.strips.indices) {
             if new_id[v as usize] == u32::MAX {
                 new_id[v as usize] = order.len() as u32;
                 order.push(v);

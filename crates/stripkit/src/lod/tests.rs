@@ -94,7 +94,7 @@ fn extracted_level_writes_checked() {
     let triangles = level.checked_triangles().unwrap();
     assert_eq!(triangles.len(), level.triangles as usize);
     // The files hold the level's vertices only, renumbered by first use.
-    let (used, _, renamed) = level.used_vertices(&triangles);
+    let (used, _, renamed) = level.used_vertices(&triangles, &[]);
     assert!(used.positions.len() < level.positions.len());
     for ext in ["ply", "glb", "gltf", "obj", "off", "ply.gz", "stl"] {
         let path = dir.join(format!("level.{ext}"));
@@ -266,7 +266,8 @@ fn tracker_follows_odd_removals() {
 /// what the strips draw.
 #[test]
 fn ribbon_levels_check() {
-    let built = build(&ribbon(3000), &BuildOptions::default(), &mut |_| {}).unwrap();
+    // The kept strips: one strip, never re-stripped.
+    let built = build(&ribbon(3000), &BuildOptions::default().restrip(None), &mut |_| {}).unwrap();
     assert_eq!(built.sets.strip_count(), 1);
     let levels = built.sets.levels();
     assert!(levels > 1000, "{levels}");
