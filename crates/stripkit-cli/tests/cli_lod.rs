@@ -135,6 +135,23 @@ fn restripped_models_build_check_and_extract() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
+/// The default re-strips at 1.6 indices per triangle; `--restrip off` keeps the
+/// level-0 strips at every level (no new strips; a file that is not version 3).
+#[test]
+fn restrip_defaults_to_1_6_and_off_keeps_the_strips() {
+    let input = torus();
+    let (default, d) = build(&input, "default.sets", &[]);
+    let (explicit, e) = build(&input, "explicit.sets", &["--restrip", "1.6"]);
+    let (kept, k) = build(&input, "kept.sets", &["--restrip", "off"]);
+    assert!(d["restripped_strips"].as_u64().unwrap() > 0, "{d}");
+    assert_eq!(d["restripped_strips"], e["restripped_strips"]);
+    assert_eq!(std::fs::read(&default).unwrap(), std::fs::read(&explicit).unwrap(), "the default is --restrip 1.6");
+    assert_eq!(k["restripped_strips"].as_u64().unwrap(), 0, "{k}");
+    let version = |p: &std::path::Path| u32::from_le_bytes(std::fs::read(p).unwrap()[8..12].try_into().unwrap());
+    assert_eq!(version(&default), 3);
+    assert_ne!(version(&kept), 3);
+}
+
 #[test]
 fn bench_prints_the_papers_tests() {
     let (model, _) = build(&torus(), "bench.sets", &[]);
@@ -410,7 +427,8 @@ fn shift_removed_count(bytes: &[u8]) -> Vec<u8> {
 
 #[test]
 fn counts_that_add_up_but_miss_the_strips_exit_2_naming_the_file_and_level() {
-    let (model, _) = build(&torus(), "shifted_good.sets", &[]);
+    // The kept strips' layout (version 1): the offsets above read it.
+    let (model, _) = build(&torus(), "shifted_good.sets", &["--restrip", "off"]);
     let bad = tmp("lod", "shifted.sets");
     std::fs::write(&bad, shift_removed_count(&std::fs::read(&model).unwrap())).unwrap();
     let out = tmp("lod", "shifted_never.ply");

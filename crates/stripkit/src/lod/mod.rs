@@ -34,7 +34,7 @@ mod snap;
 pub mod timing;
 mod track;
 
-pub use build::{build, BuildOptions, BuildReport, Built};
+pub use build::{build, BuildOptions, BuildReport, Built, DEFAULT_RESTRIP};
 pub use check::{check_levels, check_levels_with, LevelCheck};
 pub use cursor::Cursor;
 pub use file::{LODSEQ_MAGIC, SETS_MAGIC};

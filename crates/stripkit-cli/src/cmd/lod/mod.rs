@@ -71,18 +71,25 @@ struct BuildArgs {
     /// Survivor placement of the collapses: endpoint (half-edge collapses, no new vertices) or optimal (a new vertex per collapse at the simplifier's optimal position). Default endpoint.
     #[arg(long, value_parser = crate::cmd::named::<Placement>(Placement::NAMES))]
     placement: Option<Placement>,
-    /// Re-strip as the strips decay: a level whose strips take more than this many indices per triangle (restart buffer) gets new greedy strips, every level still exact (a version-3 `.sets`). At least 1. Default: keep the level-0 strips at every level.
-    #[arg(long, value_name = "INDICES_PER_TRIANGLE", value_parser = restrip_threshold)]
-    restrip: Option<f64>,
+    /// Re-strip as the strips decay: a level whose strips take more than this many indices per triangle (restart buffer) gets new greedy strips, every level still exact (a version-3 `.sets`). At least 1; default 1.6 (the library's `lod::DEFAULT_RESTRIP`), which keeps every level at most 1.6 indices per triangle and makes switches faster. `off` keeps the level-0 strips at every level (a smaller model in memory, but coarse levels cost up to about 4 indices per triangle).
+    #[arg(long, value_name = "INDICES_PER_TRIANGLE|off", value_parser = restrip_threshold)]
+    restrip: Option<Restrip>,
     #[command(flatten)]
     common: CommonArgs,
 }
 
-/// `--restrip`'s value: a number of at least 1.
-fn restrip_threshold(s: &str) -> Result<f64, String> {
+/// `--restrip`'s value: a threshold, or `None` for `off` (keep the level-0 strips).
+#[derive(Clone, Copy, Debug)]
+struct Restrip(Option<f64>);
+
+/// `--restrip`'s value: a number of at least 1, or `off`.
+fn restrip_threshold(s: &str) -> Result<Restrip, String> {
+    if s == "off" {
+        return Ok(Restrip(None));
+    }
     match s.parse::<f64>() {
-        Ok(x) if x.is_finite() && x >= 1.0 => Ok(x),
-        _ => Err(format!("{s} is not a number of indices per triangle of at least 1")),
+        Ok(x) if x.is_finite() && x >= 1.0 => Ok(Restrip(Some(x))),
+        _ => Err(format!("{s} is neither `off` nor a number of indices per triangle of at least 1")),
     }
 }
 
@@ -177,8 +184,10 @@ fn build(args: BuildArgs) -> anyhow::Result<()> {
     let mesh = args.common.read.read(&args.file)?;
     args.common.strip.check_mesh(&mesh, &args.file)?;
     let placement = args.placement.unwrap_or(BuildOptions::default().placement);
-    let options =
-        BuildOptions::default().strip(args.common.strip.options()?).placement(placement).restrip(args.restrip);
+    let mut options = BuildOptions::default().strip(args.common.strip.options()?).placement(placement);
+    if let Some(Restrip(threshold)) = args.restrip {
+        options = options.restrip(threshold);
+    }
     let bar = crate::cmd::progress_bar(mesh.triangle_count() > 200_000, "simplify");
     let built = lod::build(&mesh, &options, &mut |f| bar.set_position((f * 1000.0) as u64))
         .with_context(|| format!("building the model of {}", args.file.display()))?;
