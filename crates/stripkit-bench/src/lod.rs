@@ -143,7 +143,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 fn model(mesh: &Mesh, label: &str, args: &Args, t: &mut Tables) -> anyhow::Result<()> {
     let tris = mesh.triangulate().tris;
     let start = Instant::now();
-    let built = lod::build(mesh, &lod::BuildOptions::default(), &mut |_| {})?;
+    let built = lod::build(mesh, &lod::BuildOptions::default().restrip(None), &mut |_| {})?;
     let build_ms = start.elapsed().as_secs_f64() * 1e3;
     let sets = &built.sets;
     let r = &built.report;

@@ -345,8 +345,9 @@ impl Lod {
     }
 }
 
-/// stripkit::lod::build: strips, simplifies as far as the simplifier goes and keeps the
-/// strips of every level (SETS), checked against a replay.
+/// stripkit::lod::build with its default options: strips, simplifies as far as the
+/// simplifier goes, re-strips the levels past 1.6 indices per triangle (SETS), every
+/// level checked against a replay.
 #[pyfunction]
 fn lod_build(py: Python<'_>, mesh: &Mesh, algorithm: &str, cache_size: usize) -> PyResult<Lod> {
     let strip = options(algorithm, stripkit::DEFAULT_RESTART, cache_size, "restart", false)?;

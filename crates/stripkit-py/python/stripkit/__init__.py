@@ -423,8 +423,9 @@ def match(node_count: int, edges: Any, weights: Any, *, minimize: bool = False) 
 @_checked
 def lod_build(m: Mesh, *, algorithm: str = "auto", cache_size: int = 16) -> Lod:
     """A multiresolution strip model (SETS) of ``m``: strips, simplified as far as the
-    simplifier goes, the strips of every level kept and checked against a replay.
-    ``lod.levels`` is its last level; ``lod.write(path)`` stores it as ``.sets``."""
+    simplifier goes, every level checked against a replay; a level whose strips pass
+    1.6 indices per triangle gets new strips (``stripkit lod build``'s default
+    ``--restrip 1.6``). ``lod.levels`` is its last level; ``lod.write(path)`` stores it as ``.sets``."""
     if not isinstance(m, Mesh):
         raise ValueError(f"lod_build takes a Mesh (stripkit.mesh or stripkit.read), not {type(m).__name__}")
     return _stripkit.lod_build(m, algorithm, _cache(cache_size))
