@@ -38,8 +38,9 @@ pub struct Args {
     /// balanced, batch and single run only on meshes up to this many triangles.
     #[arg(long, value_name = "TRIANGLES", default_value_t = 300_000)]
     pub slow_limit: usize,
-    /// Runs each row this many times (each in a fresh process) and keeps the run of
-    /// median time: single runs on a busy machine differ by tens of percent.
+    /// Runs each row this many times (each in a fresh process; round 1 of every row,
+    /// then round 2, ...) and keeps the run of median time: single runs on a busy
+    /// machine differ by tens of percent, and a machine's speed drifts over a run.
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
     pub rounds: u32,
     /// Only these phases (comma-separated names of the table; default: all).
@@ -102,11 +103,10 @@ fn run_phase(phase: &str, mesh: &Path, threads: usize, work: &Path) -> anyhow::R
     serde_json::from_str(line.trim()).with_context(|| format!("phase {phase}: report {line:?}"))
 }
 
-/// The report of median time among `rounds` runs (the lower middle one for an even count).
-fn median_run(rounds: u32, mut run: impl FnMut() -> anyhow::Result<Report>) -> anyhow::Result<Report> {
-    let mut reports = (0..rounds.max(1)).map(|_| run()).collect::<anyhow::Result<Vec<Report>>>()?;
+/// The report of median time among a row's runs (the lower middle one for an even count).
+fn median_report(mut reports: Vec<Report>) -> Report {
     reports.sort_by_key(|r| r.ns);
-    Ok(reports.swap_remove((reports.len() - 1) / 2))
+    reports.swap_remove((reports.len() - 1) / 2)
 }
 
 /// Runs the bench.
@@ -142,8 +142,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// One row of the table: a mesh file, a phase and a thread count.
+struct Job {
+    mesh: usize,
+    phase: &'static str,
+    threads: usize,
+    reports: Vec<Report>,
+}
+
+/// Writes every mesh of the series first, then runs the rows' rounds interleaved (round
+/// 1 of every row, then round 2, ...), so that a machine whose speed drifts during the
+/// run shifts every row alike instead of the rows measured at a slow moment.
 fn measure(args: &Args, base: &Path, levels: u32, thread_counts: &[usize], work: &Path) -> anyhow::Result<Vec<Row>> {
-    let mut rows = Vec::new();
+    let mut meshes: Vec<(String, String, std::path::PathBuf)> = Vec::new();
+    let mut jobs: Vec<Job> = Vec::new();
     let mut most_triangles = 0;
     let models = std::iter::once(base).chain(args.held_back.as_deref());
     for (m, path) in models.enumerate() {
@@ -159,28 +171,39 @@ fn measure(args: &Args, base: &Path, levels: u32, thread_counts: &[usize], work:
             }
             most_triangles = most_triangles.max(mesh.triangle_count());
             let name = format!("{model} {}x", 4usize.pow(level));
-            let file = work.join("mesh.ply");
+            let file = work.join(format!("mesh-{m}-{level}.ply"));
             stripkit::io::write(&file, &mesh, None).with_context(|| format!("writing {}", file.display()))?;
             eprintln!("{name}: {} triangles", mesh.triangle_count());
+            let big = mesh.triangle_count() > args.slow_limit;
             for phase in PHASES {
-                if !args.phases.is_empty() && !args.phases.iter().any(|p| p == phase) {
-                    continue;
-                }
-                if SLOW.contains(phase) && mesh.triangle_count() > args.slow_limit {
+                let asked = args.phases.is_empty() || args.phases.iter().any(|p| p == phase);
+                if !asked || (SLOW.contains(phase) && big) {
                     continue;
                 }
                 // meshoptimizer's calls use one thread whatever the count.
                 let counts = if *phase == "meshopt" { &thread_counts[..1] } else { thread_counts };
-                for &t in counts {
-                    let report = median_run(args.rounds, || run_phase(phase, &file, t, work))?;
-                    eprintln!("  {phase} x{t}: {:.1} ms, {:.0} MB", report.ns as f64 / 1e6, report.peak_bytes as f64 / 1e6);
-                    rows.push(Row { mesh: name.clone(), model: model.clone(), phase: phase.to_string(), threads: t, report });
+                for &threads in counts {
+                    jobs.push(Job { mesh: meshes.len(), phase, threads, reports: Vec::new() });
                 }
             }
-            std::fs::remove_file(&file).ok();
+            meshes.push((name, model.clone(), file));
         }
     }
-    Ok(rows)
+    for round in 0..args.rounds.max(1) {
+        eprintln!("round {} of {}", round + 1, args.rounds.max(1));
+        for job in &mut jobs {
+            job.reports.push(run_phase(job.phase, &meshes[job.mesh].2, job.threads, work)?);
+        }
+    }
+    Ok(jobs
+        .into_iter()
+        .map(|job| {
+            let (name, model, _) = &meshes[job.mesh];
+            let report = median_report(job.reports);
+            eprintln!("  {name} {} x{}: {:.1} ms, {:.0} MB", job.phase, job.threads, report.ns as f64 / 1e6, report.peak_bytes as f64 / 1e6);
+            Row { mesh: name.clone(), model: model.clone(), phase: job.phase.to_string(), threads: job.threads, report }
+        })
+        .collect())
 }
 
 fn render(rows: &[Row], thread_counts: &[usize]) -> String {
