@@ -14,6 +14,9 @@ use std::io::Read;
 use std::path::Path;
 
 /// A `.sets` model or a `.lodseq` animation.
+// `Sets` holds its derived tables' headers inline (about 600 bytes); a program holds a
+// model or a few and moves them rarely, so boxing would only add an indirection.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq)]
 pub enum Model {
     /// A SETS model ([`Sets`]).

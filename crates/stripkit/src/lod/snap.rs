@@ -154,7 +154,7 @@ impl Snapshots {
         for k in 0..=m {
             for s in first[k] as usize..first[k + 1] as usize {
                 let levels = &sets.change_level[sets.change_offsets[s] as usize..sets.change_offsets[s + 1] as usize];
-                let inside = |l: u32| l == 0 || (l >= from(k) && to(k).map_or(true, |t| l <= t));
+                let inside = |l: u32| l == 0 || (l >= from(k) && to(k).is_none_or(|t| l <= t));
                 if !levels.iter().all(|&l| inside(l))
                     || (k > 0 && !empty(s, from(k) - 1))
                     || to(k).is_some_and(|t| !empty(s, t))
