@@ -54,19 +54,27 @@ fn random_walk(label: &str, sets: &Sets, seed: u64, steps: usize) -> (usize, usi
         let v = stripkit::verify_triangles(&lod_triangles(sets, level), &stripkit::decode(&c.strips()));
         assert!(v.ok(), "{label}: level {level}: {v}");
         assert!(changed.windows(2).all(|w| w[0] < w[1]), "{label}: changed strips ascending, once each");
-        let mut written = vec![false; before.len()];
         for &s in &changed {
             let (whole, r) = (c.strip_range(s as usize), c.changed_range(s as usize));
             assert!(r.start >= whole.start && r.end <= whole.end, "{label}: strip {s}");
             partial += (r.start > whole.start) as usize;
             short += (r.end < whole.start + c.strip(s as usize).len().max(1)) as usize;
-            written[r].fill(true);
         }
-        for (i, (&a, &z)) in before.iter().zip(c.buffer()).enumerate() {
-            assert!(written[i] || a == z, "{label}: step {step} to level {level}: buffer index {i} changed unreported");
-        }
+        assert_changes_reported(&before, &c, &changed, &format!("{label}: step {step} to level {level}"));
     }
     (partial, short)
+}
+
+/// Every buffer index that changed from `before` to the cursor's buffer lies in the
+/// reported range of one of the `changed` strips.
+fn assert_changes_reported(before: &[u32], c: &lod::Cursor, changed: &[u32], label: &str) {
+    let mut written = vec![false; before.len()];
+    for &s in changed {
+        written[c.changed_range(s as usize)].fill(true);
+    }
+    for (i, (&a, &z)) in before.iter().zip(c.buffer()).enumerate() {
+        assert!(written[i] || a == z, "{label}: buffer index {i} changed unreported");
+    }
 }
 
 /// The level's triangles as a fresh cursor draws them, counted against the model.
@@ -136,13 +144,7 @@ fn one_percent_steps_across_restrip_levels_equal_fresh_cursors() {
             let fresh = sets.cursor(level);
             assert_eq!(c.buffer(), fresh.buffer(), "{placement:?}: step {step}, level {level}");
             assert!(changed.windows(2).all(|w| w[0] < w[1]), "{placement:?}: changed strips ascending, once each");
-            let mut written = vec![false; before.len()];
-            for &s in &changed {
-                written[c.changed_range(s as usize)].fill(true);
-            }
-            for (i, (&a, &z)) in before.iter().zip(c.buffer()).enumerate() {
-                assert!(written[i] || a == z, "{placement:?}: step {step}: buffer index {i} changed unreported");
-            }
+            assert_changes_reported(&before, &c, &changed, &format!("{placement:?}: step {step}"));
             let v = stripkit::verify_triangles(&lod_triangles(&sets, level), &stripkit::decode(&c.strips()));
             assert!(v.ok(), "{placement:?}: level {level}: {v}");
             // A step across a re-strip level ends every live strip and begins others.

@@ -19,7 +19,7 @@
 //! * at its end, any run whose triangles are all degenerate;
 //! * a strip with no non-degenerate triangle left is emptied.
 //!
-//! One file of about 1,100 lines on purpose: the model, its builder and the removal
+//! One file of about 1,150 lines on purpose: the model, its builder and the removal
 //! rules share the slot and version layout, and the builder's steps (rename, shorten,
 //! re-strip past a threshold) and the lists derived on load (change lists, the walks
 //! `snap.rs` makes its re-strip tables of) read best beside the invariants above.

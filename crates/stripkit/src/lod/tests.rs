@@ -347,17 +347,7 @@ fn kept_walks_at_restrip_levels() {
         let (l1, l2, l5) = (l - 1, l.saturating_sub(2), l.saturating_sub(5));
         for (from, to) in [(l1, l), (l, l1), (0, l + 3), (l + 3, l2), (last, l1), (l1, last), (l5, l)] {
             let (from, to) = (from.min(last), to.min(last));
-            let mut c = sets.cursor(from);
-            let before = c.buffer().to_vec();
-            let changed = c.set_level(to).to_vec();
-            assert_eq!(c.buffer(), sets.cursor(to).buffer(), "{from} -> {to}");
-            let mut written = vec![false; before.len()];
-            for &s in &changed {
-                written[c.changed_range(s as usize)].fill(true);
-            }
-            for (i, (&a, &z)) in before.iter().zip(c.buffer()).enumerate() {
-                assert!(written[i] || a == z, "{from} -> {to}: index {i} changed unreported");
-            }
+            move_checked(&sets, &mut sets.cursor(from), to, "");
         }
     }
 }
@@ -440,19 +430,8 @@ fn moves_across_restrip_levels_copy_the_tables() {
         assert_eq!(sets.snapshots.restrip_levels(), &births[..], "{placement:?}: tables kept for every re-strip level");
         let last = sets.levels();
         let check = |c: &mut Cursor, to: u32, crossings: &mut usize| {
-            let from = c.level();
-            *crossings += sets.snapshots.crossing(from, to).is_some() as usize;
-            let before = c.buffer().to_vec();
-            let changed = c.set_level(to).to_vec();
-            assert_eq!(c.buffer(), sets.cursor(to).buffer(), "{placement:?}: {from} -> {to}");
-            assert!(changed.windows(2).all(|w| w[0] < w[1]), "{from} -> {to}: changed strips ascending, once each");
-            let mut written = vec![false; before.len()];
-            for &s in &changed {
-                written[c.changed_range(s as usize)].fill(true);
-            }
-            for (i, (&a, &z)) in before.iter().zip(c.buffer()).enumerate() {
-                assert!(written[i] || a == z, "{placement:?}: {from} -> {to}: index {i} changed unreported");
-            }
+            *crossings += sets.snapshots.crossing(c.level(), to).is_some() as usize;
+            move_checked(&sets, c, to, &format!("{placement:?}"));
         };
         let mut crossings = 0;
         let mut chain = sets.cursor(0);
@@ -471,5 +450,23 @@ fn moves_across_restrip_levels_copy_the_tables() {
             }
         }
         assert!(crossings > 60 * births.len(), "{placement:?}: {crossings} moves across re-strip levels");
+    }
+}
+
+/// Moves `c` to `to` and checks the move: the buffer equals a fresh cursor's, the
+/// changed strips ascend (once each), and every buffer index that changed lies in
+/// a changed strip's reported range.
+fn move_checked(sets: &Sets, c: &mut Cursor, to: u32, label: &str) {
+    let from = c.level();
+    let before = c.buffer().to_vec();
+    let changed = c.set_level(to).to_vec();
+    assert_eq!(c.buffer(), sets.cursor(to).buffer(), "{label}: {from} -> {to}");
+    assert!(changed.windows(2).all(|w| w[0] < w[1]), "{label}: {from} -> {to}: changed strips ascending, once each");
+    let mut written = vec![false; before.len()];
+    for &s in &changed {
+        written[c.changed_range(s as usize)].fill(true);
+    }
+    for (i, (&a, &z)) in before.iter().zip(c.buffer()).enumerate() {
+        assert!(written[i] || a == z, "{label}: {from} -> {to}: index {i} changed unreported");
     }
 }
