@@ -171,14 +171,14 @@ impl Extracted {
                 self.levels
             )));
         }
-        let written = match format {
+        let mut written = match format {
             Format::Gltf | Format::Glb => encode_stitched(&self.strips),
             _ => Vec::new(),
         };
-        let (mesh, strips, triangles) = self.used_vertices(&triangles, &written);
+        let (mesh, strips, triangles) = self.used_vertices(&triangles, &mut written);
         let to_write = match format {
             Format::Ply => Some(strips.clone()),
-            Format::Gltf | Format::Glb => Some(StripSet::from_strips(&[encode_stitched(&strips)])),
+            Format::Gltf | Format::Glb => Some(StripSet::from_strips(&[written])),
             Format::Obj | Format::Off | Format::Stl => None,
         };
         io::write_checked(
@@ -227,8 +227,8 @@ impl Extracted {
     /// names them (the order glTF asks for; `written` is what the file will hold: the
     /// strips, or their stitched strip, which may read a strip from its end), with their
     /// positions and attributes, as a mesh of `triangles`; and the strips and
-    /// `triangles` renumbered the same way.
-    pub(crate) fn used_vertices(&self, triangles: &[[u32; 3]], written: &[u32]) -> (Mesh, StripSet, Vec<[u32; 3]>) {
+    /// `triangles` renumbered the same way (`written` too, in place).
+    pub(crate) fn used_vertices(&self, triangles: &[[u32; 3]], written: &mut [u32]) -> (Mesh, StripSet, Vec<[u32; 3]>) {
         let mut new_id = vec![u32::MAX; self.positions.len()];
         let mut order = Vec::new();
         // Then the strips' own order, for vertices `written` leaves out (strips too
@@ -243,7 +243,7 @@ impl Extracted {
         let mut mesh = Mesh::from_triangles(order.iter().map(|&v| self.positions[v as usize]).collect(), &renamed);
         mesh.attributes = self.attributes.iter().map(|a| a.gather(&order)).collect();
         let mut strips = self.strips.clone();
-        strips.indices.iter_mut().for_each(|v| *v = new_id[*v as usize]);
+        strips.indices.iter_mut().chain(written.iter_mut()).for_each(|v| *v = new_id[*v as usize]);
         (mesh, strips, renamed)
     }
 

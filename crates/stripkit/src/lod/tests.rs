@@ -94,7 +94,7 @@ fn extracted_level_writes_checked() {
     let triangles = level.checked_triangles().unwrap();
     assert_eq!(triangles.len(), level.triangles as usize);
     // The files hold the level's vertices only, renumbered by first use.
-    let (used, _, renamed) = level.used_vertices(&triangles, &[]);
+    let (used, _, renamed) = level.used_vertices(&triangles, &mut []);
     assert!(used.positions.len() < level.positions.len());
     for ext in ["ply", "glb", "gltf", "obj", "off", "ply.gz", "stl"] {
         let path = dir.join(format!("level.{ext}"));
